@@ -1,0 +1,1 @@
+"""Camera and line I/O drivers. Imports without torch."""

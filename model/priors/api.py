@@ -1,0 +1,85 @@
+"""``compute_priors``: raw mosaic -> the polarimetric priors a consumer asks for, and nothing more."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .conventions import MosaicLayout
+from .demosaic import mosaic_to_stokes
+from .mosaic import normalize_mosaic
+from .stokes import aolp, aolp_vector, dolp, unpolarized_intensity
+
+PRIOR_KEYS = ("intensity", "dolp", "aolp", "aolp_cos", "aolp_sin", "s0", "s1", "s2")
+"""Everything ``compute_priors`` can return; meanings and units in ``conventions.py``."""
+
+
+@dataclass(frozen=True)
+class Priors(Mapping[str, np.ndarray]):
+    """Float32 (H', W') arrays keyed by prior name, plus a report of what was wrong with the input.
+
+    ``invalid`` (mosaic resolution, bool) marks NaN/Inf or out-of-range input pixels that were replaced;
+    None when the input was clean. ``n_saturated`` counts pixels at full scale (their Stokes are biased).
+    """
+
+    arrays: dict[str, np.ndarray]
+    n_nonfinite: int = 0
+    n_out_of_range: int = 0
+    n_saturated: int = 0
+    invalid: np.ndarray | None = field(default=None, repr=False)
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        return self.arrays[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.arrays)
+
+    def __len__(self) -> int:
+        return len(self.arrays)
+
+
+def check_prior_names(priors: Iterable[str]) -> tuple[str, ...]:
+    names = tuple(priors)
+    unknown = [p for p in names if p not in PRIOR_KEYS]
+    if unknown or not names:
+        raise ValueError(f"unknown or no priors {unknown or names}; choose from {', '.join(PRIOR_KEYS)}")
+    return names
+
+
+def compute_priors(raw: np.ndarray, layout: str | MosaicLayout = "imx250mzr", method: str = "bilinear",
+                   priors: Iterable[str] = ("intensity", "dolp", "aolp"), bit_depth: int | None = None
+                   ) -> Priors:
+    """Demosaic a raw polarizer mosaic and compute the requested priors.
+
+    Parameters
+    ----------
+    raw : (H, W) uint8, uint16 or float array, H and W even. Integers are codes of ``bit_depth`` significant
+        bits (default: the dtype's width; e.g. 12 for a Mono12 camera in uint16); floats are full-scale units.
+    layout : mosaic layout name or ``MosaicLayout`` (default: Sony IMX250MZR).
+    method : demosaicking method name (see ``model.priors.demosaic.METHODS``).
+    priors : names from ``PRIOR_KEYS``; only these and what they need (S0 for intensity; S0, S1, S2 for
+        polarization) are computed and returned.
+
+    Returns
+    -------
+    Priors : mapping of float32 (H', W') arrays (H' = H, or H/2 for half-resolution methods); never NaN or
+        Inf; dolp in [0, 1], aolp in [0, pi). Conventions: ``model.priors.conventions``.
+    """
+    names = check_prior_names(priors)
+    norm = normalize_mosaic(raw, bit_depth)
+    polarization = any(n not in ("intensity", "s0") for n in names)
+    s0, s1, s2 = mosaic_to_stokes(norm.data, layout, method, polarization)
+    out: dict[str, np.ndarray] = {"s0": s0}
+    if polarization:
+        out["s1"], out["s2"] = s1, s2
+    if "intensity" in names:
+        out["intensity"] = unpolarized_intensity(s0)
+    if "dolp" in names:
+        out["dolp"] = dolp(s0, s1, s2)
+    if "aolp" in names:
+        out["aolp"] = aolp(s1, s2)
+    if "aolp_cos" in names or "aolp_sin" in names:
+        out["aolp_cos"], out["aolp_sin"] = aolp_vector(s1, s2)
+    return Priors(out, norm.n_nonfinite, norm.n_out_of_range, norm.n_saturated, norm.invalid)

@@ -1,0 +1,1 @@
+"""Benchmarks behind ``station bench``; shared report writing in ``report.py``."""

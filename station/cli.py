@@ -1,0 +1,48 @@
+"""The one command line: ``station <command>``. Each command lives in ``station/commands/<name>.py`` with
+``add_parser(subparsers)`` registering its arguments and ``run(args) -> int``; a user-facing failure is raised
+as ``UserError`` (or a subclass) and printed as one line, never as a traceback."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import logging
+import sys
+
+from station import __version__
+from station.errors import USER_ERRORS
+
+COMMANDS = ["bench"]
+"""Modules under ``station.commands``, in the order ``station --help`` lists them."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="station",
+        description="Polar-Ano Station: polarization surface inspection (sim, model, drivers, station).",
+    )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
+    sub = parser.add_subparsers(dest="command", metavar="<command>", required=True)
+    for name in COMMANDS:
+        importlib.import_module(f"station.commands.{name}").add_parser(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.DEBUG if args.verbose else logging.INFO,
+                        format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    try:
+        return int(args.func(args) or 0)
+    except USER_ERRORS as exc:
+        print(f"station {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"station {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

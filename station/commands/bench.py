@@ -1,0 +1,22 @@
+"""``station bench <name>``: benchmarks of run time against error. Each writes JSON + a Markdown table.
+
+A benchmark is a module ``station.benchmarks.<name>`` with ``add_arguments(parser)``, ``run(args) -> int`` and a
+one-line module docstring used as its help."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+
+BENCHMARKS = ["priors"]
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("bench", help="benchmarks of run time against error (JSON + Markdown table)")
+    bench_sub = p.add_subparsers(dest="benchmark", metavar="<benchmark>", required=True)
+    for name in BENCHMARKS:
+        mod = importlib.import_module(f"station.benchmarks.{name}")
+        bp = bench_sub.add_parser(name, help=(mod.__doc__ or "").strip().splitlines()[0])
+        bp.add_argument("--out", default=f"runs/bench/{name}", help="folder for the JSON and Markdown reports")
+        mod.add_arguments(bp)
+        bp.set_defaults(func=mod.run)
