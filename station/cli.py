@@ -1,6 +1,7 @@
 """The one command line: ``station <command>``. Each command lives in ``station/commands/<name>.py`` with
 ``add_parser(subparsers)`` registering its arguments and ``run(args) -> int``; a user-facing failure is raised
-as ``UserError`` (or a subclass) and printed as one line, never as a traceback."""
+as ``UserError`` (or a subclass) and printed as one line, never as a traceback. Keep heavy imports (torch, mitsuba,
+gi) inside ``run``: every command module is imported to build the parser."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import sys
 from station import __version__
 from station.errors import USER_ERRORS
 
-COMMANDS = ["bench"]
+COMMANDS = ["config", "bench"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 
 

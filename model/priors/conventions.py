@@ -18,9 +18,9 @@ Units
 Derived priors
     intensity  unpolarized intensity ``S0 / 2`` (the mean of the four polarizer images), in [0, 1].
     dolp       ``sqrt(S1^2 + S2^2) / S0`` clipped to [0, 1]; 0 where ``S0 <= DARK_S0`` (undefined there).
-    aolp       ``0.5 * atan2(S2, S1)`` wrapped to [0, pi); 0 where S1 = S2 = 0. AoLP has period pi: average
-               and compare it on the circle, or use ``(cos 2*aolp, sin 2*aolp)`` (keys ``aolp_cos``,
-               ``aolp_sin``), which is how networks see it.
+    aolp       ``0.5 * atan2(S2, S1)`` wrapped to [0, pi); 0 where ``|(S1, S2)| <= MIN_S12`` (undefined).
+               AoLP has period pi: average and compare it on the circle, or use ``(cos 2*aolp, sin 2*aolp)``
+               (keys ``aolp_cos``, ``aolp_sin``), which is how networks see it.
     atan2 is OpenCV's polynomial (``cv2.phase``, max error 1.7e-4 rad on 2*aolp); the torch path uses the
     same polynomial so both paths agree to 1e-5.
 
@@ -40,6 +40,10 @@ CONVENTION_VERSION = 1
 
 DARK_S0 = 1e-6
 """S0 (full-scale units) at or below which a pixel is dark: DoLP is 0 there, not NaN."""
+
+MIN_S12 = 1e-12
+"""|(S1, S2)| (full-scale units) at or below which AoLP is undefined and reported as 0: far below one code of a
+16-bit sensor, and above float32 underflow of S1^2 + S2^2, which would break cos^2 + sin^2 = 1."""
 
 POLARIZER_ANGLES_DEG = (0, 45, 90, 135)
 """Order of the four polarizer images everywhere in the project (``demosaic`` returns them so)."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from .conventions import DARK_S0
+from .conventions import DARK_S0, MIN_S12
 
 
 def _f32_2d(a: np.ndarray) -> np.ndarray:
@@ -57,20 +57,23 @@ def dolp(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray) -> np.ndarray:
 
 
 def aolp(s1: np.ndarray, s2: np.ndarray) -> np.ndarray:
-    """Angle of linear polarization ``0.5 * atan2(S2, S1)`` in radians, in [0, pi); 0 where S1 = S2 = 0."""
+    """Angle of linear polarization ``0.5 * atan2(S2, S1)`` in radians, in [0, pi); 0 where
+    ``|(S1, S2)| <= MIN_S12`` (undefined)."""
     shape = np.shape(s1)
-    out = cv2.phase(_f32_2d(s1), _f32_2d(s2))  # [0, 2pi], OpenCV polynomial atan2 (see conventions)
+    a1, a2 = _f32_2d(s1), _f32_2d(s2)
+    out = cv2.phase(a1, a2)  # [0, 2pi], OpenCV polynomial atan2 (see conventions)
     out *= np.float32(0.5)
-    out[out >= np.float32(np.pi)] = 0.0  # 2pi - tiny rounds up to 2pi: that is angle 0 on the circle
+    # 2pi - tiny rounds up to 2pi, which is angle 0 on the circle
+    out[(out >= np.float32(np.pi)) | (cv2.magnitude(a1, a2) <= MIN_S12)] = 0.0
     return out.reshape(shape)
 
 
 def aolp_vector(s1: np.ndarray, s2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(cos 2*aolp, sin 2*aolp)`` without a trigonometric call; (1, 0) where S1 = S2 = 0 (aolp = 0)."""
+    """``(cos 2*aolp, sin 2*aolp)`` without a trigonometric call; (1, 0) where ``|(S1, S2)| <= MIN_S12``."""
     shape = np.shape(s1)
     a1, a2 = _f32_2d(s1), _f32_2d(s2)
     mag = cv2.magnitude(a1, a2)
-    undefined = mag <= 0
+    undefined = mag <= MIN_S12
     mag[undefined] = 1.0
     cos2 = np.divide(a1, mag)
     sin2 = np.divide(a2, mag)

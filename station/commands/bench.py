@@ -1,7 +1,8 @@
 """``station bench <name>``: benchmarks of run time against error. Each writes JSON + a Markdown table.
 
 A benchmark is a module ``station.benchmarks.<name>`` with ``add_arguments(parser)``, ``run(args) -> int`` and a
-one-line module docstring used as its help."""
+one-line module docstring used as its help. The CLI imports every benchmark module to build its parser: keep heavy
+imports (torch, mitsuba, gi, polanalyser) inside ``run`` so ``station --help`` stays fast and works everywhere."""
 
 from __future__ import annotations
 

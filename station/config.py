@@ -1,0 +1,205 @@
+"""``station.toml`` -> typed, validated configuration.
+
+Each TOML table is a frozen dataclass below; a field's metadata holds its check (``choices``, ``range``,
+``even``). A key left out takes the dataclass default; an ``X | None`` field left out is None ("not set").
+Every problem is one ``ConfigError`` naming the file, table, key and reason. The shipped ``station.toml``
+documents each key; a test keeps it equal to these defaults.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import tomllib
+import types
+import typing
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from model.priors import LAYOUTS, METHODS, MosaicLayout, get_layout
+from station.errors import UserError
+
+
+class ConfigError(UserError):
+    """The configuration file is unreadable or a key is unknown, of the wrong type or out of range."""
+
+
+def _opt(default: Any, *, choices: tuple[Any, ...] | None = None, range: tuple[float, float] | None = None,
+         even: bool = False) -> Any:
+    return field(default=default, metadata={"choices": choices, "range": range, "even": even})
+
+
+TRIGGERS = ("free_run", "software", "line0", "line1", "line2", "line3")
+
+
+@dataclass(frozen=True)
+class CameraConfig:
+    kind: str = _opt("sim", choices=("sim", "aravis"))
+    device: str = ""
+    pixel_format: str = "Mono8"
+    width: int = _opt(0, range=(0, 16384), even=True)
+    height: int = _opt(0, range=(0, 16384), even=True)
+    offset_x: int = _opt(0, range=(0, 16384), even=True)
+    offset_y: int = _opt(0, range=(0, 16384), even=True)
+    exposure_us: float = _opt(10000.0, range=(1.0, 1e7))
+    gain_db: float = _opt(0.0, range=(0.0, 48.0))
+    frame_rate_hz: float = _opt(10.0, range=(0.01, 1000.0))
+    packet_size: int = _opt(0, range=(0, 16384))
+    trigger: str = _opt("software", choices=TRIGGERS)
+    timeout_ms: int = _opt(1000, range=(1, 600000))
+    reconnect: bool = True
+
+
+@dataclass(frozen=True)
+class AcquisitionConfig:
+    queue_size: int = _opt(4, range=(1, 1024))
+    backpressure: str = _opt("drop_oldest", choices=("drop_newest", "drop_oldest", "block"))
+    cycle_time_ms: float = _opt(100.0, range=(1.0, 600000.0))
+
+
+@dataclass(frozen=True)
+class PriorsConfig:
+    layout: str = _opt("imx250mzr", choices=tuple(LAYOUTS))
+    angles_deg: list[list[int]] | None = None
+    demosaic: str = _opt("bilinear", choices=tuple(METHODS))
+    bit_depth: int | None = _opt(None, range=(1, 16))
+
+    def mosaic_layout(self) -> MosaicLayout:
+        """The custom ``angles_deg`` layout when set, else the named ``layout``."""
+        if self.angles_deg is None:
+            return get_layout(self.layout)
+        rows = self.angles_deg
+        return MosaicLayout("custom", ((rows[0][0], rows[0][1]), (rows[1][0], rows[1][1])))
+
+
+@dataclass(frozen=True)
+class ModelConfig:
+    path: str = "model/weights/default"
+    device: str = _opt("auto", choices=("auto", "cpu", "cuda"))
+    precision: str = _opt("fp32", choices=("fp32", "bf16", "onnx"))
+
+
+@dataclass(frozen=True)
+class DecisionConfig:
+    threshold: float | None = _opt(None, range=(0.0, 1.0))
+
+
+@dataclass(frozen=True)
+class IOConfig:
+    mode: str = _opt("sim_plc", choices=("none", "sim_plc", "serial"))
+    port: str = ""
+    baudrate: int = _opt(115200, range=(300, 4000000))
+    timeout_ms: int = _opt(500, range=(1, 60000))
+    heartbeat_s: float = _opt(1.0, range=(0.0, 3600.0))
+
+
+@dataclass(frozen=True)
+class LogConfig:
+    path: str = "runs/inspection.sqlite"
+    save_rejects: bool = True
+    image_dir: str = "runs/rejects"
+    retention_days: float = _opt(30.0, range=(0.0, 36500.0))
+
+
+@dataclass(frozen=True)
+class SimConfig:
+    dataset: str = ""
+    defect_rate: float = _opt(0.2, range=(0.0, 1.0))
+    seed: int = _opt(0, range=(0, 2**63 - 1))
+
+
+@dataclass(frozen=True)
+class StationConfig:
+    camera: CameraConfig = field(default_factory=CameraConfig)
+    acquisition: AcquisitionConfig = field(default_factory=AcquisitionConfig)
+    priors: PriorsConfig = field(default_factory=PriorsConfig)
+    model: ModelConfig = field(default_factory=ModelConfig)
+    decision: DecisionConfig = field(default_factory=DecisionConfig)
+    io: IOConfig = field(default_factory=IOConfig)
+    log: LogConfig = field(default_factory=LogConfig)
+    sim: SimConfig = field(default_factory=SimConfig)
+    source: str = field(default="<defaults>", compare=False)
+    """Where this configuration was read from (for messages)."""
+
+
+def _type_name(tp: Any) -> str:
+    return {str: "a string", int: "an integer", float: "a number", bool: "true or false"}.get(tp, str(tp))
+
+
+def _check_value(value: Any, tp: Any, where: str) -> Any:
+    """``value`` converted to ``tp`` (int -> float allowed), or ConfigError."""
+    origin = typing.get_origin(tp)
+    if origin in (typing.Union, types.UnionType):
+        return _check_value(value, next(a for a in typing.get_args(tp) if a is not type(None)), where)
+    if origin is list:
+        (item,) = typing.get_args(tp)
+        if not isinstance(value, list):
+            raise ConfigError(f"{where}: expected a list, got {value!r}")
+        return [_check_value(v, item, f"{where}[{i}]") for i, v in enumerate(value)]
+    if tp is float and isinstance(value, int) and not isinstance(value, bool):
+        return float(value)
+    if (tp is int and isinstance(value, bool)) or not isinstance(value, tp):
+        raise ConfigError(f"{where}: expected {_type_name(tp)}, got {value!r}")
+    return value
+
+
+def _build_table(cls: type, table: dict[str, Any], prefix: str) -> Any:
+    """``cls`` from a TOML table; ``prefix`` starts every message ("station.toml: [camera] ")."""
+    hints = typing.get_type_hints(cls)
+    fields = {f.name: f for f in dataclasses.fields(cls) if f.name != "source"}
+    unknown = sorted(set(table) - set(fields))
+    if unknown:
+        raise ConfigError(f"{prefix}{unknown[0]}: unknown key (known: {', '.join(fields)})")
+    kwargs: dict[str, Any] = {}
+    for name, value in table.items():
+        f, key = fields[name], f"{prefix}{name}"
+        if dataclasses.is_dataclass(hints[name]):
+            if not isinstance(value, dict):
+                raise ConfigError(f"{key}: expected a table [{name}], got {value!r}")
+            kwargs[name] = _build_table(hints[name], value, f"{prefix}[{name}] ")
+            continue
+        value = _check_value(value, hints[name], key)
+        meta = f.metadata
+        if meta.get("choices") and value not in meta["choices"]:
+            raise ConfigError(f"{key}: {value!r} is not one of {', '.join(map(repr, meta['choices']))}")
+        if meta.get("range"):
+            lo, hi = meta["range"]
+            if not lo <= value <= hi:
+                raise ConfigError(f"{key}: {value!r} is out of range [{lo:g}, {hi:g}]")
+        if meta.get("even") and value % 2:
+            raise ConfigError(f"{key}: {value!r} must be even (whole 2x2 polarizer superpixels)")
+        kwargs[name] = value
+    return cls(**kwargs)
+
+
+def _check_layout(cfg: StationConfig, source: str) -> None:
+    angles = cfg.priors.angles_deg
+    if angles is None:
+        return
+    flat = sorted(a for row in angles for a in row)
+    if len(angles) != 2 or any(len(row) != 2 for row in angles) or flat != [0, 45, 90, 135]:
+        raise ConfigError(f"{source}: [priors] angles_deg: need [[a, b], [c, d]] holding 0, 45, 90, 135 once each, "
+                          f"got {angles!r}")
+
+
+def parse_config(text: str, source: str = "<string>") -> StationConfig:
+    """Parse TOML ``text`` into a validated StationConfig; errors name ``source``."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{source}: not valid TOML: {exc}") from None
+    cfg = _build_table(StationConfig, data, f"{source}: ")
+    _check_layout(cfg, source)
+    return dataclasses.replace(cfg, source=source)
+
+
+def load_config(path: str | Path) -> StationConfig:
+    """Read and validate a ``station.toml``; a missing or unreadable file is a ConfigError naming it."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError(f"{p}: configuration file not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{p}: cannot read configuration: {exc}") from None
+    return parse_config(text, str(p))

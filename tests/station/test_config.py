@@ -1,0 +1,74 @@
+"""station.toml loading: the shipped file equals the defaults, and every bad input is one clear line."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from station.config import ConfigError, StationConfig, load_config, parse_config
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_shipped_station_toml_documents_exactly_the_defaults():
+    cfg = load_config(ROOT / "station.toml")
+    assert cfg == StationConfig()
+    text = (ROOT / "station.toml").read_text()
+    for table in dataclasses.fields(StationConfig):
+        if table.name == "source":
+            continue
+        assert f"[{table.name}]" in text
+        for key in dataclasses.fields(table.type if isinstance(table.type, type) else getattr(cfg, table.name)):
+            assert f"{key.name} =" in text, f"station.toml does not document [{table.name}] {key.name}"
+
+
+def test_values_are_typed():
+    cfg = parse_config('[camera]\nexposure_us = 500\nkind = "aravis"\n[priors]\nbit_depth = 12\n'
+                       "angles_deg = [[0, 45], [135, 90]]\n")
+    assert cfg.camera.exposure_us == 500.0 and isinstance(cfg.camera.exposure_us, float)
+    assert cfg.camera.kind == "aravis" and cfg.priors.bit_depth == 12
+    assert cfg.decision.threshold is None
+    assert cfg.priors.mosaic_layout().angles_deg == ((0, 45), (135, 90))
+    assert StationConfig().priors.mosaic_layout().name == "imx250mzr"
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("[camera]\nexposure_us = -5", r"station.toml: \[camera\] exposure_us: -5.0 is out of range"),
+    ("[camera]\nexposur_us = 1", r"\[camera\] exposur_us: unknown key"),
+    ("[camra]\nx = 1", "camra: unknown key"),
+    ('[camera]\nexposure_us = "fast"', r"exposure_us: expected a number, got 'fast'"),
+    ("[camera]\nwidth = 641", "width: 641 must be even"),
+    ('[camera]\ntrigger = "line9"', "trigger: 'line9' is not one of"),
+    ("[camera]\nreconnect = 1", "reconnect: expected true or false"),
+    ("[camera]\ntimeout_ms = 1.5", "timeout_ms: expected an integer"),
+    ('[priors]\ndemosaic = "magic"', "demosaic: 'magic' is not one of 'bilinear'"),
+    ("[priors]\nangles_deg = [[0, 45], [90, 90]]", "angles_deg: need"),
+    ("[decision]\nthreshold = 2", r"threshold: 2.0 is out of range \[0, 1\]"),
+    ("camera = 3", "camera: expected a table"),
+    ("[camera\n", "not valid TOML.*line 1"),
+])
+def test_bad_config_names_the_key_and_reason(text, message):
+    with pytest.raises(ConfigError, match=message):
+        parse_config(text, "station.toml")
+
+
+def test_missing_file_is_named(tmp_path):
+    with pytest.raises(ConfigError, match=r"nope\.toml: configuration file not found"):
+        load_config(tmp_path / "nope.toml")
+
+
+def test_cli_prints_one_line_not_a_traceback(tmp_path):
+    bad = tmp_path / "station.toml"
+    bad.write_text("[io]\nbaudrate = 12\n")
+    r = subprocess.run([sys.executable, "-m", "station.cli", "config", "--config", str(bad)],
+                       capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [f"station config: error: {bad}: [io] baudrate: 12 is out of range "
+                                             "[300, 4e+06]"]
+    ok = subprocess.run([sys.executable, "-m", "station.cli", "config", "--config", str(ROOT / "station.toml")],
+                        capture_output=True, text=True, cwd=ROOT)
+    assert ok.returncode == 0 and "OK" in ok.stdout
