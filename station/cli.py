@@ -13,7 +13,7 @@ import sys
 from station import __version__
 from station.errors import USER_ERRORS
 
-COMMANDS = ["config", "bench"]
+COMMANDS = ["config", "export-log", "bench"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 
 
@@ -26,7 +26,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = parser.add_subparsers(dest="command", metavar="<command>", required=True)
     for name in COMMANDS:
-        importlib.import_module(f"station.commands.{name}").add_parser(sub)
+        importlib.import_module(f"station.commands.{name.replace('-', '_')}").add_parser(sub)
     return parser
 
 

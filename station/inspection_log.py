@@ -1,0 +1,231 @@
+"""The inspection log: one SQLite row per part, durable on commit, with streaming export.
+
+SQLite in WAL mode with ``synchronous=FULL``: a row whose ``append`` returned survives a crash or power loss.
+The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Decisions:
+
+pass           judged good (score <= threshold)
+reject         judged bad (score > threshold), or could not be judged (fail closed; ``reason`` says why)
+empty          no part in view; not judged, not rejected
+not_inspected  frame dropped before judgement (queue full, grab failure); ``reason`` says why
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import sqlite3
+import time
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, fields
+from pathlib import Path
+from typing import Any
+
+from station.errors import UserError
+
+SCHEMA_VERSION = 1
+DECISIONS = ("pass", "reject", "empty", "not_inspected")
+STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
+EXPORT_FORMATS = ("csv", "jsonl", "parquet")
+
+
+class LogError(UserError):
+    """The inspection log cannot be opened, written or read (path and SQLite's reason in the message)."""
+
+
+@dataclass(frozen=True)
+class InspectionRecord:
+    """One part. Times: ``time_unix_s`` when judged (host clock); latencies in milliseconds per stage."""
+
+    decision: str
+    time_unix_s: float
+    part_id: str | None = None
+    camera_frame_id: int | None = None
+    camera_timestamp_ns: int | None = None
+    score: float | None = None
+    threshold: float | None = None
+    model_id: str | None = None
+    reason: str | None = None
+    grab_ms: float | None = None
+    demosaic_ms: float | None = None
+    priors_ms: float | None = None
+    model_ms: float | None = None
+    decision_ms: float | None = None
+    io_ms: float | None = None
+    total_ms: float | None = None
+    io_delivered: bool | None = None
+    ground_truth_label: int | None = None
+    image_path: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.decision not in DECISIONS:
+            raise ValueError(f"decision must be one of {DECISIONS}, got {self.decision!r}")
+
+
+COLUMNS = tuple(f.name for f in fields(InspectionRecord))
+_SQL_TYPES = {"decision": "TEXT NOT NULL", "time_unix_s": "REAL NOT NULL", "part_id": "TEXT", "model_id": "TEXT",
+              "reason": "TEXT", "image_path": "TEXT", "camera_frame_id": "INTEGER", "camera_timestamp_ns": "INTEGER",
+              "io_delivered": "INTEGER", "ground_truth_label": "INTEGER"}
+
+
+def _create_sql() -> str:
+    cols = ",\n  ".join(f"{c} {_SQL_TYPES.get(c, 'REAL')}" for c in COLUMNS)
+    return (f"CREATE TABLE IF NOT EXISTS inspections (\n  id INTEGER PRIMARY KEY AUTOINCREMENT,\n  {cols}\n);\n"
+            "CREATE INDEX IF NOT EXISTS inspections_time ON inspections(time_unix_s);")
+
+
+def _db_error(path: Path, action: str, exc: sqlite3.Error) -> LogError:
+    hint = ""
+    text = str(exc).lower()
+    if "full" in text:
+        hint = " (disk full)"
+    elif "readonly" in text or "read-only" in text or "unable to open" in text:
+        hint = " (read-only location or missing folder?)"
+    return LogError(f"inspection log {path}: cannot {action}: {exc}{hint}")
+
+
+class InspectionLog:
+    """Append-only inspection log in one SQLite file. Not thread-safe: one writer thread owns it."""
+
+    def __init__(self, path: str | Path, *, readonly: bool = False) -> None:
+        self.path = Path(path)
+        try:
+            if readonly:
+                if not self.path.exists():
+                    raise LogError(f"inspection log {self.path}: no such file")
+                self._db = sqlite3.connect(f"file:{self.path}?mode=ro", uri=True)
+            else:
+                self.path.parent.mkdir(parents=True, exist_ok=True)
+                self._db = sqlite3.connect(self.path)
+                self._db.execute("PRAGMA journal_mode=WAL")
+                self._db.execute("PRAGMA synchronous=FULL")
+                self._db.executescript(_create_sql())
+                version = self._db.execute("PRAGMA user_version").fetchone()[0]
+                if version == 0:
+                    self._db.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
+                self._db.commit()
+            version = self._db.execute("PRAGMA user_version").fetchone()[0]
+        except OSError as exc:
+            raise LogError(f"inspection log {self.path}: cannot open: {exc}") from None
+        except sqlite3.Error as exc:
+            raise _db_error(self.path, "open", exc) from None
+        if version != SCHEMA_VERSION:
+            raise LogError(f"inspection log {self.path}: schema version {version}, this station writes "
+                           f"{SCHEMA_VERSION}; export it with the station version that wrote it")
+
+    def append(self, records: InspectionRecord | Sequence[InspectionRecord]) -> None:
+        """Write and commit records; durable when this returns. A full disk raises LogError (nothing half-written:
+        the transaction is rolled back)."""
+        batch = [records] if isinstance(records, InspectionRecord) else list(records)
+        rows = [tuple(getattr(r, c) for c in COLUMNS) for r in batch]
+        try:
+            with self._db:
+                self._db.executemany(
+                    f"INSERT INTO inspections ({', '.join(COLUMNS)}) VALUES ({', '.join('?' * len(COLUMNS))})", rows)
+        except sqlite3.Error as exc:
+            raise _db_error(self.path, f"write {len(rows)} record(s)", exc) from None
+
+    def count(self, decision: str | None = None) -> int:
+        sql, args = "SELECT COUNT(*) FROM inspections", ()
+        if decision is not None:
+            sql, args = sql + " WHERE decision = ?", (decision,)
+        return int(self._db.execute(sql, args).fetchone()[0])
+
+    def rows(self, since_unix_s: float | None = None, until_unix_s: float | None = None,
+             decision: str | None = None, batch_size: int = 1000) -> Iterator[dict[str, Any]]:
+        """Records as dicts (``id`` first, then ``COLUMNS``) in time order, streamed in batches."""
+        where, args = [], []
+        if since_unix_s is not None:
+            where.append("time_unix_s >= ?")
+            args.append(since_unix_s)
+        if until_unix_s is not None:
+            where.append("time_unix_s < ?")
+            args.append(until_unix_s)
+        if decision is not None:
+            where.append("decision = ?")
+            args.append(decision)
+        sql = f"SELECT id, {', '.join(COLUMNS)} FROM inspections"
+        if where:
+            sql += " WHERE " + " AND ".join(where)
+        cur = self._db.execute(sql + " ORDER BY time_unix_s, id", args)
+        names = [d[0] for d in cur.description]
+        while batch := cur.fetchmany(batch_size):
+            for values in batch:
+                row = dict(zip(names, values, strict=True))
+                if row["io_delivered"] is not None:
+                    row["io_delivered"] = bool(row["io_delivered"])
+                yield row
+
+    def apply_retention(self, retention_days: float, now_unix_s: float | None = None) -> list[str]:
+        """Delete rows older than ``retention_days`` (0 = keep all); return the image paths they referenced."""
+        if retention_days <= 0:
+            return []
+        cutoff = (now_unix_s if now_unix_s is not None else time.time()) - retention_days * 86400.0
+        try:
+            with self._db:
+                images = [p for (p,) in self._db.execute(
+                    "SELECT image_path FROM inspections WHERE time_unix_s < ? AND image_path IS NOT NULL", (cutoff,))]
+                self._db.execute("DELETE FROM inspections WHERE time_unix_s < ?", (cutoff,))
+        except sqlite3.Error as exc:
+            raise _db_error(self.path, "apply retention", exc) from None
+        return images
+
+    def close(self) -> None:
+        self._db.close()
+
+    def __enter__(self) -> InspectionLog:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def export_rows(rows: Iterator[dict[str, Any]], out: str | Path, fmt: str, batch_size: int = 1000) -> int:
+    """Stream ``rows`` to ``out`` as csv, jsonl or parquet; return the number written. Columns: ``id`` +
+    ``COLUMNS`` (see ``InspectionRecord``). The file is written under a temporary name and renamed when complete."""
+    if fmt not in EXPORT_FORMATS:
+        raise LogError(f"export format {fmt!r} is not one of {', '.join(EXPORT_FORMATS)}")
+    out = Path(out)
+    tmp = out.with_name(out.name + ".partial")
+    names = ["id", *COLUMNS]
+    n = 0
+    try:
+        if fmt == "parquet":
+            n = _export_parquet(rows, tmp, names, batch_size)
+        else:
+            with tmp.open("w", newline="", encoding="utf-8") as f:
+                writer = csv.DictWriter(f, fieldnames=names) if fmt == "csv" else None
+                if writer:
+                    writer.writeheader()
+                for row in rows:
+                    if writer:
+                        writer.writerow(row)
+                    else:
+                        f.write(json.dumps(row) + "\n")
+                    n += 1
+        tmp.replace(out)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise LogError(f"export to {out}: {exc}") from None
+    return n
+
+
+def _export_parquet(rows: Iterator[dict[str, Any]], path: Path, names: list[str], batch_size: int) -> int:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    types = {"id": pa.int64(), "decision": pa.string(), "part_id": pa.string(), "model_id": pa.string(),
+             "reason": pa.string(), "image_path": pa.string(), "camera_frame_id": pa.int64(),
+             "camera_timestamp_ns": pa.int64(), "io_delivered": pa.bool_(), "ground_truth_label": pa.int64()}
+    schema = pa.schema([(c, types.get(c, pa.float64())) for c in names])
+    n = 0
+    with pq.ParquetWriter(path, schema) as writer:
+        batch: list[dict[str, Any]] = []
+        for row in rows:
+            batch.append(row)
+            if len(batch) >= batch_size:
+                writer.write_table(pa.Table.from_pylist(batch, schema=schema))
+                n, batch = n + len(batch), []
+        if batch or n == 0:
+            writer.write_table(pa.Table.from_pylist(batch, schema=schema))
+            n += len(batch)
+    return n

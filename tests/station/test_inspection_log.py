@@ -1,0 +1,106 @@
+"""The SQLite inspection log: durability, faults named, retention, streaming export in three formats."""
+
+from __future__ import annotations
+
+import csv
+import json
+import signal
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+from station.inspection_log import COLUMNS, InspectionLog, InspectionRecord, LogError, export_rows
+
+
+def rec(i: int, decision: str = "pass", **kw) -> InspectionRecord:
+    return InspectionRecord(decision=decision, time_unix_s=1000.0 + i, part_id=f"P{i}", camera_frame_id=i,
+                            score=0.1 * (i % 10), threshold=0.5, total_ms=12.5, io_delivered=True, **kw)
+
+
+def test_committed_rows_survive_a_killed_writer(tmp_path):
+    db = tmp_path / "log.sqlite"
+    script = textwrap.dedent(f"""
+        import os, signal, sys
+        from station.inspection_log import InspectionLog, InspectionRecord
+        log = InspectionLog({str(db)!r})
+        for i in range(50):
+            log.append(InspectionRecord(decision="pass", time_unix_s=float(i)))
+        print("appended", flush=True)
+        os.kill(os.getpid(), signal.SIGKILL)
+    """)
+    r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert r.returncode == -signal.SIGKILL and "appended" in r.stdout
+    with InspectionLog(db, readonly=True) as log:
+        assert log.count() == 50
+
+
+def test_full_disk_is_a_clear_error_and_loses_no_committed_row(tmp_path):
+    log = InspectionLog(tmp_path / "log.sqlite")
+    log.append([rec(i) for i in range(5)])
+    pages = log._db.execute("PRAGMA page_count").fetchone()[0]
+    log._db.execute(f"PRAGMA max_page_count={pages}")  # SQLite's own SQLITE_FULL path, as on a full disk
+    with pytest.raises(LogError, match=r"log\.sqlite: cannot write 500 record\(s\).*full"):
+        log.append([rec(i, reason="x" * 1000) for i in range(500)])
+    assert log.count() == 5
+
+
+def test_unwritable_location_is_named(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    with pytest.raises(LogError, match=r"file/log\.sqlite: cannot open"):
+        InspectionLog(blocker / "log.sqlite")
+    with pytest.raises(LogError, match="no such file"):
+        InspectionLog(tmp_path / "missing.sqlite", readonly=True)
+
+
+def test_bad_decision_is_refused():
+    with pytest.raises(ValueError, match="decision"):
+        InspectionRecord(decision="maybe", time_unix_s=0.0)
+
+
+def test_filters_and_retention(tmp_path):
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append([rec(i, "reject" if i % 3 == 0 else "pass", image_path=f"img{i}.png") for i in range(30)])
+        assert log.count("reject") == 10
+        rows = list(log.rows(since_unix_s=1010, until_unix_s=1020, decision="reject", batch_size=2))
+        assert [r["part_id"] for r in rows] == ["P12", "P15", "P18"]
+        removed = log.apply_retention(retention_days=1, now_unix_s=1010.0 + 86400)
+        assert removed == [f"img{i}.png" for i in range(10)]
+        assert log.count() == 20
+        assert log.apply_retention(0) == [] and log.count() == 20
+
+
+@pytest.mark.parametrize("fmt", ["csv", "jsonl", "parquet"])
+def test_export_round_trips_every_column(tmp_path, fmt):
+    out = tmp_path / f"export.{fmt}"
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append([rec(i, "reject" if i == 3 else "pass", reason="score above threshold" if i == 3 else None)
+                    for i in range(7)])
+        n = export_rows(log.rows(batch_size=3), out, fmt, batch_size=2)
+    assert n == 7 and not (tmp_path / f"export.{fmt}.partial").exists()
+    if fmt == "csv":
+        rows = list(csv.DictReader(out.open()))
+    elif fmt == "jsonl":
+        rows = [json.loads(line) for line in out.read_text().splitlines()]
+    else:
+        import pyarrow.parquet as pq
+        rows = pq.read_table(out).to_pylist()
+    assert list(rows[0]) == ["id", *COLUMNS]
+    assert [r["decision"] for r in rows].count("reject") == 1
+    assert rows[3]["reason"] == "score above threshold" and rows[3]["part_id"] == "P3"
+
+
+def test_export_log_cli(tmp_path):
+    db = tmp_path / "log.sqlite"
+    with InspectionLog(db) as log:
+        log.append([rec(i, "reject" if i % 2 else "pass") for i in range(6)])
+    out = tmp_path / "rejects.jsonl"
+    r = subprocess.run([sys.executable, "-m", "station.cli", "export-log", "--db", str(db), "--decision", "reject",
+                        "--since", "1001", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert [json.loads(x)["part_id"] for x in out.read_text().splitlines()] == ["P1", "P3", "P5"]
+    bad = subprocess.run([sys.executable, "-m", "station.cli", "export-log", "--db", str(tmp_path / "none.sqlite"),
+                          "--out", str(out)], capture_output=True, text=True)
+    assert bad.returncode == 2 and "none.sqlite: no such file" in bad.stderr and "Traceback" not in bad.stderr
