@@ -104,3 +104,30 @@ def test_export_log_cli(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "station.cli", "export-log", "--db", str(tmp_path / "none.sqlite"),
                           "--out", str(out)], capture_output=True, text=True)
     assert bad.returncode == 2 and "none.sqlite: no such file" in bad.stderr and "Traceback" not in bad.stderr
+
+
+def test_report_counts_rates_latency_and_confusion(tmp_path):
+    from station.log_report import summarize
+
+    rows = [rec(i, "reject" if i < 3 else "pass", ground_truth_label=int(i < 2)) for i in range(10)]
+    rows.append(InspectionRecord(decision="not_inspected", time_unix_s=2000.0, reason="queue full"))
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append(rows)
+        s = summarize(log.rows())
+    assert s.counts == {"pass": 7, "reject": 3, "empty": 0, "not_inspected": 1}
+    assert s.reject_rate == pytest.approx(0.3)
+    assert s.latency_ms["p50"] == pytest.approx(12.5)
+    assert s.confusion == {"bad_reject": 2, "good_reject": 1, "good_pass": 7}
+    assert sum(s.score_hist["pass"]) == 7 and sum(s.score_hist["reject"]) == 3
+
+
+def test_report_cli_writes_json_and_png(tmp_path):
+    db = tmp_path / "log.sqlite"
+    with InspectionLog(db) as log:
+        log.append([rec(i, "reject" if i % 4 == 0 else "pass") for i in range(20)])
+    r = subprocess.run([sys.executable, "-m", "station.cli", "report", "--db", str(db), "--out", str(tmp_path / "r")],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert "reject rate (of judged parts): 25.00 %" in r.stdout
+    assert json.loads((tmp_path / "r" / "report.json").read_text())["counts"]["reject"] == 5
+    assert (tmp_path / "r" / "report.png").read_bytes()[:4] == b"\x89PNG"

@@ -1,0 +1,102 @@
+"""Summary of an inspection log: counts, reject rate, latency percentiles, score histogram, and plots."""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from station.inspection_log import DECISIONS
+
+PERCENTILES = (50, 90, 99)
+
+
+@dataclass(frozen=True)
+class LogSummary:
+    """Counts per decision, reject rate among judged parts, total latency percentiles (ms), score histogram,
+    and the confusion matrix against ground truth where the log has it (simulated camera)."""
+
+    counts: dict[str, int]
+    reject_rate: float
+    latency_ms: dict[str, float]
+    score_bins: list[float]
+    score_hist: dict[str, list[int]]
+    confusion: dict[str, int] = field(default_factory=dict)
+    first_unix_s: float | None = None
+    last_unix_s: float | None = None
+
+
+def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
+    """One pass over log rows (as ``InspectionLog.rows`` yields them)."""
+    counts: Counter[str] = Counter()
+    latencies: list[float] = []
+    scores: dict[str, list[float]] = {"pass": [], "reject": []}
+    confusion: Counter[str] = Counter()
+    times: list[float] = []
+    for r in rows:
+        counts[r["decision"]] += 1
+        times.append(r["time_unix_s"])
+        if r["total_ms"] is not None:
+            latencies.append(r["total_ms"])
+        if r["score"] is not None and r["decision"] in scores:
+            scores[r["decision"]].append(r["score"])
+        if r["ground_truth_label"] is not None and r["decision"] in ("pass", "reject"):
+            truth = "bad" if r["ground_truth_label"] else "good"
+            confusion[f"{truth}_{r['decision']}"] += 1
+    judged = counts["pass"] + counts["reject"]
+    edges = np.linspace(0.0, 1.0, bins + 1)
+    return LogSummary(
+        counts={d: counts[d] for d in DECISIONS},
+        reject_rate=counts["reject"] / judged if judged else 0.0,
+        latency_ms={f"p{q}": float(np.percentile(latencies, q)) for q in PERCENTILES} if latencies else {},
+        score_bins=edges.tolist(),
+        score_hist={d: np.histogram(np.clip(s, 0, 1), edges)[0].tolist() for d, s in scores.items()},
+        confusion=dict(confusion),
+        first_unix_s=min(times) if times else None,
+        last_unix_s=max(times) if times else None,
+    )
+
+
+def format_summary(s: LogSummary) -> str:
+    lines = ["| decision | parts |", "|---|---|"] + [f"| {d} | {n} |" for d, n in s.counts.items()]
+    lines.append(f"\nreject rate (of judged parts): {100 * s.reject_rate:.2f} %")
+    if s.latency_ms:
+        lines.append("latency grab->decision: " + ", ".join(f"{k} {v:.1f} ms" for k, v in s.latency_ms.items()))
+    if s.confusion:
+        c = s.confusion
+        lines.append(f"against ground truth: good parts passed {c.get('good_pass', 0)}, good rejected "
+                     f"{c.get('good_reject', 0)}, bad rejected {c.get('bad_reject', 0)}, bad passed (escapes) "
+                     f"{c.get('bad_pass', 0)}")
+    return "\n".join(lines) + "\n"
+
+
+def plot_summary(s: LogSummary, threshold: float | None, path: str | Path) -> Path:
+    """Score histogram per decision (with the threshold) and decision counts, as one PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8), gridspec_kw={"width_ratios": [2, 1]})
+    centers = (np.array(s.score_bins[:-1]) + np.array(s.score_bins[1:])) / 2
+    width = s.score_bins[1] - s.score_bins[0]
+    ax1.bar(centers, s.score_hist["pass"], width=width, color="tab:green", alpha=0.7, label="pass")
+    ax1.bar(centers, s.score_hist["reject"], width=width, color="tab:red", alpha=0.7, label="reject",
+            bottom=s.score_hist["pass"])
+    if threshold is not None:
+        ax1.axvline(threshold, color="k", ls="--", label=f"threshold {threshold:.3g}")
+    ax1.set(xlabel="anomaly score", ylabel="parts", title="score histogram", xlim=(0, 1))
+    ax1.legend()
+    ax2.bar(list(s.counts), list(s.counts.values()), color=["tab:green", "tab:red", "tab:gray", "tab:orange"])
+    ax2.set(title="decisions", ylabel="parts")
+    ax2.tick_params(axis="x", rotation=30)
+    fig.tight_layout()
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=100)
+    plt.close(fig)
+    return out
