@@ -1,0 +1,34 @@
+"""Pass or reject, failing closed: a part that cannot be judged is rejected, and the reason says why."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Decision:
+    decision: str
+    """"pass" or "reject" (see ``station.inspection_log.DECISIONS``)."""
+    reason: str | None = None
+    """Why a part was rejected; None for a pass."""
+
+
+def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = None,
+           cycle_time_ms: float | None = None, error: str | None = None,
+           invalid_fraction: float = 0.0, max_invalid_fraction: float = 0.01) -> Decision:
+    """Decide one part. In order, each of these rejects with its reason: an ``error`` in an earlier stage;
+    more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range); a missing or
+    non-finite score; judgement later than the cycle time budget; ``score > threshold``. Otherwise pass."""
+    if error:
+        return Decision("reject", f"not judged: {error}")
+    if invalid_fraction > max_invalid_fraction:
+        return Decision("reject", f"not judged: {100 * invalid_fraction:.2f} % of input pixels invalid "
+                                  f"(limit {100 * max_invalid_fraction:.2f} %)")
+    if score is None or not math.isfinite(score):
+        return Decision("reject", f"not judged: model score is {score}")
+    if elapsed_ms is not None and cycle_time_ms is not None and elapsed_ms > cycle_time_ms:
+        return Decision("reject", f"not judged in time: {elapsed_ms:.1f} ms > cycle time {cycle_time_ms:.1f} ms")
+    if score > threshold:
+        return Decision("reject", f"score {score:.4f} > threshold {threshold:.4f}")
+    return Decision("pass")
