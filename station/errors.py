@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from sim.errors import SimError
+
 
 class UserError(Exception):
     """Bad input from the user or the world (config, file, device): message names the file, key or frame."""
 
 
-USER_ERRORS: tuple[type[BaseException], ...] = (UserError, FileNotFoundError, PermissionError)
+USER_ERRORS: tuple[type[BaseException], ...] = (UserError, FileNotFoundError, PermissionError, SimError)
 """Caught by ``station.cli.main``. Packages below ``station`` (model, sim, drivers) cannot import this module:
 their own error base classes are added here as they are written."""
