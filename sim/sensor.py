@@ -1,0 +1,145 @@
+"""Camera sensor model: rendered Stokes images -> the raw polarizer mosaic a DoFP camera delivers.
+
+Conventions (mosaic layout, Stokes, angles, full-scale units) are ``model.priors.conventions``; the mosaic is
+sampled by ``model.priors.mosaic.stokes_to_mosaic``, never redefined here.
+
+Chain, per pixel (all in full-scale units until the ADC; 1.0 = the largest code of ``bit_depth``):
+  1. exposure:  ``S * exposure_gain`` (full scale per unit of rendered radiance; folds exposure time, aperture
+     and quantum efficiency into one number).
+  2. polarizer: ``I(t) = 0.5 * (S0 + e * (S1 cos 2t + S2 sin 2t))`` with ``e = (ER - 1) / (ER + 1)`` for an
+     extinction ratio ER (``e = 1`` for an ideal polarizer, ``extinction_ratio=None``).
+  3. electrons: ``I * full_scale_e`` with ``full_scale_e = full_well_e / analog_gain``; shot noise is
+     Poisson, read noise is Gaussian (``read_noise_e``), the well clips at ``full_well_e``.
+  4. ADC: ``round(electrons / full_scale_e * (2**bit_depth - 1)) + black_level_dn``, clipped to the code range;
+     uint8 for bit depths <= 8, else uint16 (codes in the low bits, as Mono12/Mono16 cameras deliver).
+The noiseless ground truth is the exposed scene Stokes (step 1, before the polarizer's imperfection) and the
+ideal mosaic of step 2.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from model.priors.conventions import get_layout
+from model.priors.mosaic import stokes_to_mosaic
+
+from .errors import SimError
+
+SIZES = {"default": (640, 480), "native": (2448, 2048)}
+"""(width, height) of the paper's training images and of the IMX250MZR sensor."""
+
+
+@dataclass(frozen=True)
+class SensorConfig:
+    """Sensor parameters; defaults are a Sony IMX250MZR at minimum gain (10.5 ke- full well, 2.3 e- read noise)."""
+
+    bit_depth: int = 8
+    exposure_gain: float = 2.0
+    full_well_e: float = 10500.0
+    read_noise_e: float = 2.3
+    analog_gain: float = 1.0
+    black_level_dn: int = 0
+    extinction_ratio: float | None = None
+    shot_noise: bool = True
+    layout: str = "imx250mzr"
+
+    def __post_init__(self) -> None:
+        if self.bit_depth not in (8, 10, 12, 14, 16):
+            raise SimError(f"sensor.bit_depth must be 8, 10, 12, 14 or 16, got {self.bit_depth}")
+        for key in ("exposure_gain", "full_well_e", "analog_gain"):
+            v = getattr(self, key)
+            if not (np.isfinite(v) and v > 0):
+                raise SimError(f"sensor.{key} must be a positive number, got {v}")
+        if not (np.isfinite(self.read_noise_e) and self.read_noise_e >= 0):
+            raise SimError(f"sensor.read_noise_e must be >= 0, got {self.read_noise_e}")
+        if not 0 <= self.black_level_dn < 2**self.bit_depth - 1:
+            raise SimError(f"sensor.black_level_dn must be in [0, {2**self.bit_depth - 1}), got {self.black_level_dn}")
+        if self.extinction_ratio is not None and not self.extinction_ratio > 1:
+            raise SimError(f"sensor.extinction_ratio must be > 1 (or None for ideal), got {self.extinction_ratio}")
+        try:
+            get_layout(self.layout)
+        except ValueError as exc:
+            raise SimError(f"sensor.layout: {exc}") from None
+
+    @property
+    def max_code(self) -> int:
+        return 2**self.bit_depth - 1
+
+    @property
+    def dtype(self) -> type[np.unsignedinteger]:
+        return np.uint8 if self.bit_depth <= 8 else np.uint16
+
+    @property
+    def full_scale_e(self) -> float:
+        """Electrons that make one full scale (the largest code, without black level)."""
+        return self.full_well_e / self.analog_gain
+
+    @property
+    def polarizer_contrast(self) -> float:
+        """``e = (ER - 1) / (ER + 1)``: how much of S1, S2 a real polarizer passes (1 when ideal)."""
+        er = self.extinction_ratio
+        return 1.0 if er is None else (er - 1.0) / (er + 1.0)
+
+
+@dataclass(frozen=True)
+class SensorFrame:
+    """One simulated exposure. ``raw``: (H, W) uint8/uint16 codes of ``bit_depth`` bits. ``ideal``: the noiseless
+    float32 mosaic in full-scale units (after exposure and polarizer, before noise and ADC). ``s0, s1, s2``: the
+    exposed scene Stokes, float32 full-scale units (the ground truth)."""
+
+    raw: np.ndarray
+    ideal: np.ndarray
+    s0: np.ndarray
+    s1: np.ndarray
+    s2: np.ndarray
+    bit_depth: int
+    n_saturated: int
+
+
+def expose(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rendered Stokes (radiance units) -> exposed Stokes in full-scale units (float32)."""
+    g = np.float32(config.exposure_gain)
+    return tuple(np.asarray(s, dtype=np.float32) * g for s in (s0, s1, s2))  # type: ignore[return-value]
+
+
+def ideal_mosaic(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig) -> np.ndarray:
+    """Exposed Stokes (full-scale units) -> noiseless float32 mosaic through the (possibly leaky) polarizers."""
+    e = np.float32(config.polarizer_contrast)
+    return stokes_to_mosaic(s0, s1 * e, s2 * e, config.layout)
+
+
+def digitize(ideal: np.ndarray, config: SensorConfig, rng: np.random.Generator) -> np.ndarray:
+    """Noiseless mosaic (full-scale units) -> raw codes: shot noise, read noise, full well, ADC (see module doc)."""
+    electrons = np.clip(ideal.astype(np.float64), 0.0, None) * config.full_scale_e
+    if config.shot_noise:
+        electrons = rng.poisson(electrons).astype(np.float64)
+    if config.read_noise_e > 0:
+        electrons += rng.normal(0.0, config.read_noise_e, size=electrons.shape)
+    np.clip(electrons, 0.0, config.full_well_e, out=electrons)
+    codes = np.rint(electrons * (config.max_code / config.full_scale_e)) + config.black_level_dn
+    return np.clip(codes, 0, config.max_code).astype(config.dtype)
+
+
+def simulate(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig,
+             rng: np.random.Generator) -> SensorFrame:
+    """Rendered Stokes images (H, W), radiance units, H and W even -> one ``SensorFrame``.
+
+    Deterministic for a given ``rng`` state (pass ``np.random.default_rng(seed)``).
+    """
+    s0 = np.asarray(s0)
+    if s0.ndim != 2 or s0.shape[0] % 2 or s0.shape[1] % 2 or np.shape(s1) != s0.shape or np.shape(s2) != s0.shape:
+        raise SimError(f"Stokes images must be (H, W) with even sides and equal shapes, got "
+                       f"{s0.shape}, {np.shape(s1)}, {np.shape(s2)}")
+    e0, e1, e2 = expose(s0, s1, s2, config)
+    ideal = ideal_mosaic(e0, e1, e2, config)
+    raw = digitize(ideal, config, rng)
+    n_sat = int(np.count_nonzero(raw >= config.max_code))
+    return SensorFrame(raw, ideal, e0, e1, e2, config.bit_depth, n_sat)
+
+
+def raw_to_fullscale(raw: np.ndarray, config: SensorConfig) -> np.ndarray:
+    """Raw codes -> float32 full-scale units, black level removed (the inverse of the ADC step, without noise)."""
+    return ((raw.astype(np.float32) - config.black_level_dn) / np.float32(config.max_code)).astype(np.float32)

@@ -1,0 +1,83 @@
+"""Sensor model statistics: noise variance against signal, bit depth, saturation, polarizer, determinism."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from model.priors.conventions import IMX250MZR
+from sim.errors import SimError
+from sim.sensor import SensorConfig, digitize, simulate
+
+
+def flat(value: float, shape=(200, 200)) -> np.ndarray:
+    return np.full(shape, value, dtype=np.float32)
+
+
+@pytest.mark.parametrize("level", [0.05, 0.3, 0.8])
+def test_noise_variance_is_shot_plus_read(level: float) -> None:
+    cfg = SensorConfig(bit_depth=16, full_well_e=10000.0, read_noise_e=5.0)
+    raw = digitize(flat(level), cfg, np.random.default_rng(1))
+    electrons = raw.astype(np.float64) * cfg.full_scale_e / cfg.max_code
+    expected_var = level * cfg.full_scale_e + cfg.read_noise_e**2  # Poisson + Gaussian
+    assert electrons.mean() == pytest.approx(level * cfg.full_scale_e, rel=0.01)
+    assert electrons.var() == pytest.approx(expected_var, rel=0.05)
+
+
+def test_noise_off_gives_exact_codes() -> None:
+    cfg = SensorConfig(bit_depth=12, shot_noise=False, read_noise_e=0.0)
+    raw = digitize(flat(0.5, (4, 4)), cfg, np.random.default_rng(0))
+    assert raw.dtype == np.uint16 and np.all(raw == round(0.5 * 4095))
+
+
+@pytest.mark.parametrize(("bits", "dtype"), [(8, np.uint8), (12, np.uint16), (16, np.uint16)])
+def test_bit_depth_and_saturation(bits: int, dtype: type) -> None:
+    cfg = SensorConfig(bit_depth=bits)
+    raw = digitize(flat(3.0, (8, 8)), cfg, np.random.default_rng(0))  # 3x over full scale
+    assert raw.dtype == dtype
+    assert np.all(raw == 2**bits - 1)  # clipped at the full well, never wrapped
+    dark = digitize(flat(0.0, (8, 8)), SensorConfig(bit_depth=bits, read_noise_e=0.0), np.random.default_rng(0))
+    assert np.all(dark == 0)
+
+
+def test_full_well_clips_before_adc_with_gain() -> None:
+    # analog gain 2: full scale is reached at half the well, and the ADC clips there
+    cfg = SensorConfig(bit_depth=12, analog_gain=2.0, shot_noise=False, read_noise_e=0.0)
+    assert cfg.full_scale_e == cfg.full_well_e / 2
+    assert digitize(flat(0.25, (2, 2)), cfg, np.random.default_rng(0))[0, 0] == round(0.25 * 4095)
+    assert digitize(flat(1.5, (2, 2)), cfg, np.random.default_rng(0))[0, 0] == 4095
+
+
+def test_mosaic_layout_and_extinction_ratio() -> None:
+    # fully polarized at 0 degrees (S1 = S0): only the 0-degree pixel sees light, the 90-degree one none
+    s0 = flat(0.4, (4, 4))
+    cfg = SensorConfig(bit_depth=16, exposure_gain=1.0, shot_noise=False, read_noise_e=0.0)
+    frame = simulate(s0, s0, 0 * s0, cfg, np.random.default_rng(0))
+    r0, c0 = IMX250MZR.position(0)
+    r90, c90 = IMX250MZR.position(90)
+    assert frame.ideal[r0, c0] == pytest.approx(0.4)
+    assert frame.ideal[r90, c90] == pytest.approx(0.0, abs=1e-7)
+    leaky = simulate(s0, s0, 0 * s0, SensorConfig(bit_depth=16, exposure_gain=1.0, extinction_ratio=100.0,
+                                                   shot_noise=False, read_noise_e=0.0), np.random.default_rng(0))
+    # an extinction ratio of 100 leaks 1/101 of the light through the crossed polarizer
+    assert leaky.ideal[r90, c90] == pytest.approx(0.4 / 101, rel=1e-4)
+    assert leaky.ideal[r0, c0] / leaky.ideal[r90, c90] == pytest.approx(100.0, rel=1e-3)
+    np.testing.assert_array_equal(leaky.s1, frame.s1)  # ground truth is the scene, not the imperfect filter
+
+
+def test_same_seed_same_raw_and_exposure_scaling() -> None:
+    s = np.random.default_rng(3).uniform(0, 0.3, (3, 16, 16)).astype(np.float32)
+    cfg = SensorConfig(exposure_gain=2.0)
+    a = simulate(s[0], 0.1 * s[1], 0.1 * s[2], cfg, np.random.default_rng(7))
+    b = simulate(s[0], 0.1 * s[1], 0.1 * s[2], cfg, np.random.default_rng(7))
+    np.testing.assert_array_equal(a.raw, b.raw)
+    np.testing.assert_allclose(a.s0, 2.0 * s[0], rtol=1e-6)
+
+
+def test_bad_config_and_shapes_are_clear_errors() -> None:
+    with pytest.raises(SimError, match="bit_depth"):
+        SensorConfig(bit_depth=9)
+    with pytest.raises(SimError, match="extinction_ratio"):
+        SensorConfig(extinction_ratio=0.5)
+    with pytest.raises(SimError, match="even sides"):
+        simulate(flat(0.1, (3, 4)), flat(0, (3, 4)), flat(0, (3, 4)), SensorConfig(), np.random.default_rng(0))
