@@ -1,0 +1,224 @@
+"""The camera boundary: one Protocol every camera implements (Aravis/GenICam, virtual), its configuration and
+statistics, and the small helpers drivers share (frame id unwrapping, reconnect back-off).
+
+Life cycle::
+
+    cam = AravisCamera(CameraConfig(device="127.0.0.1"))   # nothing happens yet
+    with cam:                       # open(): connect and apply the config
+        cam.start()                 # buffers allocated, acquisition running
+        cam.trigger()               # trigger="software" only
+        frame = cam.grab(timeout_ms=1000)
+        cam.stop()
+    cam.statistics()                # still readable after close
+
+Failure rules (every implementation keeps them; tests hold them to it):
+
+- ``open()``: ``CameraNotFound`` when nothing answers to ``config.device``; ``CameraConfigError`` when a value
+  cannot be applied (names the feature and value); ``CameraError`` for anything else. A failed open leaves the
+  object closed (``close()`` is still safe).
+- ``configure(config)``: only while stopped (``CameraError`` otherwise); ``CameraConfigError`` naming the feature.
+  Values the camera adjusts (a packet size, a frame rate bound) are logged, not raised.
+- ``start()``: ``CameraError`` if not open. ``stop()`` / ``close()`` never raise, are idempotent, and are safe
+  after the camera is lost.
+- ``trigger()``: ``CameraError`` unless ``config.trigger == "software"`` and started.
+- ``grab(timeout_ms)``: returns only complete frames. ``CameraTimeout`` when no complete frame arrives in
+  ``timeout_ms`` (default ``config.timeout_ms``): the camera stays usable. Incomplete frames (missing packets,
+  size mismatch...) are counted in ``statistics().failed`` and logged, never delivered. Frames lost before they
+  reached the host (gaps in frame ids) are counted in ``dropped``. ``CameraLost`` when the device stops answering
+  and, with ``config.reconnect``, every reconnect attempt failed; the statistics are kept. ``CameraError`` if
+  not started.
+- ``statistics()``: a snapshot copy, valid at any time, also after close or loss.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from types import TracebackType
+from typing import Protocol, runtime_checkable
+
+from drivers.errors import CameraConfigError
+from drivers.frame import Frame
+
+log = logging.getLogger(__name__)
+
+TRIGGERS = ("free_run", "software", "line0", "line1", "line2", "line3")
+"""free_run: the camera runs at ``frame_rate_hz``; software: one frame per ``trigger()``; lineN: one frame per
+rising edge on hardware input line N."""
+
+
+@dataclass(frozen=True)
+class CameraConfig:
+    """What a camera driver needs; ``station.config.CameraConfig`` maps onto it (same names and units).
+
+    device          Aravis: device id ("Vendor-Model-Serial"), serial number, or IPv4 address; "" = the only
+                    camera found. Virtual camera: ignored.
+    pixel_format    wire format name (``drivers.pixel_formats.FORMATS``).
+    width, height   region of interest in pixels; 0 = the full sensor. Offsets and sizes must be even so the
+                    region keeps whole 2x2 polarizer superpixels.
+    exposure_us     exposure time in microseconds.
+    gain_db         analogue gain in decibels.
+    frame_rate_hz   free-run frame rate; with a trigger, the upper bound.
+    packet_size     GigE Vision stream packet size in bytes; 0 = negotiate the largest the path carries.
+    trigger         one of ``TRIGGERS``.
+    timeout_ms      default grab timeout.
+    reconnect       reconnect with back-off when the camera is lost (``reconnect_attempts`` tries, waiting
+                    ``reconnect_backoff_s`` doubled after each failure up to ``reconnect_backoff_max_s``).
+    n_buffers       stream buffer pool size.
+    """
+
+    device: str = ""
+    pixel_format: str = "Mono8"
+    width: int = 0
+    height: int = 0
+    offset_x: int = 0
+    offset_y: int = 0
+    exposure_us: float = 10000.0
+    gain_db: float = 0.0
+    frame_rate_hz: float = 10.0
+    packet_size: int = 0
+    trigger: str = "software"
+    timeout_ms: int = 1000
+    reconnect: bool = True
+    reconnect_attempts: int = 5
+    reconnect_backoff_s: float = 0.5
+    reconnect_backoff_max_s: float = 8.0
+    n_buffers: int = 8
+
+    def __post_init__(self) -> None:
+        if self.trigger not in TRIGGERS:
+            raise CameraConfigError(f"camera trigger {self.trigger!r}: must be one of {', '.join(TRIGGERS)}")
+        for name in ("width", "height", "offset_x", "offset_y"):
+            value = getattr(self, name)
+            if value < 0 or value % 2:
+                raise CameraConfigError(f"camera {name} = {value}: must be even and >= 0 (whole 2x2 superpixels)")
+        for name in ("exposure_us", "frame_rate_hz", "timeout_ms", "n_buffers"):
+            if getattr(self, name) <= 0:
+                raise CameraConfigError(f"camera {name} = {getattr(self, name)}: must be > 0")
+        if self.gain_db < 0 or self.packet_size < 0 or self.reconnect_attempts < 0:
+            raise CameraConfigError("camera gain_db, packet_size and reconnect_attempts must be >= 0")
+
+
+@dataclass
+class CameraStatistics:
+    """Counters since the camera object was made (they survive stop/start, reconnects and close).
+
+    completed        frames delivered by ``grab``.
+    failed           frames that arrived incomplete (missing packets, size mismatch, ...): counted, never delivered.
+    dropped          frames that never reached the host: gaps in the frame ids, buffer underruns.
+    resent           packets the host asked the camera to resend (GigE Vision).
+    missing_packets  packets that never arrived even after resend requests (GigE Vision).
+    timeouts         ``grab`` calls that raised ``CameraTimeout``.
+    reconnects       successful reconnects after a loss.
+    failed_by_status incomplete frames by buffer status name.
+    """
+
+    completed: int = 0
+    failed: int = 0
+    dropped: int = 0
+    resent: int = 0
+    missing_packets: int = 0
+    timeouts: int = 0
+    reconnects: int = 0
+    failed_by_status: dict[str, int] = field(default_factory=dict)
+
+    def snapshot(self) -> CameraStatistics:
+        return dataclasses.replace(self, failed_by_status=dict(self.failed_by_status))
+
+    def as_dict(self) -> dict[str, object]:
+        return dataclasses.asdict(self)
+
+
+@runtime_checkable
+class Camera(Protocol):
+    """Every camera: see the module docstring for the life cycle and failure rules."""
+
+    config: CameraConfig
+
+    def open(self) -> None: ...
+    def configure(self, config: CameraConfig) -> None: ...
+    def start(self) -> None: ...
+    def trigger(self) -> None: ...
+    def grab(self, timeout_ms: int | None = None) -> Frame: ...
+    def stop(self) -> None: ...
+    def close(self) -> None: ...
+    def statistics(self) -> CameraStatistics: ...
+    def __enter__(self) -> Camera: ...
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None: ...
+
+
+class CameraBase:
+    """Context manager and statistics plumbing shared by the implementations."""
+
+    config: CameraConfig
+
+    def __init__(self, config: CameraConfig) -> None:
+        self.config = config
+        self._stats = CameraStatistics()
+
+    def statistics(self) -> CameraStatistics:
+        return self._stats.snapshot()
+
+    def open(self) -> None:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def close(self) -> None:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def __enter__(self) -> CameraBase:
+        self.open()
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        self.close()
+
+
+class FrameIdTracker:
+    """Unwraps camera frame ids into a monotonic counter and counts the frames lost in between.
+
+    GigE Vision 1.x block ids are 16 bit, run 1..65535 and wrap to 1 (0 is never used); GigE Vision 2.x
+    extended ids are 64 bit and do not wrap. The tracker switches to 64-bit mode once it sees an id > 65535.
+    After ``restart()`` (acquisition stopped and started) the next id is not compared with the last one, but the
+    unwrapped counter keeps increasing.
+    """
+
+    WRAP = 65535
+
+    def __init__(self) -> None:
+        self._last_device: int | None = None
+        self._unwrapped = 0
+        self._wide = False
+
+    def restart(self) -> None:
+        self._last_device = None
+
+    def update(self, device_id: int) -> tuple[int, int]:
+        """(unwrapped id, frames lost since the previous id) for the next complete or failed frame."""
+        if device_id > self.WRAP:
+            self._wide = True
+        if self._last_device is None:
+            self._last_device = device_id
+            self._unwrapped += 1
+            return self._unwrapped, 0
+        if self._wide:
+            step = device_id - self._last_device
+        else:
+            step = ((device_id - 1) - (self._last_device - 1)) % self.WRAP
+        if step <= 0:  # duplicate or reordered id: keep monotonic, count nothing
+            log.warning("frame id %d after %d: not increasing", device_id, self._last_device)
+            step = 1
+        self._last_device = device_id
+        self._unwrapped += step
+        return self._unwrapped, step - 1
+
+
+def backoff_delays_s(initial_s: float, max_s: float, attempts: int) -> Iterator[float]:
+    """Waits before each reconnect attempt: ``initial_s`` doubled each time, capped at ``max_s``."""
+    delay = initial_s
+    for _ in range(attempts):
+        yield delay
+        delay = min(delay * 2, max_s)
