@@ -69,10 +69,22 @@ def compute_priors(raw: np.ndarray, layout: str | MosaicLayout = "imx250mzr", me
     """
     names = check_prior_names(priors)
     norm = normalize_mosaic(raw, bit_depth)
-    polarization = any(n not in ("intensity", "s0") for n in names)
-    s0, s1, s2 = mosaic_to_stokes(norm.data, layout, method, polarization)
+    s0, s1, s2 = mosaic_to_stokes(norm.data, layout, method, needs_polarization(names))
+    return Priors(priors_from_stokes(names, s0, s1, s2), norm.n_nonfinite, norm.n_out_of_range, norm.n_saturated,
+                  norm.invalid)
+
+
+def needs_polarization(names: Iterable[str]) -> bool:
+    """Whether any of the prior ``names`` needs S1, S2 (everything but intensity and S0 does)."""
+    return any(n not in ("intensity", "s0") for n in names)
+
+
+def priors_from_stokes(names: Iterable[str], s0: np.ndarray, s1: np.ndarray | None, s2: np.ndarray | None
+                       ) -> dict[str, np.ndarray]:
+    """The requested priors from (S0, S1, S2), plus the Stokes images themselves (S1, S2 when given)."""
+    names = set(names)
     out: dict[str, np.ndarray] = {"s0": s0}
-    if polarization:
+    if s1 is not None and s2 is not None:
         out["s1"], out["s2"] = s1, s2
     if "intensity" in names:
         out["intensity"] = unpolarized_intensity(s0)
@@ -82,4 +94,4 @@ def compute_priors(raw: np.ndarray, layout: str | MosaicLayout = "imx250mzr", me
         out["aolp"] = aolp(s1, s2)
     if "aolp_cos" in names or "aolp_sin" in names:
         out["aolp_cos"], out["aolp_sin"] = aolp_vector(s1, s2)
-    return Priors(out, norm.n_nonfinite, norm.n_out_of_range, norm.n_saturated, norm.invalid)
+    return out
