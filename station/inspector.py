@@ -1,0 +1,87 @@
+"""One frame -> score and heatmap: demosaic, the priors the detector needs (and no others), the detector.
+
+Every stage is timed. Errors do not escape: they come back in ``Inspection.error`` so the loop can reject the
+part with its reason (fail closed) and keep running.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from drivers.frame import Frame
+from model.priors import MosaicLayout
+from model.priors.api import check_prior_names, needs_polarization, priors_from_stokes
+from model.priors.demosaic import mosaic_to_stokes
+from model.priors.mosaic import normalize_mosaic
+
+
+@dataclass(frozen=True)
+class Inference:
+    """A detector's answer: image score in [0, 1] and per-pixel anomaly probability (H', W') in [0, 1]."""
+
+    score: float
+    heatmap: np.ndarray | None = None
+
+
+class Detector(Protocol):
+    """What the station needs from a model (``model`` provides it; tests use small fakes)."""
+
+    model_id: str
+    threshold: float
+    priors: tuple[str, ...]
+    """Names from ``model.priors.PRIOR_KEYS`` the detector reads; nothing else is computed."""
+
+    def infer(self, priors: Mapping[str, np.ndarray]) -> Inference: ...
+
+
+@dataclass
+class Inspection:
+    score: float | None = None
+    heatmap: np.ndarray | None = None
+    priors: dict[str, np.ndarray] = field(default_factory=dict)
+    invalid_fraction: float = 0.0
+    n_saturated: int = 0
+    error: str | None = None
+    timings_ms: dict[str, float] = field(default_factory=dict)
+
+
+class Inspector:
+    """Frames -> ``Inspection``s for one detector, layout and demosaic method."""
+
+    def __init__(self, detector: Detector, layout: MosaicLayout, method: str = "bilinear",
+                 display_priors: tuple[str, ...] = ()) -> None:
+        self.detector = detector
+        self.layout = layout
+        self.method = method
+        self.names = check_prior_names(tuple(dict.fromkeys(detector.priors + display_priors)))
+        self.polarization = needs_polarization(self.names)
+
+    def inspect(self, frame: Frame) -> Inspection:
+        result = Inspection()
+        t = time.perf_counter()
+        try:
+            norm = normalize_mosaic(frame.raw, frame.bit_depth)
+            s0, s1, s2 = mosaic_to_stokes(norm.data, self.layout, self.method, self.polarization)
+            t_demosaic = time.perf_counter()
+            result.timings_ms["demosaic"] = 1e3 * (t_demosaic - t)
+            result.priors = priors_from_stokes(self.names, s0, s1, s2)
+            result.invalid_fraction = (norm.n_nonfinite + norm.n_out_of_range) / frame.raw.size
+            result.n_saturated = norm.n_saturated
+            t_priors = time.perf_counter()
+            result.timings_ms["priors"] = 1e3 * (t_priors - t_demosaic)
+        except Exception as exc:  # any failure here is a part we cannot judge
+            result.error = f"frame {frame.frame_id}: priors failed: {type(exc).__name__}: {exc}"
+            return result
+        try:
+            inference = self.detector.infer(result.priors)
+            result.score, result.heatmap = float(inference.score), inference.heatmap
+        except Exception as exc:
+            result.error = (f"frame {frame.frame_id}: model {self.detector.model_id} failed: "
+                            f"{type(exc).__name__}: {exc}")
+        result.timings_ms["model"] = 1e3 * (time.perf_counter() - t_priors)
+        return result

@@ -1,0 +1,241 @@
+"""The inspection loop: trigger -> grab -> demosaic -> priors -> model -> decision -> PLC -> log.
+
+Acquisition runs in its own thread and hands parts to processing through a bounded ``FrameQueue`` with the
+configured backpressure. Every part ends in exactly one log row:
+
+- judged: ``pass`` or ``reject`` (with the reason);
+- could not be judged (grab timeout after a trigger, lost camera, priors or model error, NaN score, over the
+  cycle time): ``reject`` with the reason, and the PLC is told REJECT (fail closed);
+- dropped by backpressure: ``not_inspected`` with the reason, and the PLC is told REJECT.
+
+``stop()`` (or SIGINT/SIGTERM through ``run_until_signal``) ends acquisition, drains the queue and flushes the log.
+"""
+
+from __future__ import annotations
+
+import logging
+import signal
+import threading
+import time
+from collections import Counter, deque
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from drivers.camera import Camera
+from drivers.errors import CameraError, CameraTimeout
+from drivers.frame import Frame
+from station.decision import Decision, decide
+from station.frame_queue import Closed, FrameQueue
+from station.inspection_log import InspectionLog, InspectionRecord
+from station.inspector import Inspection, Inspector
+from station.viewer import ViewerFeed, ViewFrame
+
+log = logging.getLogger(__name__)
+
+
+class LineLink(Protocol):
+    """The station's side of the PLC link (``drivers.line_io`` and the simulated PLC provide it)."""
+
+    triggered: bool
+    """True: one part per PLC trigger; False: trigger-free, every frame is a part."""
+
+    def next_trigger(self, timeout_s: float) -> str | None:
+        """The next part id, or None when no part arrived within ``timeout_s``."""
+        ...
+
+    def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
+        """Send PASS/REJECT for ``part_id``; True delivered, False queued for later delivery, None no PLC."""
+        ...
+
+
+class NoLink:
+    """Trigger-free operation without a PLC: every frame is a part, decisions go only to the log."""
+
+    triggered = False
+
+    def next_trigger(self, timeout_s: float) -> str | None:
+        return None
+
+    def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
+        return None
+
+
+@dataclass
+class Part:
+    """A part between acquisition and processing."""
+
+    part_id: str
+    t_trigger: float
+    """``time.perf_counter()`` when the part arrived (trigger, or grab start when trigger-free)."""
+    frame: Frame | None = None
+    grab_ms: float | None = None
+    error: str | None = None
+
+
+@dataclass
+class LiveStats:
+    """Running statistics: counts per decision, confusion against ground truth, recent latencies."""
+
+    counts: Counter[str] = field(default_factory=Counter)
+    confusion: Counter[str] = field(default_factory=Counter)
+    latencies_ms: deque[float] = field(default_factory=lambda: deque(maxlen=1000))
+    started: float = field(default_factory=time.perf_counter)
+
+    def add(self, decision: str, total_ms: float | None, truth: int | None) -> None:
+        self.counts[decision] += 1
+        if total_ms is not None:
+            self.latencies_ms.append(total_ms)
+        if truth is not None and decision in ("pass", "reject"):
+            self.confusion[f"{'bad' if truth else 'good'}_{decision}"] += 1
+
+    def summary(self) -> dict[str, float]:
+        n = sum(self.counts.values())
+        lat = np.array(self.latencies_ms) if self.latencies_ms else np.zeros(1)
+        return {"parts": n, "rejects": self.counts["reject"], "not_inspected": self.counts["not_inspected"],
+                "parts_per_s": n / max(time.perf_counter() - self.started, 1e-9),
+                "p50_ms": float(np.percentile(lat, 50)), "p99_ms": float(np.percentile(lat, 99))}
+
+
+class Station:
+    """Runs the loop over one camera, inspector, PLC link and log (all opened by the caller)."""
+
+    def __init__(self, camera: Camera, inspector: Inspector, link: LineLink, inspection_log: InspectionLog, *,
+                 threshold: float, cycle_time_ms: float, queue_size: int = 4, backpressure: str = "drop_oldest",
+                 grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None) -> None:
+        self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
+        self.threshold, self.cycle_time_ms, self.grab_timeout_ms = threshold, cycle_time_ms, grab_timeout_ms
+        self.queue: FrameQueue[Part] = FrameQueue(queue_size, backpressure)
+        self.viewer = viewer
+        self.stats = LiveStats()
+        self._stop = threading.Event()
+        self._dropped: deque[Part] = deque()
+        self._grabbed = 0
+        self._counter = 0
+        self.fatal: str | None = None
+
+    # -- acquisition thread -------------------------------------------------------------------------------
+    def _next_part(self) -> Part | None:
+        if self.link.triggered:
+            part_id = self.link.next_trigger(timeout_s=0.2)
+            if part_id is None:
+                return None
+        else:
+            self._counter += 1
+            part_id = str(self._counter)
+        part = Part(part_id, time.perf_counter())
+        try:
+            if self.camera.config.trigger == "software":
+                self.camera.trigger()
+            part.frame = self.camera.grab(self.grab_timeout_ms)
+        except CameraTimeout as exc:
+            if not self.link.triggered:  # free run: no part was announced, nothing to judge
+                log.warning("grab timeout without a trigger: %s", exc)
+                return None
+            part.error = f"no frame for part {part_id}: {exc}"
+        except CameraError as exc:  # lost camera (after the driver's reconnects): judge this part, then stop
+            part.error = f"camera error for part {part_id}: {exc}"
+            self.fatal = str(exc)
+            self._stop.set()
+        part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
+        return part
+
+    def _acquire(self, max_parts: int | None) -> None:
+        try:
+            while not self._stop.is_set() and (max_parts is None or self._grabbed < max_parts):
+                part = self._next_part()
+                if part is None:
+                    continue
+                self._grabbed += 1
+                self._dropped.extend(self.queue.put(part))  # finished by the processing thread, which owns the log
+        except Exception as exc:  # an acquisition bug must not leave processing waiting forever
+            log.exception("acquisition stopped")
+            self.fatal = f"acquisition failed: {exc}"
+        finally:
+            self.queue.close()
+
+    # -- processing ----------------------------------------------------------------------------------------
+    def _finish_dropped(self) -> None:
+        while self._dropped:
+            part = self._dropped.popleft()
+            self._finish(part, None, Decision("reject", f"dropped: processing queue full ({self.queue.policy})"),
+                         not_inspected=True)
+
+    def _process(self, part: Part) -> None:
+        inspection = None
+        if part.error is None and part.frame is not None:
+            inspection = self.inspector.inspect(part.frame)
+            elapsed_ms = 1e3 * (time.perf_counter() - part.t_trigger)
+            decision = decide(inspection.score, self.threshold, elapsed_ms=elapsed_ms,
+                              cycle_time_ms=self.cycle_time_ms, error=inspection.error,
+                              invalid_fraction=inspection.invalid_fraction)
+        else:
+            decision = decide(None, self.threshold, error=part.error or "no frame")
+        self._finish(part, inspection, decision)
+
+    def _finish(self, part: Part, inspection: Inspection | None, decision: Decision,
+                not_inspected: bool = False) -> None:
+        """Tell the PLC, log the part, update statistics and the viewer (processing thread only)."""
+        t_decided = time.perf_counter()
+        delivered = self.link.report(part.part_id, decision.decision, decision.reason)
+        t_io = time.perf_counter()
+        frame = part.frame
+        truth = frame.ground_truth.label if frame is not None and frame.ground_truth is not None else None
+        timings = inspection.timings_ms if inspection else {}
+        record = InspectionRecord(
+            decision="not_inspected" if not_inspected else decision.decision, time_unix_s=time.time(),
+            part_id=part.part_id, camera_frame_id=frame.frame_id if frame else None,
+            camera_timestamp_ns=frame.timestamp_ns if frame else None,
+            score=inspection.score if inspection else None, threshold=self.threshold,
+            model_id=self.inspector.detector.model_id, reason=decision.reason, grab_ms=part.grab_ms,
+            demosaic_ms=timings.get("demosaic"), priors_ms=timings.get("priors"), model_ms=timings.get("model"),
+            decision_ms=None, io_ms=1e3 * (t_io - t_decided), total_ms=1e3 * (t_decided - part.t_trigger),
+            io_delivered=delivered, ground_truth_label=truth)
+        self.log.append(record)
+        self.stats.add(record.decision, record.total_ms, truth)
+        if self.viewer is not None and inspection is not None and "intensity" in inspection.priors:
+            p = inspection.priors
+            self.viewer.put(ViewFrame(part.part_id, decision.decision, inspection.score, self.threshold,
+                                      p["intensity"], p.get("dolp"), p.get("aolp"), p.get("normal"),
+                                      inspection.heatmap, decision.reason, self.stats.summary()))
+
+    # -- control -------------------------------------------------------------------------------------------
+    def run(self, max_parts: int | None = None, progress_every_s: float = 5.0) -> LiveStats:
+        """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; drain and return."""
+        acq = threading.Thread(target=self._acquire, args=(max_parts,), name="acquisition", daemon=True)
+        self.camera.start()
+        acq.start()
+        last = time.perf_counter()
+        try:
+            while True:
+                try:
+                    part = self.queue.get(timeout_s=0.2)
+                except Closed:
+                    break
+                self._finish_dropped()
+                if part is not None:
+                    self._process(part)
+                if time.perf_counter() - last > progress_every_s:
+                    last = time.perf_counter()
+                    log.info("%s", ", ".join(f"{k} {v:.4g}" for k, v in self.stats.summary().items()))
+        finally:
+            self._stop.set()
+            acq.join(timeout=5)
+            self.camera.stop()
+            self._finish_dropped()
+        return self.stats
+
+    def stop(self) -> None:
+        self._stop.set()
+
+    def run_until_signal(self, max_parts: int | None = None) -> LiveStats:
+        """``run`` with SIGINT/SIGTERM mapped to a clean ``stop`` (main thread only)."""
+        previous = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+        for s in previous:
+            signal.signal(s, lambda *_: self.stop())
+        try:
+            return self.run(max_parts)
+        finally:
+            for s, handler in previous.items():
+                signal.signal(s, handler)
