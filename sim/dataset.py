@@ -1,0 +1,310 @@
+"""Rendered datasets: generating samples, writing them atomically, and reading them back.
+
+Format (contract with drivers' virtual camera and the station's train/eval commands):
+  DIR/manifest.json                  format, version, convention_version, width, height, layout, bit_depth, seed,
+                                     count, split_rule, config (everything that defines the set)
+  DIR/samples/<index:06d>/raw.png    raw mosaic, uint8 or uint16 PNG, codes of ``bit_depth`` bits
+  DIR/samples/<index:06d>/gt.npz     float32 s0, s1, s2 (noiseless, full-scale units: exposed scene Stokes),
+                                     normal (H, W, 3) camera coords (x right, y up, z toward the camera), unit;
+                                     object_mask, defect_mask (bool); part_index (uint8); depth (float32, m)
+  DIR/samples/<index:06d>/params.json every sampled parameter, "split", "label" (1 iff defect_mask non-empty),
+                                     "defect" (null or {"type", ...})
+A sample is complete iff its directory exists under its final name: it is written as ``<index>.tmp-<pid>`` and
+renamed, so a crash never leaves a half-written sample that looks complete.
+
+Determinism: sample ``i`` depends only on the dataset config, ``seed`` and ``i`` (numpy
+``default_rng([seed, i])``; Mitsuba's seed is drawn from it), so any index can be re-rendered alone, and shards
+(``i % n == k``) can run anywhere in parallel.
+
+Split rule (``SPLIT_RULE``): by index, ``i % 10`` in {0, 1} -> test (20 %, as the paper's 80/20), 2 -> val
+(10 % of all, a slice of the paper's training 80 % kept for thresholds), else train. Defects are placed with
+probability ``defect_fraction`` in val and test samples only (DRAEM trains on good parts and makes its own
+anomalies) unless ``defects_in_train``; a placed defect that is not visible gives label 0.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import cv2
+import numpy as np
+
+from model.priors.conventions import CONVENTION_VERSION
+
+from .defects import DefectConfig, apply_defect
+from .errors import SimError
+from .meshes import ObjectModel, object_from_config
+from .render import RenderSettings, render_sample
+from .scene import SceneConfig, material_keys_check, object_to_world, sample_scene
+from .sensor import SensorConfig, simulate
+
+FORMAT = "polar-ano-dataset"
+VERSION = 1
+SPLIT_RULE = ("index % 10 in {0, 1}: test; index % 10 == 2: val (slice of the 80 % train part, for thresholds); "
+              "else train. Defects only in val/test unless defects_in_train.")
+GT_KEYS = ("s0", "s1", "s2", "normal", "object_mask", "defect_mask", "part_index", "depth")
+
+
+def split_of(index: int) -> str:
+    """The split of sample ``index`` (see ``SPLIT_RULE``)."""
+    r = index % 10
+    return "test" if r in (0, 1) else "val" if r == 2 else "train"
+
+
+@dataclass(frozen=True)
+class DatasetSpec:
+    """Everything that defines a rendered set; stored as the manifest's ``config``."""
+
+    seed: int = 0
+    width: int = 640
+    height: int = 480
+    spp: int = 16
+    max_depth: int = 4
+    ground_truth: bool = True
+    defect_fraction: float = 0.5
+    defects_in_train: bool = False
+    mesh: str = ""
+    materials: dict[str, Any] = field(default_factory=dict)
+    mesh_scale: float = 1.0
+    variant: str | None = None
+    scene: SceneConfig = field(default_factory=SceneConfig)
+    defects: DefectConfig = field(default_factory=DefectConfig)
+    sensor: SensorConfig = field(default_factory=SensorConfig)
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.defect_fraction <= 1.0:
+            raise SimError(f"defect fraction must be in [0, 1], got {self.defect_fraction}")
+        if self.seed < 0:
+            raise SimError(f"seed must be >= 0, got {self.seed}")
+        if self.mesh_scale <= 0:
+            raise SimError(f"mesh_scale must be > 0, got {self.mesh_scale}")
+        self.render_settings()  # checks size and spp
+
+    def render_settings(self) -> RenderSettings:
+        return RenderSettings(self.width, self.height, self.spp, self.ground_truth, self.max_depth,
+                              self.scene.background_size_m, self.variant)
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d.pop("variant")  # the variant changes speed, not the distribution of samples
+        return json.loads(json.dumps(d))  # tuples -> lists, as read back from JSON
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> DatasetSpec:
+        d = dict(d)
+        scene = SceneConfig.from_dict(d.pop("scene", {}))
+        defects = DefectConfig.from_dict(d.pop("defects", {}))
+        sensor_d = d.pop("sensor", {})
+        try:
+            sensor = SensorConfig(**sensor_d)
+        except TypeError as exc:
+            raise SimError(f"sensor: {exc}") from None
+        try:
+            return cls(**d, scene=scene, defects=defects, sensor=sensor)
+        except TypeError as exc:
+            raise SimError(f"dataset config: {exc}") from None
+
+
+@dataclass
+class Sample:
+    """One sample. ``raw``: (H, W) uint8/uint16 mosaic. Ground truth fields are None when not rendered; see the
+    module docstring for units and conventions."""
+
+    index: int
+    raw: np.ndarray
+    params: dict[str, Any]
+    label: int
+    split: str
+    s0: np.ndarray | None = None
+    s1: np.ndarray | None = None
+    s2: np.ndarray | None = None
+    normal: np.ndarray | None = None
+    object_mask: np.ndarray | None = None
+    defect_mask: np.ndarray | None = None
+    part_index: np.ndarray | None = None
+    depth: np.ndarray | None = None
+
+
+def prepare(spec: DatasetSpec) -> ObjectModel:
+    """Load and check everything a render needs (mesh, materials, defect types) before rendering anything;
+    raises SimError naming the file, key or material."""
+    from .variant import set_variant
+
+    set_variant(spec.variant)
+    model = object_from_config(spec.mesh, spec.materials, spec.mesh_scale)
+    material_keys_check(model)
+    if spec.defect_fraction > 0:
+        usable = spec.defects.usable_types(model)
+        if not usable:
+            raise SimError(f"none of the defect types {list(spec.defects.types)} is possible on {model.name!r}")
+        for kind in usable:  # dry run on a camera straight above: errors now, not at sample 3,000
+            apply_defect(model, kind, np.random.default_rng(0), spec.defects, np.array([0.0, 0.0, 1.0]),
+                         {k: {**v, "colour": [0.5] * 3, "alpha": 0.1} for k, v in model.materials.items()})
+    return model
+
+
+def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample:
+    """Render sample ``index`` in memory (deterministic in ``spec.seed`` and ``index``)."""
+    rng = np.random.default_rng([spec.seed, index])
+    split = split_of(index)
+    params = sample_scene(rng, spec.scene, model)
+    defect = None
+    wants_defect = split != "train" or spec.defects_in_train
+    if wants_defect and rng.random() < spec.defect_fraction:
+        kind = str(rng.choice(list(spec.defects.usable_types(model))))
+        to_world = object_to_world(params["pose"])
+        cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
+        defect = apply_defect(model, kind, rng, spec.defects, cam_obj, params["materials"])
+    mi_seed = int(rng.integers(2**32))
+    out = render_sample(model, params, defect, spec.render_settings(), mi_seed)
+    frame = simulate(out.s0, out.s1, out.s2, spec.sensor, np.random.default_rng([spec.seed, index, 1]))
+    label = int(out.defect_mask is not None and bool(out.defect_mask.any()))
+    record = {"index": index, "split": split, "label": label, "defect": defect.info if defect else None,
+              "mitsuba_seed": mi_seed, "scene": params, "render_seconds": out.seconds,
+              "n_saturated": frame.n_saturated}
+    if defect is not None and out.defect_mask is not None:
+        record["defect"]["visible_px"] = int(out.defect_mask.sum())
+    sample = Sample(index, frame.raw, record, label, split)
+    if spec.ground_truth:
+        sample.s0, sample.s1, sample.s2 = frame.s0, frame.s1, frame.s2
+        sample.normal, sample.object_mask, sample.defect_mask = out.normal, out.object_mask, out.defect_mask
+        sample.part_index, sample.depth = out.part_index, out.depth_m
+    return sample
+
+
+def sample_dir(root: str | Path, index: int) -> Path:
+    return Path(root) / "samples" / f"{index:06d}"
+
+
+def write_sample(root: str | Path, sample: Sample) -> Path:
+    """Write ``sample`` under ``root`` atomically (temporary directory, fsync, rename); returns its folder."""
+    final = sample_dir(root, sample.index)
+    tmp = final.with_name(f"{final.name}.tmp-{os.getpid()}")
+    if tmp.exists():
+        shutil.rmtree(tmp)
+    tmp.mkdir(parents=True)
+    if not cv2.imwrite(str(tmp / "raw.png"), sample.raw):
+        raise SimError(f"could not write {tmp / 'raw.png'}")
+    gt = {k: getattr(sample, k) for k in GT_KEYS if getattr(sample, k) is not None}
+    if gt:
+        np.savez_compressed(tmp / "gt.npz", **gt)
+    (tmp / "params.json").write_text(json.dumps(sample.params, indent=1))
+    for f in tmp.iterdir():
+        with open(f, "rb") as fh:
+            os.fsync(fh.fileno())
+    if final.exists():  # another shard finished it meanwhile: same content by determinism
+        shutil.rmtree(tmp)
+        return final
+    os.rename(tmp, final)
+    return final
+
+
+def manifest_for(spec: DatasetSpec, count: int) -> dict[str, Any]:
+    return {"format": FORMAT, "version": VERSION, "convention_version": CONVENTION_VERSION,
+            "width": spec.width, "height": spec.height, "layout": spec.sensor.layout,
+            "bit_depth": spec.sensor.bit_depth, "seed": spec.seed, "count": count, "split_rule": SPLIT_RULE,
+            "config": spec.to_dict()}
+
+
+def init_dataset(root: str | Path, spec: DatasetSpec, count: int) -> dict[str, Any]:
+    """Create ``root`` and its manifest, or check that an existing one describes the same set (resume).
+    Removes temporary sample folders of processes that no longer run."""
+    root = Path(root)
+    manifest = manifest_for(spec, count)
+    path = root / "manifest.json"
+    if path.exists():
+        try:
+            old = json.loads(path.read_text())
+        except (OSError, json.JSONDecodeError) as exc:
+            raise SimError(f"{path}: unreadable manifest ({exc})") from None
+        same = {k: v for k, v in old.items() if k != "count"} == {k: v for k, v in manifest.items() if k != "count"}
+        if not same:
+            raise SimError(f"{path} describes a different dataset (seed or config differ); use another --out or "
+                           f"the same options")
+        if old.get("count", 0) >= count:
+            manifest = old
+    (root / "samples").mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f"manifest.json.tmp-{os.getpid()}")
+    tmp.write_text(json.dumps(manifest, indent=1))
+    os.replace(tmp, path)
+    for stale in (root / "samples").glob("*.tmp-*"):
+        pid = stale.name.rsplit("-", 1)[-1]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(stale, ignore_errors=True)
+    return manifest
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return False  # our own leftovers are from an earlier run that reused the pid
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def is_complete(root: str | Path, index: int) -> bool:
+    return sample_dir(root, index).is_dir()
+
+
+class Dataset:
+    """A rendered set on disk (read only). ``len`` counts complete samples."""
+
+    def __init__(self, root: str | Path):
+        self.root = Path(root)
+        path = self.root / "manifest.json"
+        if not path.is_file():
+            raise SimError(f"{self.root} is not a rendered dataset: {path} is missing (run station render)")
+        try:
+            self.manifest = json.loads(path.read_text())
+        except (OSError, json.JSONDecodeError) as exc:
+            raise SimError(f"{path}: unreadable manifest ({exc})") from None
+        if self.manifest.get("format") != FORMAT or self.manifest.get("version") != VERSION:
+            raise SimError(f"{path}: not a {FORMAT} version {VERSION} manifest")
+        if self.manifest.get("convention_version") != CONVENTION_VERSION:
+            raise SimError(f"{path}: rendered with convention version {self.manifest.get('convention_version')}, "
+                           f"this code uses {CONVENTION_VERSION}: re-render")
+        self._indices = sorted(int(p.name) for p in (self.root / "samples").glob("[0-9]" * 6) if p.is_dir())
+
+    def __len__(self) -> int:
+        return len(self._indices)
+
+    def indices(self, split: str | None = None) -> list[int]:
+        """Complete sample indices, all or of one split ("train", "val", "test")."""
+        if split not in (None, "train", "val", "test"):
+            raise SimError(f"unknown split {split!r}; use train, val or test")
+        return [i for i in self._indices if split is None or split_of(i) == split]
+
+    def load(self, index: int, ground_truth: bool = True) -> Sample:
+        d = sample_dir(self.root, index)
+        if not d.is_dir():
+            raise SimError(f"{self.root}: sample {index} is missing or incomplete ({d})")
+        raw = cv2.imread(str(d / "raw.png"), cv2.IMREAD_UNCHANGED)
+        if raw is None or raw.ndim != 2:
+            raise SimError(f"{d / 'raw.png'}: missing or not a single-channel PNG")
+        try:
+            params = json.loads((d / "params.json").read_text())
+        except (OSError, json.JSONDecodeError) as exc:
+            raise SimError(f"{d / 'params.json'}: unreadable ({exc})") from None
+        sample = Sample(index, raw, params, int(params["label"]), params["split"])
+        if ground_truth and (d / "gt.npz").is_file():
+            try:
+                with np.load(d / "gt.npz") as gt:
+                    for k in GT_KEYS:
+                        if k in gt:
+                            setattr(sample, k, gt[k])
+            except (OSError, ValueError) as exc:
+                raise SimError(f"{d / 'gt.npz'}: unreadable ({exc})") from None
+        return sample
+
+
+def open_dataset(root: str | Path) -> Dataset:
+    return Dataset(root)

@@ -1,0 +1,269 @@
+"""Physically rendered defects with pixel-exact masks.
+
+A defect changes the object's geometry or material on a region of its body and moves that region into its own
+part named ``defect`` (own Mitsuba shape): the defect mask is then where that shape is visible in a 1-spp
+shape-index pass (``sim.render``). For defects that change geometry, the region of the *good* object (before
+the change, e.g. the stud that is now missing) is also kept: its visible pixels in the good scene join the
+mask, so material that disappeared counts too. A defect on a side facing away, under the object or hidden
+behind another part gives an empty mask, and the sample is labelled good.
+
+Types (sizes in millimetres, drawn uniformly from ``DefectConfig`` ranges):
+  dent          smooth cosine-profile depression (radius, depth) pushed along the face normal
+  scratch       a line (length, width) of rougher material (alpha), optionally a shallow groove (depth)
+  stain         a disc (radius) of darker, rougher material (contamination)
+  chip          a sharp edge or corner cut off by a plane (size = cut depth along the edge's bisector)
+  missing_stud  one stud of the brick removed (objects with studs only)
+Deformations are functions of position applied to all body vertices, so the duplicated vertices along sharp
+edges move together and the surface never cracks.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, fields
+from typing import Any
+
+import numpy as np
+
+from .errors import SimError
+from .meshes import ObjectModel, Part, face_normals, vertex_normals
+
+DEFECT_TYPES = ("dent", "scratch", "stain", "chip", "missing_stud")
+DEFECT_PART = "defect"
+
+
+@dataclass(frozen=True)
+class DefectConfig:
+    types: tuple[str, ...] = DEFECT_TYPES
+    dent_radius_mm: tuple[float, float] = (1.0, 3.0)
+    dent_depth_mm: tuple[float, float] = (0.1, 0.5)
+    scratch_length_mm: tuple[float, float] = (4.0, 15.0)
+    scratch_width_mm: tuple[float, float] = (0.5, 1.0)
+    scratch_alpha: tuple[float, float] = (0.25, 0.6)
+    scratch_depth_mm: tuple[float, float] = (0.0, 0.05)
+    stain_radius_mm: tuple[float, float] = (1.0, 3.5)
+    stain_darken: tuple[float, float] = (0.15, 0.6)
+    """Factor on the material colour inside the stain."""
+    stain_alpha: tuple[float, float] = (0.15, 0.5)
+    chip_size_mm: tuple[float, float] = (0.5, 1.2)
+    facing_camera: bool = True
+    """Place defects on faces that face the camera (they can still be occluded)."""
+
+    def __post_init__(self) -> None:
+        bad = [t for t in self.types if t not in DEFECT_TYPES]
+        if bad or not self.types:
+            raise SimError(f"defects.types: unknown {bad or list(self.types)}; choose from {', '.join(DEFECT_TYPES)}")
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if isinstance(v, tuple) and f.name != "types":
+                if len(v) != 2 or not all(np.isfinite(x) for x in v) or v[0] > v[1] or v[0] < 0:
+                    raise SimError(f"defects.{f.name}: need a range (lo, hi) with 0 <= lo <= hi, got {v}")
+        for key in ("dent_radius_mm", "scratch_length_mm", "scratch_width_mm", "stain_radius_mm", "chip_size_mm",
+                    "scratch_alpha", "stain_alpha"):
+            if getattr(self, key)[0] <= 0:
+                raise SimError(f"defects.{key}: must be > 0, got {getattr(self, key)}")
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> DefectConfig:
+        known = {f.name for f in fields(cls)}
+        bad = sorted(set(d) - known)
+        if bad:
+            raise SimError(f"defects: unknown keys {bad}; known: {', '.join(sorted(known))}")
+        return cls(**{k: tuple(v) if isinstance(v, list) else v for k, v in d.items()})
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+    def usable_types(self, model: ObjectModel) -> tuple[str, ...]:
+        return tuple(t for t in self.types if t != "missing_stud" or "studs" in model.features)
+
+
+@dataclass(frozen=True)
+class DefectResult:
+    """The defective object (its region moved into part ``defect``), the good object's region for geometric
+    defects (None for material-only ones), the parent part's name, sampled material params for the
+    ``defect`` material key, and the JSON record of the defect."""
+
+    model: ObjectModel
+    good_region: Part | None
+    parent: str
+    material: dict
+    info: dict[str, Any]
+
+
+def _mm(rng: np.random.Generator, r: tuple[float, float]) -> float:
+    return float(rng.uniform(*r)) / 1000.0
+
+
+def _subpart(part: Part, face_sel: np.ndarray, name: str, material: str, normals: np.ndarray | None = None) -> Part:
+    """Faces ``face_sel`` (bool) of ``part`` as a compact new part (normals taken from ``normals`` or part)."""
+    faces = part.faces[face_sel]
+    used, inv = np.unique(faces, return_inverse=True)
+    n = part.normals if normals is None else normals
+    tags = None if part.tags is None else part.tags[face_sel]
+    return Part(name, part.vertices[used], inv.reshape(-1, 3).astype(np.int32), n[used], material, tags)
+
+
+def _pick_face(rng: np.random.Generator, part: Part, cam_obj: np.ndarray, facing: bool,
+               mask: np.ndarray | None = None) -> tuple[int, np.ndarray, np.ndarray]:
+    """A random face (area-weighted) and a uniform point on it; faces facing ``cam_obj`` if asked."""
+    v = part.vertices.astype(np.float64)
+    tri = v[part.faces]
+    fn = face_normals(v, part.faces)
+    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    ok = area > 0 if mask is None else (area > 0) & mask
+    if facing:
+        towards = np.einsum("ij,ij->i", fn, cam_obj - tri.mean(1)) > 0
+        if np.any(ok & towards):
+            ok &= towards
+    if not np.any(ok):
+        raise SimError(f"part {part.name!r} has no face to place a defect on")
+    w = np.where(ok, area, 0.0)
+    f = int(rng.choice(len(w), p=w / w.sum()))
+    a, b = rng.random(2)
+    if a + b > 1:
+        a, b = 1 - a, 1 - b
+    point = tri[f, 0] + a * (tri[f, 1] - tri[f, 0]) + b * (tri[f, 2] - tri[f, 0])
+    return f, point, fn[f]
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    ab = b - a
+    t = np.clip(((p - a) @ ab) / max(float(ab @ ab), 1e-30), 0, 1)
+    return np.linalg.norm(p - (a + t[:, None] * ab), axis=1)
+
+
+def _split_body(model: ObjectModel, body: Part, new_vertices: np.ndarray, region: np.ndarray, material_key: str
+                ) -> tuple[ObjectModel, Part]:
+    """Body with moved vertices split into the rest and the ``defect`` part (normals from the whole body)."""
+    normals = vertex_normals(new_vertices, body.faces)
+    moved = Part(body.name, new_vertices.astype(np.float32), body.faces, normals, body.material, body.tags)
+    rest = _subpart(moved, ~region, body.name, body.material)
+    defect = _subpart(moved, region, DEFECT_PART, material_key)
+    parts = [rest if p.name == body.name else p for p in model.parts] + [defect]
+    return model.with_parts(parts), _subpart(body, region, DEFECT_PART, material_key)
+
+
+def apply_defect(model: ObjectModel, kind: str, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray,
+                 materials: dict[str, dict]) -> DefectResult:
+    """Put one defect of ``kind`` on ``model``'s body. ``cam_obj``: camera position in object coordinates;
+    ``materials``: the sampled material params (``sim.scene.sample_material``) of the good object."""
+    if kind not in cfg.usable_types(model):
+        raise SimError(f"defect type {kind!r} is not possible on object {model.name!r} "
+                       f"(possible: {', '.join(cfg.usable_types(model))})")
+    body = model.part(model.body)
+    parent_mat = dict(materials[body.material])
+    v = body.vertices.astype(np.float64)
+    centroids = v[body.faces].mean(1)
+    fn = face_normals(v, body.faces)
+    info: dict[str, Any] = {"type": kind, "part": body.name}
+
+    if kind == "missing_stud":
+        studs = model.part("studs")
+        top = studs.vertices[:, 2].max()
+        centres = []
+        for k in range(int(studs.tags.max()) + 1):
+            sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
+            centres.append([sv[:, 0].mean(), sv[:, 1].mean(), top])
+        centres = np.asarray(centres)
+        ok = (cam_obj - centres)[:, 2] > 0 if cfg.facing_camera else np.ones(len(centres), bool)
+        choices = np.flatnonzero(ok) if ok.any() else np.arange(len(centres))
+        k = int(rng.choice(choices))
+        sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
+        radius = float(np.max(np.linalg.norm(sv[:, :2] - centres[k, :2], axis=1)))
+        body_top = float(v[:, 2].max())
+        region = (np.linalg.norm(centroids[:, :2] - centres[k, :2], axis=1) < radius) & (fn[:, 2] > 0.9) & (
+            centroids[:, 2] > body_top - 1e-6)
+        kept = _subpart(studs, studs.tags != k, studs.name, studs.material)
+        removed = _subpart(studs, studs.tags == k, DEFECT_PART, body.material)
+        footprint = _subpart(body, region, DEFECT_PART, body.material)
+        rest = _subpart(body, ~region, body.name, body.material)
+        parts = [rest if p.name == body.name else kept if p.name == studs.name else p for p in model.parts]
+        good = Part(DEFECT_PART, np.concatenate([removed.vertices, footprint.vertices]),
+                    np.concatenate([removed.faces, footprint.faces + len(removed.vertices)]),
+                    np.concatenate([removed.normals, footprint.normals]), body.material)
+        info.update(stud=k, centre_m=centres[k].tolist(), radius_mm=radius * 1000)
+        return DefectResult(model.with_parts([*parts, footprint]), good, body.name, parent_mat, info)
+
+    if kind == "chip":
+        key = np.round(v / 1e-7).astype(np.int64)
+        _, group = np.unique(key, axis=0, return_inverse=True)
+        group = group.ravel()
+        nrm = body.normals.astype(np.float64)
+        # a vertex is on a sharp edge when vertices at its position carry different normals
+        gsum = np.zeros((group.max() + 1, 3))
+        np.add.at(gsum, group, nrm)
+        gcount = np.bincount(group)
+        spread = np.linalg.norm(gsum[group] / gcount[group, None], axis=1)
+        edge = spread < 0.95
+        dirs = gsum[group] / np.maximum(np.linalg.norm(gsum[group], axis=1, keepdims=True), 1e-12)
+        if cfg.facing_camera:
+            facing = np.einsum("ij,ij->i", dirs, cam_obj - v) > 0
+            if np.any(edge & facing):
+                edge &= facing
+        # not on the resting bottom edges only: any sharp edge of the body
+        cand = np.flatnonzero(edge)
+        if not len(cand):
+            raise SimError(f"object {model.name!r}: body has no sharp edge to chip")
+        i = int(rng.choice(cand))
+        c, n = v[i], dirs[i]
+        size = _mm(rng, cfg.chip_size_mm)
+        reach = 3.0 * size
+        h = (v - c) @ n + size  # > 0: beyond the cutting plane
+        r = np.linalg.norm(v - c, axis=1)
+        w = np.clip((reach - r) / (0.4 * reach), 0, 1)
+        shift = w * np.maximum(h, 0)
+        new_v = v - shift[:, None] * n
+        region = (shift[body.faces] > 1e-9).any(1)
+        if not region.any():
+            raise SimError("chip removed nothing (chip_size_mm too small for the mesh)")
+        new_model, good = _split_body(model, body, new_v, region, body.material)
+        info.update(centre_m=c.tolist(), normal=n.tolist(), size_mm=size * 1000)
+        return DefectResult(new_model, good, body.name, parent_mat, info)
+
+    f, c, n = _pick_face(rng, body, cam_obj, cfg.facing_camera)
+    same_face = fn @ n > 0.9
+
+    if kind == "dent":
+        radius, depth = _mm(rng, cfg.dent_radius_mm), _mm(rng, cfg.dent_depth_mm)
+        r = np.linalg.norm(v - c, axis=1)
+        w = np.where(r < radius, 0.5 * (1 + np.cos(np.pi * np.minimum(r / radius, 1))), 0.0)
+        new_v = v - (depth * w)[:, None] * n
+        region = (r[body.faces] < radius).any(1)
+        new_model, good = _split_body(model, body, new_v, region, body.material)
+        info.update(centre_m=c.tolist(), normal=n.tolist(), radius_mm=radius * 1000, depth_mm=depth * 1000)
+        return DefectResult(new_model, good, body.name, parent_mat, info)
+
+    if kind == "scratch":
+        length, width = _mm(rng, cfg.scratch_length_mm), _mm(rng, cfg.scratch_width_mm)
+        depth = _mm(rng, cfg.scratch_depth_mm)
+        t = np.cross(n, rng.normal(size=3))
+        t /= np.linalg.norm(t)
+        a, b = c - 0.5 * length * t, c + 0.5 * length * t
+        edge_len = float(np.median(np.linalg.norm(v[body.faces[:, 1]] - v[body.faces[:, 0]], axis=1)))
+        half = max(0.5 * width, 0.6 * edge_len)  # at least one row of faces
+        region = same_face & (_segment_distance(centroids, a, b) < half)
+        if not region.any():
+            region[f] = True
+        d = _segment_distance(v, a, b)
+        w = np.clip(1 - (d / half) ** 2, 0, 1) if depth > 0 else np.zeros(len(v))
+        region |= (w[body.faces] > 0).any(1)  # a groove that reaches over an edge moves faces there too
+        new_v = v - (depth * w)[:, None] * n
+        mat = dict(parent_mat, alpha=float(rng.uniform(*cfg.scratch_alpha)))
+        new_model, good = _split_body(model, body, new_v, region, DEFECT_PART)
+        info.update(start_m=a.tolist(), end_m=b.tolist(), length_mm=length * 1000, width_mm=width * 1000,
+                    depth_mm=depth * 1000, alpha=mat["alpha"])
+        return DefectResult(new_model, good if depth > 0 else None, body.name, mat, info)
+
+    if kind == "stain":
+        radius = _mm(rng, cfg.stain_radius_mm)
+        region = same_face & (np.linalg.norm(centroids - c, axis=1) < radius)
+        if not region.any():
+            region[f] = True
+        k = float(rng.uniform(*cfg.stain_darken))
+        mat = dict(parent_mat, colour=[k * x for x in parent_mat.get("colour", [0.5, 0.5, 0.5])],
+                   alpha=float(rng.uniform(*cfg.stain_alpha)))
+        new_model, _ = _split_body(model, body, v, region, DEFECT_PART)
+        info.update(centre_m=c.tolist(), radius_mm=radius * 1000, darken=k, alpha=mat["alpha"])
+        return DefectResult(new_model, None, body.name, mat, info)
+
+    raise SimError(f"unknown defect type {kind!r}")

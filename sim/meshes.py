@@ -1,0 +1,269 @@
+"""Object meshes with per-part materials: the paper's reference object generated in code, and user PLY/OBJ files.
+
+Units: metres. Object frame: z up, the object's bottom at z = 0 in its design pose (resting poses come from
+``stable_poses``). Triangles wind counter-clockwise seen from outside, so face normals point outward.
+
+Flat faces are tessellated into a fine grid (``cell_mm``) with their own vertices (not shared across sharp
+edges): defects (``sim.defects``) select and deform faces of a region, and shading normals stay flat on faces
+and smooth on curved surfaces.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from .errors import SimError
+
+# A 2x4 construction brick (outer dimensions of the common toy brick) with a USB-A plug on one short end.
+BRICK_SIZE_MM = (31.8, 15.8, 9.6)
+STUD_RADIUS_MM = 2.4
+STUD_HEIGHT_MM = 1.7
+STUD_PITCH_MM = 8.0
+PLUG_SIZE_MM = (12.0, 12.0, 4.5)  # length (x, out of the brick), width (y), height (z)
+
+
+@dataclass(frozen=True)
+class Part:
+    """One mesh with one material.
+
+    vertices : (N, 3) float32, metres.  faces : (M, 3) int32 vertex indices.  normals : (N, 3) float32 unit
+    shading normals.  material : key into ``ObjectModel.materials``.  tags : optional (M,) int32 per-face
+    label (for the studs: which stud; -1 where unused).
+    """
+
+    name: str
+    vertices: np.ndarray
+    faces: np.ndarray
+    normals: np.ndarray
+    material: str
+    tags: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class ObjectModel:
+    """An object: parts and the material spec of each material key (``sim.scene.MaterialSpec`` dicts).
+
+    ``features`` lists what defects need beyond a surface ("studs"); ``body`` names the part defects go on.
+    """
+
+    name: str
+    parts: tuple[Part, ...]
+    materials: dict[str, dict]
+    body: str
+    features: tuple[str, ...] = field(default=())
+
+    def part(self, name: str) -> Part:
+        for p in self.parts:
+            if p.name == name:
+                return p
+        raise SimError(f"object {self.name!r} has no part {name!r}; parts: {', '.join(p.name for p in self.parts)}")
+
+    def with_parts(self, parts: list[Part] | tuple[Part, ...]) -> ObjectModel:
+        return replace(self, parts=tuple(parts))
+
+
+def face_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Unit face normals (M, 3) (zero for degenerate faces), counter-clockwise winding."""
+    v = vertices.astype(np.float64)
+    n = np.cross(v[faces[:, 1]] - v[faces[:, 0]], v[faces[:, 2]] - v[faces[:, 0]])
+    length = np.linalg.norm(n, axis=1, keepdims=True)
+    return np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+
+
+def vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Area-weighted unit vertex normals (N, 3) float32; vertices not shared across sharp edges stay flat."""
+    v = vertices.astype(np.float64)
+    n = np.cross(v[faces[:, 1]] - v[faces[:, 0]], v[faces[:, 2]] - v[faces[:, 0]])  # length = 2 * area
+    acc = np.zeros_like(v)
+    for k in range(3):
+        np.add.at(acc, faces[:, k], n)
+    length = np.linalg.norm(acc, axis=1, keepdims=True)
+    return np.divide(acc, length, out=np.zeros_like(acc), where=length > 0).astype(np.float32)
+
+
+def _grid(origin: np.ndarray, u: np.ndarray, v: np.ndarray, cell: float) -> tuple[np.ndarray, np.ndarray]:
+    """A rectangle origin + s*u + t*v (s, t in [0, 1]) as a triangle grid of cells <= ``cell``; normal u x v."""
+    nu = max(1, int(np.ceil(np.linalg.norm(u) / cell)))
+    nv = max(1, int(np.ceil(np.linalg.norm(v) / cell)))
+    s, t = np.meshgrid(np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1), indexing="ij")
+    verts = origin + s.reshape(-1, 1) * u + t.reshape(-1, 1) * v
+    idx = np.arange((nu + 1) * (nv + 1)).reshape(nu + 1, nv + 1)
+    a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
+    faces = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
+    return verts, faces
+
+
+def _merge(pieces: list[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, np.ndarray]:
+    verts, faces, base = [], [], 0
+    for v, f in pieces:
+        verts.append(v)
+        faces.append(f + base)
+        base += len(v)
+    return np.concatenate(verts), np.concatenate(faces)
+
+
+def box_mesh(lo: np.ndarray, hi: np.ndarray, cell: float, skip: tuple[str, ...] = ()) -> tuple[np.ndarray, np.ndarray]:
+    """Axis-aligned box [lo, hi] as six gridded faces (outward normals); ``skip`` names faces left out
+    ("-x", "+x", "-y", "+y", "-z", "+z")."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    d = hi - lo
+    ex, ey, ez = np.diag(d)
+    sides = {
+        "-z": (lo, ey, ex), "+z": (lo + ez, ex, ey),
+        "-y": (lo, ex, ez), "+y": (lo + ey, ez, ex),
+        "-x": (lo, ez, ey), "+x": (lo + ex, ey, ez),
+    }
+    return _merge([_grid(np.asarray(o), u, v, cell) for name, (o, u, v) in sides.items() if name not in skip])
+
+
+def cylinder_mesh(center: np.ndarray, radius: float, height: float, segments: int, cell: float
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Vertical cylinder (side + top cap, open bottom) standing on ``center``; returns vertices, faces and
+    smooth shading normals (radial on the side, +z on the cap)."""
+    ang = np.linspace(0, 2 * np.pi, segments, endpoint=False)
+    ring = np.stack([np.cos(ang), np.sin(ang), np.zeros_like(ang)], 1)
+    rows = max(1, int(np.ceil(height / cell)))
+    zs = np.linspace(0, height, rows + 1)
+    side_v = np.concatenate([center + radius * ring + [0, 0, z] for z in zs])
+    side_n = np.tile(ring, (rows + 1, 1))
+    idx = np.arange((rows + 1) * segments).reshape(rows + 1, segments)
+    a, b = idx[:-1], np.roll(idx[:-1], -1, axis=1)
+    c, d = np.roll(idx[1:], -1, axis=1), idx[1:]
+    side_f = np.concatenate([np.stack([a.ravel(), b.ravel(), c.ravel()], 1),
+                             np.stack([a.ravel(), c.ravel(), d.ravel()], 1)])
+    # cap: concentric rings so that the cap is also finely tessellated
+    n_rings = max(1, int(np.ceil(radius / cell)))
+    cap_v = [center + np.array([0, 0, height])]
+    for k in range(1, n_rings + 1):
+        cap_v.append(center + (radius * k / n_rings) * ring + np.array([0, 0, height]))
+    cap_v = np.concatenate([np.atleast_2d(x) for x in cap_v])
+    cap_f = [np.stack([np.zeros(segments, int), 1 + np.arange(segments), 1 + np.roll(np.arange(segments), -1)], 1)]
+    for k in range(1, n_rings):
+        inner = 1 + (k - 1) * segments + np.arange(segments)
+        outer = inner + segments
+        cap_f.append(np.stack([inner, outer, np.roll(outer, -1)], 1))
+        cap_f.append(np.stack([inner, np.roll(outer, -1), np.roll(inner, -1)], 1))
+    cap_f = np.concatenate(cap_f)
+    cap_n = np.tile([0.0, 0.0, 1.0], (len(cap_v), 1))
+    verts = np.concatenate([side_v, cap_v])
+    faces = np.concatenate([side_f, cap_f + len(side_v)])
+    return verts, faces, np.concatenate([side_n, cap_n])
+
+
+def _part(name: str, verts: np.ndarray, faces: np.ndarray, material: str, normals: np.ndarray | None = None,
+          tags: np.ndarray | None = None) -> Part:
+    v = np.ascontiguousarray(verts, dtype=np.float32)
+    f = np.ascontiguousarray(faces, dtype=np.int32)
+    n = vertex_normals(v, f) if normals is None else np.ascontiguousarray(normals, dtype=np.float32)
+    return Part(name, v, f, n, material, None if tags is None else np.ascontiguousarray(tags, dtype=np.int32))
+
+
+BRICK_MATERIALS: dict[str, dict] = {
+    "plastic": {"type": "pplastic", "finish": "smooth"},
+    "metal": {"type": "roughconductor", "material": "Al", "finish": "rough"},
+}
+
+
+@functools.lru_cache(maxsize=4)
+def usb_brick(cell_mm: float = 0.5) -> ObjectModel:
+    """The paper's reference object: a USB stick shaped as a 2x4 construction brick.
+
+    Parts: ``body`` (the brick, polarized plastic ``pplastic``), ``studs`` (eight studs on top, same
+    plastic; per-face ``tags`` = stud number 0..7), ``plug`` (USB-A plug shell, ``roughconductor``),
+    sticking out of the +x end, centred in y and z. Origin at the centre of the brick's bottom.
+    """
+    cell = cell_mm / 1000.0
+    lx, ly, lz = (s / 1000.0 for s in BRICK_SIZE_MM)
+    body_v, body_f = box_mesh(np.array([-lx / 2, -ly / 2, 0]), np.array([lx / 2, ly / 2, lz]), cell)
+    r, h, pitch = STUD_RADIUS_MM / 1000, STUD_HEIGHT_MM / 1000, STUD_PITCH_MM / 1000
+    studs, tags = [], []
+    for k, (i, j) in enumerate((i, j) for i in range(4) for j in range(2)):
+        c = np.array([(i - 1.5) * pitch, (j - 0.5) * pitch, lz])
+        v, f, n = cylinder_mesh(c, r, h, 32, cell * 2)
+        studs.append((v, f, n))
+        tags.append(np.full(len(f), k))
+    sv, sf = _merge([(v, f) for v, f, _ in studs])
+    sn = np.concatenate([n for _, _, n in studs])
+    px, py, pz = (s / 1000.0 for s in PLUG_SIZE_MM)
+    plug_lo = np.array([lx / 2, -py / 2, lz / 2 - pz / 2])
+    plug_v, plug_f = box_mesh(plug_lo, plug_lo + np.array([px, py, pz]), cell * 2, skip=("-x",))
+    parts = (
+        _part("body", body_v, body_f, "plastic"),
+        _part("studs", sv, sf, "plastic", sn, np.concatenate(tags)),
+        _part("plug", plug_v, plug_f, "metal"),
+    )
+    return ObjectModel("usb_brick", parts, dict(BRICK_MATERIALS), body="body", features=("studs",))
+
+
+def load_mesh(path: str | Path, materials: dict[str, str | dict], scale: float = 1.0, body: str | None = None
+              ) -> ObjectModel:
+    """A user PLY/OBJ as an ``ObjectModel``: each named geometry in the file (OBJ objects/groups; a PLY is one
+    part named after the file) is a part. ``materials`` maps part name -> material (a Mitsuba BSDF type such as
+    ``"pplastic"`` or a dict ``{"type": ..., "finish": "rough"|"smooth", ...}``); key ``"*"`` is the default.
+    ``scale`` converts file units to metres. Raises SimError naming the file or part."""
+    import trimesh
+
+    path = Path(path)
+    if not path.is_file():
+        raise SimError(f"mesh file {path} does not exist")
+    try:
+        scene = trimesh.load(path, force="scene", process=False)
+    except Exception as exc:
+        raise SimError(f"mesh file {path}: cannot be read ({exc})") from None
+    geoms = {name: g for name, g in scene.geometry.items() if isinstance(g, trimesh.Trimesh) and len(g.faces)}
+    if not geoms:
+        raise SimError(f"mesh file {path} has no triangles")
+    if len(geoms) == 1:
+        geoms = {path.stem: next(iter(geoms.values()))}
+    parts, specs = [], {}
+    for name, g in geoms.items():
+        mat = materials.get(name, materials.get("*"))
+        if mat is None:
+            raise SimError(f"mesh file {path}: part {name!r} has no material in the material map "
+                           f"(parts: {', '.join(geoms)}; use '*' for a default)")
+        spec = {"type": mat} if isinstance(mat, str) else dict(mat)
+        specs[name] = spec
+        # welded vertices keep shading smooth on curved scans; the file's own normals are used when present
+        v = np.asarray(g.vertices, dtype=np.float64) * scale
+        parts.append(_part(name, v, np.asarray(g.faces)))
+    return ObjectModel(path.stem, tuple(parts), specs, body=body or parts[0].name)
+
+
+def object_from_config(mesh: str | None, materials: dict[str, str | dict] | None, scale: float = 1.0,
+                       cell_mm: float = 0.5) -> ObjectModel:
+    """The brick when ``mesh`` is empty/None, else ``load_mesh``."""
+    if not mesh:
+        return usb_brick(cell_mm)
+    return load_mesh(mesh, materials or {"*": "pplastic"}, scale)
+
+
+_POSES: dict[int, tuple[ObjectModel, np.ndarray, np.ndarray]] = {}
+
+
+def _compute_stable_poses(model: ObjectModel) -> tuple[np.ndarray, np.ndarray]:
+    import trimesh
+
+    v = np.concatenate([p.vertices for p in model.parts]).astype(np.float64)
+    hull = trimesh.Trimesh(v, process=False).convex_hull
+    transforms, probs = trimesh.poses.compute_stable_poses(hull, n_samples=1)
+    keep = probs > 1e-3
+    transforms, probs = transforms[keep], probs[keep]
+    return transforms, probs / probs.sum()
+
+
+def stable_poses(model: ObjectModel) -> tuple[np.ndarray, np.ndarray]:
+    """Resting poses on the plane z = 0: (K, 4, 4) object->world transforms and their probabilities (sum 1).
+
+    From trimesh's quasi-static drop model on the convex hull (centre of mass of the hull volume): the
+    probability of a pose is the solid angle of initial orientations that end in it. Poses below 0.1 % are
+    dropped. The drop height of the paper's Table I does not enter this quasi-static model.
+    """
+    hit = _POSES.get(id(model))
+    if hit is None or hit[0] is not model:
+        hit = (model, *_compute_stable_poses(model))
+        _POSES[id(model)] = hit
+    return hit[1], hit[2]

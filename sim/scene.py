@@ -1,0 +1,332 @@
+"""Scene randomisation (the paper's Table I) and the Mitsuba scene dictionary.
+
+Units: metres, radians in code (degrees only in config keys named ``_deg``). World frame: z up, the ground
+plane is z = 0. ``sample_scene`` draws every random parameter from a numpy Generator into a JSON-serialisable
+dict (stored with each sample); ``build_scene`` turns those parameters plus posed meshes into a scene dict
+for ``mi.load_dict``: nothing random happens after sampling.
+
+Ground-truth normals are given in camera coordinates with the project's convention: x toward image right,
+y toward image up, z toward the camera (a surface facing the camera has normal (0, 0, 1)). Mitsuba's own camera
+frame has x toward image LEFT and z away from the camera (../shared/NOTES.md); ``camera_axes`` converts.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, fields
+from typing import Any
+
+import numpy as np
+
+from .errors import SimError
+from .meshes import ObjectModel, Part, stable_poses
+
+IMX250MZR_WIDTH_MM = 2448 * 3.45e-3
+"""Active width of the IMX250MZR (2448 pixels of 3.45 um)."""
+
+COLOUR_PARAM = {"pplastic": "diffuse_reflectance", "roughplastic": "diffuse_reflectance",
+                "plastic": "diffuse_reflectance", "diffuse": "reflectance"}
+"""BSDF types whose colour is randomised (Table I "material colour"), and the parameter that holds it."""
+ALPHA_TYPES = ("pplastic", "roughplastic", "roughconductor", "roughdielectric")
+"""BSDF types whose roughness alpha is randomised (Table I)."""
+FINISHES = ("rough", "smooth", "either")
+BACKGROUNDS = ("plain", "checkerboard", "noise")
+
+
+@dataclass(frozen=True)
+class SceneConfig:
+    """Randomisation ranges; a pair ``(lo, hi)`` is a uniform draw. Defaults follow the paper's Table I where it
+    gives one (camera and light shells, light intensity, colour, roughness); the rest are this project's."""
+
+    camera_radius_m: tuple[float, float] = (0.4, 0.49)
+    camera_polar_deg: tuple[float, float] = (0.0, 60.0)
+    """Angle of the camera from the vertical above the object."""
+    camera_target_jitter_m: float = 0.003
+    focal_length_mm: float = 50.0
+    sensor_width_mm: float = IMX250MZR_WIDTH_MM
+    object_xy_m: float = 0.02
+    """The object rests at a uniform (x, y) in [-object_xy_m, object_xy_m]^2 with a uniform yaw."""
+    light_radius_m: tuple[float, float] = (1.0, 1.5)
+    light_polar_deg: tuple[float, float] = (0.0, 60.0)
+    light_intensity: tuple[float, float] = (2.25, 3.375)
+    """Spot light radiant intensity (W/sr, Mitsuba units)."""
+    light_cutoff_deg: float = 15.0
+    ambient_radiance: float = 0.02
+    """Constant environment (keeps shadows from being exactly black); 0 = none."""
+    colour: tuple[float, float] = (0.0, 1.0)
+    alpha_rough: tuple[float, float] = (0.1, 0.7)
+    alpha_smooth: tuple[float, float] = (0.001, 0.011)
+    background_size_m: float = 1.0
+    backgrounds: tuple[str, ...] = BACKGROUNDS
+    max_depth: int = 6
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name == "backgrounds":
+                bad = [b for b in v if b not in BACKGROUNDS]
+                if bad or not v:
+                    raise SimError(f"scene.backgrounds: unknown {bad or v}; choose from {', '.join(BACKGROUNDS)}")
+                continue
+            if isinstance(v, tuple):
+                if len(v) != 2 or not all(np.isfinite(x) for x in v) or v[0] > v[1]:
+                    raise SimError(f"scene.{f.name}: need a range (lo, hi) with lo <= hi, got {v}")
+                if min(v) < 0:
+                    raise SimError(f"scene.{f.name}: values must be >= 0, got {v}")
+            elif not (np.isfinite(v) and v >= 0):
+                raise SimError(f"scene.{f.name}: must be a number >= 0, got {v}")
+        for key in ("camera_polar_deg", "light_polar_deg"):
+            if getattr(self, key)[1] >= 90:
+                raise SimError(f"scene.{key}: must stay above the ground (< 90 degrees), got {getattr(self, key)}")
+        for key in ("alpha_rough", "alpha_smooth"):
+            if getattr(self, key)[0] <= 0:
+                raise SimError(f"scene.{key}: roughness alpha must be > 0, got {getattr(self, key)}")
+        if self.colour[1] > 1:
+            raise SimError(f"scene.colour: reflectance must be in [0, 1], got {self.colour}")
+        if self.camera_radius_m[0] <= 0 or self.focal_length_mm <= 0 or self.sensor_width_mm <= 0:
+            raise SimError("scene: camera_radius_m, focal_length_mm and sensor_width_mm must be > 0")
+        if self.camera_radius_m[0] * np.cos(np.radians(self.camera_polar_deg[1])) < 0.05:
+            raise SimError(f"scene: the camera can come within 5 cm of the ground ({self.camera_radius_m} m at "
+                           f"{self.camera_polar_deg[1]} degrees)")
+        if self.max_depth < 2:
+            raise SimError(f"scene.max_depth must be >= 2, got {self.max_depth}")
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> SceneConfig:
+        known = {f.name for f in fields(cls)}
+        bad = sorted(set(d) - known)
+        if bad:
+            raise SimError(f"scene: unknown keys {bad}; known: {', '.join(sorted(known))}")
+        return cls(**{k: tuple(v) if isinstance(v, list) else v for k, v in d.items()})
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+def _uniform(rng: np.random.Generator, r: tuple[float, float]) -> float:
+    return float(rng.uniform(r[0], r[1]))
+
+
+def _on_shell(rng: np.random.Generator, radius: tuple[float, float], polar_deg: tuple[float, float]) -> np.ndarray:
+    """A point on a spherical shell, uniform in area over the polar band (cos of the polar angle uniform)."""
+    r = _uniform(rng, radius)
+    cos_lo, cos_hi = np.cos(np.radians(polar_deg[1])), np.cos(np.radians(polar_deg[0]))
+    ct = rng.uniform(cos_lo, cos_hi)
+    st = np.sqrt(max(0.0, 1 - ct * ct))
+    phi = rng.uniform(0, 2 * np.pi)
+    return r * np.array([st * np.cos(phi), st * np.sin(phi), ct])
+
+
+def material_keys_check(model: ObjectModel) -> None:
+    """Raise SimError (naming part and material) for a material Mitsuba does not know or a bad finish. Loads
+    each BSDF once with Mitsuba (cheap), so this runs before any rendering."""
+    import mitsuba as mi
+
+    for part in model.parts:
+        if part.material not in model.materials:
+            raise SimError(f"object {model.name!r}: part {part.name!r} uses material {part.material!r}, "
+                           f"which is not in its material map ({', '.join(model.materials)})")
+    for key, spec in model.materials.items():
+        if "type" not in spec:
+            raise SimError(f"object {model.name!r}: material {key!r} has no 'type' (a Mitsuba BSDF name)")
+        if spec.get("finish", "either") not in FINISHES:
+            raise SimError(f"object {model.name!r}: material {key!r} finish {spec['finish']!r} is not one of "
+                           f"{', '.join(FINISHES)}")
+        example = bsdf_dict({**fixed_params(spec), "colour": [0.5, 0.5, 0.5], "alpha": 0.1})
+        try:
+            mi.load_dict(example)
+        except Exception as exc:
+            msg = str(exc).split(": ", 1)[-1] if ": " in str(exc) else str(exc)
+            raise SimError(f"object {model.name!r}: material {key!r} ({spec}) is not a Mitsuba BSDF Mitsuba can "
+                           f"make: {msg}") from None
+
+
+def fixed_params(spec: dict) -> dict:
+    """The material spec without the keys this module interprets (finish)."""
+    return {k: v for k, v in spec.items() if k != "finish"}
+
+
+def sample_material(rng: np.random.Generator, spec: dict, cfg: SceneConfig) -> dict:
+    """Sampled parameters of one material: the spec's fixed params plus ``colour`` (RGB) and ``alpha``."""
+    out = fixed_params(spec)
+    out["colour"] = [_uniform(rng, cfg.colour) for _ in range(3)]
+    finish = spec.get("finish", "either")
+    if finish == "either":
+        finish = "rough" if rng.random() < 0.5 else "smooth"
+    out["finish"] = finish
+    out["alpha"] = _uniform(rng, cfg.alpha_rough if finish == "rough" else cfg.alpha_smooth)
+    return out
+
+
+def bsdf_dict(m: dict) -> dict:
+    """Sampled material params -> a Mitsuba BSDF dict (colour and alpha only where the type takes them)."""
+    t = m["type"]
+    d = {k: v for k, v in m.items() if k not in ("colour", "alpha", "finish")}
+    if t in COLOUR_PARAM and "colour" in m:
+        d[COLOUR_PARAM[t]] = {"type": "rgb", "value": list(m["colour"])}
+    if t in ALPHA_TYPES and "alpha" in m:
+        d["alpha"] = float(m["alpha"])
+    return d
+
+
+def rotation_z(yaw_rad: float) -> np.ndarray:
+    c, s = np.cos(yaw_rad), np.sin(yaw_rad)
+    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def object_to_world(pose: dict) -> np.ndarray:
+    """4x4 transform of a sampled pose: stable resting transform, then yaw about z, then (x, y) shift."""
+    t = rotation_z(pose["yaw_rad"]) @ np.asarray(pose["rest_transform"])
+    t[:2, 3] += pose["xy_m"]
+    return t
+
+
+def _up_for(forward: np.ndarray) -> list[float]:
+    """World z as the image's up direction, unless the camera looks almost straight down."""
+    f = forward / np.linalg.norm(forward)
+    return [0.0, 0.0, 1.0] if abs(f[2]) < 0.999 else [0.0, 1.0, 0.0]
+
+
+def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel) -> dict[str, Any]:
+    """Draw every scene parameter (JSON-serialisable): pose, camera, light, materials, background."""
+    transforms, probs = stable_poses(model)
+    k = int(rng.choice(len(probs), p=probs))
+    pose = {"index": k, "probability": float(probs[k]), "rest_transform": transforms[k].tolist(),
+            "yaw_rad": float(rng.uniform(0, 2 * np.pi)),
+            "xy_m": [float(x) for x in rng.uniform(-cfg.object_xy_m, cfg.object_xy_m, 2)]}
+    to_world = object_to_world(pose)
+    verts = np.concatenate([p.vertices for p in model.parts])
+    world = verts @ to_world[:3, :3].T + to_world[:3, 3]
+    centre = 0.5 * (world.min(0) + world.max(0))
+    target = centre + rng.uniform(-cfg.camera_target_jitter_m, cfg.camera_target_jitter_m, 3)
+    cam = centre + _on_shell(rng, cfg.camera_radius_m, cfg.camera_polar_deg)
+    light = centre + _on_shell(rng, cfg.light_radius_m, cfg.light_polar_deg)
+    materials = {key: sample_material(rng, spec, cfg) for key, spec in model.materials.items()}
+    bg_kind = str(rng.choice(list(cfg.backgrounds)))
+    background = {
+        "kind": bg_kind,
+        "material": sample_material(rng, {"type": str(rng.choice(["diffuse", "roughplastic"])), "finish": "rough"},
+                                    cfg),
+        "colour2": [_uniform(rng, cfg.colour) for _ in range(3)],
+        "scale": float(rng.uniform(5, 60)),  # checker squares / noise blobs per metre... per plane side
+        "noise_seed": int(rng.integers(2**31)),
+    }
+    fov_deg = float(np.degrees(2 * np.arctan(cfg.sensor_width_mm / 2 / cfg.focal_length_mm)))
+    return {
+        "pose": pose,
+        "camera": {"origin": cam.tolist(), "target": target.tolist(), "up": _up_for(target - cam),
+                   "fov_x_deg": fov_deg},
+        "light": {"origin": light.tolist(), "target": centre.tolist(), "intensity": _uniform(rng, cfg.light_intensity),
+                  "cutoff_deg": cfg.light_cutoff_deg},
+        "ambient_radiance": cfg.ambient_radiance,
+        "materials": materials,
+        "background": background,
+    }
+
+
+def camera_axes(camera: dict) -> np.ndarray:
+    """3x3 matrix whose rows are the project's camera axes in world coordinates: x image right, y image up,
+    z toward the camera. ``world_normal @ camera_axes(cam).T`` gives camera-coordinate normals."""
+    o, t, up = (np.asarray(camera[k], dtype=np.float64) for k in ("origin", "target", "up"))
+    forward = (t - o) / np.linalg.norm(t - o)
+    left = np.cross(up, forward)  # Mitsuba's look_at x axis (image left)
+    left /= np.linalg.norm(left)
+    cam_up = np.cross(forward, left)
+    return np.stack([-left, cam_up, -forward])
+
+
+def pose_parts(model: ObjectModel, to_world: np.ndarray) -> list[Part]:
+    """The model's parts with vertices and normals in world coordinates."""
+    r, t = to_world[:3, :3], to_world[:3, 3]
+    out = []
+    for p in model.parts:
+        v = (p.vertices.astype(np.float64) @ r.T + t).astype(np.float32)
+        n = (p.normals.astype(np.float64) @ r.T).astype(np.float32)
+        out.append(Part(p.name, v, p.faces, n, p.material, p.tags))
+    return out
+
+
+def mesh_shape(part: Part, bsdf: dict | None):
+    """An in-memory ``mi.Mesh`` of a (world-space) part, with its BSDF."""
+    import mitsuba as mi
+
+    props = mi.Properties()
+    if bsdf is not None:
+        props["bsdf"] = mi.load_dict(bsdf)
+    mesh = mi.Mesh(part.name, len(part.vertices), len(part.faces), props, has_vertex_normals=True)
+    params = mi.traverse(mesh)
+    params["vertex_positions"] = mi.Float(np.ascontiguousarray(part.vertices, dtype=np.float32).ravel())
+    params["faces"] = mi.UInt32(np.ascontiguousarray(part.faces, dtype=np.uint32).ravel())
+    params["vertex_normals"] = mi.Float(np.ascontiguousarray(part.normals, dtype=np.float32).ravel())
+    params.update()
+    return mesh
+
+
+def _noise_bitmap(seed: int, scale: float, c1: list[float], c2: list[float], res: int = 128) -> np.ndarray:
+    """Smooth value noise (bilinear-upsampled random grid) blending two colours, (res, res, 3) float32."""
+    import cv2
+
+    rng = np.random.default_rng(seed)
+    cells = int(np.clip(scale / 4, 2, res // 2))
+    grid = rng.random((cells, cells)).astype(np.float32)
+    t = cv2.resize(grid, (res, res), interpolation=cv2.INTER_CUBIC).clip(0, 1)[..., None]
+    return (np.asarray(c1, np.float32) * (1 - t) + np.asarray(c2, np.float32) * t).astype(np.float32)
+
+
+def background_shape(bg: dict, size_m: float) -> dict:
+    """The ground plane (z = 0, ``size_m`` wide) with its procedural texture."""
+    import mitsuba as mi
+
+    mat = dict(bg["material"])
+    bsdf = bsdf_dict(mat)
+    param = COLOUR_PARAM[mat["type"]]
+    if bg["kind"] == "checkerboard":
+        s = bg["scale"]
+        bsdf[param] = {"type": "checkerboard", "color0": {"type": "rgb", "value": mat["colour"]},
+                       "color1": {"type": "rgb", "value": bg["colour2"]},
+                       "to_uv": mi.ScalarTransform4f().scale([s, s, 1])}
+    elif bg["kind"] == "noise":
+        img = _noise_bitmap(bg["noise_seed"], bg["scale"], mat["colour"], bg["colour2"])
+        bsdf[param] = {"type": "bitmap", "bitmap": mi.Bitmap(img), "filter_type": "bilinear"}
+    return {"type": "rectangle", "to_world": mi.ScalarTransform4f().scale([size_m / 2, size_m / 2, 1]), "bsdf": bsdf}
+
+
+def sensor_dict(camera: dict, width: int, height: int, spp: int) -> dict:
+    import mitsuba as mi
+
+    return {
+        "type": "perspective", "fov": camera["fov_x_deg"], "fov_axis": "x",
+        "near_clip": 0.01, "far_clip": 100.0,
+        "to_world": mi.ScalarTransform4f().look_at(origin=camera["origin"], target=camera["target"], up=camera["up"]),
+        "film": {"type": "hdrfilm", "width": width, "height": height, "rfilter": {"type": "box"},
+                 "pixel_format": "luminance", "sample_border": False},
+        "sampler": {"type": "independent", "sample_count": spp},
+    }
+
+
+def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,
+                background_size_m: float = 1.0, lights: bool = True) -> tuple[dict, list[str]]:
+    """Scene dict for ``mi.load_dict`` and the shape keys of ``parts`` in order. ``parts`` are in world
+    coordinates; ``materials`` maps a part's material key to sampled material params. ``lights=False`` leaves
+    out emitters, background texture and BSDFs (a geometry-only scene for mask passes)."""
+    import mitsuba as mi
+
+    scene: dict[str, Any] = {"type": "scene", "sensor": sensor_dict(params["camera"], width, height, spp)}
+    keys = []
+    for i, part in enumerate(parts):
+        key = f"part{i:02d}_{part.name}"
+        scene[key] = mesh_shape(part, bsdf_dict(materials[part.material]) if lights else None)
+        keys.append(key)
+    if lights:
+        scene["ground"] = background_shape(params["background"], background_size_m)
+        light = params["light"]
+        scene["spot"] = {"type": "spot", "intensity": {"type": "spectrum", "value": light["intensity"]},
+                         "cutoff_angle": light["cutoff_deg"], "beam_width": 0.75 * light["cutoff_deg"],
+                         "to_world": mi.ScalarTransform4f().look_at(origin=light["origin"], target=light["target"],
+                                                                    up=[0, 0, 1])}
+        if params["ambient_radiance"] > 0:
+            scene["ambient"] = {"type": "constant", "radiance": {"type": "spectrum",
+                                                                  "value": params["ambient_radiance"]}}
+    else:
+        scene["ground"] = {"type": "rectangle",
+                           "to_world": mi.ScalarTransform4f().scale([background_size_m / 2, background_size_m / 2, 1])}
+    return scene, keys

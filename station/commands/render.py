@@ -1,0 +1,117 @@
+"""``station render``: render a polarized training/test set with Mitsuba (format: ``sim.dataset``)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import time
+from pathlib import Path
+
+log = logging.getLogger(__name__)
+
+
+def parse_shard(text: str) -> tuple[int, int]:
+    """``K/N`` -> (k, n): this process renders the indices i with i % n == k (k in 0..n-1)."""
+    try:
+        k, n = (int(x) for x in text.split("/"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--shard must be K/N (e.g. 0/4), got {text!r}") from None
+    if n < 1 or not 0 <= k < n:
+        raise argparse.ArgumentTypeError(f"--shard K/N needs 0 <= K < N, got {text!r}")
+    return k, n
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("render", help="render a polarized dataset with Mitsuba (resumable, shardable)")
+    p.add_argument("--out", required=True, help="dataset folder (created; an existing one is resumed)")
+    p.add_argument("--count", type=int, required=True, help="number of samples in the whole set")
+    p.add_argument("--defects", type=float, default=0.5, metavar="FRACTION",
+                   help="fraction of val/test samples given a defect (default 0.5)")
+    p.add_argument("--defects-in-train", action="store_true", help="also put defects into train samples")
+    p.add_argument("--shard", type=parse_shard, default=(0, 1), metavar="K/N",
+                   help="render only indices i with i %% N == K (0 <= K < N), for parallel jobs")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--width", type=int, default=640, help="pixels (even); the sensor's native size is 2448x2048")
+    p.add_argument("--height", type=int, default=480)
+    p.add_argument("--spp", type=int, default=16, help="samples per pixel (see station bench render)")
+    p.add_argument("--bit-depth", type=int, default=8, choices=(8, 10, 12, 14, 16))
+    p.add_argument("--no-ground-truth", action="store_true",
+                   help="raw mosaics only: no AOV pass, no gt.npz (labels still from a shape-index pass)")
+    p.add_argument("--mesh", default="", help="PLY/OBJ instead of the built-in USB brick")
+    p.add_argument("--materials", default="",
+                   help='JSON part -> material map for --mesh, e.g. \'{"*": "pplastic"}\'')
+    p.add_argument("--mesh-scale", type=float, default=1.0, help="file units -> metres (0.001 for mm)")
+    p.add_argument("--config", default="", help="JSON or TOML file with [scene], [defects], [sensor] overrides")
+    p.add_argument("--variant", default=None, help="Mitsuba variant (default: best available, logged)")
+    p.set_defaults(func=run)
+
+
+def build_spec(args: argparse.Namespace):
+    from sim.dataset import DatasetSpec
+    from sim.errors import SimError
+
+    extra: dict = {}
+    if args.config:
+        path = Path(args.config)
+        if not path.is_file():
+            raise SimError(f"--config {path}: no such file")
+        try:
+            if path.suffix == ".toml":
+                import tomllib
+
+                extra = tomllib.loads(path.read_text())
+            else:
+                extra = json.loads(path.read_text())
+        except Exception as exc:
+            raise SimError(f"--config {path}: cannot parse ({exc})") from None
+        bad = sorted(set(extra) - {"scene", "defects", "sensor"})
+        if bad:
+            raise SimError(f"--config {path}: unknown sections {bad}; use scene, defects, sensor")
+    materials = {}
+    if args.materials:
+        try:
+            materials = json.loads(args.materials)
+        except json.JSONDecodeError as exc:
+            raise SimError(f"--materials: not JSON ({exc})") from None
+        if not isinstance(materials, dict):
+            raise SimError("--materials must be a JSON object part -> material")
+    sensor = {"bit_depth": args.bit_depth, **extra.get("sensor", {})}
+    return DatasetSpec.from_dict({
+        "seed": args.seed, "width": args.width, "height": args.height, "spp": args.spp,
+        "ground_truth": not args.no_ground_truth, "defect_fraction": args.defects,
+        "defects_in_train": args.defects_in_train, "mesh": args.mesh, "materials": materials,
+        "mesh_scale": args.mesh_scale, "variant": args.variant,
+        "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
+    })
+
+
+def run(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from sim.dataset import generate_sample, init_dataset, is_complete, prepare, write_sample
+    from sim.errors import SimError
+
+    if args.count < 1:
+        raise SimError(f"--count must be >= 1, got {args.count}")
+    spec = build_spec(args)
+    model = prepare(spec)  # every input error surfaces here, before the first render
+    init_dataset(args.out, spec, args.count)
+    k, n = args.shard
+    mine = [i for i in range(args.count) if i % n == k]
+    todo = [i for i in mine if not is_complete(args.out, i)]
+    print(f"station render: {len(mine) - len(todo)} of {len(mine)} samples of shard {k}/{n} already done; "
+          f"rendering {len(todo)} into {args.out}")
+    labels = {0: 0, 1: 0}
+    t0 = time.perf_counter()
+    with tqdm(total=len(mine), initial=len(mine) - len(todo), unit="sample", dynamic_ncols=True) as bar:
+        for i in todo:
+            sample = generate_sample(spec, model, i)
+            write_sample(args.out, sample)
+            labels[sample.label] += 1
+            bar.update(1)
+    dt = time.perf_counter() - t0
+    if todo:
+        print(f"rendered {len(todo)} samples in {dt:.1f} s ({dt / len(todo):.2f} s/sample); "
+              f"{labels[1]} with a visible defect")
+    return 0
