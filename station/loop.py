@@ -34,6 +34,9 @@ from station.viewer import ViewerFeed, ViewFrame
 
 log = logging.getLogger(__name__)
 
+MAX_LOST_ROWS = 10000
+"""At most this many rows for one gap in frame ids (a camera reset can jump its counter by millions)."""
+
 
 class LineLink(Protocol):
     """The station's side of the PLC link (``drivers.line_io`` and the simulated PLC provide it)."""
@@ -72,6 +75,8 @@ class Part:
     frame: Frame | None = None
     grab_ms: float | None = None
     error: str | None = None
+    announced: bool = True
+    """False for frames lost in transport: no PLC part id to answer."""
 
 
 @dataclass
@@ -111,6 +116,7 @@ class Station:
         self.stats = LiveStats()
         self._stop = threading.Event()
         self._dropped: deque[Part] = deque()
+        self._last_frame_id: int | None = None
         self._grabbed = 0
         self._counter = 0
         self.fatal: str | None = None
@@ -141,6 +147,17 @@ class Station:
         part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
         return part
 
+    def _note_lost_frames(self, part: Part) -> None:
+        """Frames missing between two frame ids never reached the host: one not-inspected row each."""
+        if part.frame is None:
+            return
+        fid = part.frame.frame_id
+        if self._last_frame_id is not None:
+            for missing in range(self._last_frame_id + 1, min(fid, self._last_frame_id + 1 + MAX_LOST_ROWS)):
+                self._dropped.append(Part(f"frame-{missing}", part.t_trigger, announced=False,
+                                          error=f"frame {missing} lost before reaching the host"))
+        self._last_frame_id = fid
+
     def _acquire(self, max_parts: int | None) -> None:
         try:
             while not self._stop.is_set() and (max_parts is None or self._grabbed < max_parts):
@@ -148,6 +165,7 @@ class Station:
                 if part is None:
                     continue
                 self._grabbed += 1
+                self._note_lost_frames(part)
                 self._dropped.extend(self.queue.put(part))  # finished by the processing thread, which owns the log
         except Exception as exc:  # an acquisition bug must not leave processing waiting forever
             log.exception("acquisition stopped")
@@ -159,8 +177,8 @@ class Station:
     def _finish_dropped(self) -> None:
         while self._dropped:
             part = self._dropped.popleft()
-            self._finish(part, None, Decision("reject", f"dropped: processing queue full ({self.queue.policy})"),
-                         not_inspected=True)
+            reason = part.error or f"dropped: processing queue full ({self.queue.policy})"
+            self._finish(part, None, Decision("reject", reason), not_inspected=True)
 
     def _process(self, part: Part) -> None:
         inspection = None
@@ -178,7 +196,7 @@ class Station:
                 not_inspected: bool = False) -> None:
         """Tell the PLC, log the part, update statistics and the viewer (processing thread only)."""
         t_decided = time.perf_counter()
-        delivered = self.link.report(part.part_id, decision.decision, decision.reason)
+        delivered = self.link.report(part.part_id, decision.decision, decision.reason) if part.announced else None
         t_io = time.perf_counter()
         frame = part.frame
         truth = frame.ground_truth.label if frame is not None and frame.ground_truth is not None else None

@@ -23,6 +23,7 @@ class ScriptedCamera(CameraBase):
         super().__init__(CameraConfig(trigger=trigger))
         self.script = list(script)
         self.triggers = 0
+        self.frame_id = 0
 
     def open(self): ...
     def close(self): ...
@@ -40,9 +41,10 @@ class ScriptedCamera(CameraBase):
         if isinstance(item, Exception):
             raise item
         self._stats.completed += 1
-        raw = np.full((8, 8), 200 if item else 20, np.uint8)
-        return Frame(raw, "Mono8", 8, self._stats.completed, 0, time.time_ns(),
-                     ground_truth=GroundTruth(label=int(item)))
+        self.frame_id += 1 + (item == "gap") * 3  # "gap": three frames lost in transport before this one
+        raw = np.full((8, 8), 200 if item == 1 else 20, np.uint8)
+        return Frame(raw, "Mono8", 8, self.frame_id, 0, time.time_ns(),
+                     ground_truth=GroundTruth(label=int(item == 1)))
 
 
 class BrightnessDetector:
@@ -146,3 +148,15 @@ def test_lost_camera_rejects_the_part_and_stops(tmp_path):
     rows = list(log.rows())
     assert [r["decision"] for r in rows] == ["pass", "pass", "reject"]
     assert "192.0.2.7 stopped answering" in rows[-1]["reason"] and station.fatal
+
+
+def test_frames_lost_in_transport_are_logged_not_inspected_but_not_sent_to_the_plc(tmp_path):
+    link = ScriptedLink(3)
+    camera = ScriptedCamera([0, "gap", 0], trigger="software")
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block")
+    station.run(max_parts=3)
+    rows = list(log.rows())
+    lost = [r for r in rows if r["decision"] == "not_inspected"]
+    assert [r["part_id"] for r in lost] == ["frame-2", "frame-3", "frame-4"]
+    assert all("lost before reaching the host" in r["reason"] and r["io_delivered"] is None for r in lost)
+    assert len(rows) == 6 and dict(link.reports) == {"T0": "pass", "T1": "pass", "T2": "pass"}
