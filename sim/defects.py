@@ -135,6 +135,8 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray
 def _split_body(model: ObjectModel, body: Part, new_vertices: np.ndarray, region: np.ndarray, material_key: str
                 ) -> tuple[ObjectModel, Part]:
     """Body with moved vertices split into the rest and the ``defect`` part (normals from the whole body)."""
+    if not region.any():
+        raise SimError(f"defect region on part {body.name!r} holds no faces (mesh too coarse for the defect size)")
     normals = vertex_normals(new_vertices, body.faces)
     moved = Part(body.name, new_vertices.astype(np.float32), body.faces, normals, body.material, body.tags)
     rest = _subpart(moved, ~region, body.name, body.material)

@@ -24,6 +24,9 @@ STUD_RADIUS_MM = 2.4
 STUD_HEIGHT_MM = 1.7
 STUD_PITCH_MM = 8.0
 PLUG_SIZE_MM = (12.0, 12.0, 4.5)  # length (x, out of the brick), width (y), height (z)
+SHARP_EDGE_DEG = 30.0
+MAX_EDGE_M = 1e-3
+"""User meshes are subdivided to edges of at most 1 mm so that defects have faces to move (at most 8 halvings)."""
 
 
 @dataclass(frozen=True)
@@ -227,9 +230,13 @@ def load_mesh(path: str | Path, materials: dict[str, str | dict], scale: float =
                            f"(parts: {', '.join(geoms)}; use '*' for a default)")
         spec = {"type": mat} if isinstance(mat, str) else dict(mat)
         specs[name] = spec
-        # welded vertices keep shading smooth on curved scans; the file's own normals are used when present
-        v = np.asarray(g.vertices, dtype=np.float64) * scale
-        parts.append(_part(name, v, np.asarray(g.faces)))
+        # split vertices at edges sharper than 30 degrees: flat faces shade flat, curved scans smooth, and
+        # sharp edges carry the duplicated vertices that chips look for
+        v, f = trimesh.remesh.subdivide_to_size(np.asarray(g.vertices) * scale, np.asarray(g.faces),
+                                                max_edge=MAX_EDGE_M, max_iter=8)
+        g = trimesh.graph.smooth_shade(trimesh.Trimesh(v, f, process=False), angle=np.radians(SHARP_EDGE_DEG))
+        v = np.asarray(g.vertices, dtype=np.float64)
+        parts.append(_part(name, v, np.asarray(g.faces), name))
     return ObjectModel(path.stem, tuple(parts), specs, body=body or parts[0].name)
 
 

@@ -1,0 +1,196 @@
+"""Tiny Mitsuba renders: shape-index mapping, AoLP/normal conventions, defect masks, dataset determinism,
+resume and atomic writes, and errors raised before rendering."""
+
+from __future__ import annotations
+
+import copy
+import json
+
+import numpy as np
+import pytest
+
+from model.priors.stokes import aolp, dolp
+from sim.dataset import Dataset, DatasetSpec, generate_sample, init_dataset, prepare, write_sample
+from sim.defects import DefectConfig, apply_defect
+from sim.meshes import usb_brick
+from sim.render import RenderSettings, load_scene, render_sample, shape_ids
+from sim.scene import SceneConfig, object_to_world, sample_scene, sensor_dict
+from sim.variant import set_variant
+
+TINY = {"width": 64, "height": 48, "spp": 4}
+
+
+@pytest.fixture(scope="module")
+def variant() -> str:
+    return set_variant()
+
+
+def _channels(scene) -> dict[str, np.ndarray]:
+    film = scene.sensors()[0].film()
+    return {n: np.array(b) for n, b in film.bitmap().split()}
+
+
+def test_shape_index_maps_to_the_right_shape(variant: str) -> None:
+    import mitsuba as mi
+
+    cam = {"origin": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov_x_deg": 60}
+    scene = load_scene({"type": "scene", "sensor": sensor_dict(cam, 32, 24, 1),
+                        "left": {"type": "sphere", "center": [-0.6, 0, 0], "radius": 0.4},
+                        "right": {"type": "sphere", "center": [0.6, 0, 0], "radius": 0.4}})
+    mi.render(scene, integrator=mi.load_dict({"type": "aov", "aovs": "sid:shape_index"}), spp=1)
+    sid = np.rint(_channels(scene)["sid"]).astype(int)
+    ids = shape_ids(scene)
+    # image right is world +x here (camera looks down -z with y up)
+    assert sid[12, 16 + 5] == ids["right"] and sid[12, 16 - 5] == ids["left"] and sid[12, 16] == 0
+
+
+def test_specular_sphere_aolp_is_tangential_and_normals_in_camera_frame(variant: str) -> None:
+    """Specular reflection polarizes perpendicular to the plane of incidence: AoLP = normal azimuth + 90 deg,
+    with AoLP counted from image right toward image up and normals x right, y up (conventions.py)."""
+    import mitsuba as mi
+
+    from sim.render import _channels as render_channels
+    from sim.render import _integrator
+    from sim.scene import camera_axes
+
+    cam = {"origin": [0.3, -0.2, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov_x_deg": 30}
+    scene = load_scene({"type": "scene", "sensor": sensor_dict(cam, 64, 48, 16),
+                        "ball": {"type": "sphere", "radius": 0.5,
+                                 "bsdf": {"type": "pplastic", "diffuse_reflectance": {"type": "rgb", "value": 0.0},
+                                          "alpha": 0.01}},
+                        "env": {"type": "constant"}})
+    mi.render(scene, integrator=_integrator("stokes"), spp=16)
+    ch = render_channels(scene)
+    s0, s1, s2 = (ch[k][..., 0] for k in ("S0", "S1", "S2"))
+    mi.render(scene, integrator=_integrator("aov"), spp=1)
+    ch = render_channels(scene)
+    n = ch["nn"].reshape(48, 64, 3) @ camera_axes(cam).T
+    sel = (np.rint(ch["sid"]) > 0) & (dolp(s0, s1, s2) > 0.2) & (np.hypot(n[..., 0], n[..., 1]) > 0.3)
+    assert sel.sum() > 50
+    assert np.all(n[..., 2][sel] > 0)  # the visible half faces the camera (+z toward the camera)
+    # the rim on image right has normal (+x); row 0 is the top, so image up is -row
+    row, col = np.nonzero(sel)
+    centre_r, centre_c = np.mean(np.nonzero(np.rint(ch["sid"]) > 0), axis=1)
+    azimuth_img = np.arctan2(-(row - centre_r), col - centre_c)
+    azimuth_n = np.arctan2(n[..., 1][sel], n[..., 0][sel])
+    assert np.median(np.abs(np.angle(np.exp(1j * (azimuth_img - azimuth_n))))) < np.radians(10)
+    expected = azimuth_n + np.pi / 2
+    err = np.angle(np.exp(2j * (aolp(s1, s2)[sel] - expected))) / 2
+    assert np.degrees(np.median(np.abs(err))) < 5
+
+
+@pytest.fixture(scope="module")
+def brick_case(variant: str):
+    model = usb_brick()
+    cfg = SceneConfig(focal_length_mm=150.0, camera_target_jitter_m=0.0, camera_polar_deg=(20.0, 40.0))
+    params = sample_scene(np.random.default_rng(5), cfg, model)
+    return model, params
+
+
+def _defect(model, params, kind: str):
+    to_world = object_to_world(params["pose"])
+    cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
+    cfg = DefectConfig(stain_radius_mm=(3.0, 3.5), dent_radius_mm=(2.5, 3.0), dent_depth_mm=(0.4, 0.5))
+    return apply_defect(model, kind, np.random.default_rng(1), cfg, cam_obj, params["materials"])
+
+
+@pytest.mark.parametrize("kind", ["stain", "dent", "missing_stud"])
+def test_defect_mask_visible_then_hidden(brick_case, kind: str) -> None:
+    model, params = brick_case
+    defect = _defect(model, params, kind)
+    settings = RenderSettings(**TINY)
+    seen = render_sample(model, params, defect, settings, seed=1)
+    assert seen.defect_mask.sum() > 0
+    assert np.all(seen.object_mask[seen.defect_mask] | (kind == "missing_stud"))
+    # camera on the opposite side, same height: the defect faces away (hidden by the object itself)
+    other = copy.deepcopy(params)
+    o, t = np.array(params["camera"]["origin"]), np.array(params["camera"]["target"])
+    other["camera"]["origin"] = [2 * t[0] - o[0], 2 * t[1] - o[1], o[2]]
+    behind = render_sample(model, other, defect, settings, seed=1)
+    assert behind.object_mask.sum() > 0 and behind.defect_mask.sum() == 0
+    # camera turned away from the object: out of view
+    away = copy.deepcopy(params)
+    away["camera"]["target"] = (2 * o - t).tolist()
+    assert render_sample(model, away, defect, settings, seed=1).defect_mask.sum() == 0
+
+
+def test_no_ground_truth_skips_the_aov_pass(brick_case) -> None:
+    model, params = brick_case
+    out = render_sample(model, params, None, RenderSettings(**TINY, ground_truth=False), seed=1)
+    assert out.normal is None and out.defect_mask is None and "gt_s" not in out.seconds
+    assert out.s0.shape == (48, 64) and out.s0.max() > 0
+
+
+def _spec(**kw) -> DatasetSpec:
+    return DatasetSpec(seed=3, defect_fraction=1.0, **TINY, **kw)
+
+
+def test_dataset_deterministic_resumable_atomic(tmp_path, monkeypatch) -> None:
+    from station.cli import main
+
+    out = tmp_path / "ds"
+    argv = ["render", "--out", str(out), "--count", "3", "--width", "64", "--height", "48", "--spp", "4",
+            "--seed", "3", "--defects", "1.0"]
+    assert main(argv) == 0
+    ds = Dataset(out)
+    assert len(ds) == 3 and ds.indices("test") == [0, 1] and ds.indices("val") == [2]
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["format"] == "polar-ano-dataset" and manifest["count"] == 3
+    s = ds.load(2)
+    assert s.raw.dtype == np.uint8 and s.raw.shape == (48, 64)
+    assert s.normal.shape == (48, 64, 3) and s.s0.dtype == np.float32
+    assert s.label == int(s.defect_mask.any()) and s.params["defect"] is not None
+    first = ds.load(1).raw
+    # resume: nothing left to do; a removed sample is re-rendered alone, identically
+    import shutil
+
+    shutil.rmtree(out / "samples" / "000001")
+    assert main(argv) == 0
+    np.testing.assert_array_equal(Dataset(out).load(1).raw, first)
+    # a crash while writing leaves no sample that looks complete, and the leftover is cleaned on resume
+    spec = _spec()
+    model = prepare(spec)
+    sample = generate_sample(spec, model, 4)
+
+    def boom(*a, **k):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(np, "savez_compressed", boom)
+    with pytest.raises(OSError):
+        write_sample(out, sample)
+    assert 4 not in Dataset(out).indices() and list((out / "samples").glob("000004.tmp-*"))
+    monkeypatch.undo()
+    init_dataset(out, spec, 5)
+    assert not list((out / "samples").glob("*.tmp-*"))
+
+
+def test_bad_input_fails_before_rendering(tmp_path, capsys) -> None:
+    from station.cli import main
+
+    base = ["render", "--out", str(tmp_path / "x"), "--count", "1"]
+    assert main([*base, "--mesh", str(tmp_path / "missing.ply")]) == 2
+    assert "missing.ply" in capsys.readouterr().err
+    import trimesh
+
+    ply = tmp_path / "cube.ply"
+    trimesh.creation.box([0.02, 0.02, 0.02]).export(ply)
+    assert main([*base, "--mesh", str(ply), "--materials", '{"*": "pplasticx"}']) == 2
+    assert "pplasticx" in capsys.readouterr().err
+    cfg = tmp_path / "c.json"
+    cfg.write_text(json.dumps({"scene": {"camera_radius_m": [0.5, 0.4]}}))
+    assert main([*base, "--config", str(cfg)]) == 2
+    assert "camera_radius_m" in capsys.readouterr().err
+    assert not (tmp_path / "x" / "samples").exists()
+
+
+def test_user_mesh_with_material_map_renders(tmp_path, variant: str) -> None:
+    import trimesh
+
+    ply = tmp_path / "cube.ply"
+    trimesh.creation.box([0.03, 0.03, 0.02]).export(ply)
+    spec = DatasetSpec(seed=1, defect_fraction=1.0, mesh=str(ply), materials={"*": {"type": "roughconductor",
+                                                                                  "material": "Cu"}}, **TINY)
+    model = prepare(spec)
+    sample = generate_sample(spec, model, 0)
+    assert sample.object_mask.sum() > 20
+    assert sample.params["scene"]["materials"]["cube"]["type"] == "roughconductor"
