@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import importlib
 
-BENCHMARKS = ["priors"]
+BENCHMARKS = ["priors", "render"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
