@@ -13,7 +13,7 @@ import sys
 from station import __version__
 from station.errors import USER_ERRORS
 
-COMMANDS = ["config", "export-log", "report", "bench", "render"]
+COMMANDS = ["config", "export-log", "report", "bench", "render", "cameras"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 
 

@@ -1,0 +1,32 @@
+"""The Aravis driver against Aravis's own GigE Vision fake camera, inside a private network namespace.
+
+The cases live in ``netns/aravis_cases.py``; this test runs them with pytest in a fresh namespace that has only
+loopback (the network rule: GigE Vision discovery and the fake camera never touch a real network).
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from drivers.netns import netns_command, netns_unavailable_reason
+
+CASES = Path(__file__).parent / "netns" / "aravis_cases.py"
+
+
+def test_aravis_driver_over_gige_vision_in_private_namespace() -> None:
+    reason = netns_unavailable_reason()
+    if reason:
+        pytest.skip(f"no private network namespace: {reason}")
+    if shutil.which("arv-fake-gv-camera-0.8") is None:
+        pytest.skip("arv-fake-gv-camera-0.8 not installed (Debian package aravis-tools)")
+    argv = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-o", "addopts=", str(CASES)]
+    r = subprocess.run(netns_command(argv), capture_output=True, text=True, timeout=240,
+                       cwd=Path(__file__).parents[2])
+    print(r.stdout[-5000:])
+    assert r.returncode == 0, r.stdout[-8000:] + r.stderr[-3000:]
+    assert " passed" in r.stdout and "skipped" not in r.stdout
