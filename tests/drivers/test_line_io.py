@@ -1,0 +1,215 @@
+"""The PLC line protocol over real pty pairs: socat (a peer that can disappear) and the in-process simulated PLC."""
+
+from __future__ import annotations
+
+import logging
+import shutil
+import subprocess
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+import serial
+
+from drivers.errors import LineIOError
+from drivers.line_io import LineIO, LineIOConfig, decision_line, reason_token
+from drivers.plc_sim import SimulatedPLC
+
+pytestmark = pytest.mark.skipif(shutil.which("socat") is None, reason="socat not installed")
+
+
+class Socat:
+    """``socat -d -d pty,raw,echo=0,link=A pty,raw,echo=0,link=B``: a pty pair with stable names."""
+
+    def __init__(self, tmp: Path) -> None:
+        self.a, self.b = str(tmp / "station"), str(tmp / "plc")
+        self.proc: subprocess.Popen[bytes] | None = None
+
+    def start(self) -> Socat:
+        self.proc = subprocess.Popen(["socat", "-d", "-d", f"pty,raw,echo=0,link={self.a}",
+                                      f"pty,raw,echo=0,link={self.b}"], stderr=subprocess.DEVNULL)
+        deadline = time.monotonic() + 5
+        while not (Path(self.a).exists() and Path(self.b).exists()):
+            assert time.monotonic() < deadline, "socat did not create its ptys"
+            time.sleep(0.01)
+        return self
+
+    def kill(self) -> None:
+        if self.proc and self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+        for p in (self.a, self.b):  # socat leaves dangling links when killed
+            Path(p).unlink(missing_ok=True)
+
+
+class Peer:
+    """The test's end (PLC side) of the socat pair."""
+
+    def __init__(self, path: str) -> None:
+        self.s = serial.Serial(path, timeout=0.05)
+        self.buf = b""
+
+    def send(self, data: bytes) -> None:
+        self.s.write(data)
+
+    def lines(self, n: int, timeout_s: float = 3.0, skip_hb: bool = True) -> list[str]:
+        out: list[str] = []
+        deadline = time.monotonic() + timeout_s
+        while len(out) < n and time.monotonic() < deadline:
+            self.buf += self.s.read(256)
+            while b"\n" in self.buf and len(out) < n:
+                line, self.buf = self.buf.split(b"\n", 1)
+                if not (skip_hb and line == b"HB"):
+                    out.append(line.decode())
+        return out
+
+    def close(self) -> None:
+        self.s.close()
+
+
+@pytest.fixture
+def pair(tmp_path: Path) -> Iterator[Socat]:
+    s = Socat(tmp_path).start()
+    yield s
+    s.kill()
+
+
+def cfg(port: str, **kw: object) -> LineIOConfig:
+    base: dict[str, object] = dict(heartbeat_s=0.0, ack_timeout_ms=500, reconnect_backoff_s=0.05,
+                                   reconnect_backoff_max_s=0.2, timeout_ms=200)
+    base.update(kw)
+    return LineIOConfig(port=port, **base)  # type: ignore[arg-type]
+
+
+def test_lines_are_well_formed() -> None:
+    assert decision_line("P-17", "pass", None) == b"PASS P-17\n"
+    assert decision_line("17", "reject", "NaN score (model)") == b"REJECT 17 nan_score_model\n"
+    assert decision_line("17", "not_inspected", None) == b"REJECT 17 rejected\n"  # fail closed
+    assert len(reason_token("x" * 100)) == 24
+    with pytest.raises(LineIOError, match="part id 'a b'"):
+        decision_line("a b", "pass", None)
+
+
+def test_trigger_decision_ack_round_trip(pair: Socat) -> None:
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a)) as io:
+        peer.send(b"TRIG 17\r\nTRIG 18\n")
+        assert io.next_trigger(2.0) == "17" and io.next_trigger(2.0) == "18"
+        assert io.report("17", "pass", None) is True
+        assert io.report("18", "reject", "anomaly score 0.93") is True
+        assert peer.lines(2) == ["PASS 17", "REJECT 18 anomaly_score_0_93"]
+        assert io.pending() == 2  # until the PLC acknowledges
+        peer.send(b"ACK 17\nACK 18\n")
+        assert io.flush(2.0)
+        assert io.next_trigger(0.05) is None
+    assert io.undelivered() == [] and io.stats.acked == 2
+    peer.close()
+
+
+def test_faults_are_logged_counted_and_answered(pair: Socat, caplog: pytest.LogCaptureFixture) -> None:
+    peer = Peer(pair.b)
+    caplog.set_level(logging.WARNING, "drivers.line_io")
+    with LineIO(cfg(pair.a)) as io:
+        peer.send(b"\xff\xfe garbage\n")
+        peer.send(b"A" * 200 + b"\n")  # over-long: dropped up to its newline
+        peer.send(b"FOO 1\n")
+        peer.send(b"TRIG bad id!\n")
+        peer.send(b"TRIG 5\nTRIG 5\n")
+        peer.send(b"ERR conveyor jam\n")
+        assert io.next_trigger(2.0) == "5"
+        errs = peer.lines(5)
+        assert io.next_trigger(0.2) is None  # the duplicate never becomes a part
+    assert errs == ["ERR not ASCII", "ERR line over 64 bytes", "ERR unknown command 'FOO'", "ERR bad part id",
+                    "ERR duplicate id 5"]
+    s = io.stats
+    assert (s.garbage, s.too_long, s.unknown, s.duplicates, s.plc_errors, s.triggers) == (2, 1, 1, 1, 1, 1)
+    assert "duplicate trigger id '5'" in caplog.text and "over 64 bytes" in caplog.text
+    peer.close()
+
+
+def test_peer_disappears_decisions_wait_and_go_out_after_reconnect(pair: Socat,
+                                                                   caplog: pytest.LogCaptureFixture) -> None:
+    peer = Peer(pair.b)
+    io = LineIO(cfg(pair.a))
+    io.start()
+    peer.send(b"TRIG 1\n")
+    assert io.next_trigger(2.0) == "1"
+    peer.close()
+    pair.kill()  # the PLC side vanishes
+    deadline = time.monotonic() + 3
+    while io.link_up and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert not io.link_up
+    assert io.report("1", "reject", "anomaly") is False  # queued, not lost
+    assert io.report("2", "pass", None) is False
+    pair.start()
+    peer = Peer(pair.b)
+    got = peer.lines(2, timeout_s=5)
+    assert got == ["REJECT 1 anomaly", "PASS 2"]
+    peer.send(b"ACK 1\nACK 2\n")
+    assert io.flush(2.0)
+    assert io.close() == []
+    assert io.stats.disconnects >= 1 and io.stats.reconnects >= 1
+    assert "PLC link" in caplog.text and "lost" in caplog.text
+    peer.close()
+
+
+def test_unacknowledged_and_closed_while_down_are_reported_undelivered(pair: Socat) -> None:
+    peer = Peer(pair.b)
+    reported: list[tuple[str, str]] = []
+    io = LineIO(cfg(pair.a, ack_timeout_ms=100, max_resends=1), on_undelivered=lambda *a: reported.append(a))
+    io.start()
+    io.report("9", "pass", None)
+    assert peer.lines(2, timeout_s=2) == ["PASS 9", "PASS 9"]  # sent, then resent once
+    deadline = time.monotonic() + 2
+    while not reported and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert reported == [("9", "PASS 9")]
+    peer.close()
+    pair.kill()
+    time.sleep(0.3)
+    io.report("10", "reject", "timeout")
+    left = io.close(flush_timeout_s=0.2)
+    assert left == [("9", "PASS 9"), ("10", "REJECT 10 timeout")] and io.stats.undelivered == 2
+
+
+def test_station_heartbeat(pair: Socat) -> None:
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a, heartbeat_s=0.1)):
+        assert peer.lines(2, timeout_s=2, skip_hb=False) == ["HB", "HB"]
+    peer.close()
+
+
+def test_trigger_free_mode_ignores_triggers_but_reports(pair: Socat) -> None:
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a, triggered=False, require_ack=False)) as io:
+        assert io.triggered is False
+        peer.send(b"TRIG 3\n")
+        assert io.next_trigger(0.3) is None
+        io.report("free-1", "pass", None)
+        assert peer.lines(1) == ["PASS free-1"]
+        assert io.flush(1.0)
+    peer.close()
+
+
+def test_bad_port_is_a_clear_error(tmp_path: Path) -> None:
+    with pytest.raises(LineIOError, match=r"PLC port '.*/nope': cannot open"):
+        LineIO(cfg(str(tmp_path / "nope"))).start()
+
+
+def test_with_the_simulated_plc() -> None:
+    with SimulatedPLC(trigger_period_s=0.01, heartbeat_s=0.05) as plc:
+        assert plc.station_port is not None
+        with LineIO(cfg(plc.station_port, heartbeat_s=0.05)) as io:
+            ids = []
+            while len(ids) < 20:
+                part = io.next_trigger(2.0)
+                assert part is not None
+                ids.append(part)
+                io.report(part, "pass" if len(ids) % 3 else "reject", "anomaly")
+            assert io.flush(3.0)
+        assert plc.wait_decisions(20, 2.0)
+    assert ids == [f"P{i}" for i in range(1, 21)]
+    assert plc.record.decisions["P3"] == "REJECT anomaly" and plc.record.decisions["P1"] == "PASS"
+    assert plc.record.duplicate_decisions == 0 and io.undelivered() == [] and plc.record.heartbeats >= 1
