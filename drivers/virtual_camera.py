@@ -1,0 +1,211 @@
+"""The virtual polarization camera: ``drivers.camera.Camera`` backed by a rendered dataset (``sim.dataset``).
+
+Each frame is one rendered part, drawn at random (so poses come in random order): with probability
+``defect_rate`` from the samples with a defect (label 1), else from the good ones. The frame carries its ground
+truth (label, defect mask, sample index, split, scene parameters) so the station can score its decisions live.
+
+Keeping up with the frame rate: samples are decoded once into an in-memory pool at ``open()`` (raw mosaic and
+defect mask only; the float ground truth is not loaded), stratified over good and defective samples and capped at
+``cache_mb``; grabs then cost no I/O. Pool arrays are read-only and shared between frames (no copy per frame).
+
+Timing follows the camera config: ``free_run`` paces frames at ``frame_rate_hz``; ``software`` delivers one
+frame per ``trigger()`` (at most ``frame_rate_hz``); hardware line triggers do not exist here (config error).
+Dataset errors are ``sim.errors.SimError`` naming the file; a dataset unfit for the config is a
+``CameraConfigError``.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from drivers.camera import CameraBase, CameraConfig
+from drivers.errors import CameraConfigError, CameraError, CameraTimeout
+from drivers.frame import Frame, GroundTruth
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class VirtualCameraConfig:
+    """dataset: folder written by ``station render``; defect_rate: fraction of frames showing a defective part;
+    split: replay only this split ("train" | "val" | "test"), None = all; seed: the draw order; cache_mb: memory
+    for the decoded pool."""
+
+    dataset: str
+    defect_rate: float = 0.2
+    split: str | None = None
+    seed: int = 0
+    cache_mb: float = 512.0
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.defect_rate <= 1.0:
+            raise CameraConfigError(f"virtual camera defect_rate = {self.defect_rate}: must be in [0, 1]")
+
+
+@dataclass(frozen=True)
+class _Cached:
+    index: int
+    raw: np.ndarray
+    ground_truth: GroundTruth
+
+
+class VirtualCamera(CameraBase):
+    """See the module docstring."""
+
+    def __init__(self, config: CameraConfig, sim: VirtualCameraConfig) -> None:
+        super().__init__(config)
+        self.sim = sim
+        self._good: list[_Cached] = []
+        self._bad: list[_Cached] = []
+        self._rng = np.random.default_rng(sim.seed)
+        self._opened = False
+        self._started = False
+        self._triggers = 0
+        self._cond = threading.Condition()
+        self._next_due = 0.0
+        self._frame_id = 0
+        self._t0_ns = 0
+        self.pixel_format = "Mono8"
+        self.bit_depth = 8
+
+    def open(self) -> None:
+        if self._opened:
+            return
+        self._check_config(self.config)
+        from sim.dataset import open_dataset
+
+        ds = open_dataset(self.sim.dataset)
+        indices = ds.indices(self.sim.split)
+        if not indices:
+            raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no complete samples"
+                                    + (f" in split {self.sim.split!r}" if self.sim.split else ""))
+        m = ds.manifest
+        w, h, self.bit_depth = int(m["width"]), int(m["height"]), int(m["bit_depth"])
+        if (self.config.width and self.config.width != w) or (self.config.height and self.config.height != h):
+            raise CameraConfigError(f"virtual camera: camera region {self.config.width}x{self.config.height} but "
+                                    f"{self.sim.dataset} holds {w}x{h} frames (set width = height = 0)")
+        self.pixel_format = "Mono8" if self.bit_depth <= 8 else "Mono16"
+        self._load_pool(ds, indices, w * h * (1 if self.bit_depth <= 8 else 2))
+        self._opened = True
+        self._t0_ns = time.monotonic_ns()
+
+    def _load_pool(self, ds: object, indices: list[int], frame_bytes: int) -> None:
+        from tqdm import tqdm
+
+        labels = {i: self._label(ds, i) for i in indices}
+        good = [i for i in indices if labels[i] == 0]
+        bad = [i for i in indices if labels[i] == 1]
+        if self.sim.defect_rate > 0 and not bad:
+            raise CameraConfigError(f"virtual camera: defect_rate {self.sim.defect_rate} but {self.sim.dataset} "
+                                    f"has no sample with a defect (label 1)")
+        if self.sim.defect_rate < 1 and not good:
+            raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no good sample (label 0)")
+        budget = max(2, int(self.sim.cache_mb * 2**20 // (2 * frame_bytes)))  # raw + mask (1 B/px) per sample
+        n_bad = min(len(bad), max(1 if bad else 0, round(budget * self.sim.defect_rate)))
+        n_good = min(len(good), budget - n_bad)
+        pick_good = self._rng.permutation(good)[:n_good] if good else []
+        pick_bad = self._rng.permutation(bad)[:n_bad] if bad else []
+        for i in tqdm([*pick_good, *pick_bad], desc="virtual camera: loading parts", unit="part",
+                      disable=len(indices) < 50):
+            c = self._load(ds, int(i))
+            (self._bad if c.ground_truth.label else self._good).append(c)
+        log.info("virtual camera: %d good + %d defective parts of %d in memory (%s, %d-bit)", len(self._good),
+                 len(self._bad), len(indices), self.sim.dataset, self.bit_depth)
+
+    @staticmethod
+    def _label(ds: object, index: int) -> int:
+        import json
+
+        from sim.dataset import sample_dir
+
+        path = sample_dir(ds.root, index) / "params.json"  # type: ignore[attr-defined]
+        try:
+            return int(json.loads(path.read_text())["label"])
+        except (OSError, ValueError, KeyError) as exc:
+            raise CameraConfigError(f"virtual camera: {path}: no readable label ({exc})") from None
+
+    @staticmethod
+    def _load(ds: object, index: int) -> _Cached:
+        from sim.dataset import sample_dir
+
+        sample = ds.load(index, ground_truth=False)  # type: ignore[attr-defined]
+        mask = None
+        gt_path = Path(sample_dir(ds.root, index)) / "gt.npz"  # type: ignore[attr-defined]
+        if gt_path.is_file():
+            with np.load(gt_path) as gt:  # reads only this member of the archive
+                if "defect_mask" in gt:
+                    mask = np.ascontiguousarray(gt["defect_mask"], dtype=bool)
+                    mask.flags.writeable = False
+        raw = np.ascontiguousarray(sample.raw)
+        raw.flags.writeable = False
+        return _Cached(index, raw, GroundTruth(sample.label, mask, index, sample.split, sample.params))
+
+    def _check_config(self, config: CameraConfig) -> None:
+        if config.trigger not in ("free_run", "software"):
+            raise CameraConfigError(f"virtual camera: trigger {config.trigger!r} needs hardware lines; use "
+                                    "'free_run' or 'software'")
+
+    def configure(self, config: CameraConfig) -> None:
+        if self._started:
+            raise CameraError("virtual camera: configure while streaming; stop() first")
+        self._check_config(config)
+        self.config = config
+
+    def start(self) -> None:
+        if not self._opened:
+            raise CameraError("virtual camera: start before open")
+        self._started = True
+        self._next_due = time.monotonic()
+
+    def trigger(self) -> None:
+        if self.config.trigger != "software":
+            raise CameraError(f"virtual camera: trigger() needs trigger = 'software', not {self.config.trigger!r}")
+        if not self._started:
+            raise CameraError("virtual camera: trigger before start")
+        with self._cond:
+            self._triggers += 1
+            self._cond.notify_all()
+
+    def grab(self, timeout_ms: int | None = None) -> Frame:
+        if not self._started:
+            raise CameraError("virtual camera: grab before start")
+        timeout_s = (timeout_ms if timeout_ms is not None else self.config.timeout_ms) / 1e3
+        deadline = time.monotonic() + timeout_s
+        if self.config.trigger == "software":
+            with self._cond:
+                if not self._cond.wait_for(lambda: self._triggers > 0, timeout=timeout_s):
+                    self._stats.timeouts += 1
+                    raise CameraTimeout(f"virtual camera: no trigger within {timeout_s * 1e3:.0f} ms")
+                self._triggers -= 1
+        wait_s = self._next_due - time.monotonic()  # the sensor's frame rate bounds both modes
+        if time.monotonic() + max(wait_s, 0.0) > deadline:
+            time.sleep(max(deadline - time.monotonic(), 0.0))
+            self._stats.timeouts += 1
+            raise CameraTimeout(f"virtual camera: next frame due in {wait_s * 1e3:.0f} ms, after the "
+                                f"{timeout_s * 1e3:.0f} ms timeout ({self.config.frame_rate_hz} Hz)")
+        if wait_s > 0:
+            time.sleep(wait_s)
+        now = time.monotonic()
+        self._next_due = max(self._next_due + 1.0 / self.config.frame_rate_hz, now - 1.0 / self.config.frame_rate_hz)
+        pool = self._bad if (self._bad and (not self._good or self._rng.random() < self.sim.defect_rate)) \
+            else self._good
+        part = pool[int(self._rng.integers(len(pool)))]
+        self._frame_id += 1
+        self._stats.completed += 1
+        return Frame(raw=part.raw, pixel_format=self.pixel_format, bit_depth=self.bit_depth, frame_id=self._frame_id,
+                     timestamp_ns=time.monotonic_ns() - self._t0_ns, host_timestamp_ns=time.time_ns(),
+                     device_frame_id=self._frame_id, ground_truth=part.ground_truth)
+
+    def stop(self) -> None:
+        self._started = False
+
+    def close(self) -> None:
+        self.stop()
+        self._good, self._bad = [], []
+        self._opened = False
