@@ -23,6 +23,7 @@ process in ``g_mutex_clear``.
 from __future__ import annotations
 
 import atexit
+import functools
 import ipaddress
 import logging
 import socket
@@ -43,6 +44,7 @@ GVCP_PORT = 3956
 _OPEN: weakref.WeakSet[AravisCamera] = weakref.WeakSet()
 
 
+@functools.cache
 def _aravis() -> tuple[Any, Any, Any]:
     """(Aravis, GLib, Gio), imported on first use so ``drivers`` imports without PyGObject."""
     import gi
