@@ -96,7 +96,7 @@ def _measure_peer(c: dict[str, Any], seconds: float) -> dict[str, Any]:
     time.sleep(seconds + 1.5)  # it prints a frames/s line every second
     proc.send_signal(signal.SIGINT)
     out, _ = proc.communicate(timeout=10)
-    rates = [float(m) for m in re.findall(r"^(\d+) frames/s", out, re.M)]
+    rates = [float(m) for m in re.findall(r"^\s*([\d.]+) frames/s", out, re.M)]
     stats = {k: int(v) for k, v in re.findall(r"^(n_\w+)\s+= (\d+)", out, re.M)}
     completed, failures = stats.get("n_completed_buffers", 0), stats.get("n_failures", 0)
     lost = stats.get("n_missing_frames", 0) + stats.get("n_underruns", 0)
