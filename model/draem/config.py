@@ -1,0 +1,146 @@
+"""Model configuration: priors and their channel counts, network widths, input size, named presets.
+
+How a network sees each prior (values before normalisation; conventions in ``model.priors.conventions``):
+    intensity  1 channel, unpolarized intensity S0/2 in [0, 1]
+    dolp       1 channel, degree of linear polarization in [0, 1]
+    aolp       2 channels (cos 2*aolp, sin 2*aolp), a unit vector: AoLP has period pi, so never the raw angle
+    normal     3 channels, unit surface normal in camera coordinates (x right, y up, z toward the camera)
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, replace
+from typing import Any
+
+from .errors import ModelError
+
+PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3}
+"""Input channels per prior, in the order the station stacks them for the fused network."""
+
+UNIT_VECTOR_PRIORS = ("aolp", "normal")
+"""Priors whose channels form a unit vector per pixel: blended and renormalised as vectors, never clipped."""
+
+
+def check_priors(priors: str | tuple[str, ...] | list[str]) -> tuple[str, ...]:
+    """Prior names as a tuple (a comma-separated string is split); raises ModelError on unknown or repeated names."""
+    names = tuple(p.strip() for p in priors.split(",")) if isinstance(priors, str) else tuple(priors)
+    unknown = [p for p in names if p not in PRIOR_CHANNELS]
+    if unknown or not names or len(set(names)) != len(names):
+        raise ModelError(f"priors {list(names)}: unknown, empty or repeated; choose from {', '.join(PRIOR_CHANNELS)}")
+    return names
+
+
+def channel_slices(priors: tuple[str, ...]) -> dict[str, slice]:
+    """Where each prior's channels lie in the stacked (fused) input tensor."""
+    out, start = {}, 0
+    for p in priors:
+        out[p] = slice(start, start + PRIOR_CHANNELS[p])
+        start += PRIOR_CHANNELS[p]
+    return out
+
+
+@dataclass(frozen=True)
+class NetworkConfig:
+    """One DRAEM network: widths of the two sub-networks, input channels and square input size in pixels.
+
+    ``input_size_px`` must be a multiple of 32 (the discriminative U-Net pools five times)."""
+
+    in_channels: int = 1
+    reconstructive_width: int = 128
+    discriminative_width: int = 64
+    input_size_px: int = 256
+
+    def __post_init__(self) -> None:
+        if self.in_channels < 1 or self.reconstructive_width < 1 or self.discriminative_width < 1:
+            raise ModelError(f"network config {self}: channels and widths must be >= 1")
+        if self.input_size_px < 32 or self.input_size_px % 32:
+            raise ModelError(f"input_size_px must be a positive multiple of 32, got {self.input_size_px}")
+
+
+@dataclass(frozen=True)
+class Preset:
+    name: str
+    reconstructive_width: int
+    discriminative_width: int
+    input_size_px: int
+    note: str = ""
+
+
+PRESETS: dict[str, Preset] = {
+    "paper": Preset("paper", 128, 64, 256, "DRAEM as published (97.4 M parameters for 3 input channels); GPU"),
+    "fast": Preset("fast", 32, 16, 128, "1/4 widths at 128 px: ~16x fewer parameters; CPU real time"),
+    "tiny": Preset("tiny", 8, 4, 64, "for tests and smoke runs only"),
+}
+
+
+@dataclass(frozen=True)
+class ModelConfig:
+    """Everything that defines the detector's architecture: priors, fusion, widths, input size.
+
+    ``fusion``: "ensemble" = one DRAEM per prior, anomaly maps and scores averaged (the paper);
+    "fused" = one DRAEM over all priors stacked along channels (ours; cheaper by about the number of priors).
+    ``score_window_px``: side of the box filter before the max that gives the image score (DRAEM: 21 at 256 px);
+    0 means scale 21 px with the input size (odd, at least 3)."""
+
+    priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
+    fusion: str = "ensemble"
+    preset: str = "fast"
+    reconstructive_width: int = 32
+    discriminative_width: int = 16
+    input_size_px: int = 128
+    score_window_px: int = 0
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "priors", check_priors(self.priors))
+        if self.fusion not in ("ensemble", "fused"):
+            raise ModelError(f"fusion must be 'ensemble' or 'fused', got {self.fusion!r}")
+        NetworkConfig(1, self.reconstructive_width, self.discriminative_width, self.input_size_px)
+        if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
+            raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
+
+    @classmethod
+    def from_preset(cls, preset: str, priors: tuple[str, ...] | str = ("intensity", "dolp", "aolp", "normal"),
+                    fusion: str = "ensemble", input_size_px: int | None = None) -> ModelConfig:
+        if preset not in PRESETS:
+            raise ModelError(f"unknown preset {preset!r}; known: {', '.join(PRESETS)}")
+        p = PRESETS[preset]
+        return cls(check_priors(priors), fusion, preset, p.reconstructive_width, p.discriminative_width,
+                   input_size_px or p.input_size_px)
+
+    @property
+    def score_window(self) -> int:
+        if self.score_window_px:
+            return self.score_window_px
+        w = max(3, round(21 * self.input_size_px / 256))
+        return w if w % 2 else w + 1
+
+    @property
+    def in_channels(self) -> int:
+        return sum(PRIOR_CHANNELS[p] for p in self.priors)
+
+    def networks(self) -> dict[str, NetworkConfig]:
+        """Network configs keyed by member name: one per prior (ensemble) or one named "fused"."""
+        mk = lambda c: NetworkConfig(c, self.reconstructive_width, self.discriminative_width,  # noqa: E731
+                                     self.input_size_px)
+        if self.fusion == "fused":
+            return {"fused": mk(self.in_channels)}
+        return {p: mk(PRIOR_CHANNELS[p]) for p in self.priors}
+
+    def member_priors(self, member: str) -> tuple[str, ...]:
+        return self.priors if member == "fused" else (member,)
+
+    def with_(self, **kw: Any) -> ModelConfig:
+        return replace(self, **kw)
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d["priors"] = list(self.priors)
+        return d
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> ModelConfig:
+        try:
+            return cls(**{**d, "priors": tuple(d["priors"])})
+        except (TypeError, KeyError) as exc:
+            raise ModelError(f"model config {d}: {exc}") from None

@@ -1,0 +1,11 @@
+"""Errors of the detector package; the station adds ``ModelError`` to its one-line user errors."""
+
+from __future__ import annotations
+
+
+class ModelError(Exception):
+    """Bad model input, configuration or artefact; the message names the file, key or tensor and what is wrong."""
+
+
+class CheckpointError(ModelError):
+    """A checkpoint or its JSON sidecar is missing, unreadable or does not match what the caller expects."""
