@@ -1,0 +1,146 @@
+"""Anomaly detection metrics: image AUROC, pixel AUROC, AUPRO (MVTec AD definition), pixel AP, F1-max, and
+the choice of the decision threshold.
+
+Conventions: a higher score means more anomalous; a part is flagged when ``score >= threshold``. AUROC and AP are
+scikit-learn's; a metric that is undefined (only one class present) is NaN, never a made-up number.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+from sklearn.metrics import average_precision_score, precision_recall_curve, roc_auc_score
+
+
+def _two_classes(labels: np.ndarray) -> bool:
+    return labels.size > 0 and 0 < int(labels.sum()) < labels.size
+
+
+def auroc(labels: np.ndarray, scores: np.ndarray) -> float:
+    """Area under the ROC curve of ``scores`` against binary ``labels`` (any shapes, flattened); NaN if one class."""
+    y = np.asarray(labels).reshape(-1).astype(bool)
+    s = np.asarray(scores, dtype=np.float64).reshape(-1)
+    return float(roc_auc_score(y, s)) if _two_classes(y) else math.nan
+
+
+def average_precision(labels: np.ndarray, scores: np.ndarray) -> float:
+    y = np.asarray(labels).reshape(-1).astype(bool)
+    s = np.asarray(scores, dtype=np.float64).reshape(-1)
+    return float(average_precision_score(y, s)) if _two_classes(y) else math.nan
+
+
+def _select(masks: np.ndarray, maps: np.ndarray, region: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    if masks.shape != maps.shape:
+        raise ValueError(f"masks {masks.shape} and anomaly maps {maps.shape} differ in shape")
+    if region is None:
+        return masks.reshape(-1), maps.reshape(-1)
+    r = np.asarray(region, dtype=bool)
+    return masks[r], maps[r]
+
+
+def pixel_auroc(masks: np.ndarray, maps: np.ndarray, region: np.ndarray | None = None) -> float:
+    """Pixel AUROC over (N, H, W) ground-truth masks and anomaly maps, restricted to ``region`` (e.g. the object)."""
+    y, s = _select(np.asarray(masks, dtype=bool), np.asarray(maps), region)
+    return auroc(y, s)
+
+
+def pixel_ap(masks: np.ndarray, maps: np.ndarray, region: np.ndarray | None = None) -> float:
+    y, s = _select(np.asarray(masks, dtype=bool), np.asarray(maps), region)
+    return average_precision(y, s)
+
+
+def aupro(masks: np.ndarray, maps: np.ndarray, fpr_limit: float = 0.3, region: np.ndarray | None = None) -> float:
+    """Area under the per-region-overlap curve up to ``fpr_limit``, divided by ``fpr_limit`` (MVTec AD, Bergmann
+    et al. 2021), so a perfect detector scores 1.
+
+    PRO(t) is the mean, over all connected ground-truth regions (8-connectivity) of all images, of the fraction of
+    the region's pixels with ``map >= t``; FPR(t) is the fraction of normal pixels (within ``region``) with
+    ``map >= t``. Evaluated exactly at every distinct score, integrated by the trapezoid rule with linear
+    interpolation at ``fpr_limit``. NaN without any anomalous region."""
+    masks = np.asarray(masks, dtype=bool)
+    maps = np.asarray(maps, dtype=np.float64)
+    if masks.shape != maps.shape or masks.ndim != 3:
+        raise ValueError(f"aupro wants (N, H, W) masks and maps of one shape, got {masks.shape}, {maps.shape}")
+    valid = np.ones_like(masks) if region is None else np.asarray(region, dtype=bool) | masks
+    weights = np.zeros(maps.shape, dtype=np.float64)
+    labels = np.zeros(maps.shape, dtype=np.int64)
+    n_regions = 0
+    for i in range(masks.shape[0]):
+        lab, n = ndimage.label(masks[i], structure=np.ones((3, 3)))
+        if n:
+            areas = np.bincount(lab.reshape(-1))
+            weights[i][lab > 0] = 1.0 / areas[lab[lab > 0]]
+            labels[i] = np.where(lab > 0, lab + n_regions, 0)
+            n_regions += n
+    normal = valid & ~masks
+    n_normal = int(normal.sum())
+    if n_regions == 0 or n_normal == 0:
+        return math.nan
+    sel = valid.reshape(-1)
+    s = maps.reshape(-1)[sel]
+    pro_inc = (weights.reshape(-1)[sel]) / n_regions
+    fpr_inc = normal.reshape(-1)[sel] / n_normal
+    order = np.argsort(-s, kind="stable")
+    s, pro, fpr = s[order], np.cumsum(pro_inc[order]), np.cumsum(fpr_inc[order])
+    last = np.r_[s[1:] != s[:-1], True]  # keep one point per distinct threshold
+    pro, fpr = np.r_[0.0, pro[last]], np.r_[0.0, fpr[last]]
+    k = int(np.searchsorted(fpr, fpr_limit, side="right"))
+    if k < fpr.size:
+        f0, f1, p0, p1 = fpr[k - 1], fpr[k], pro[k - 1], pro[k]
+        p_lim = p0 + (p1 - p0) * (fpr_limit - f0) / (f1 - f0) if f1 > f0 else p1
+        fpr, pro = np.r_[fpr[:k], fpr_limit], np.r_[pro[:k], p_lim]
+    return float(np.trapezoid(pro, fpr) / fpr_limit)
+
+
+def f1_max(labels: np.ndarray, scores: np.ndarray) -> tuple[float, float]:
+    """(best F1, the threshold that reaches it) over all thresholds; (NaN, NaN) without both classes."""
+    y = np.asarray(labels).reshape(-1).astype(bool)
+    s = np.asarray(scores, dtype=np.float64).reshape(-1)
+    if not _two_classes(y):
+        return math.nan, math.nan
+    precision, recall, thresholds = precision_recall_curve(y, s)
+    f1 = 2 * precision[:-1] * recall[:-1] / np.maximum(precision[:-1] + recall[:-1], 1e-12)
+    i = int(np.argmax(f1))
+    return float(f1[i]), float(thresholds[i])
+
+
+@dataclass(frozen=True)
+class ThresholdChoice:
+    """threshold: flag a part when its score >= threshold; rule: how it was chosen; flagged_good_fraction and
+    detected_fraction: what it does on the validation data it was chosen on."""
+
+    threshold: float
+    rule: str
+    flagged_good_fraction: float
+    detected_fraction: float
+
+
+def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: float = 0.01) -> ThresholdChoice:
+    """The station's decision threshold from validation image scores.
+
+    With anomalies in validation: the F1-max threshold. Without (all good parts): the smallest threshold that
+    flags at most ``max_good_flagged`` of the good parts (never the minimum score, which would reject every
+    part: the trap of anomalib issue 2433). Raises ValueError on empty validation or non-finite scores."""
+    y = np.asarray(labels).reshape(-1).astype(bool)
+    s = np.asarray(scores, dtype=np.float64).reshape(-1)
+    if s.size == 0 or y.size != s.size:
+        raise ValueError(f"choose_threshold needs matching non-empty labels and scores, got {y.size}, {s.size}")
+    if not np.all(np.isfinite(s)):
+        raise ValueError("choose_threshold: validation scores contain NaN or Inf")
+    good = np.sort(s[~y])
+    if y.any() and (~y).any():
+        _, t = f1_max(y, s)
+        rule = "f1_max on validation with anomalies"
+    elif (~y).any():
+        allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
+        # smallest t with #(good >= t) <= allowed: just above the (allowed+1)-th largest good score
+        t = float(np.nextafter(good[good.size - allowed - 1], np.inf))
+        rule = f"no anomalies in validation: flag at most {max_good_flagged:.2%} of good parts"
+    else:
+        raise ValueError("choose_threshold: validation has no good parts; cannot bound false rejects")
+    flagged = float((s[~y] >= t).mean()) if (~y).any() else math.nan
+    detected = float((s[y] >= t).mean()) if y.any() else math.nan
+    return ThresholdChoice(float(t), rule, flagged, detected)
