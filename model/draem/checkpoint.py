@@ -1,0 +1,153 @@
+"""Checkpoints: a ``state_dict`` file (``.pt``) plus a versioned JSON sidecar (``.json``) that says what the
+weights mean. Loading uses ``torch.load(weights_only=True)``; nothing is unpickled.
+
+Sidecar fields (``SIDECAR_VERSION`` 1):
+    format "polar-ano-draem", version, convention_version (``model.priors.CONVENTION_VERSION``), code_version,
+    model (``ModelConfig``: priors, fusion, preset, widths, input size, score window), normalization (mean, std
+    per channel), threshold (image score; null until chosen) and threshold_rule, data_manifest_sha256 (of the
+    training set's manifest), weights_file, weights_sha256, created, metrics (optional), train (optional state).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import torch
+
+from model.priors.conventions import CONVENTION_VERSION
+
+from .config import ModelConfig
+from .detector import Detector
+from .errors import CheckpointError, ModelError
+from .preprocess import Normalizer
+
+FORMAT = "polar-ano-draem"
+SIDECAR_VERSION = 1
+
+
+def code_version() -> str:
+    """The installed package's version (``polar-ano-station``), or "unknown" when it is not installed."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("polar-ano-station")
+    except PackageNotFoundError:
+        return "unknown"
+
+
+def sha256_file(path: str | Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+@dataclass
+class Checkpoint:
+    """A loaded detector and its sidecar metadata."""
+
+    detector: Detector
+    threshold: float | None
+    meta: dict[str, Any] = field(default_factory=dict)
+
+
+def paths(path: str | Path) -> tuple[Path, Path]:
+    """(weights .pt, sidecar .json) for ``path`` given with either suffix or none."""
+    p = Path(path)
+    stem = p.with_suffix("") if p.suffix in (".pt", ".json") else p
+    return stem.with_name(stem.name + ".pt"), stem.with_name(stem.name + ".json")
+
+
+def save_checkpoint(path: str | Path, detector: Detector, threshold: float | None = None, threshold_rule: str = "",
+                    data_manifest_sha256: str | None = None, metrics: dict[str, Any] | None = None,
+                    train: dict[str, Any] | None = None) -> tuple[Path, Path]:
+    """Write ``<path>.pt`` (state_dict) and ``<path>.json`` atomically (temporary name, then rename)."""
+    pt, js = paths(path)
+    pt.parent.mkdir(parents=True, exist_ok=True)
+    state = {k: v.detach().cpu().contiguous() for k, v in detector.state_dict().items()}
+    tmp = pt.with_name(pt.name + ".tmp")
+    torch.save(state, tmp)
+    tmp.replace(pt)
+    n = detector.normalizer
+    meta = {
+        "format": FORMAT, "version": SIDECAR_VERSION, "convention_version": CONVENTION_VERSION,
+        "code_version": code_version(), "model": detector.config.to_dict(),
+        "normalization": {"mean": list(n.mean), "std": list(n.std)},
+        "threshold": threshold, "threshold_rule": threshold_rule, "data_manifest_sha256": data_manifest_sha256,
+        "weights_file": pt.name, "weights_sha256": sha256_file(pt),
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S"), "metrics": metrics or {}, "train": train or {},
+    }
+    tmp = js.with_name(js.name + ".tmp")
+    tmp.write_text(json.dumps(meta, indent=1, allow_nan=True))
+    tmp.replace(js)
+    return pt, js
+
+
+def read_sidecar(path: str | Path) -> dict[str, Any]:
+    """The sidecar of checkpoint ``path``, checked for format, version and convention version."""
+    _, js = paths(path)
+    if not js.is_file():
+        raise CheckpointError(f"{js}: checkpoint sidecar missing")
+    try:
+        meta = json.loads(js.read_text())
+    except (OSError, json.JSONDecodeError) as exc:
+        raise CheckpointError(f"{js}: unreadable sidecar ({exc})") from None
+    if meta.get("format") != FORMAT:
+        raise CheckpointError(f"{js}: not a {FORMAT} sidecar (format {meta.get('format')!r})")
+    if meta.get("version") != SIDECAR_VERSION:
+        raise CheckpointError(f"{js}: sidecar version {meta.get('version')}, this code reads {SIDECAR_VERSION}")
+    if meta.get("convention_version") != CONVENTION_VERSION:
+        raise CheckpointError(f"{js}: trained with polarization convention version {meta.get('convention_version')}, "
+                              f"this code uses {CONVENTION_VERSION}: retrain")
+    for key in ("model", "normalization", "weights_file"):
+        if key not in meta:
+            raise CheckpointError(f"{js}: sidecar lacks {key!r}")
+    return meta
+
+
+def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", expect_priors: tuple[str, ...] | None
+                    = None, verify_hash: bool = True) -> Checkpoint:
+    """Load a detector (eval mode) from ``<path>.pt`` + ``<path>.json``.
+
+    Raises CheckpointError naming the file when either is missing or unreadable, when the weights' hash, keys or
+    shapes do not match the sidecar, or when ``expect_priors`` differs from the model's priors."""
+    meta = read_sidecar(path)
+    _, js = paths(path)
+    pt = js.with_name(meta["weights_file"])
+    if not pt.is_file():
+        raise CheckpointError(f"{pt}: weights file missing (named in {js})")
+    if verify_hash and meta.get("weights_sha256") and sha256_file(pt) != meta["weights_sha256"]:
+        raise CheckpointError(f"{pt}: weights do not match the sha256 in {js} (file replaced or corrupt)")
+    try:
+        config = ModelConfig.from_dict(meta["model"])
+        norm = Normalizer(tuple(meta["normalization"]["mean"]), tuple(meta["normalization"]["std"]))
+        detector = Detector(config, norm)
+    except (ModelError, KeyError, TypeError) as exc:
+        raise CheckpointError(f"{js}: invalid model description ({exc})") from None
+    if expect_priors is not None and tuple(expect_priors) != config.priors:
+        raise CheckpointError(f"{js}: model uses priors {list(config.priors)}, expected {list(expect_priors)}")
+    try:
+        state = torch.load(pt, map_location=map_location, weights_only=True)
+    except Exception as exc:  # torch raises several types for corrupt or pickled files
+        raise CheckpointError(f"{pt}: cannot load weights safely ({type(exc).__name__}: {exc})") from None
+    if not isinstance(state, dict):
+        raise CheckpointError(f"{pt}: not a state_dict")
+    missing = sorted(set(detector.state_dict()) - set(state))
+    unexpected = sorted(set(state) - set(detector.state_dict()))
+    if missing or unexpected:
+        raise CheckpointError(f"{pt}: weights do not match the architecture in {js}: missing {missing[:3]}"
+                              f"{'...' if len(missing) > 3 else ''}, unexpected {unexpected[:3]}"
+                              f"{'...' if len(unexpected) > 3 else ''}")
+    for k, v in detector.state_dict().items():
+        if state[k].shape != v.shape:
+            raise CheckpointError(f"{pt}: {k} has shape {tuple(state[k].shape)}, the architecture in {js} wants "
+                                  f"{tuple(v.shape)}")
+    detector.load_state_dict(state)
+    detector.eval()
+    return Checkpoint(detector, meta.get("threshold"), meta)

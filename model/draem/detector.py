@@ -1,0 +1,85 @@
+"""The detector: one DRAEM per prior (the paper's ensemble) or one over all priors stacked (fused), with the
+normalisation and image scoring that belong to it. Input is physical prior values at the network's input size."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import torch
+import torch.nn.functional as F
+from torch import nn
+
+from .config import ModelConfig, channel_slices
+from .errors import ModelError
+from .networks import Draem, DraemEvalOutput, init_weights
+from .preprocess import Normalizer
+
+
+def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, window_px: int) -> torch.Tensor:
+    """DRAEM's image score: max of the ``window_px`` box-averaged anomaly map, here over the object region.
+
+    anomaly_map: (N, H, W) in [0, 1]; object_mask: (N, H, W) bool or None (whole image). The map is zeroed
+    outside the object before averaging (background is not inspected), and the max is taken over object pixels.
+    An empty object mask falls back to the whole image. Returns (N,) float32."""
+    m = anomaly_map.float().unsqueeze(1)
+    if object_mask is None:
+        obj = torch.ones_like(m, dtype=torch.bool)
+    else:
+        obj = object_mask.bool().unsqueeze(1)
+        empty = ~obj.flatten(1).any(1)
+        obj = obj | empty.view(-1, 1, 1, 1)
+    avg = F.avg_pool2d(m * obj, window_px, stride=1, padding=window_px // 2)
+    return torch.where(obj, avg, torch.zeros_like(avg)).flatten(1).amax(1)
+
+
+@dataclass
+class DetectorOutput:
+    """anomaly_map: (N, H, W) mean of the members' maps; score: (N,) mean of the members' image scores;
+    member_maps / member_scores keyed by member (prior name, or "fused")."""
+
+    anomaly_map: torch.Tensor
+    score: torch.Tensor
+    member_maps: dict[str, torch.Tensor]
+    member_scores: dict[str, torch.Tensor]
+
+
+class Detector(nn.Module):
+    """DRAEM members keyed by prior (ensemble) or "fused", plus the input ``Normalizer`` over all channels."""
+
+    def __init__(self, config: ModelConfig, normalizer: Normalizer | None = None):
+        super().__init__()
+        self.config = config
+        self.normalizer = normalizer or Normalizer.identity(config.in_channels)
+        if len(self.normalizer.mean) != config.in_channels:
+            raise ModelError(f"normalizer has {len(self.normalizer.mean)} channels, model {config.in_channels}")
+        self.members = nn.ModuleDict({name: Draem(cfg) for name, cfg in config.networks().items()})
+        self._slices = channel_slices(config.priors)
+
+    def member_slice(self, member: str) -> slice:
+        """Channels of the stacked input that member ``member`` sees."""
+        if member == "fused":
+            return slice(0, self.config.in_channels)
+        return self._slices[member]
+
+    def init_weights(self, generator: torch.Generator | None = None) -> None:
+        init_weights(self, generator)
+
+    def normalize(self, x: torch.Tensor) -> torch.Tensor:
+        return self.normalizer(x)
+
+    @torch.no_grad()
+    def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None) -> DetectorOutput:
+        """x: (N, C, S, S) physical priors stacked as ``config.channel_slices``; object_mask: (N, S, S) bool."""
+        if x.ndim != 4 or x.shape[1] != self.config.in_channels:
+            raise ModelError(f"detector input must be (N, {self.config.in_channels}, H, W) for priors "
+                             f"{self.config.priors}, got {tuple(x.shape)}")
+        z = self.normalize(x)
+        maps, scores = {}, {}
+        for name, net in self.members.items():
+            out = net(z[:, self.member_slice(name)])
+            assert isinstance(out, DraemEvalOutput), "predict needs eval mode: call detector.eval()"
+            maps[name] = out.anomaly_map.float()
+            scores[name] = image_scores(maps[name], object_mask, self.config.score_window)
+        amap = torch.stack(list(maps.values())).mean(0)
+        score = torch.stack(list(scores.values())).mean(0)
+        return DetectorOutput(amap, score, maps, scores)
