@@ -14,6 +14,7 @@ paper widths with 3 input channels: 69.0 M (reconstructive) + 28.4 M (discrimina
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import torch
@@ -129,11 +130,16 @@ class Draem(nn.Module):
 
 
 def init_weights(module: nn.Module, generator: torch.Generator | None = None) -> None:
-    """DRAEM's initialisation: conv weights N(0, 0.02), BatchNorm scale N(1, 0.02) and shift 0; seeded."""
+    """DRAEM's initialisation: conv weights N(0, 0.02), BatchNorm scale N(1, 0.02) and shift 0; conv biases keep
+    PyTorch's default law U(-1/sqrt(fan_in), 1/sqrt(fan_in)) but are redrawn from ``generator`` so the whole
+    initialisation depends on the seed only."""
     for m in module.modules():
         if isinstance(m, nn.Conv2d):
             with torch.no_grad():
                 m.weight.normal_(0.0, 0.02, generator=generator)
+                if m.bias is not None:
+                    bound = 1.0 / math.sqrt(m.in_channels // m.groups * m.kernel_size[0] * m.kernel_size[1])
+                    m.bias.uniform_(-bound, bound, generator=generator)
         elif isinstance(m, nn.BatchNorm2d):
             with torch.no_grad():
                 m.weight.normal_(1.0, 0.02, generator=generator)

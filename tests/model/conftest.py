@@ -1,0 +1,29 @@
+from __future__ import annotations
+
+import pytest
+import torch
+
+
+def toy_priors(n: int = 12, size: int = 64, seed: int = 0) -> tuple[torch.Tensor, torch.Tensor]:
+    """A disc-shaped 'part' with smooth intensity, DoLP and radial AoLP plus noise: (N, 4, S, S), (N, S, S)."""
+    g = torch.Generator().manual_seed(seed)
+    yy, xx = torch.meshgrid(torch.linspace(-1, 1, size), torch.linspace(-1, 1, size), indexing="ij")
+    obj = ((yy**2 + xx**2) < 0.6).expand(n, size, size).clone()
+    inten = (0.4 + 0.1 * torch.sin(6 * xx) + 0.02 * torch.randn(n, size, size, generator=g)).clamp(0, 1)
+    dolp = (0.1 + 0.05 * yy).expand(n, size, size)
+    ang = torch.atan2(yy, xx).expand(n, size, size)
+    x = torch.stack([inten, dolp, torch.cos(2 * ang), torch.sin(2 * ang)], 1).float()
+    return x, obj
+
+
+@pytest.fixture
+def toy():
+    return toy_priors
+
+
+@pytest.fixture(autouse=True)
+def _few_threads():
+    old = torch.get_num_threads()
+    torch.set_num_threads(2)
+    yield
+    torch.set_num_threads(old)

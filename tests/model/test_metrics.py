@@ -1,0 +1,71 @@
+import math
+
+import numpy as np
+import pytest
+
+from model.draem import metrics as M
+
+
+def test_auroc_of_perfect_inverted_and_one_class_scorers():
+    y = np.array([0, 0, 1, 1])
+    assert M.auroc(y, [0.1, 0.2, 0.8, 0.9]) == 1.0
+    assert M.auroc(y, [0.9, 0.8, 0.2, 0.1]) == 0.0
+    assert M.auroc(y, [0.5, 0.5, 0.5, 0.5]) == 0.5
+    assert math.isnan(M.auroc([0, 0], [0.1, 0.2]))
+
+
+def test_aupro_perfect_inverted_and_random():
+    rng = np.random.default_rng(0)
+    masks = np.zeros((4, 32, 32), bool)
+    masks[0, 4:8, 4:8] = True
+    masks[1, 20:30, 2:5] = True
+    masks[1, 1:3, 25:31] = True
+    assert M.aupro(masks, masks.astype(float)) == pytest.approx(1.0)
+    assert M.aupro(masks, 1.0 - masks) == pytest.approx(0.0)
+    # a random scorer has PRO ~ FPR, so the normalised area up to 0.3 is ~0.15
+    assert M.aupro(masks, rng.random(masks.shape)) == pytest.approx(0.15, abs=0.05)
+    assert math.isnan(M.aupro(np.zeros_like(masks), rng.random(masks.shape)))
+
+
+def test_aupro_weights_regions_not_pixels():
+    # one large region found, one small region missed: PRO = 0.5 regardless of their areas
+    masks = np.zeros((1, 40, 40), bool)
+    masks[0, 0:20, 0:20] = True
+    masks[0, 30:32, 30:32] = True
+    scores = np.zeros((1, 40, 40))
+    scores[0, 0:20, 0:20] = 1.0
+    # at FPR 0 PRO jumps to 0.5, then rises linearly to 1 at FPR 1: mean over [0, 0.3] = 0.5 + 0.5 * 0.15
+    assert M.aupro(masks, scores) == pytest.approx(0.575, abs=0.01)
+
+
+def test_pixel_metrics_respect_the_region():
+    masks = np.zeros((1, 4, 4), bool)
+    masks[0, 0, 0] = True
+    maps = np.zeros((1, 4, 4))
+    maps[0, 0, 0], maps[0, 3, 3] = 0.9, 1.0  # a false alarm outside the object
+    region = np.ones((1, 4, 4), bool)
+    region[0, 3, 3] = False
+    assert M.pixel_auroc(masks, maps) < 1.0
+    assert M.pixel_auroc(masks, maps, region) == 1.0
+    assert M.pixel_ap(masks, maps, region) == 1.0
+
+
+def test_f1_max_and_threshold_with_anomalies():
+    y = np.array([0, 0, 0, 1, 1])
+    s = np.array([0.1, 0.2, 0.3, 0.7, 0.8])
+    f1, t = M.f1_max(y, s)
+    assert f1 == 1.0 and 0.3 < t <= 0.7
+    ch = M.choose_threshold(y, s)
+    assert ch.flagged_good_fraction == 0.0 and ch.detected_fraction == 1.0
+
+
+def test_threshold_on_all_good_validation_never_flags_every_part():
+    s = np.linspace(0.0, 1.0, 200)
+    ch = M.choose_threshold(np.zeros(200), s, max_good_flagged=0.01)
+    assert ch.flagged_good_fraction <= 0.01
+    assert ch.threshold > s.min()
+    assert "no anomalies" in ch.rule
+    tiny = M.choose_threshold(np.zeros(3), np.array([0.2, 0.2, 0.2]))
+    assert tiny.flagged_good_fraction == 0.0  # a constant scorer must not reject every good part
+    with pytest.raises(ValueError, match="NaN"):
+        M.choose_threshold(np.zeros(2), np.array([0.1, np.nan]))

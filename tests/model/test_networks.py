@@ -1,0 +1,42 @@
+import pytest
+import torch
+
+from model.draem.config import PRIOR_CHANNELS, ModelConfig, NetworkConfig
+from model.draem.errors import ModelError
+from model.draem.networks import Draem, DraemEvalOutput, DraemTrainOutput, count_parameters
+
+
+def test_paper_parameter_count_matches_published():
+    # construct on the meta device: 97 M parameters without allocating them
+    with torch.device("meta"):
+        net = Draem(NetworkConfig(3, 128, 64, 256))
+    assert round(count_parameters(net.reconstructive) / 1e6, 1) == 69.0
+    assert round(count_parameters(net.discriminative) / 1e6, 1) == 28.4
+
+
+def test_train_and_eval_outputs_are_typed_and_shaped():
+    net = Draem(NetworkConfig(2, 8, 4, 64))
+    x = torch.randn(2, 2, 64, 64)
+    out = net(x)
+    assert isinstance(out, DraemTrainOutput)
+    assert out.reconstruction.shape == (2, 2, 64, 64) and out.logits.shape == (2, 2, 64, 64)
+    net.eval()
+    with torch.no_grad():
+        ev = net(x)
+    assert isinstance(ev, DraemEvalOutput) and ev.anomaly_map.shape == (2, 64, 64)
+    assert float(ev.anomaly_map.min()) >= 0 and float(ev.anomaly_map.max()) <= 1
+    with pytest.raises(ValueError, match=r"\(N, 2, H, W\)"):
+        net(torch.randn(1, 3, 64, 64))
+
+
+def test_config_channels_and_presets():
+    cfg = ModelConfig.from_preset("paper", "intensity,dolp,aolp,normal", "fused")
+    assert cfg.in_channels == sum(PRIOR_CHANNELS.values()) == 7
+    assert (cfg.reconstructive_width, cfg.discriminative_width, cfg.input_size_px) == (128, 64, 256)
+    assert cfg.score_window == 21
+    ens = ModelConfig.from_preset("fast", ("aolp", "normal"))
+    assert {k: v.in_channels for k, v in ens.networks().items()} == {"aolp": 2, "normal": 3}
+    with pytest.raises(ModelError, match="unknown"):
+        ModelConfig.from_preset("fast", ("intensity", "colour"))
+    with pytest.raises(ModelError, match="multiple of 32"):
+        ModelConfig.from_preset("fast", ("dolp",), input_size_px=100)
