@@ -1,0 +1,127 @@
+"""``station eval``: evaluate a trained detector on a rendered dataset's test split.
+
+Reports image AUROC, pixel AUROC, AUPRO (FPR <= 0.3), pixel AP, image F1-max and the checkpoint's threshold's
+effect, separately on rendered physical defects (all, and per defect type against all good parts) and on
+DRAEM-style synthetic anomalies on the good test parts. Writes JSON + Markdown, ROC curves and example heatmaps on
+a fixed [0, 1] scale (never per-image min-max, which makes good parts look bad).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+
+from station.errors import UserError
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("eval", help="evaluate a trained detector (AUROC, AUPRO, AP, F1, per defect type, plots)")
+    p.add_argument("--model", required=True, help="checkpoint path without suffix (e.g. runs/train/fast-ensemble/best)")
+    p.add_argument("--data", required=True, help="rendered dataset folder")
+    p.add_argument("--split", default="test", choices=("train", "val", "test"))
+    p.add_argument("--limit", type=int, default=None, help="at most N samples (smoke runs)")
+    p.add_argument("--no-synthetic", action="store_true", help="skip the synthetic-anomaly evaluation")
+    p.add_argument("--no-plots", action="store_true")
+    p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
+    p.set_defaults(func=run)
+
+
+def _rows(name: str, m: dict, threshold: float | None, scores, labels) -> dict:
+    import numpy as np
+
+    row = {"set": name, "n": m["n"], "anomalous": m["n_anomalous"]}
+    for k in ("image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max"):
+        row[k] = m[k]
+    if threshold is not None:
+        y = np.asarray(labels, bool)
+        row["flagged_good"] = float((scores[~y] >= threshold).mean()) if (~y).any() else math.nan
+        row["detected"] = float((scores[y] >= threshold).mean()) if y.any() else math.nan
+    return row
+
+
+def _plots(out: Path, results: dict, data, maps, scores, threshold) -> list[str]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from sklearn.metrics import roc_curve
+
+    files = []
+    fig, ax = plt.subplots(figsize=(5, 5))
+    for name, (y, s) in results.items():
+        if 0 < int(np.sum(y)) < len(y):
+            fpr, tpr, _ = roc_curve(y, s)
+            ax.plot(fpr, tpr, label=name)
+    ax.plot([0, 1], [0, 1], "k:", lw=0.8)
+    ax.set(xlabel="false positive rate (good parts flagged)", ylabel="true positive rate", title="image ROC")
+    ax.legend(fontsize=7)
+    fig.savefig(out / "roc.png", dpi=120, bbox_inches="tight")
+    plt.close(fig)
+    files.append("roc.png")
+    label = data.label.numpy().astype(bool)
+    pick = [*np.flatnonzero(~label)[:3], *np.flatnonzero(label)[:5]]
+    if pick:
+        fig, axes = plt.subplots(2, len(pick), figsize=(2 * len(pick), 4.2), squeeze=False)
+        for j, i in enumerate(pick):
+            axes[0, j].imshow(data.priors[i, 0].numpy(), cmap="gray")
+            axes[0, j].contour(data.defect_mask[i].numpy(), levels=[0.5], colors="r", linewidths=0.6)
+            axes[0, j].set_title(f"{'defect' if label[i] else 'good'} s={scores[i]:.2f}", fontsize=7)
+            im = axes[1, j].imshow(maps[i], cmap="inferno", vmin=0.0, vmax=1.0)  # fixed scale, not min-max
+            for a in axes[:, j]:
+                a.axis("off")
+        fig.colorbar(im, ax=axes[1, :].tolist(), shrink=0.8, label="anomaly probability")
+        fig.suptitle(f"first channel and anomaly map (fixed 0..1 scale); threshold {threshold:.3g}" if threshold
+                     is not None else "first channel and anomaly map (fixed 0..1 scale)", fontsize=8)
+        fig.savefig(out / "heatmaps.png", dpi=120, bbox_inches="tight")
+        plt.close(fig)
+        files.append("heatmaps.png")
+    return files
+
+
+def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
+    from station.benchmarks.report import markdown_table, write_report
+    from station.commands.train import NORMAL_SOURCE, load_split, manifest_sha256
+
+    ck = load_checkpoint(args.model)
+    cfg, thr = ck.detector.config, ck.threshold
+    out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
+    out.mkdir(parents=True, exist_ok=True)
+    sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit)
+    data = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
+    ev = evaluate(ck.detector, data)
+    rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
+    roc = {"rendered": (sp.label.numpy(), ev.scores)}
+    good = sp.label == 0
+    for t in sorted({t for t in sp.defect_type if t}):
+        sel = np.array([(lab == 0) or (dt == t) for lab, dt in zip(sp.label.tolist(), sp.defect_type, strict=True)])
+        sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered")
+        m = evaluate(ck.detector, sub)
+        rows.append(_rows(f"rendered, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
+        roc[t] = (sub.label.numpy(), m.scores)
+    if not args.no_synthetic and bool(good.any()):
+        syn = synthetic_eval_data(TensorData(sp.priors[good], sp.object_mask[good]), cfg.priors, seed=4242)
+        m = evaluate(ck.detector, syn)
+        rows.append(_rows("synthetic (DRAEM-style)", m.metrics, thr, m.scores, syn.label.numpy()))
+        roc["synthetic"] = (syn.label.numpy(), m.scores)
+    if not rows[0]["anomalous"]:
+        raise UserError(f"{args.data}: split {args.split!r} has no rendered defects; AUROC is undefined")
+    files = [] if args.no_plots else _plots(out, roc, data, ev.maps, ev.scores, thr)
+    manifest_ok = ck.meta.get("data_manifest_sha256")
+    payload = {"model": str(args.model), "model_config": cfg.to_dict(), "threshold": thr,
+               "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
+               "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
+               "normal_source": NORMAL_SOURCE if "normal" in cfg.priors else None, "rows": rows, "plots": files}
+    cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
+            "flagged_good", "detected"]
+    table = markdown_table(rows, cols)
+    write_report(out, "eval", json.loads(json.dumps(payload, default=float)), table)
+    print(table)
+    print(f"report: {out / 'eval.json'}, {out / 'eval.md'}" + (f", plots: {', '.join(files)}" if files else ""))
+    return 0

@@ -1,0 +1,150 @@
+"""``station train``: train the DRAEM detector on a rendered dataset (sim's format) through the priors core.
+
+Bridge: ``sim.dataset`` sample -> ``model.priors.compute_priors`` on the raw mosaic (what the camera would give)
+-> stacked prior channels -> square crop around the part (object mask) -> network input size -> ``model.draem``.
+The normal prior comes from the renderer's ground-truth normals until the learned normal estimator exists (an
+upper bound on what an estimated normal map can give; stated in every report).
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import logging
+from dataclasses import dataclass
+from pathlib import Path
+
+from station.errors import UserError
+
+log = logging.getLogger(__name__)
+
+NORMAL_SOURCE = "rendered ground truth (learned estimator not yet available)"
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("train", help="train the DRAEM detector on a rendered dataset (checkpoints, keep-best)")
+    p.add_argument("--data", required=True, help="rendered dataset folder (station render --out)")
+    p.add_argument("--priors", default="intensity,dolp,aolp,normal", help="comma-separated: intensity,dolp,aolp,normal")
+    p.add_argument("--preset", default="fast", help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), tiny")
+    p.add_argument("--fusion", default="ensemble", choices=("ensemble", "fused"),
+                   help="ensemble: one DRAEM per prior, averaged (the paper); fused: one over all priors")
+    p.add_argument("--size", type=int, default=None, help="input size in pixels (multiple of 32; default: preset's)")
+    p.add_argument("--steps", type=int, default=2000, help="optimiser steps")
+    p.add_argument("--batch-size", type=int, default=8)
+    p.add_argument("--eval-every", type=int, default=250, help="steps between held-out evaluation + checkpoint")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--device", default="auto", help="auto (CUDA if available), cpu, cuda, cuda:1, ...")
+    p.add_argument("--precision", default="auto", choices=("auto", "fp32", "bf16"),
+                   help="auto: fp32 on CPU (bf16 measured slower on AVX2 CPUs), bf16 autocast on CUDA")
+    p.add_argument("--max-minutes", type=float, default=None, help="stop after this much training time")
+    p.add_argument("--limit", type=int, default=None, help="use at most N samples per split (smoke runs)")
+    p.add_argument("--out", default=None, help="output folder (default runs/train/<preset>-<fusion>)")
+    p.add_argument("--no-resume", action="store_true", help="start over even if the output folder has a checkpoint")
+    p.set_defaults(func=run)
+
+
+@dataclass
+class SplitTensors:
+    """Priors at the network input size: priors (N, C, S, S), object/defect masks (N, S, S), labels (N,),
+    defect type per sample ("" for good parts) and dataset indices."""
+
+    priors: object
+    object_mask: object
+    defect_mask: object
+    label: object
+    defect_type: list[str]
+    index: list[int]
+
+
+def manifest_sha256(root: str | Path) -> str:
+    return hashlib.sha256((Path(root) / "manifest.json").read_bytes()).hexdigest()
+
+
+def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int, limit: int | None = None,
+               good_only: bool = False, progress: bool = True) -> SplitTensors:
+    """Read one split of a rendered set into tensors at the network input size (see the module docstring)."""
+    import numpy as np
+    import torch
+    from tqdm import tqdm
+
+    from model.draem.preprocess import crop_resize, object_box, stack_priors
+    from model.priors import compute_priors
+    from sim.dataset import open_dataset
+
+    ds = open_dataset(root)
+    idx = ds.indices(split)
+    if not idx:
+        raise UserError(f"{root}: no complete samples in split {split!r}")
+    wanted = [p for p in priors if p != "normal"]
+    names = [n for p in wanted for n in (("aolp_cos", "aolp_sin") if p == "aolp" else (p,))] or ["intensity"]
+    xs, objs, defs, labels, types, used = [], [], [], [], [], []
+    for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
+        if limit is not None and len(used) >= limit:
+            break
+        s = ds.load(i)
+        if good_only and s.label:
+            continue
+        maps = dict(compute_priors(s.raw, ds.manifest.get("layout", "imx250mzr"), priors=names,
+                                   bit_depth=ds.manifest.get("bit_depth")))
+        if "normal" in priors:
+            if s.normal is None:
+                raise UserError(f"{root}: sample {i} has no ground-truth normals (render without --no-ground-truth), "
+                                f"and the learned normal estimator is not available yet")
+            maps["normal"] = s.normal
+        if s.object_mask is None:
+            raise UserError(f"{root}: sample {i} has no object mask (render with ground truth)")
+        x = stack_priors(maps, priors)
+        if x.shape[1:] != s.object_mask.shape:
+            raise UserError(f"{root}: sample {i}: priors {x.shape[1:]} and object mask {s.object_mask.shape} differ")
+        defect = s.defect_mask if s.defect_mask is not None else np.zeros_like(s.object_mask)
+        xt, (obj, dm) = crop_resize(x, object_box(s.object_mask), size_px, priors, (s.object_mask, defect))
+        xs.append(xt)
+        objs.append(obj)
+        defs.append(dm)
+        labels.append(int(s.label))
+        types.append((s.params.get("defect") or {}).get("type", "") if s.label else "")
+        used.append(i)
+    if not xs:
+        raise UserError(f"{root}: split {split!r} has no usable samples")
+    return SplitTensors(torch.stack(xs), torch.stack(objs), torch.stack(defs), torch.tensor(labels), types, used)
+
+
+def run(args: argparse.Namespace) -> int:
+    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+    from model.draem.config import ModelConfig, check_priors
+    from model.draem.metrics import choose_threshold
+    from model.draem.train import EvalData, TensorData, TrainConfig, evaluate, synthetic_eval_data, train
+
+    priors = check_priors(args.priors)
+    config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size)
+    out = Path(args.out or f"runs/train/{args.preset}-{args.fusion}")
+    size = config.input_size_px
+    tr = load_split(args.data, "train", priors, size, args.limit, good_only=True)
+    va = load_split(args.data, "val", priors, size, args.limit)
+    log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
+             len(tr.index), len(va.index), int(va.label.sum()), size, size, NORMAL_SOURCE if "normal" in priors
+             else "not used")
+    rendered = EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered")
+    has_both = 0 < int(va.label.sum()) < len(va.index)
+    val = rendered if has_both else synthetic_eval_data(
+        TensorData(va.priors[va.label == 0], va.object_mask[va.label == 0]), priors, seed=args.seed + 1)
+    if not has_both:
+        log.warning("val split lacks rendered defects or good parts: keep-best uses synthetic anomalies")
+    tc = TrainConfig(steps=args.steps, batch_size=args.batch_size, seed=args.seed, eval_every=args.eval_every,
+                     device=args.device, precision=args.precision, max_minutes=args.max_minutes)
+    sha = manifest_sha256(args.data)
+    res = train(config, TensorData(tr.priors, tr.object_mask), out, tc, val, resume=not args.no_resume,
+                data_manifest_sha256=sha)
+    ck = load_checkpoint(out / "best")
+    ev = evaluate(ck.detector, rendered if has_both else val)
+    choice = choose_threshold((rendered if has_both else val).label.numpy(), ev.scores)
+    save_checkpoint(out / "best", ck.detector, choice.threshold, choice.rule, sha, ev.metrics,
+                    {**ck.meta.get("train", {}), "normal_source": NORMAL_SOURCE if "normal" in priors else None})
+    summary = {"best": str(res.best_path), "steps": res.steps_done, "seconds": round(res.seconds, 1),
+               "val_kind": val.kind, "threshold": choice.threshold, "threshold_rule": choice.rule,
+               "flagged_good_fraction": choice.flagged_good_fraction, "detected_fraction": choice.detected_fraction,
+               **{k: v for k, v in ev.metrics.items() if isinstance(v, float)}}
+    (out / "train_summary.json").write_text(json.dumps(summary, indent=1))
+    print(json.dumps(summary, indent=1))
+    return 0
