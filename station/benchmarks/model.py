@@ -1,0 +1,146 @@
+"""DRAEM inference latency per preset x input size x precision (fp32, bf16, ONNX Runtime) x fusion, on this machine.
+
+Latency is per part (one image through every member: 4 priors = 4 networks for the ensemble, 1 for the fused
+network), warm, batch 1, median of ``--repeats``; the published DRAEM size (``paper`` preset, one network,
+256 px, fp32) is the baseline ratio. Accuracy per configuration needs trained checkpoints: see ``station eval``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+PRIORS = ("intensity", "dolp", "aolp", "normal")
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--presets", default="fast,tiny")
+    p.add_argument("--sizes", default="", help="comma-separated input sizes (default: each preset's own)")
+    p.add_argument("--precisions", default="fp32,bf16,onnx", help="fp32, bf16 (CPU autocast), onnx (ONNX Runtime)")
+    p.add_argument("--fusions", default="ensemble,fused")
+    p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--threads", type=int, default=2, help="torch / ONNX Runtime intra-op threads")
+    p.add_argument("--no-baseline", action="store_true", help="skip the paper-size baseline (~3 s per run on CPU)")
+    p.add_argument("--max-seconds", type=float, default=20.0,
+                   help="skip repeats once one run of a configuration takes longer than this")
+
+
+def _map_only_class():
+    import torch
+
+    class MapOnly(torch.nn.Module):
+        """Eval-mode DRAEM returning only the (N, H, W) anomaly map (ONNX wants tensors, not dataclasses)."""
+
+        def __init__(self, net: torch.nn.Module):
+            super().__init__()
+            self.net = net
+
+        def forward(self, x: torch.Tensor) -> torch.Tensor:
+            return self.net(x).anomaly_map
+
+    return MapOnly
+
+
+def _MapOnly(net):
+    return _map_only_class()(net)
+
+
+def _time(fn, repeats: int, max_seconds: float) -> tuple[float, int]:
+    fn()  # warm-up
+    ts = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        fn()
+        ts.append(time.perf_counter() - t)
+        if ts[-1] > max_seconds:
+            break
+    return statistics.median(ts) * 1e3, len(ts)
+
+
+def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
+    import torch
+
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+    from model.draem.networks import count_parameters
+
+    priors = ("intensity",) if fusion == "baseline" else PRIORS
+    cfg = ModelConfig.from_preset(preset, priors, "fused" if fusion == "baseline" else fusion, size)
+    det = Detector(cfg).eval()
+    if fusion == "baseline":  # the published network: 3 input channels
+        from model.draem.config import NetworkConfig
+        from model.draem.networks import Draem
+        nets = {"rgb": Draem(NetworkConfig(3, 128, 64, size)).eval()}
+    else:
+        nets = dict(det.members.items())
+    params = sum(count_parameters(n) for n in nets.values())
+    inputs = {k: torch.randn(1, n.config.in_channels, size, size) for k, n in nets.items()}
+    row = {"preset": preset, "size": size, "precision": precision, "fusion": fusion, "networks": len(nets),
+           "params_M": params / 1e6}
+    if precision == "onnx":
+        import onnxruntime as ort
+
+        sessions, max_err = {}, 0.0
+        with tempfile.TemporaryDirectory() as d:
+            for k, n in nets.items():
+                f = Path(d) / f"{k}.onnx"
+                torch.onnx.export(_MapOnly(n), (inputs[k],), str(f), input_names=["x"], output_names=["map"],
+                                  dynamo=False)
+                so = ort.SessionOptions()
+                so.intra_op_num_threads = args.threads
+                sessions[k] = ort.InferenceSession(str(f), so, providers=["CPUExecutionProvider"])
+                n.eval()  # the exporter may leave the module in train mode
+                with torch.no_grad():
+                    ref = n(inputs[k]).anomaly_map.numpy()
+                got = sessions[k].run(None, {"x": inputs[k].numpy()})
+                max_err = max(max_err, float(abs(got[0] - ref).max()))
+            feeds = {k: {"x": v.numpy()} for k, v in inputs.items()}
+            ms, reps = _time(lambda: [s.run(None, feeds[k]) for k, s in sessions.items()], args.repeats,
+                             args.max_seconds)
+        row["onnx_max_abs_err"] = max_err
+    else:
+        for k, n in nets.items():
+            n.to(memory_format=torch.channels_last)
+            inputs[k] = inputs[k].contiguous(memory_format=torch.channels_last)
+
+        def run():
+            with torch.no_grad(), torch.autocast("cpu", dtype=torch.bfloat16, enabled=precision == "bf16"):
+                for k, n in nets.items():
+                    n(inputs[k])
+
+        ms, reps = _time(run, args.repeats, args.max_seconds)
+    row.update(ms_per_part=ms, runs=reps)
+    return row
+
+
+def run(args: argparse.Namespace) -> int:
+    import torch
+
+    from model.draem.config import PRESETS
+    from station.benchmarks.report import markdown_table, write_report
+
+    torch.set_num_threads(args.threads)
+    rows = []
+    if not args.no_baseline:
+        rows.append(_measure("paper", 256, "fp32", "baseline", args))
+        print(rows[-1], flush=True)
+    for preset in args.presets.split(","):
+        sizes = [int(s) for s in args.sizes.split(",") if s] or [PRESETS[preset].input_size_px]
+        for size in sizes:
+            for fusion in args.fusions.split(","):
+                for precision in args.precisions.split(","):
+                    rows.append(_measure(preset, size, precision, fusion, args))
+                    print(rows[-1], flush=True)
+    base = rows[0]["ms_per_part"] if not args.no_baseline else None
+    for r in rows:
+        r["speedup_vs_paper"] = base / r["ms_per_part"] if base else float("nan")
+    cols = ["preset", "size", "fusion", "precision", "networks", "params_M", "ms_per_part", "speedup_vs_paper",
+            "onnx_max_abs_err", "runs"]
+    table = markdown_table(rows, cols)
+    write_report(args.out, "model", {"rows": rows, "threads": args.threads, "priors": list(PRIORS),
+                                     "torch": torch.__version__}, table)
+    print(table)
+    return 0
