@@ -21,6 +21,7 @@ import numpy as np
 
 from .conventions import POLARIZER_ANGLES_DEG, MosaicLayout, get_layout
 from .mosaic import split_superpixels
+from .residual import residual_intensities, residual_stokes
 from .stokes import intensities_to_stokes
 
 Stokes = tuple[np.ndarray, np.ndarray | None, np.ndarray | None]
@@ -85,6 +86,7 @@ def superpixel_intensities(mosaic: np.ndarray, layout: MosaicLayout) -> np.ndarr
 METHODS: dict[str, DemosaicMethod] = {
     "bilinear": DemosaicMethod("bilinear", bilinear_intensities, bilinear_stokes),
     "superpixel": DemosaicMethod("superpixel", superpixel_intensities, half_resolution=True),
+    "residual": DemosaicMethod("residual", residual_intensities, residual_stokes),
 }
 
 
