@@ -12,6 +12,7 @@ frame has x toward image LEFT and z away from the camera (../shared/NOTES.md); `
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, fields
 from typing import Any
 
@@ -290,6 +291,18 @@ def background_shape(bg: dict, size_m: float) -> dict:
     return {"type": "rectangle", "to_world": mi.ScalarTransform4f().scale([size_m / 2, size_m / 2, 1]), "bsdf": bsdf}
 
 
+SAMPLER = "multijitter"
+"""Pixel sampler. Correlated multi-jittered samples halve the DoLP error of ``independent`` at 16 spp on the brick
+scenes (with ``emitter_weights``) at the same cost, and, unlike ``stratified``/``ldsampler``, take any spp."""
+
+
+def sampler_spp(spp: int) -> int:
+    """The sample count ``SAMPLER`` really takes for ``spp``: an x-by-y grid with y = floor(sqrt(spp)) and
+    x = ceil(spp / y) (Mitsuba rounds up, with a warning: 32 -> 35, 10 -> 12; 1, 2, 4, 8, 9, 12, 16 stay)."""
+    y = math.isqrt(max(int(spp), 1))
+    return y * -(-int(spp) // y)
+
+
 def sensor_dict(camera: dict, width: int, height: int, spp: int) -> dict:
     import mitsuba as mi
 
@@ -299,8 +312,18 @@ def sensor_dict(camera: dict, width: int, height: int, spp: int) -> dict:
         "to_world": mi.ScalarTransform4f().look_at(origin=camera["origin"], target=camera["target"], up=camera["up"]),
         "film": {"type": "hdrfilm", "width": width, "height": height, "rfilter": {"type": "box"},
                  "pixel_format": "luminance", "sample_border": False},
-        "sampler": {"type": "independent", "sample_count": spp},
+        "sampler": {"type": SAMPLER, "sample_count": spp},
     }
+
+
+def emitter_weights(params: dict) -> tuple[float, float]:
+    """Light-sampling weights (spot, ambient): each emitter's irradiance scale on the object, spot ``I / d**2``
+    (W/m^2 at the target) and ambient ``pi * L``. Mitsuba otherwise picks every emitter with equal probability,
+    so half of all shadow rays go to the faint ambient light and the spot's light (nearly all of the signal) is
+    sampled half as often. Unbiased either way: the weights change the noise, not the expected image."""
+    light = params["light"]
+    d2 = float(np.sum((np.asarray(light["origin"]) - np.asarray(light["target"])) ** 2))
+    return float(light["intensity"]) / max(d2, 1e-6), float(np.pi * params["ambient_radiance"])
 
 
 def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,
@@ -319,13 +342,15 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
     if lights:
         scene["ground"] = background_shape(params["background"], background_size_m)
         light = params["light"]
-        scene["spot"] = {"type": "spot", "intensity": {"type": "spectrum", "value": light["intensity"]},
+        spot_w, ambient_w = emitter_weights(params)
+        scene["spot"] = {"type": "spot", "sampling_weight": spot_w,
+                         "intensity": {"type": "spectrum", "value": light["intensity"]},
                          "cutoff_angle": light["cutoff_deg"], "beam_width": 0.75 * light["cutoff_deg"],
                          "to_world": mi.ScalarTransform4f().look_at(origin=light["origin"], target=light["target"],
                                                                     up=[0, 0, 1])}
         if params["ambient_radiance"] > 0:
-            scene["ambient"] = {"type": "constant", "radiance": {"type": "spectrum",
-                                                                  "value": params["ambient_radiance"]}}
+            scene["ambient"] = {"type": "constant", "sampling_weight": ambient_w,
+                                "radiance": {"type": "spectrum", "value": params["ambient_radiance"]}}
     else:
         scene["ground"] = {"type": "rectangle",
                            "to_world": mi.ScalarTransform4f().scale([background_size_m / 2, background_size_m / 2, 1])}

@@ -34,7 +34,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--width", type=int, default=640, help="pixels (even); the sensor's native size is 2448x2048")
     p.add_argument("--height", type=int, default=480)
-    p.add_argument("--spp", type=int, default=16, help="samples per pixel (see station bench render)")
+    quality = p.add_mutually_exclusive_group()
+    quality.add_argument("--spp", type=int, default=None,
+                         help="samples per pixel (default 16; see station bench render)")
+    quality.add_argument("--dolp-error", type=float, default=None, metavar="RMSE",
+                         help="choose the smallest spp whose DoLP RMSE (curve measured by station bench render, "
+                              "sim/spp_table.json) is at most RMSE, e.g. 0.03")
     p.add_argument("--bit-depth", type=int, default=8, choices=(8, 10, 12, 14, 16))
     p.add_argument("--no-ground-truth", action="store_true",
                    help="raw mosaics only: no AOV pass, no gt.npz (labels still from a shape-index pass)")
@@ -47,7 +52,24 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
-def build_spec(args: argparse.Namespace):
+def choose_spp(args: argparse.Namespace):
+    """``--spp`` (default 16), or the spp the measured error curve gives for ``--dolp-error``: (spp, choice)."""
+    from sim.scene import sampler_spp
+    from sim.spp import spp_for_dolp_error
+
+    if args.dolp_error is None:
+        spp = 16 if args.spp is None else args.spp
+        if spp >= 1 and sampler_spp(spp) != spp:
+            print(f"station render: --spp {spp} -> {sampler_spp(spp)} (the sampler's x-by-y grid of samples)")
+        return spp, None
+
+    choice = spp_for_dolp_error(args.dolp_error, args.width, args.height)
+    print(f"station render: {choice.spp} spp for DoLP error <= {args.dolp_error} (predicted "
+          f"{choice.predicted_dolp_error:.4f}; curve {choice.table}, {choice.measured})")
+    return choice.spp, choice
+
+
+def build_spec(args: argparse.Namespace, spp: int = 16):
     from sim.dataset import DatasetSpec
     from sim.errors import SimError
 
@@ -78,7 +100,7 @@ def build_spec(args: argparse.Namespace):
             raise SimError("--materials must be a JSON object part -> material")
     sensor = {"bit_depth": args.bit_depth, **extra.get("sensor", {})}
     return DatasetSpec.from_dict({
-        "seed": args.seed, "width": args.width, "height": args.height, "spp": args.spp,
+        "seed": args.seed, "width": args.width, "height": args.height, "spp": spp,
         "ground_truth": not args.no_ground_truth, "defect_fraction": args.defects,
         "defects_in_train": args.defects_in_train, "mesh": args.mesh, "materials": materials,
         "mesh_scale": args.mesh_scale, "variant": args.variant,
@@ -94,9 +116,10 @@ def run(args: argparse.Namespace) -> int:
 
     if args.count < 1:
         raise SimError(f"--count must be >= 1, got {args.count}")
-    spec = build_spec(args)
+    spp, choice = choose_spp(args)
+    spec = build_spec(args, spp)
     model = prepare(spec)  # every input error surfaces here, before the first render
-    init_dataset(args.out, spec, args.count)
+    init_dataset(args.out, spec, args.count, choice.to_dict() if choice else None)
     k, n = args.shard
     mine = [i for i in range(args.count) if i % n == k]
     todo = [i for i in mine if not is_complete(args.out, i)]

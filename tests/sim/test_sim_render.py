@@ -155,7 +155,7 @@ def test_dataset_deterministic_resumable_atomic(tmp_path, monkeypatch) -> None:
     def boom(*a, **k):
         raise OSError("disk full")
 
-    monkeypatch.setattr(np, "savez_compressed", boom)
+    monkeypatch.setattr("sim.dataset.save_npz", boom)
     with pytest.raises(OSError):
         write_sample(out, sample)
     assert 4 not in Dataset(out).indices() and list((out / "samples").glob("000004.tmp-*"))
