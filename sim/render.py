@@ -10,8 +10,9 @@ Passes (``llvm_ad_mono_polarized`` unless ``sim.variant`` chooses otherwise):
   good    for defects that change geometry, a shape-index pass of the good object's region (geometry only).
 Sampling (``RENDERER_VERSION`` 2): correlated multi-jittered pixel samples (``sim.scene.SAMPLER``) and light
 sampling in proportion to each emitter's irradiance (``sim.scene.emitter_weights``); version 1 used independent
-samples and picked the spot and ambient light with equal probability. Same expected image, about half the DoLP
-noise at 16 spp, so a different image for the same seed.
+samples and picked the spot and ambient light with equal probability (same expected image, less than half the
+DoLP noise at 16 spp). The glossy ground is ``pplastic`` (polarizing) instead of ``roughplastic`` (which Mitsuba
+leaves unpolarized). So a different image for the same seed.
 Shape indices are mapped through the scene's own shapes (in JIT variants the index is a process-wide registry
 id, not the position in the scene).
 """
