@@ -17,6 +17,9 @@ from .errors import ModelError
 PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3}
 """Input channels per prior, in the order the station stacks them for the fused network."""
 
+ROIS = ("center", "object")
+"""Regions a network can see: see ``ModelConfig.roi``."""
+
 UNIT_VECTOR_PRIORS = ("aolp", "normal")
 """Priors whose channels form a unit vector per pixel: blended and renormalised as vectors, never clipped."""
 
@@ -80,7 +83,10 @@ class ModelConfig:
     ``fusion``: "ensemble" = one DRAEM per prior, anomaly maps and scores averaged (the paper);
     "fused" = one DRAEM over all priors stacked along channels (ours; cheaper by about the number of priors).
     ``score_window_px``: side of the box filter before the max that gives the image score (DRAEM: 21 at 256 px);
-    0 means scale 21 px with the input size (odd, at least 3)."""
+    0 means scale 21 px with the input size (odd, at least 3).
+    ``roi``: the region the network sees. "center": the centre square of the frame (the part's known position on
+    the line), image score over the whole square; what a station can run. "object": a square around the rendered
+    object mask, image score on the object only; needs ground truth at inference (research upper bound)."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -89,6 +95,7 @@ class ModelConfig:
     discriminative_width: int = 16
     input_size_px: int = 128
     score_window_px: int = 0
+    roi: str = "center"
     extra: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -96,17 +103,19 @@ class ModelConfig:
         if self.fusion not in ("ensemble", "fused"):
             raise ModelError(f"fusion must be 'ensemble' or 'fused', got {self.fusion!r}")
         NetworkConfig(1, self.reconstructive_width, self.discriminative_width, self.input_size_px)
+        if self.roi not in ROIS:
+            raise ModelError(f"roi must be one of {', '.join(ROIS)}, got {self.roi!r}")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 
     @classmethod
     def from_preset(cls, preset: str, priors: tuple[str, ...] | str = ("intensity", "dolp", "aolp", "normal"),
-                    fusion: str = "ensemble", input_size_px: int | None = None) -> ModelConfig:
+                    fusion: str = "ensemble", input_size_px: int | None = None, roi: str = "center") -> ModelConfig:
         if preset not in PRESETS:
             raise ModelError(f"unknown preset {preset!r}; known: {', '.join(PRESETS)}")
         p = PRESETS[preset]
         return cls(check_priors(priors), fusion, preset, p.reconstructive_width, p.discriminative_width,
-                   input_size_px or p.input_size_px)
+                   input_size_px or p.input_size_px, roi=roi)
 
     @property
     def score_window(self) -> int:

@@ -157,8 +157,8 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
         obj = data.object_mask[i:i + batch_size].to(device)
         if channels_last:
             x = x.contiguous(memory_format=torch.channels_last)
-        with autocast(device, precision):
-            out = detector.predict(x, obj)
+        with autocast(device, precision):  # roi "center": scored over the whole square, as at a station
+            out = detector.predict(x, obj if detector.config.roi == "object" else None)
         maps.append(out.anomaly_map.float().cpu())
         scores.append(out.score.float().cpu())
         for k, v in out.member_scores.items():

@@ -93,7 +93,7 @@ def run(args: argparse.Namespace) -> int:
     cfg, thr = ck.detector.config, ck.threshold
     out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
     out.mkdir(parents=True, exist_ok=True)
-    sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit)
+    sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit, roi=cfg.roi)
     data = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
     ev = evaluate(ck.detector, data)
     rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]

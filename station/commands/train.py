@@ -29,6 +29,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--preset", default="fast", help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), tiny")
     p.add_argument("--fusion", default="ensemble", choices=("ensemble", "fused"),
                    help="ensemble: one DRAEM per prior, averaged (the paper); fused: one over all priors")
+    p.add_argument("--roi", default="center", choices=("center", "object"),
+                   help="center: centre square of the frame, what a station runs; object: square around the rendered "
+                        "object mask (needs ground truth at inference: research upper bound)")
     p.add_argument("--size", type=int, default=None, help="input size in pixels (multiple of 32; default: preset's)")
     p.add_argument("--steps", type=int, default=2000, help="optimiser steps")
     p.add_argument("--batch-size", type=int, default=8)
@@ -62,13 +65,15 @@ def manifest_sha256(root: str | Path) -> str:
 
 
 def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int, limit: int | None = None,
-               good_only: bool = False, progress: bool = True) -> SplitTensors:
-    """Read one split of a rendered set into tensors at the network input size (see the module docstring)."""
+               good_only: bool = False, progress: bool = True, roi: str = "center") -> SplitTensors:
+    """Read one split of a rendered set into tensors at the network input size, cropped to ``roi`` (see
+    ``model.draem.config.ModelConfig.roi``). Object and defect masks come along (for anomaly synthesis and the
+    pixel metrics) whatever the roi."""
     import numpy as np
     import torch
     from tqdm import tqdm
 
-    from model.draem.preprocess import crop_resize, object_box, stack_priors
+    from model.draem.preprocess import crop_resize, roi_box, stack_priors
     from model.priors import compute_priors
     from sim.dataset import open_dataset
 
@@ -98,7 +103,8 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         if x.shape[1:] != s.object_mask.shape:
             raise UserError(f"{root}: sample {i}: priors {x.shape[1:]} and object mask {s.object_mask.shape} differ")
         defect = s.defect_mask if s.defect_mask is not None else np.zeros_like(s.object_mask)
-        xt, (obj, dm) = crop_resize(x, object_box(s.object_mask), size_px, priors, (s.object_mask, defect))
+        box = roi_box(roi, s.object_mask.shape, s.object_mask)
+        xt, (obj, dm) = crop_resize(x, box, size_px, priors, (s.object_mask, defect))
         xs.append(xt)
         objs.append(obj)
         defs.append(dm)
@@ -117,11 +123,11 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.train import EvalData, TensorData, TrainConfig, evaluate, synthetic_eval_data, train
 
     priors = check_priors(args.priors)
-    config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size)
+    config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size, args.roi)
     out = Path(args.out or f"runs/train/{args.preset}-{args.fusion}")
     size = config.input_size_px
-    tr = load_split(args.data, "train", priors, size, args.limit, good_only=True)
-    va = load_split(args.data, "val", priors, size, args.limit)
+    tr = load_split(args.data, "train", priors, size, args.limit, good_only=True, roi=config.roi)
+    va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi)
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
              len(tr.index), len(va.index), int(va.label.sum()), size, size, NORMAL_SOURCE if "normal" in priors
              else "not used")
