@@ -282,6 +282,38 @@ def is_complete(root: str | Path, index: int) -> bool:
     return sample_dir(root, index).is_dir()
 
 
+def render_set(root: str | Path, spec: DatasetSpec, count: int, shard: tuple[int, int] = (0, 1),
+               spp_choice: dict[str, Any] | None = None, progress: bool = True) -> int:
+    """Render the samples ``i % n == k`` (shard ``(k, n)``) of a ``count``-sample set into ``root``, skipping
+    finished ones (resume), with a progress bar; returns how many were rendered. Input errors surface before
+    the first render (``prepare``)."""
+    import time
+
+    from tqdm import tqdm
+
+    model = prepare(spec)
+    init_dataset(root, spec, count, spp_choice)
+    k, n = shard
+    mine = [i for i in range(count) if i % n == k]
+    todo = [i for i in mine if not is_complete(root, i)]
+    print(f"rendering {len(todo)} of {len(mine)} samples (shard {k}/{n}) into {root}; "
+          f"{len(mine) - len(todo)} already done")
+    labels = {0: 0, 1: 0}
+    t0 = time.perf_counter()
+    with tqdm(total=len(mine), initial=len(mine) - len(todo), unit="sample", dynamic_ncols=True,
+              disable=not progress) as bar:
+        for i in todo:
+            sample = generate_sample(spec, model, i)
+            write_sample(root, sample)
+            labels[sample.label] += 1
+            bar.update(1)
+    dt = time.perf_counter() - t0
+    if todo:
+        print(f"rendered {len(todo)} samples in {dt:.1f} s ({dt / len(todo):.2f} s/sample); "
+              f"{labels[1]} with a visible defect")
+    return len(todo)
+
+
 class Dataset:
     """A rendered set on disk (read only). ``len`` counts complete samples."""
 

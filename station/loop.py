@@ -30,6 +30,7 @@ from station.decision import Decision, decide
 from station.frame_queue import Closed, FrameQueue
 from station.inspection_log import InspectionLog, InspectionRecord
 from station.inspector import Inspection, Inspector
+from station.reject_store import RejectStore
 from station.viewer import ViewerFeed, ViewFrame
 
 log = logging.getLogger(__name__)
@@ -108,11 +109,13 @@ class Station:
 
     def __init__(self, camera: Camera, inspector: Inspector, link: LineLink, inspection_log: InspectionLog, *,
                  threshold: float, cycle_time_ms: float, queue_size: int = 4, backpressure: str = "drop_oldest",
-                 grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None) -> None:
+                 grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
+                 rejects: RejectStore | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold, self.cycle_time_ms, self.grab_timeout_ms = threshold, cycle_time_ms, grab_timeout_ms
         self.queue: FrameQueue[Part] = FrameQueue(queue_size, backpressure)
         self.viewer = viewer
+        self.rejects = rejects
         self.stats = LiveStats()
         self._stop = threading.Event()
         self._dropped: deque[Part] = deque()
@@ -201,6 +204,10 @@ class Station:
         frame = part.frame
         truth = frame.ground_truth.label if frame is not None and frame.ground_truth is not None else None
         timings = inspection.timings_ms if inspection else {}
+        image_path = None
+        if self.rejects is not None and frame is not None and decision.decision != "pass":
+            image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
+                                           inspection.heatmap if inspection else None)
         record = InspectionRecord(
             decision="not_inspected" if not_inspected else decision.decision, time_unix_s=time.time(),
             part_id=part.part_id, camera_frame_id=frame.frame_id if frame else None,
@@ -209,7 +216,7 @@ class Station:
             model_id=self.inspector.detector.model_id, reason=decision.reason, grab_ms=part.grab_ms,
             demosaic_ms=timings.get("demosaic"), priors_ms=timings.get("priors"), model_ms=timings.get("model"),
             decision_ms=None, io_ms=1e3 * (t_io - t_decided), total_ms=1e3 * (t_decided - part.t_trigger),
-            io_delivered=delivered, ground_truth_label=truth)
+            io_delivered=delivered, ground_truth_label=truth, image_path=image_path)
         self.log.append(record)
         self.stats.add(record.decision, record.total_ms, truth)
         if self.viewer is not None and inspection is not None and "intensity" in inspection.priors:

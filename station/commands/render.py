@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import logging
-import time
 from pathlib import Path
 
 log = logging.getLogger(__name__)
@@ -109,32 +108,11 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
 
 
 def run(args: argparse.Namespace) -> int:
-    from tqdm import tqdm
-
-    from sim.dataset import generate_sample, init_dataset, is_complete, prepare, write_sample
+    from sim.dataset import render_set
     from sim.errors import SimError
 
     if args.count < 1:
         raise SimError(f"--count must be >= 1, got {args.count}")
     spp, choice = choose_spp(args)
-    spec = build_spec(args, spp)
-    model = prepare(spec)  # every input error surfaces here, before the first render
-    init_dataset(args.out, spec, args.count, choice.to_dict() if choice else None)
-    k, n = args.shard
-    mine = [i for i in range(args.count) if i % n == k]
-    todo = [i for i in mine if not is_complete(args.out, i)]
-    print(f"station render: {len(mine) - len(todo)} of {len(mine)} samples of shard {k}/{n} already done; "
-          f"rendering {len(todo)} into {args.out}")
-    labels = {0: 0, 1: 0}
-    t0 = time.perf_counter()
-    with tqdm(total=len(mine), initial=len(mine) - len(todo), unit="sample", dynamic_ncols=True) as bar:
-        for i in todo:
-            sample = generate_sample(spec, model, i)
-            write_sample(args.out, sample)
-            labels[sample.label] += 1
-            bar.update(1)
-    dt = time.perf_counter() - t0
-    if todo:
-        print(f"rendered {len(todo)} samples in {dt:.1f} s ({dt / len(todo):.2f} s/sample); "
-              f"{labels[1]} with a visible defect")
+    render_set(args.out, build_spec(args, spp), args.count, args.shard, choice.to_dict() if choice else None)
     return 0

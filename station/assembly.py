@@ -1,0 +1,97 @@
+"""Build the station's parts from ``station.toml``: camera, PLC link, detector, inspection log.
+
+Each builder fails at start-up with one line naming the key or file (``UserError`` and the packages' own errors),
+never in the middle of a run.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+from contextlib import ExitStack
+from pathlib import Path
+
+from drivers.camera import Camera
+from drivers.camera import CameraConfig as DriverCameraConfig
+from station.config import ConfigError, StationConfig
+from station.loop import LineLink, NoLink
+
+log = logging.getLogger(__name__)
+
+DEMO_DATASET = "data/sim-demo"
+"""Where ``[sim] dataset = ""`` renders its parts on first use (``DEMO_PARTS`` of them, once)."""
+DEMO_PARTS = 40
+DEMO_SEED = 7
+"""Not the seed of the shipped model's training set (0), so the demo shows parts the model never saw."""
+
+
+def driver_camera_config(cfg: StationConfig) -> DriverCameraConfig:
+    """``[camera]`` -> the drivers' ``CameraConfig`` (same names and units; ``kind`` picks the driver)."""
+    names = {f.name for f in dataclasses.fields(DriverCameraConfig)}
+    return DriverCameraConfig(**{k: v for k, v in dataclasses.asdict(cfg.camera).items() if k in names})
+
+
+def ensure_sim_dataset(cfg: StationConfig) -> str:
+    """The rendered set the virtual camera replays: ``[sim] dataset``, or the demo set, rendered when missing."""
+    if cfg.sim.dataset:
+        if not (Path(cfg.sim.dataset) / "manifest.json").is_file():
+            raise ConfigError(f"{cfg.source}: [sim] dataset = {cfg.sim.dataset!r} is not a rendered set "
+                              f"(no manifest.json; make one with `station render --out {cfg.sim.dataset}`)")
+        return cfg.sim.dataset
+    from sim.dataset import DatasetSpec, open_dataset, render_set
+
+    root = Path(DEMO_DATASET)
+    if (root / "manifest.json").is_file() and len(open_dataset(root)) >= DEMO_PARTS:
+        return str(root)
+    print(f"[sim] dataset is empty: rendering {DEMO_PARTS} demo parts into {root} with Mitsuba (once; "
+          f"about 2 s each)")
+    spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": 16,
+                                  "defect_fraction": 0.5, "defects_in_train": True})
+    render_set(root, spec, DEMO_PARTS)
+    return str(root)
+
+
+def open_camera(cfg: StationConfig) -> Camera:
+    """Open the camera ``[camera] kind`` names (not started)."""
+    dcfg = driver_camera_config(cfg)
+    if cfg.camera.kind == "sim":
+        from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
+
+        camera: Camera = VirtualCamera(dcfg, VirtualCameraConfig(ensure_sim_dataset(cfg), cfg.sim.defect_rate,
+                                                                 seed=cfg.sim.seed))
+    else:
+        from drivers.aravis_camera import AravisCamera
+
+        camera = AravisCamera(dcfg)
+    camera.open()
+    return camera
+
+
+def open_link(cfg: StationConfig, stack: ExitStack) -> LineLink:
+    """The PLC link ``[io] mode`` names, started; closed (and undelivered decisions logged) by ``stack``."""
+    if cfg.io.mode == "none":
+        return NoLink()
+    from drivers.line_io import LineIO, LineIOConfig
+
+    port = cfg.io.port
+    if cfg.io.mode == "sim_plc":
+        from drivers.plc_sim import SimulatedPLC
+
+        # One part per camera frame period: the PLC paces the line, as on a real one.
+        plc = SimulatedPLC(trigger_period_s=1.0 / cfg.camera.frame_rate_hz, heartbeat_s=cfg.io.heartbeat_s)
+        port = plc.station_port or ""
+        stack.callback(plc.close)
+    elif not port:
+        raise ConfigError(f"{cfg.source}: [io] port: must name the PLC's serial port when mode = 'serial'")
+    link = LineIO(LineIOConfig(port=port, baudrate=cfg.io.baudrate, timeout_ms=cfg.io.timeout_ms,
+                               heartbeat_s=cfg.io.heartbeat_s))
+    link.start()
+
+    def close_link() -> None:
+        for part_id, line in link.close():
+            log.error("decision for part %s never reached the PLC: %s", part_id, line.strip())
+
+    stack.callback(close_link)
+    if cfg.io.mode == "sim_plc":
+        plc.start()  # triggers start only once the station listens
+    return link

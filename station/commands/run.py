@@ -1,0 +1,101 @@
+"""``station run``: the inspection station on the virtual camera (``--camera sim``) or a GenICam camera (``aravis``).
+
+Everything comes from ``station.toml``; ``--camera`` only picks the camera kind. Start-up order is chosen so that
+a bad model, log or camera stops the station before the PLC starts sending parts.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import logging
+import threading
+from contextlib import ExitStack
+
+log = logging.getLogger(__name__)
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("run", help="run the inspection station (virtual camera, or a real camera over Aravis)")
+    p.add_argument("--camera", choices=("sim", "aravis"), default=None,
+                   help="camera kind (default: [camera] kind in the config)")
+    p.add_argument("--config", default="station.toml", help="station configuration (default station.toml)")
+    p.add_argument("--frames", type=int, default=None, metavar="N", help="stop after N parts (default: until Ctrl-C)")
+    p.add_argument("--viewer", action="store_true", help="show the live Qt viewer")
+    p.add_argument("--summary-json", default=None, metavar="FILE", help="also write the final summary as JSON")
+    p.set_defaults(func=run)
+
+
+def confusion_table(confusion: dict[str, int]) -> str:
+    """The decisions against the virtual camera's ground truth as a 2x2 text table."""
+    g = lambda k: confusion.get(k, 0)  # noqa: E731
+    rows = [("", "pass", "reject"), ("good part", g("good_pass"), g("good_reject")),
+            ("defective part", g("bad_pass"), g("bad_reject"))]
+    return "\n".join(f"{a:>16} {b!s:>8} {c!s:>8}" for a, b, c in rows)
+
+
+def run(args: argparse.Namespace) -> int:
+    from station.assembly import open_camera, open_link
+    from station.config import load_config
+    from station.errors import UserError
+    from station.inspection_log import InspectionLog
+    from station.inspector import Inspector
+    from station.loop import Station
+    from station.model_detector import DraemDetector
+    from station.reject_store import RejectStore
+
+    if args.frames is not None and args.frames < 1:
+        raise UserError(f"--frames must be >= 1, got {args.frames}")
+    cfg = load_config(args.config)
+    if args.camera:
+        cfg = dataclasses.replace(cfg, camera=dataclasses.replace(cfg.camera, kind=args.camera))
+    detector = DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold)
+    print(f"model {detector.model_id}: priors {', '.join(detector.config.priors)}, threshold "
+          f"{detector.threshold:.4g}, warm-up {detector.warm_up():.0f} ms per part on {detector.device}")
+    with ExitStack() as stack:
+        inspection_log = stack.enter_context(InspectionLog(cfg.log.path))
+        rejects = RejectStore(cfg.log.image_dir) if cfg.log.save_rejects else None
+        expired = inspection_log.apply_retention(cfg.log.retention_days)
+        if expired and rejects is not None:
+            rejects.delete(expired)
+        camera = open_camera(cfg)
+        stack.callback(camera.close)
+        viewer = None
+        if args.viewer:
+            from station.viewer import ViewerFeed
+
+            viewer = ViewerFeed()
+        inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
+                              display_priors=("intensity", "dolp", "aolp") if viewer else ())
+        link = open_link(cfg, stack)
+        station = Station(camera, inspector, link, inspection_log, threshold=detector.threshold,
+                          cycle_time_ms=cfg.acquisition.cycle_time_ms, queue_size=cfg.acquisition.queue_size,
+                          backpressure=cfg.acquisition.backpressure, grab_timeout_ms=cfg.camera.timeout_ms,
+                          viewer=viewer, rejects=rejects)
+        print(f"inspecting with camera {cfg.camera.kind}, PLC {cfg.io.mode}, log {cfg.log.path}"
+              + (f", {args.frames} parts" if args.frames else ", until Ctrl-C"))
+        if viewer is None:
+            stats = station.run_until_signal(args.frames)
+        else:
+            from station.viewer import run_viewer
+
+            worker = threading.Thread(target=station.run, args=(args.frames,), name="station", daemon=True)
+            worker.start()
+            run_viewer(viewer)  # returns when the window closes
+            station.stop()
+            worker.join()
+            stats = station.stats
+        camera_stats = camera.statistics().as_dict()
+    summary = {**stats.summary(), "confusion": dict(stats.confusion), "camera": camera_stats,
+               "model_id": detector.model_id, "threshold": detector.threshold, "log": cfg.log.path}
+    print("\nsummary: " + ", ".join(f"{k} {v:.4g}" if isinstance(v, float) else f"{k} {v}"
+                                    for k, v in stats.summary().items()))
+    if stats.confusion:
+        print("decisions against the virtual camera's ground truth:\n" + confusion_table(stats.confusion))
+    if args.summary_json:
+        with open(args.summary_json, "w") as f:
+            json.dump(summary, f, indent=1, default=str)
+    if station.fatal:
+        raise UserError(f"station stopped: {station.fatal}")
+    return 0

@@ -1,0 +1,111 @@
+"""The station's ``Detector`` over a ``model.draem`` checkpoint: prior maps of a frame -> score and heatmap.
+
+The frame's priors are stacked, cropped to the model's region of interest and resized exactly as in training
+(``model.draem.preprocess``), so the network sees at the station what it saw in ``station train``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import logging
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+
+from station.errors import UserError
+from station.inspector import Inference
+
+log = logging.getLogger(__name__)
+
+STATION_PRIORS = {"intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin")}
+"""Model prior -> the ``model.priors`` maps it is built from. "normal" is missing on purpose: the learned normal
+estimator does not exist yet, and rendered ground-truth normals are not available at a station."""
+
+
+class ModelLoadError(UserError):
+    """The configured model cannot be used by the station (missing, corrupt, or unfit for a station)."""
+
+
+class DraemDetector:
+    """Implements ``station.inspector.Detector`` for a checkpoint folder stem (``<path>.pt`` + ``<path>.json``).
+
+    device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32" or "bf16" (autocast). ``threshold``
+    overrides the checkpoint's threshold (``[decision] threshold``)."""
+
+    def __init__(self, path: str | Path, device: str = "auto", precision: str = "fp32",
+                 threshold: float | None = None) -> None:
+        import torch
+
+        from model.draem.checkpoint import load_checkpoint, paths
+        from model.draem.train import resolve_device
+
+        if precision not in ("fp32", "bf16"):
+            raise ModelLoadError(f"[model] precision = {precision!r}: station run supports fp32 and bf16 (ONNX "
+                                 f"export exists only in station bench model so far)")
+        pt, js = paths(path)
+        if not js.is_file():
+            raise ModelLoadError(f"{js}: model not found ([model] path = {str(path)!r}); train one with "
+                                 f"`station train` or restore model/weights/ from git")
+        self.device = resolve_device(device)
+        ck = load_checkpoint(path, map_location=self.device)  # CheckpointError names the file
+        cfg = ck.detector.config
+        unusable = [p for p in cfg.priors if p not in STATION_PRIORS]
+        if unusable:
+            raise ModelLoadError(f"{js}: model uses priors {unusable} that a station cannot compute yet (no learned "
+                                 f"normal estimator); retrain with --priors {','.join(STATION_PRIORS)}")
+        if cfg.roi != "center":
+            raise ModelLoadError(f"{js}: model crops to roi {cfg.roi!r}, which needs ground truth at inference; "
+                                 f"retrain with --roi center")
+        chosen = threshold if threshold is not None else ck.threshold
+        if chosen is None:
+            raise ModelLoadError(f"{js}: the model has no threshold; set [decision] threshold in station.toml")
+        self.net = ck.detector.to(self.device)
+        if self.device.type == "cpu":
+            self.net = self.net.to(memory_format=torch.channels_last)
+        self.config = cfg
+        self.threshold = float(chosen)
+        self.precision = precision
+        self.priors = tuple(n for p in cfg.priors for n in STATION_PRIORS[p])
+        sha = ck.meta.get("weights_sha256") or hashlib.sha256(pt.read_bytes()).hexdigest()
+        self.model_id = f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}"
+        self.meta = ck.meta
+        log.info("model %s: priors %s, %s %dpx, roi %s, threshold %.4g, %s %s", self.model_id, list(cfg.priors),
+                 cfg.fusion, cfg.input_size_px, cfg.roi, self.threshold, self.device, precision)
+
+    def infer(self, priors: Mapping[str, np.ndarray]) -> Inference:
+        """Score one frame's prior maps; the heatmap is frame-sized (zero outside the region of interest)."""
+        import cv2
+        import torch
+
+        from model.draem.preprocess import crop_resize, roi_box, stack_priors
+        from model.draem.train import autocast
+
+        x = stack_priors(priors, self.config.priors)
+        box = roi_box(self.config.roi, x.shape[1:])
+        xt, _ = crop_resize(x, box, self.config.input_size_px, self.config.priors)
+        xt = xt.unsqueeze(0).to(self.device)
+        if self.device.type == "cpu":
+            xt = xt.contiguous(memory_format=torch.channels_last)
+        with autocast(self.device, self.precision):
+            out = self.net.predict(xt)
+        amap = out.anomaly_map[0].float().cpu().numpy()
+        top, left, h, w = box
+        heat = np.zeros(x.shape[1:], np.float32)
+        heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
+        return Inference(float(out.score[0]), heat)
+
+    def warm_up(self, runs: int = 2) -> float:
+        """Run inference on flat frames (first calls allocate memory and pick kernels, which would put the first
+        parts over the cycle time); returns the last run's milliseconds."""
+        import time
+
+        side = 2 * self.config.input_size_px  # the network sees input_size_px whatever the frame size
+        flat = {n: np.full((side, side), 1.0 if n in ("aolp_cos", "intensity") else 0.0, np.float32)
+                for n in self.priors}
+        ms = 0.0
+        for _ in range(runs):
+            t = time.perf_counter()
+            self.infer(flat)
+            ms = 1e3 * (time.perf_counter() - t)
+        return ms

@@ -1,0 +1,67 @@
+"""Raw mosaic and anomaly heatmap of rejected parts, one ``.npz`` per part, referenced from the log row.
+
+Files go to ``<image_dir>/<YYYY-MM-DD>/<part id>_f<frame id>.npz`` with arrays ``raw`` (the camera's mosaic,
+its own dtype) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the model did
+not run). Written to a temporary name, then renamed, so a crash leaves no half file under the final name.
+A failed write (full or read-only disk) is logged and the part's row keeps ``image_path`` NULL: the decision
+and its log row never depend on the image.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import re
+import time
+from pathlib import Path
+
+import numpy as np
+
+log = logging.getLogger(__name__)
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9_.:-]+")
+
+
+class RejectStore:
+    def __init__(self, image_dir: str | Path) -> None:
+        self.root = Path(image_dir)
+        self.failures = 0
+
+    def save(self, part_id: str, frame_id: int | None, raw: np.ndarray, heatmap: np.ndarray | None) -> str | None:
+        """Write one rejected part; returns the file path, or None when it could not be written (logged)."""
+        day = time.strftime("%Y-%m-%d")
+        name = f"{_UNSAFE.sub('_', part_id)[:64]}_f{frame_id if frame_id is not None else 'none'}.npz"
+        path = self.root / day / name
+        arrays = {"raw": raw}
+        if heatmap is not None:
+            arrays["heatmap"] = heatmap.astype(np.float16)
+        tmp = path.with_name(path.name + ".tmp")
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with open(tmp, "wb") as f:
+                np.savez(f, **arrays)
+            os.replace(tmp, path)
+        except OSError as exc:
+            self.failures += 1
+            if self.failures == 1 or self.failures % 100 == 0:
+                log.error("cannot save the image of rejected part %s to %s (%s); %d failures so far; the log row "
+                          "is kept without an image", part_id, path, exc, self.failures)
+            try:
+                tmp.unlink(missing_ok=True)
+            except OSError:
+                pass
+            return None
+        return str(path)
+
+    def delete(self, paths: list[str]) -> int:
+        """Remove image files (retention); returns how many were removed."""
+        removed = 0
+        for p in paths:
+            try:
+                Path(p).unlink()
+                removed += 1
+            except FileNotFoundError:
+                pass
+            except OSError as exc:
+                log.warning("retention: cannot delete %s (%s)", p, exc)
+        return removed

@@ -1,0 +1,123 @@
+"""``station run`` end to end: station.toml -> checkpoint -> virtual camera -> simulated PLC (pty) -> SQLite log."""
+
+from __future__ import annotations
+
+import json
+import sqlite3
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+
+from model.draem.checkpoint import save_checkpoint
+from model.draem.config import ModelConfig
+from model.draem.detector import Detector
+from model.priors.mosaic import stokes_to_mosaic
+from model.priors.testing import detailed_stokes
+from sim.dataset import DatasetSpec, Sample, init_dataset, split_of, write_sample
+from station.cli import main
+
+W, H = 96, 64
+
+
+def make_dataset(root: Path, n: int = 10) -> Path:
+    """Polarized mosaics of a detailed scene; odd samples carry a defect (a bright patch) and its mask."""
+    init_dataset(root, DatasetSpec(width=W, height=H), n)
+    s0, s1, s2 = detailed_stokes(H, W)
+    for i in range(n):
+        raw = np.clip(stokes_to_mosaic(s0, s1, s2) * 200, 0, 255).astype(np.uint8)
+        mask = np.zeros((H, W), bool)
+        if i % 2:
+            mask[20:30, 40:50] = True
+            raw[mask] = 255
+        label = int(mask.any())
+        write_sample(root, Sample(i, raw, {"index": i, "split": split_of(i), "label": label,
+                                           "defect": {"type": "stain"} if label else None}, label, split_of(i),
+                                  defect_mask=mask, object_mask=np.ones((H, W), bool)))
+    return root
+
+
+def make_model(path: Path, priors: tuple[str, ...] = ("intensity", "dolp", "aolp"), roi: str = "center") -> Path:
+    det = Detector(ModelConfig.from_preset("tiny", priors, "fused", 32, roi))
+    det.init_weights(torch.Generator().manual_seed(0))
+    save_checkpoint(path, det, threshold=0.5, threshold_rule="test")
+    return path
+
+
+def write_config(tmp: Path, model: Path, dataset: Path, extra: str = "") -> Path:
+    cfg = tmp / "station.toml"
+    cfg.write_text(f"""
+[camera]
+frame_rate_hz = 20.0
+[acquisition]
+cycle_time_ms = 60000.0
+backpressure = "block"
+[model]
+path = "{model}"
+[sim]
+dataset = "{dataset}"
+defect_rate = 0.5
+[log]
+path = "{tmp / 'log.sqlite'}"
+image_dir = "{tmp / 'rejects'}"
+{extra}
+""")
+    return cfg
+
+
+@pytest.fixture
+def setup(tmp_path: Path) -> tuple[Path, Path, Path]:
+    return tmp_path, make_model(tmp_path / "model" / "best"), make_dataset(tmp_path / "ds")
+
+
+def test_sim_run_logs_every_part_and_scores_against_ground_truth(setup, capsys) -> None:
+    tmp, model, ds = setup
+    cfg = write_config(tmp, model, ds)
+    assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "8",
+                 "--summary-json", str(tmp / "s.json")]) == 0
+    rows = sqlite3.connect(tmp / "log.sqlite").execute(
+        "SELECT decision, part_id, score, threshold, model_id, ground_truth_label, io_delivered, image_path,"
+        " demosaic_ms, model_ms FROM inspections ORDER BY id").fetchall()
+    assert len(rows) == 8
+    assert [r[1] for r in rows] == [f"P{i}" for i in range(1, 9)]  # the simulated PLC's part ids, in order
+    for decision, _, score, thr, model_id, truth, delivered, image, demosaic_ms, model_ms in rows:
+        assert decision in ("pass", "reject") and 0.0 <= score <= 1.0 and thr == 0.5
+        assert model_id.startswith("best-tiny-fused-") and truth in (0, 1) and delivered == 1
+        assert demosaic_ms > 0 and model_ms > 0
+        assert (decision == "reject") == (score > 0.5)
+        if decision == "reject":
+            with np.load(image) as f:  # the rejected part's raw mosaic and frame-sized heatmap are kept
+                assert f["raw"].shape == (H, W) and f["heatmap"].shape == (H, W)
+        else:
+            assert image is None
+    summary = json.loads((tmp / "s.json").read_text())
+    assert summary["parts"] == 8 and sum(summary["confusion"].values()) == 8
+    truths = [r[5] for r in rows]
+    assert summary["confusion"].get("bad_pass", 0) + summary["confusion"].get("bad_reject", 0) == sum(truths)
+    assert "good part" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("case", "message"), [
+    ("missing", "model not found"),
+    ("normal", "normal estimator"),
+    ("object_roi", "retrain with --roi center"),
+    ("serial_no_port", "[io] port"),
+])
+def test_start_up_errors_are_one_line(setup, capsys, case: str, message: str) -> None:
+    tmp, model, ds = setup
+    extra = ""
+    if case == "missing":
+        model = tmp / "nowhere" / "best"
+    elif case == "normal":
+        model = make_model(tmp / "m2" / "best", ("intensity", "normal"))
+    elif case == "object_roi":
+        model = make_model(tmp / "m3" / "best", roi="object")
+    else:
+        extra = '[io]\nmode = "serial"\n'
+    cfg = write_config(tmp, model, ds, extra)
+    assert main(["run", "--config", str(cfg), "--frames", "2"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0], err
+    if case != "serial_no_port":
+        assert not (tmp / "log.sqlite").exists()  # the model is checked before anything is opened
