@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml scripts/system-deps.sh |
 .PHONY: demo test setup lint clean
 
 demo: setup
-	$(BIN)/station bench priors
+	$(BIN)/station run --camera sim --frames 200
 
 test: setup
 	$(BIN)/python -m pytest
