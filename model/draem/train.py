@@ -137,11 +137,14 @@ def autocast(device: torch.device, precision: str) -> contextlib.AbstractContext
 @dataclass
 class EvalResult:
     """metrics: image/pixel AUROC, pixel AP, AUPRO (FPR <= 0.3), image F1-max and its threshold, per-member image
-    AUROC; scores: (N,) image scores; maps: (N, S, S) anomaly maps (CPU float32)."""
+    AUROC; scores: (N,) image scores; maps: (N, S, S) anomaly maps (CPU float32); member_scores / member_maps: the
+    same per ensemble member (empty for a single network), for ablations over subsets of members."""
 
     metrics: dict[str, float]
     scores: np.ndarray
     maps: np.ndarray
+    member_scores: dict[str, np.ndarray] = field(default_factory=dict)
+    member_maps: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 @torch.no_grad()
@@ -151,7 +154,7 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
     device = device or next(detector.parameters()).device
     was_training = detector.training
     detector.eval()
-    maps, scores, member_scores = [], [], {}
+    maps, scores, member_scores, member_maps = [], [], {}, {}
     for i in range(0, data.priors.shape[0], batch_size):
         x = data.priors[i:i + batch_size].to(device)
         obj = data.object_mask[i:i + batch_size].to(device)
@@ -163,6 +166,7 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
         scores.append(out.score.float().cpu())
         for k, v in out.member_scores.items():
             member_scores.setdefault(k, []).append(v.float().cpu())
+            member_maps.setdefault(k, []).append(out.member_maps[k].float().cpu())
     detector.train(was_training)
     amap = torch.cat(maps).numpy()
     score = torch.cat(scores).numpy()
@@ -175,10 +179,12 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
         "pixel_ap": M.pixel_ap(gt, amap, obj), "aupro_0.3": M.aupro(gt, amap, 0.3, obj),
         "image_f1_max": f1, "image_f1_threshold": f1_t, "n": int(label.size), "n_anomalous": int(label.sum()),
     }
-    if len(member_scores) > 1:
-        for k, v in member_scores.items():
-            res[f"image_auroc_{k}"] = M.auroc(label, torch.cat(v).numpy())
-    return EvalResult(res, score, amap)
+    if len(member_scores) <= 1:
+        return EvalResult(res, score, amap)
+    ms = {k: torch.cat(v).numpy() for k, v in member_scores.items()}
+    for k, v in ms.items():
+        res[f"image_auroc_{k}"] = M.auroc(label, v)
+    return EvalResult(res, score, amap, ms, {k: torch.cat(v).numpy() for k, v in member_maps.items()})
 
 
 @dataclass

@@ -97,3 +97,21 @@ def test_synthetic_eval_set_and_evaluate(toy):
     res = evaluate(det, val)
     assert res.scores.shape == (8,) and res.maps.shape == (8, 32, 32)
     assert {"image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_auroc_dolp"} <= set(res.metrics)
+
+
+def test_ablation_averages_ensemble_members_in_the_papers_order(toy):
+    from station.commands.eval import ablation_rows
+
+    x, obj = toy(8, 32)
+    val = synthetic_eval_data(TensorData(x, obj), PRIORS, seed=1)
+    det = Detector(_cfg("ensemble"))
+    det.init_weights(torch.Generator().manual_seed(3))
+    res = evaluate(det, val)
+    rows = ablation_rows(res, val)
+    # no normal member: the "all" row is left out rather than faked
+    assert [r["priors"] for r in rows] == ["R", "R+AoLP", "R+AoLP+DoLP"]
+    assert rows[0]["image_auroc"] == pytest.approx(res.metrics["image_auroc_intensity"])
+    # all three members averaged is exactly the detector's own fused answer
+    assert rows[-1]["image_auroc"] == pytest.approx(res.metrics["image_auroc"])
+    np.testing.assert_allclose(np.mean([res.member_maps[m] for m in PRIORS], 0), res.maps, atol=1e-6)
+    assert evaluate(Detector(_cfg("fused")), val).member_maps == {}
