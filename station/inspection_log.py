@@ -84,7 +84,8 @@ def _db_error(path: Path, action: str, exc: sqlite3.Error) -> LogError:
 
 
 class InspectionLog:
-    """Append-only inspection log in one SQLite file. Not thread-safe: one writer thread owns it."""
+    """Append-only inspection log in one SQLite file. Not thread-safe: one thread at a time uses it (it may be
+    opened in one thread and written by another, as the station's processing thread does)."""
 
     def __init__(self, path: str | Path, *, readonly: bool = False) -> None:
         self.path = Path(path)
@@ -95,7 +96,7 @@ class InspectionLog:
                 self._db = sqlite3.connect(f"file:{self.path}?mode=ro", uri=True)
             else:
                 self.path.parent.mkdir(parents=True, exist_ok=True)
-                self._db = sqlite3.connect(self.path)
+                self._db = sqlite3.connect(self.path, check_same_thread=False)  # handed over, never shared
                 self._db.execute("PRAGMA journal_mode=WAL")
                 self._db.execute("PRAGMA synchronous=FULL")
                 self._db.executescript(_create_sql())

@@ -9,6 +9,7 @@ has a fixed scale, transparent at 0 and fully opaque at 1, so a good part looks 
 from __future__ import annotations
 
 import queue
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -155,11 +156,16 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
     return ViewerWindow()
 
 
-def run_viewer(feed: ViewerFeed) -> int:
-    """Run the Qt event loop with a viewer of ``feed`` until the window closes (call from the main thread)."""
-    from pyqtgraph.Qt import QtWidgets
+def run_viewer(feed: ViewerFeed, done: Callable[[], bool] | None = None) -> int:
+    """Run the Qt event loop with a viewer of ``feed`` until the window closes, or until ``done()`` turns true
+    (polled every 0.2 s; e.g. the station finished its ``--frames``). Call from the main thread."""
+    from pyqtgraph.Qt import QtCore, QtWidgets
 
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication([])
     window = create_window(feed)
     window.show()
+    if done is not None:
+        timer = QtCore.QTimer(window)
+        timer.timeout.connect(lambda: window.close() if done() else None)
+        timer.start(200)
     return app.exec()

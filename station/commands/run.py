@@ -82,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
 
             worker = threading.Thread(target=station.run, args=(args.frames,), name="station", daemon=True)
             worker.start()
-            run_viewer(viewer)  # returns when the window closes
+            run_viewer(viewer, done=lambda: not worker.is_alive())  # until the window closes or the run ends
             station.stop()
             worker.join()
             stats = station.stats

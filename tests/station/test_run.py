@@ -121,3 +121,12 @@ def test_start_up_errors_are_one_line(setup, capsys, case: str, message: str) ->
     assert len(err) == 1 and message in err[0], err
     if case != "serial_no_port":
         assert not (tmp / "log.sqlite").exists()  # the model is checked before anything is opened
+
+
+def test_viewer_run_ends_with_the_frames(setup, monkeypatch) -> None:
+    pytest.importorskip("pyqtgraph")
+    monkeypatch.setenv("QT_QPA_PLATFORM", "offscreen")
+    tmp, model, ds = setup
+    cfg = write_config(tmp, model, ds)
+    assert main(["run", "--config", str(cfg), "--frames", "4", "--viewer"]) == 0  # returns: the window closed itself
+    assert sqlite3.connect(tmp / "log.sqlite").execute("SELECT COUNT(*) FROM inspections").fetchone()[0] == 4
