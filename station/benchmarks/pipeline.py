@@ -1,0 +1,139 @@
+"""Run time against error for the whole station: the real loop on held-out rendered parts over a grid of settings.
+
+For each configuration (demosaic method x model checkpoint x precision) a ``station.loop.Station`` inspects
+``--parts`` parts from the virtual camera (the dataset's test split, never trained on; the same parts in the same
+order for every configuration), free-running as fast as processing allows (backpressure ``block``, no PLC), and
+logs to a temporary SQLite file. From the log:
+
+- latency per part = grab + demosaic + priors + model (+ decision): the work from trigger to decision for one
+  part when parts arrive one cycle apart (queue waiting, which only exists when parts arrive faster than that, is
+  left out); p50 and p99;
+- parts/s sustained over the run;
+- image AUROC of the scores against the virtual camera's ground truth, and the decisions' confusion at the
+  model's threshold.
+
+Writes JSON, a Markdown table and a Pareto plot (p99 latency against 1 - image AUROC), and names the
+configurations on the front.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+from pathlib import Path
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--data", default="data/brick-v2", help="rendered set; its test split is inspected")
+    p.add_argument("--models", default="model/weights/default", help="comma-separated checkpoint paths")
+    p.add_argument("--methods", default="bilinear,superpixel,residual", help="demosaic methods")
+    p.add_argument("--precisions", default="fp32,bf16", help="fp32, bf16 (autocast)")
+    p.add_argument("--parts", type=int, default=200, help="parts per configuration")
+    p.add_argument("--defect-rate", type=float, default=0.5)
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--device", default="auto")
+
+
+def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
+            device: str) -> dict:
+    """One configuration through the real station loop; returns its row."""
+    import numpy as np
+
+    from drivers.camera import CameraConfig
+    from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
+    from model.draem.metrics import auroc
+    from model.priors import get_layout
+    from sim.dataset import open_dataset
+    from station.inspection_log import InspectionLog
+    from station.inspector import Inspector
+    from station.loop import NoLink, Station
+    from station.model_detector import DraemDetector
+
+    detector = DraemDetector(model, device, precision)
+    detector.warm_up()
+    layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
+    camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1000.0, timeout_ms=10000),
+                           VirtualCameraConfig(data, defect_rate, split="test", seed=seed))
+    with tempfile.TemporaryDirectory() as tmp, InspectionLog(Path(tmp) / "log.sqlite") as log:
+        camera.open()
+        try:
+            station = Station(camera, Inspector(detector, layout, method), NoLink(), log,
+                              threshold=detector.threshold, cycle_time_ms=1e6, queue_size=1, backpressure="block",
+                              grab_timeout_ms=10000)
+            t = time.perf_counter()
+            station.run(parts, progress_every_s=1e9)
+            seconds = time.perf_counter() - t
+        finally:
+            camera.close()
+        rows = list(log.rows())
+    judged = [r for r in rows if r["score"] is not None]
+    lat = np.array([sum(r[k] or 0.0 for k in ("grab_ms", "demosaic_ms", "priors_ms", "model_ms")) for r in judged])
+    y = np.array([r["ground_truth_label"] for r in judged])
+    s = np.array([r["score"] for r in judged])
+    flagged = s > detector.threshold
+    return {"model": detector.model_id, "method": method, "precision": precision, "parts": len(rows),
+            "judged": len(judged), "p50_ms": float(np.percentile(lat, 50)), "p99_ms": float(np.percentile(lat, 99)),
+            "model_p50_ms": float(np.median([r["model_ms"] for r in judged])),
+            "priors_p50_ms": float(np.median([(r["demosaic_ms"] or 0) + (r["priors_ms"] or 0) for r in judged])),
+            "parts_per_s": len(rows) / seconds, "image_auroc": auroc(y, s),
+            "detected": float(flagged[y == 1].mean()) if (y == 1).any() else float("nan"),
+            "flagged_good": float(flagged[y == 0].mean()) if (y == 0).any() else float("nan")}
+
+
+def pareto_front(rows: list[dict]) -> list[int]:
+    """Indices of rows no other row beats on both p99 latency (lower) and image AUROC (higher)."""
+    front = []
+    for i, r in enumerate(rows):
+        if not any(o["p99_ms"] <= r["p99_ms"] and o["image_auroc"] >= r["image_auroc"]
+                   and (o["p99_ms"], o["image_auroc"]) != (r["p99_ms"], r["image_auroc"]) for o in rows):
+            front.append(i)
+    return front
+
+
+def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for i, r in enumerate(rows):
+        ax.scatter(r["p99_ms"], 1 - r["image_auroc"], c="C3" if i in front else "C0", s=25)
+        ax.annotate(f"{r['method']}/{r['precision']}", (r["p99_ms"], 1 - r["image_auroc"]), fontsize=6)
+    ax.axvline(100, color="k", ls=":", lw=0.8)
+    ax.set(xlabel="p99 latency per part (ms)", ylabel="1 - image AUROC (held-out parts)",
+           title="station run time against error (red: Pareto front)")
+    fig.savefig(out / "pipeline.png", dpi=120, bbox_inches="tight")
+    plt.close(fig)
+    return "pipeline.png"
+
+
+def run(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from station.benchmarks.report import markdown_table, write_report
+
+    grid = [(m, meth, prec) for m in args.models.split(",") for meth in args.methods.split(",")
+            for prec in args.precisions.split(",")]
+    rows = []
+    for model, method, precision in tqdm(grid, desc="bench pipeline", unit="config"):
+        rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
+                            args.device))
+    front = pareto_front(rows)
+    for i, r in enumerate(rows):
+        r["pareto"] = i in front
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    plot = _plot(out, rows, front)
+    cols = ["model", "method", "precision", "parts", "p50_ms", "p99_ms", "priors_p50_ms", "model_p50_ms",
+            "parts_per_s", "image_auroc", "detected", "flagged_good", "pareto"]
+    table = (f"Station pipeline on {args.parts} held-out parts of {args.data} (test split), defect rate "
+             f"{args.defect_rate}\n\n" + markdown_table(rows, cols))
+    write_report(out, "pipeline", {"args": {k: v for k, v in vars(args).items() if k != "func"}, "rows": rows,
+                                   "front": [rows[i] for i in front], "plot": plot}, table)
+    print(table)
+    print("front: " + "; ".join(f"{rows[i]['method']}/{rows[i]['precision']} ({rows[i]['p99_ms']:.0f} ms p99, "
+                                f"AUROC {rows[i]['image_auroc']:.3f})" for i in front))
+    print(f"wrote {out / 'pipeline.json'}, {out / 'pipeline.md'}, {out / plot}")
+    return 0

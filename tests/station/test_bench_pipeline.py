@@ -1,0 +1,32 @@
+"""``station bench pipeline``: the real loop over held-out parts, rows from the log, the Pareto front."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from test_run import make_dataset, make_model  # same folder (pytest puts it on sys.path)
+
+from station.benchmarks.pipeline import pareto_front
+from station.cli import main
+
+
+def test_pareto_front_keeps_only_undominated_rows() -> None:
+    rows = [{"p99_ms": 50, "image_auroc": 0.90}, {"p99_ms": 80, "image_auroc": 0.95},
+            {"p99_ms": 90, "image_auroc": 0.93}, {"p99_ms": 40, "image_auroc": 0.70}]
+    assert pareto_front(rows) == [0, 1, 3]  # 2 is slower and worse than 1
+
+
+def test_bench_pipeline_runs_the_station_over_the_grid(tmp_path: Path) -> None:
+    model = make_model(tmp_path / "m" / "best")
+    data = make_dataset(tmp_path / "ds", n=20)  # test split: indices 0, 1, 10, 11 (two of them defective)
+    out = tmp_path / "bench"
+    assert main(["bench", "pipeline", "--data", str(data), "--models", str(model), "--methods", "bilinear,superpixel",
+                 "--precisions", "fp32", "--parts", "6", "--out", str(out)]) == 0
+    report = json.loads((out / "pipeline.json").read_text())
+    rows = report["rows"]
+    assert [r["method"] for r in rows] == ["bilinear", "superpixel"]
+    for r in rows:
+        assert r["parts"] == 6 and r["judged"] == 6 and 0 < r["p50_ms"] <= r["p99_ms"]
+        assert 0.0 <= r["image_auroc"] <= 1.0 and r["parts_per_s"] > 0
+    assert report["front"] and (out / "pipeline.png").stat().st_size > 1000
