@@ -1,11 +1,11 @@
-"""``station bench pipeline``: the real loop over held-out parts, rows from the log, the Pareto front."""
+"""``station bench pipeline`` (the real loop over held-out parts, the Pareto front) and ``station bench soak``."""
 
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
-from test_run import make_dataset, make_model  # same folder (pytest puts it on sys.path)
+from test_run import make_dataset, make_model, write_config  # same folder (pytest puts it on sys.path)
 
 from station.benchmarks.pipeline import pareto_front
 from station.cli import main
@@ -30,3 +30,13 @@ def test_bench_pipeline_runs_the_station_over_the_grid(tmp_path: Path) -> None:
         assert r["parts"] == 6 and r["judged"] == 6 and 0 < r["p50_ms"] <= r["p99_ms"]
         assert 0.0 <= r["image_auroc"] <= 1.0 and r["parts_per_s"] > 0
     assert report["front"] and (out / "pipeline.png").stat().st_size > 1000
+
+
+def test_bench_soak_accounts_for_every_part(tmp_path: Path) -> None:
+    cfg = write_config(tmp_path, make_model(tmp_path / "m" / "best"), make_dataset(tmp_path / "ds"))
+    out = tmp_path / "soak"
+    assert main(["bench", "soak", "--config", str(cfg), "--parts", "12", "--sample-s", "0.2", "--out", str(out)]) == 0
+    report = json.loads((out / "soak.json").read_text())
+    r = report["result"]
+    assert r["rows"] == r["grabbed"] == 12 and r["rows_match"] and len(report["samples"]) >= 2
+    assert all(s["rss_mb"] > 10 for s in report["samples"]) and (out / "soak.png").is_file()
