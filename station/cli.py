@@ -13,7 +13,7 @@ import sys
 from station import __version__
 from station.errors import USER_ERRORS
 
-COMMANDS = ["run", "config", "export-log", "report", "bench", "render", "cameras", "train", "eval"]
+COMMANDS = ["run", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train", "eval"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 
 

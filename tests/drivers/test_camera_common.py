@@ -55,6 +55,6 @@ def test_backoff_doubles_and_caps() -> None:
 
 def test_drivers_import_without_torch() -> None:
     code = ("import sys; import drivers.camera, drivers.pixel_formats, drivers.frame, drivers.line_io, "
-            "drivers.plc_sim, drivers.aravis_camera, drivers.virtual_camera; "
+            "drivers.plc_sim, drivers.aravis_camera, drivers.virtual_camera, drivers.gv_server; "
             "assert 'torch' not in sys.modules, 'torch imported'")
     subprocess.run([sys.executable, "-c", code], check=True)

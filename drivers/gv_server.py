@@ -1,0 +1,410 @@
+"""The virtual polarization camera served as a real GigE Vision device from this process.
+
+Aravis's fake GigE Vision camera (``ArvGvFakeCamera``, the device behind ``arv-fake-gv-camera-0.8``) answers
+GVCP and streams GVSP on one interface; its image callback is replaced so that every frame it sends is the next
+raw mosaic of a ``VirtualCamera`` (same draw: random part, defective with probability ``defect_rate``). Any
+GigE Vision client, ``AravisCamera`` included, opens it by address.
+
+Everything goes through ctypes on ``libaravis-0.8.so.0``, not PyGObject: the fill-pattern hook
+(``arv_fake_camera_set_fill_pattern``) segfaults through gi once frames start (its callback is ``scope call``),
+and a ctypes call releases the GIL, so ``close()`` can wait for the camera's thread while that thread finishes
+a callback that needs the GIL.
+
+What the device offers (its GenICam XML is Aravis's fake-camera XML with the PixelFormat list cut to one entry):
+    size          SensorWidth x SensorHeight = the dataset's frame size; Width/Height/OffsetX/OffsetY select a
+                  region of the mosaic (keep offsets even: whole 2x2 polarizer superpixels).
+    pixel format  one, from the dataset's bit depth: Mono8, Mono10, Mono12, Mono14 or Mono16 (unpacked 16-bit
+                  little-endian words for 10-16 bits, so the receiver decodes the right full scale).
+    trigger       free run at AcquisitionFrameRate, or TriggerMode On + TriggerSource Software (one frame per
+                  TriggerSoftware; the device checks for a trigger ``trigger_poll_hz`` times a second).
+    ignored       ExposureTime and Gain (the frames are rendered), binning.
+    frame ids     16-bit GigE Vision block ids, wrapping 65535 -> 1; timestamps in nanoseconds since
+                  1970 (host clock at microsecond resolution), carried in the GVSP leader.
+
+Ground truth cannot travel over GigE Vision. Each served frame is recorded as a ``ServedFrame`` (frame id and
+device timestamp -> sample index, label, split, defect type), kept in memory (``recent``) and, with
+``truth_path``, appended as one JSON line per frame. The receiver's ``Frame.timestamp_ns`` (the inspection log's
+``camera_timestamp_ns``) is the device timestamp, unique per frame: join on it (``read_truth``).
+
+Network rule (nothing may leave loopback): only a loopback interface is allowed unless ``allow_network=True``.
+Aravis's device also binds the discovery port on 255.255.255.255 and answers discovery broadcasts arriving on any
+interface (checked in a namespace: a broadcast sent from a second interface got an answer). On loopback this
+process therefore holds that port itself first (``_discovery_guard``): the device's bind fails and it is reachable
+by unicast to its address only (``AravisCamera`` opens it so; GigE discovery does not list it).
+"""
+
+from __future__ import annotations
+
+import atexit
+import collections
+import ctypes
+import errno
+import fcntl
+import functools
+import ipaddress
+import json
+import logging
+import os
+import re
+import socket
+import struct
+import tempfile
+import threading
+import weakref
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import IO, Any
+
+import numpy as np
+
+from drivers import pixel_formats
+from drivers.aravis_camera import GVCP_PORT
+from drivers.camera import CameraConfig
+from drivers.errors import CameraConfigError, CameraError
+from drivers.netns import in_private_netns
+from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
+
+log = logging.getLogger(__name__)
+
+FORMAT_BY_BIT_DEPTH = {8: "Mono8", 10: "Mono10", 12: "Mono12", 14: "Mono14", 16: "Mono16"}
+"""The wire format served for a dataset of each bit depth."""
+
+# Register addresses of Aravis 0.8's fake camera (arvfakecamera.h) and GigE Vision bootstrap registers.
+_REG_WIDTH, _REG_HEIGHT, _REG_PIXEL_FORMAT = 0x100, 0x104, 0x128
+_REG_SENSOR_WIDTH, _REG_SENSOR_HEIGHT = 0x11C, 0x118
+_GVBS_CURRENT_IP, _GVBS_MANUFACTURER, _GVBS_MODEL, _GVBS_INFO = 0x24, 0x48, 0x68, 0xA8
+_SERIAL_MAX = 15  # bootstrap SerialNumber is 16 bytes with the terminating NUL
+_IFF_LOOPBACK = 0x8
+_SIOCGIFFLAGS, _SIOCGIFADDR = 0x8913, 0x8915
+
+_FillPattern = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint32, ctypes.c_uint32,
+                                ctypes.c_uint32)
+"""``ArvFakeCameraFillPattern``: (buffer, user data, exposure_time_us, gain, pixel_format)."""
+
+_OPEN: weakref.WeakSet[GvCameraServer] = weakref.WeakSet()
+
+
+@functools.cache
+def _lib() -> ctypes.CDLL:
+    """libaravis with the prototypes used here (loaded once; the same library PyGObject loads)."""
+    try:
+        lib = ctypes.CDLL("libaravis-0.8.so.0")
+    except OSError as exc:
+        raise CameraError(f"GigE Vision server: libaravis-0.8.so.0 not found ({exc}); install the Debian package "
+                          "libaravis-0.8-0") from None
+    vp, u32, i32 = ctypes.c_void_p, ctypes.c_uint32, ctypes.c_int
+    protos: dict[str, tuple[Any, list[Any]]] = {
+        "arv_gv_fake_camera_new_full": (vp, [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p]),
+        "arv_gv_fake_camera_is_running": (i32, [vp]),
+        "arv_gv_fake_camera_get_fake_camera": (vp, [vp]),
+        "arv_fake_camera_new": (vp, [ctypes.c_char_p]),
+        "arv_fake_camera_get_genicam_xml": (ctypes.c_char_p, [vp, ctypes.POINTER(ctypes.c_size_t)]),
+        "arv_fake_camera_write_register": (i32, [vp, u32, u32]),
+        "arv_fake_camera_read_register": (i32, [vp, u32, ctypes.POINTER(u32)]),
+        "arv_fake_camera_write_memory": (i32, [vp, u32, u32, ctypes.c_char_p]),
+        "arv_fake_camera_set_trigger_frequency": (None, [vp, ctypes.c_double]),
+        "arv_fake_camera_set_fill_pattern": (None, [vp, _FillPattern, vp]),
+        "arv_buffer_get_data": (vp, [vp, ctypes.POINTER(ctypes.c_size_t)]),
+        "arv_buffer_get_image_width": (i32, [vp]),
+        "arv_buffer_get_image_height": (i32, [vp]),
+        "arv_buffer_get_image_x": (i32, [vp]),
+        "arv_buffer_get_image_y": (i32, [vp]),
+        "arv_buffer_get_frame_id": (ctypes.c_uint64, [vp]),
+        "arv_buffer_get_timestamp": (ctypes.c_uint64, [vp]),
+        "g_object_unref": (None, [vp]),  # exported by libgobject, a dependency of libaravis
+    }
+    for name, (restype, argtypes) in protos.items():
+        fn = getattr(lib, name)
+        fn.restype, fn.argtypes = restype, argtypes
+    return lib
+
+
+def _ifreq(interface: str, request: int) -> bytes:
+    """``ioctl(request)`` on a ``struct ifreq`` naming ``interface`` (this network namespace's view, unlike
+    /sys/class/net, which shows the namespace sysfs was mounted in)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        return fcntl.ioctl(s.fileno(), request, struct.pack("256s", interface.encode()[:15]))
+
+
+def is_loopback_interface(interface: str) -> bool:
+    """Whether ``interface`` (a name such as "lo", or an IPv4 address) is a loopback interface.
+
+    An unknown name is a ``CameraConfigError``."""
+    try:
+        return ipaddress.IPv4Address(interface).is_loopback
+    except ValueError:
+        pass
+    try:
+        flags = struct.unpack_from("H", _ifreq(interface, _SIOCGIFFLAGS), 16)[0]
+    except OSError:
+        names = ", ".join(sorted(name for _, name in socket.if_nameindex()))
+        raise CameraConfigError(f"GigE Vision server: no network interface {interface!r} (have {names})") from None
+    return bool(flags & _IFF_LOOPBACK)
+
+
+def interface_address(interface: str) -> str:
+    """The IPv4 address the device will answer at: ``interface`` itself when it is an address, else the named
+    interface's address (``CameraConfigError`` when it has none)."""
+    try:
+        return str(ipaddress.IPv4Address(interface))
+    except ValueError:
+        pass
+    is_loopback_interface(interface)  # an unknown name: the error lists the interfaces
+    try:
+        return socket.inet_ntoa(_ifreq(interface, _SIOCGIFADDR)[20:24])
+    except OSError:
+        raise CameraConfigError(f"GigE Vision server: interface {interface!r} has no IPv4 address") from None
+
+
+def _check_gvcp_port_free(address: str) -> None:
+    """Raise when the GVCP port cannot be bound at ``address`` (Aravis's device would then start without
+    listening and say nothing)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        try:
+            s.bind((address, GVCP_PORT))
+        except OSError as exc:
+            why = ("taken by another GigE Vision device (arv-fake-gv-camera, another serve-camera)"
+                   if exc.errno == errno.EADDRINUSE else exc.strerror)
+            raise CameraError(f"GigE Vision server: cannot listen on {address}:{GVCP_PORT}: {why}") from None
+
+
+@functools.cache
+def _discovery_guard() -> socket.socket | None:
+    """This process's socket on 255.255.255.255:3956, bound without SO_REUSEADDR so that the device's own
+    discovery socket (bound with it) fails: broadcasts from a network then reach a socket that never answers.
+    Held until the process exits; None when another process holds the port."""
+    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    try:
+        s.bind(("255.255.255.255", GVCP_PORT))
+    except OSError:
+        s.close()
+        return None
+    return s
+
+
+@dataclass(frozen=True)
+class ServedFrame:
+    """Ground truth of one served frame.
+
+    frame_id      GigE Vision block id as sent (16 bit: 1..65535, wraps to 1) = the receiver's ``device_frame_id``.
+    timestamp_ns  device timestamp, ns since 1970 = the receiver's ``Frame.timestamp_ns``; unique per frame.
+    sample_index  the dataset sample shown; label 1 defective / 0 good; split and defect type as in ``params.json``.
+    """
+
+    frame_id: int
+    timestamp_ns: int
+    sample_index: int
+    label: int
+    split: str | None
+    defect_type: str | None
+
+
+def read_truth(path: str | Path) -> dict[int, ServedFrame]:
+    """A ``truth_path`` file -> {device timestamp_ns: ServedFrame}, to score a run on the served camera."""
+    out: dict[int, ServedFrame] = {}
+    with open(path) as f:
+        for line in f:
+            if line.strip():
+                rec = ServedFrame(**json.loads(line))
+                out[rec.timestamp_ns] = rec
+    return out
+
+
+def _genicam_xml(base: str, pixel_format: str, code: int) -> str:
+    """Aravis's fake-camera XML with the PixelFormat enumeration reduced to ``pixel_format``: a client asking for
+    another format gets the device's "not offered" answer instead of frames that are not the dataset's."""
+    enum = re.search(r'<Enumeration Name="PixelFormat".*?</Enumeration>', base, re.S)
+    if enum is None or "<EnumEntry" not in enum.group(0):
+        raise CameraError("GigE Vision server: Aravis's fake camera XML has no PixelFormat enumeration")
+    entry = f'<EnumEntry Name="{pixel_format}" NameSpace="Standard"><Value>{code}</Value></EnumEntry>'
+    entries = re.sub(r"\s*<EnumEntry.*?</EnumEntry>", "", enum.group(0), flags=re.S)
+    reduced = entries.replace("<pValue>", entry + "\n\t\t<pValue>", 1)
+    return base[:enum.start()] + reduced + base[enum.end():]
+
+
+class GvCameraServer:
+    """A ``VirtualCamera`` served as a GigE Vision device; see the module docstring.
+
+    dataset, defect_rate, seed, split, cache_mb: as ``VirtualCameraConfig``.
+    interface        name ("lo") or IPv4 address to serve on; loopback only unless ``allow_network``.
+    serial           device serial number (at most 15 characters).
+    truth_path       JSON Lines file that receives one ``ServedFrame`` per frame (appended; line-buffered).
+    trigger_poll_hz  how often the device looks for a software trigger (latency <= 1 / trigger_poll_hz).
+    keep_recent      how many ``ServedFrame`` records ``recent`` holds.
+    """
+
+    def __init__(self, dataset: str, *, interface: str = "lo", defect_rate: float = 0.2, seed: int = 0,
+                 split: str | None = None, cache_mb: float = 512.0, serial: str = "POLARSIM1",
+                 truth_path: str | Path | None = None, allow_network: bool = False,
+                 trigger_poll_hz: float = 200.0, keep_recent: int = 100_000) -> None:
+        if not serial or len(serial) > _SERIAL_MAX or not serial.isascii():
+            raise CameraConfigError(f"GigE Vision server: serial {serial!r}: 1-{_SERIAL_MAX} ASCII characters")
+        if trigger_poll_hz <= 0:
+            raise CameraConfigError(f"GigE Vision server: trigger_poll_hz = {trigger_poll_hz}: must be > 0")
+        self.interface = interface
+        self.allow_network = allow_network
+        self.serial = serial
+        self.truth_path = Path(truth_path) if truth_path else None
+        self.trigger_poll_hz = trigger_poll_hz
+        # The virtual camera only draws parts here: the GigE device paces the frames, so no pacing of its own.
+        self._camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1e9),
+                                     VirtualCameraConfig(dataset, defect_rate, split, seed, cache_mb))
+        self.recent: collections.deque[ServedFrame] = collections.deque(maxlen=keep_recent)
+        self.n_served = 0
+        self.n_defective = 0
+        self.address = ""
+        self.width = self.height = 0
+        self.pixel_format = ""
+        self._code = 0
+        self._gv: int | None = None  # ArvGvFakeCamera *
+        self._callback = _FillPattern(self._fill)  # kept alive as long as the device may call it
+        self._truth: IO[str] | None = None
+        self._lock = threading.Lock()
+        self._warned: set[str] = set()
+
+    # -- life cycle ---------------------------------------------------------------------------------------------
+    def start(self) -> GvCameraServer:
+        """Load the dataset, then bring the device up on the interface. Raises ``CameraConfigError`` (interface,
+        dataset) or ``CameraError`` (the device could not bind its GVCP port)."""
+        if self._gv is not None:
+            return self
+        if not self.allow_network:
+            if not is_loopback_interface(self.interface):
+                raise CameraConfigError(f"GigE Vision server: interface {self.interface!r} is not a loopback "
+                                        "interface; serving a camera on a network needs allow_network "
+                                        "(--allow-network)")
+            if _discovery_guard() is None and not in_private_netns():
+                raise CameraError("GigE Vision server: UDP 255.255.255.255:3956 is held by another process, so "
+                                  "the device would answer GigE Vision discovery from the network; stop that "
+                                  "process or serve inside a private network namespace (unshare -n)")
+        _check_gvcp_port_free(interface_address(self.interface))
+        try:
+            self._camera.open()
+            self._camera.start()
+            self._up()
+        except BaseException:
+            self.close()
+            raise
+        _OPEN.add(self)
+        log.info("GigE Vision server: %s %dx%d %s at %s (serial %s)", self._camera.sim.dataset, self.width,
+                 self.height, self.pixel_format, self.address, self.serial)
+        return self
+
+    def _up(self) -> None:
+        lib = _lib()
+        self.height, self.width = self._camera_frame_shape()
+        self.pixel_format = FORMAT_BY_BIT_DEPTH[self._camera.bit_depth]
+        self._code = int(pixel_formats.lookup(self.pixel_format).code or 0)
+        if self.truth_path is not None:
+            self.truth_path.parent.mkdir(parents=True, exist_ok=True)
+            self._truth = open(self.truth_path, "a", buffering=1)  # a crash leaves only whole lines
+        probe = lib.arv_fake_camera_new(b"probe")
+        try:
+            base = ctypes.string_at(lib.arv_fake_camera_get_genicam_xml(probe, None)).decode()
+        finally:
+            lib.g_object_unref(probe)
+        xml = _genicam_xml(base, self.pixel_format, self._code)
+        fd, xml_path = tempfile.mkstemp(prefix="polar-gv-", suffix=".xml")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(xml)
+            # the device reads its XML once, here, and starts listening at once
+            self._gv = lib.arv_gv_fake_camera_new_full(self.interface.encode(), self.serial.encode(),
+                                                       xml_path.encode())
+        finally:
+            os.unlink(xml_path)
+        if not self._gv or not lib.arv_gv_fake_camera_is_running(self._gv):
+            raise CameraError(f"GigE Vision server: Aravis cannot serve on interface {self.interface!r}")
+        fake = lib.arv_gv_fake_camera_get_fake_camera(self._gv)
+        for reg, value in ((_REG_SENSOR_WIDTH, self.width), (_REG_SENSOR_HEIGHT, self.height),
+                           (_REG_WIDTH, self.width), (_REG_HEIGHT, self.height), (_REG_PIXEL_FORMAT, self._code)):
+            lib.arv_fake_camera_write_register(fake, reg, value)
+        for addr, size, text in ((_GVBS_MANUFACTURER, 32, "Polar-Ano"), (_GVBS_MODEL, 32, "VirtualPolarCamera"),
+                                 (_GVBS_INFO, 48, Path(self._camera.sim.dataset).name)):
+            raw = text.encode()[:size - 1].ljust(size, b"\0")
+            lib.arv_fake_camera_write_memory(fake, addr, size, raw)
+        lib.arv_fake_camera_set_trigger_frequency(fake, self.trigger_poll_hz)
+        lib.arv_fake_camera_set_fill_pattern(fake, self._callback, None)
+        ip = ctypes.c_uint32()
+        lib.arv_fake_camera_read_register(fake, _GVBS_CURRENT_IP, ctypes.byref(ip))
+        self.address = socket.inet_ntoa(struct.pack(">I", ip.value))
+
+    def _camera_frame_shape(self) -> tuple[int, int]:
+        from sim.dataset import open_dataset
+
+        m = open_dataset(self._camera.sim.dataset).manifest
+        return int(m["height"]), int(m["width"])
+
+    def close(self) -> None:
+        """Stop serving (idempotent; never raises). The callback is detached first (a ctypes call: the GIL is
+        released while it waits for a frame in progress), then the device's thread is joined."""
+        _OPEN.discard(self)
+        gv, self._gv = self._gv, None
+        if gv:
+            lib = _lib()
+            lib.arv_fake_camera_set_fill_pattern(lib.arv_gv_fake_camera_get_fake_camera(gv), _FillPattern(), None)
+            lib.g_object_unref(gv)  # joins the device thread, closes its sockets
+        self._camera.close()
+        with self._lock:
+            if self._truth is not None:
+                self._truth.close()
+                self._truth = None
+
+    def __enter__(self) -> GvCameraServer:
+        return self.start()
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    @property
+    def running(self) -> bool:
+        return self._gv is not None
+
+    # -- frames (in the device's thread) ------------------------------------------------------------------------
+    def _fill(self, buffer: int, _data: int, _exposure_us: int, _gain: int, pixel_format: int) -> None:
+        """Copy the next part's mosaic (the requested region of it) into the device's frame buffer and record its
+        ground truth. Exceptions cannot cross into C: they are logged and the frame goes out as it was."""
+        try:
+            self._fill_frame(buffer, pixel_format)
+        except Exception:
+            self._warn_once("fill", "GigE Vision server: cannot fill a frame", exc_info=True)
+
+    def _fill_frame(self, buffer: int, pixel_format: int) -> None:
+        lib = _lib()
+        if pixel_format != self._code:  # the XML offers one format; a raw register write could still change it
+            self._warn_once("format", "GigE Vision server: pixel format 0x%08x requested, serving only %s: frame "
+                            "not filled", pixel_format, self.pixel_format)
+            return
+        w, h = lib.arv_buffer_get_image_width(buffer), lib.arv_buffer_get_image_height(buffer)
+        x, y = lib.arv_buffer_get_image_x(buffer), lib.arv_buffer_get_image_y(buffer)
+        frame = self._camera.grab(timeout_ms=1000)
+        region = frame.raw[y:y + h, x:x + w]
+        if region.shape != (h, w):  # a region past the sensor edge: the rest stays black
+            padded = np.zeros((h, w), frame.raw.dtype)
+            padded[:region.shape[0], :region.shape[1]] = region
+            region = padded
+        region = np.ascontiguousarray(region, dtype=region.dtype.newbyteorder("<"))  # GigE Vision: little-endian
+        ctypes.memmove(lib.arv_buffer_get_data(buffer, None), region.ctypes.data, region.nbytes)
+        gt = frame.ground_truth
+        assert gt is not None and gt.sample_index is not None  # the virtual camera always sets both
+        defect = gt.params.get("defect") if gt.params else None
+        rec = ServedFrame(int(lib.arv_buffer_get_frame_id(buffer)), int(lib.arv_buffer_get_timestamp(buffer)),
+                          gt.sample_index, gt.label, gt.split, defect.get("type") if isinstance(defect, dict) else None)
+        with self._lock:
+            self.recent.append(rec)
+            self.n_served += 1
+            self.n_defective += rec.label
+            if self._truth is not None:
+                self._truth.write(json.dumps(asdict(rec)) + "\n")
+
+    def _warn_once(self, key: str, msg: str, *args: object, exc_info: bool = False) -> None:
+        if key not in self._warned:
+            self._warned.add(key)
+            log.error(msg, *args, exc_info=exc_info)
+
+
+@atexit.register
+def _close_all() -> None:
+    # the device thread must not call into an interpreter that is shutting down
+    for server in list(_OPEN):
+        server.close()

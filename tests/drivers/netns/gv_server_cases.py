@@ -1,0 +1,235 @@
+"""The virtual camera served over GigE Vision (``drivers.gv_server``), received by ``AravisCamera`` on loopback.
+
+Not collected by the default run: ``tests/drivers/test_gv_server.py`` runs this file with pytest inside a private
+network namespace (loopback only), as the network rule requires. Run it alone the same way:
+    unshare -n sh -c 'ip link set lo up &&
+        exec .venv/bin/python -m pytest -o addopts= tests/drivers/netns/gv_server_cases.py'
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import sqlite3
+import struct
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from drivers.aravis_camera import AravisCamera, list_cameras
+from drivers.camera import CameraConfig
+from drivers.errors import CameraConfigError, CameraError, CameraTimeout
+from drivers.gv_server import GVCP_PORT, GvCameraServer, read_truth
+from drivers.netns import in_private_netns
+from sim.dataset import DatasetSpec, Sample, init_dataset, open_dataset, split_of, write_sample
+from sim.sensor import SensorConfig
+
+pytestmark = pytest.mark.skipif(not in_private_netns(), reason="GigE Vision only inside a private network namespace")
+
+W, H = 48, 32
+DEFECTIVE = (1, 3, 5)
+
+
+def make_dataset(root: Path, n: int = 8, bit_depth: int = 8) -> Path:
+    """Tiny mosaics, distinct in every pixel; the sample index is encoded in pixel (0, 0) (and, scaled, in the
+    rest), so a frame shows which part it is and any reordering of bytes shows too."""
+    init_dataset(root, DatasetSpec(width=W, height=H, sensor=SensorConfig(bit_depth=bit_depth)), n)
+    y, x = np.mgrid[:H, :W]
+    for i in range(n):
+        if bit_depth == 8:
+            raw = ((x + 3 * y + 17 * i) % 256).astype(np.uint8)
+        else:  # codes over 8 bits, up to full scale: byte order and bit depth both matter
+            raw = ((x * 61 + y * 113 + 997 * i) % 2**bit_depth).astype(np.uint16)
+        raw[0, 0] = i
+        mask = np.zeros((H, W), bool)
+        if i in DEFECTIVE:
+            mask[4:8, 4:8] = True
+        label = int(mask.any())
+        write_sample(root, Sample(i, raw, {"index": i, "split": split_of(i), "label": label,
+                                           "defect": {"type": "dent"} if label else None}, label, split_of(i),
+                                  defect_mask=mask, object_mask=np.ones((H, W), bool)))
+    return root
+
+
+@pytest.fixture(scope="module")
+def ds8(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return make_dataset(tmp_path_factory.mktemp("ds8"))
+
+
+@pytest.fixture
+def server(ds8: Path, tmp_path: Path) -> Iterator[GvCameraServer]:
+    with GvCameraServer(str(ds8), defect_rate=0.5, truth_path=tmp_path / "truth.jsonl") as s:
+        yield s
+
+
+def cfg(**kw: object) -> CameraConfig:
+    base = dict(device="127.0.0.1", pixel_format="Mono8", frame_rate_hz=200.0, trigger="free_run",
+                timeout_ms=1000, reconnect=False, packet_size=1400)
+    base.update(kw)
+    return CameraConfig(**base)  # type: ignore[arg-type]
+
+
+def mosaics(root: Path) -> dict[int, np.ndarray]:
+    ds = open_dataset(root)
+    return {i: ds.load(i, ground_truth=False).raw for i in ds.indices()}
+
+
+def test_frames_are_the_datasets_mosaics_byte_for_byte(server: GvCameraServer, ds8: Path, tmp_path: Path) -> None:
+    assert (server.address, server.width, server.height, server.pixel_format) == ("127.0.0.1", W, H, "Mono8")
+    with AravisCamera(cfg()) as cam:
+        cam.start()
+        frames = [cam.grab() for _ in range(24)]
+        cam.stop()
+        stats = cam.statistics()
+    server.close()  # flushes the truth file; frames sent after the last grab are recorded too
+    truth = read_truth(tmp_path / "truth.jsonl")
+    assert {r.timestamp_ns: r for r in server.recent} == truth
+    raws = mosaics(ds8)
+    for f in frames:
+        rec = truth[f.timestamp_ns]  # the device timestamp is the join key
+        assert f.raw.shape == (H, W) and f.raw.dtype == np.uint8 and f.bit_depth == 8 and f.pixel_format == "Mono8"
+        assert f.raw.tobytes() == raws[rec.sample_index].tobytes()
+        assert f.device_frame_id == rec.frame_id
+        assert rec.label == (rec.sample_index in DEFECTIVE) and rec.split == split_of(rec.sample_index)
+        assert rec.defect_type == ("dent" if rec.label else None)
+    assert {truth[f.timestamp_ns].label for f in frames} == {0, 1}  # defect_rate 0.5 draws both kinds
+    assert (stats.completed, stats.failed, stats.dropped) == (24, 0, 0)
+
+
+def test_12bit_set_is_served_as_mono12_and_other_formats_are_refused(tmp_path: Path) -> None:
+    root = make_dataset(tmp_path / "ds12", bit_depth=12)
+    raws = mosaics(root)
+    with GvCameraServer(str(root), defect_rate=0.5) as server:
+        assert server.pixel_format == "Mono12"
+        with pytest.raises(CameraConfigError, match=r"pixel_format 'Mono8' not offered; the camera has Mono12$"):
+            AravisCamera(cfg()).open()
+        with AravisCamera(cfg(pixel_format="Mono12")) as cam:
+            cam.start()
+            frames = [cam.grab() for _ in range(6)]
+        truth = {r.timestamp_ns: r for r in server.recent}
+    for f in frames:
+        assert f.raw.dtype == np.uint16 and f.bit_depth == 12 and f.raw.max() > 255
+        np.testing.assert_array_equal(f.raw, raws[truth[f.timestamp_ns].sample_index])
+
+
+def test_software_trigger_one_frame_per_trigger(server: GvCameraServer) -> None:
+    with AravisCamera(cfg(trigger="software")) as cam:
+        cam.start()
+        with pytest.raises(CameraTimeout):
+            cam.grab(timeout_ms=200)
+        got = []
+        for _ in range(3):
+            t = time.monotonic()
+            cam.trigger()
+            got.append(cam.grab())
+            assert time.monotonic() - t < 0.5
+        with pytest.raises(CameraTimeout):
+            cam.grab(timeout_ms=200)
+    assert server.n_served == 3
+    assert [f.timestamp_ns for f in got] == [r.timestamp_ns for r in server.recent]
+
+
+def test_region_of_interest_is_cut_from_the_mosaic(server: GvCameraServer, ds8: Path) -> None:
+    with AravisCamera(cfg(width=16, height=8, offset_x=4, offset_y=2)) as cam:
+        cam.start()
+        f = cam.grab()
+    rec = {r.timestamp_ns: r for r in server.recent}[f.timestamp_ns]
+    np.testing.assert_array_equal(f.raw, mosaics(ds8)[rec.sample_index][2:10, 4:20])
+
+
+def test_only_loopback_unless_allowed(ds8: Path) -> None:
+    with pytest.raises(CameraConfigError, match=r"'10\.1\.2\.3' is not a loopback interface.*--allow-network"):
+        GvCameraServer(str(ds8), interface="10.1.2.3").start()
+    with pytest.raises(CameraConfigError, match=r"no network interface 'eth7' \(have lo"):
+        GvCameraServer(str(ds8), interface="eth7").start()
+    # a second interface inside the namespace (a bridge: no traffic leaves the namespace)
+    subprocess.run("ip link add pa-br0 type bridge && ip addr add 10.200.0.1/24 brd + dev pa-br0 && "
+                   "ip link set pa-br0 up", shell=True, check=True)
+    try:
+        with pytest.raises(CameraConfigError, match="'pa-br0' is not a loopback interface"):
+            GvCameraServer(str(ds8), interface="pa-br0").start()
+        with GvCameraServer(str(ds8), interface="pa-br0", allow_network=True) as server:
+            assert server.address == "10.200.0.1"
+            # control only: as root, Aravis receives the stream on a packet socket bound to the interface, which
+            # does not see this host's own traffic (it goes through lo)
+            (info,) = list_cameras(addresses=("10.200.0.1",))
+            assert (info.vendor, info.model, info.serial) == ("Polar-Ano", "VirtualPolarCamera", "POLARSIM1")
+        # on loopback the device does not answer GigE Vision discovery broadcasts from another interface
+        with GvCameraServer(str(ds8)), socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_BROADCAST, 1)
+            s.bind(("10.200.0.1", 0))
+            s.settimeout(0.3)
+            discovery = struct.pack(">BBHHH", 0x42, 0x11, 0x0002, 0, 1)  # GVCP DISCOVERY_CMD, ack required
+            s.sendto(discovery, ("255.255.255.255", GVCP_PORT))
+            with pytest.raises(TimeoutError):
+                s.recvfrom(1024)
+            s.sendto(discovery, ("127.0.0.1", GVCP_PORT))  # unicast to its address: answered
+            assert len(s.recvfrom(1024)[0]) > 8
+    finally:
+        subprocess.run(["ip", "link", "del", "pa-br0"], check=False)
+
+
+def test_a_second_server_on_the_same_address_is_a_clear_error(server: GvCameraServer, ds8: Path) -> None:
+    with pytest.raises(CameraError, match=r"cannot listen on 127\.0\.0\.1:3956: taken by another GigE Vision"):
+        GvCameraServer(str(ds8)).start()
+
+
+@pytest.mark.slow  # ~8 s on 2 busy cores: torch, a model warm-up and a second process
+def test_station_run_inspects_the_served_camera_end_to_end(tmp_path: Path) -> None:
+    """``station serve-camera`` in a subprocess, ``station run --camera aravis`` here; the log joins the truth."""
+    pytest.importorskip("torch")
+    from station.cli import main
+    from tests.station.test_run import make_dataset as make_station_dataset
+    from tests.station.test_run import make_model
+
+    ds = make_station_dataset(tmp_path / "ds")
+    model = make_model(tmp_path / "model" / "best")
+    truth = tmp_path / "truth.jsonl"
+    server = subprocess.Popen([sys.executable, "-m", "station.cli", "serve-camera", "--dataset", str(ds),
+                               "--defect-rate", "0.5", "--truth", str(truth)],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              cwd=Path(__file__).parents[3], env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    try:
+        assert server.stdout is not None
+        banner = ""
+        while "station.toml:" not in banner:  # up once it has printed the config line
+            line = server.stdout.readline()
+            assert line, f"serve-camera ended: {banner}"
+            banner += line
+        assert 'device = "127.0.0.1", pixel_format = "Mono8"' in banner
+        cfg_path = tmp_path / "station.toml"
+        cfg_path.write_text(f"""
+[camera]
+kind = "aravis"
+device = "127.0.0.1"
+frame_rate_hz = 50.0
+reconnect = false
+[acquisition]
+cycle_time_ms = 60000.0
+backpressure = "block"
+[model]
+path = "{model}"
+[log]
+path = "{tmp_path / 'log.sqlite'}"
+image_dir = "{tmp_path / 'rejects'}"
+""")
+        assert main(["run", "--camera", "aravis", "--config", str(cfg_path), "--frames", "6"]) == 0
+    finally:
+        server.send_signal(signal.SIGTERM)
+        out, _ = server.communicate(timeout=20)
+    assert server.returncode == 0, out
+    assert "served" in out and "frames" in out
+    rows = sqlite3.connect(tmp_path / "log.sqlite").execute(
+        "SELECT decision, camera_timestamp_ns FROM inspections ORDER BY id").fetchall()
+    served = read_truth(truth)
+    assert len(rows) == 6 and all(d in ("pass", "reject") for d, _ in rows)
+    assert all(ts in served for _, ts in rows)  # every inspected part is scored against its ground truth
+    assert len(served) == len(truth.read_text().splitlines()) >= 6
+    assert all(json.loads(line)["sample_index"] in range(10) for line in truth.read_text().splitlines())
