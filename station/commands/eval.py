@@ -23,6 +23,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--split", default="test", choices=("train", "val", "test"))
     p.add_argument("--limit", type=int, default=None, help="at most N samples (smoke runs)")
     p.add_argument("--no-synthetic", action="store_true", help="skip the synthetic-anomaly evaluation")
+    p.add_argument("--ablation", action="store_true",
+                   help="the paper's ablation (R, R+AoLP, R+AoLP+DoLP, all) by averaging an ensemble's members")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
     p.set_defaults(func=run)
@@ -135,6 +137,10 @@ def run(args: argparse.Namespace) -> int:
 
     ck = load_checkpoint(args.model)
     cfg, thr = ck.detector.config, ck.threshold
+    if args.ablation and (cfg.fusion != "ensemble" or "intensity" not in cfg.priors):
+        raise UserError(f"{args.model}: --ablation averages the members of a per-prior ensemble that includes "
+                        f"intensity; this model is {cfg.fusion} over {list(cfg.priors)} (for a fused model, train "
+                        f"one per prior set and evaluate each)")
     out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
     out.mkdir(parents=True, exist_ok=True)
     sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit, roi=cfg.roi)
@@ -157,7 +163,7 @@ def run(args: argparse.Namespace) -> int:
     if not rows[0]["anomalous"]:
         raise UserError(f"{args.data}: split {args.split!r} has no rendered defects; AUROC is undefined")
     files = [] if args.no_plots else _plots(out, roc, data, ev.maps, ev.scores, thr)
-    ablation = ablation_rows(ev, data)
+    ablation = ablation_rows(ev, data) if args.ablation else []
     if ablation and not args.no_plots:
         files.append(_ablation_plot(out, ablation))
     manifest_ok = ck.meta.get("data_manifest_sha256")
