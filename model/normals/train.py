@@ -22,6 +22,7 @@ import numpy as np
 import torch
 
 from model.draem.preprocess import crop_resize, roi_box
+from model.draem.train import resolve_device
 
 from .errors import NormalsError
 from .net import NormalNetConfig, NormalUNet, stack_inputs
@@ -53,15 +54,6 @@ class NormalTrainConfig:
             raise NormalsError(f"normal net training: steps must be >= 1 and max_minutes > 0 ({self})")
         if self.batch_size < 1 or self.lr <= 0:
             raise NormalsError(f"normal net training: batch_size >= 1 and lr > 0 required ({self})")
-
-
-def resolve_device(device: str) -> torch.device:
-    if device == "auto":
-        return torch.device("cuda" if torch.cuda.is_available() else "cpu")
-    try:
-        return torch.device(device)
-    except RuntimeError as exc:
-        raise NormalsError(f"unknown device {device!r} ({exc})") from None
 
 
 def prepare_sample(maps: Mapping[str, np.ndarray], object_mask: np.ndarray, size_px: int,
