@@ -118,29 +118,33 @@ class ThresholdChoice:
     detected_fraction: float
 
 
-def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: float = 0.01) -> ThresholdChoice:
+def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: float = 0.05) -> ThresholdChoice:
     """The station's decision threshold from validation image scores.
 
-    With anomalies in validation: the F1-max threshold. Without (all good parts): the smallest threshold that
-    flags at most ``max_good_flagged`` of the good parts (never the minimum score, which would reject every
-    part: the trap of anomalib issue 2433). Raises ValueError on empty validation or non-finite scores."""
+    Never flags more than ``max_good_flagged`` of the good validation parts (a line cannot live with a weak
+    model's F1-max threshold that rejects most good parts, nor with the minimum score when validation has no
+    anomalies, the trap of anomalib issue 2433). With anomalies in validation: the F1-max threshold, raised to that
+    bound when it flags more. Raises ValueError on empty validation, no good parts, or non-finite scores."""
     y = np.asarray(labels).reshape(-1).astype(bool)
     s = np.asarray(scores, dtype=np.float64).reshape(-1)
     if s.size == 0 or y.size != s.size:
         raise ValueError(f"choose_threshold needs matching non-empty labels and scores, got {y.size}, {s.size}")
     if not np.all(np.isfinite(s)):
         raise ValueError("choose_threshold: validation scores contain NaN or Inf")
+    if not (~y).any():
+        raise ValueError("choose_threshold: validation has no good parts; cannot bound false rejects")
     good = np.sort(s[~y])
-    if y.any() and (~y).any():
+    allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
+    # smallest t with #(good >= t) <= allowed: just above the (allowed+1)-th largest good score
+    t_cap = float(np.nextafter(good[good.size - allowed - 1], np.inf))
+    bound = f"at most {max_good_flagged:.2%} of good parts flagged"
+    if y.any():
         _, t = f1_max(y, s)
         rule = "f1_max on validation with anomalies"
-    elif (~y).any():
-        allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
-        # smallest t with #(good >= t) <= allowed: just above the (allowed+1)-th largest good score
-        t = float(np.nextafter(good[good.size - allowed - 1], np.inf))
-        rule = f"no anomalies in validation: flag at most {max_good_flagged:.2%} of good parts"
+        if t < t_cap:
+            t, rule = t_cap, f"f1_max on validation raised to {bound}"
     else:
-        raise ValueError("choose_threshold: validation has no good parts; cannot bound false rejects")
+        t, rule = t_cap, f"no anomalies in validation: {bound}"
     flagged = float((s[~y] >= t).mean()) if (~y).any() else math.nan
     detected = float((s[y] >= t).mean()) if y.any() else math.nan
     return ThresholdChoice(float(t), rule, flagged, detected)

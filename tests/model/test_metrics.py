@@ -59,6 +59,15 @@ def test_f1_max_and_threshold_with_anomalies():
     assert ch.flagged_good_fraction == 0.0 and ch.detected_fraction == 1.0
 
 
+def test_weak_models_f1_threshold_is_raised_to_the_false_reject_bound():
+    rng = np.random.default_rng(0)
+    y = np.r_[np.zeros(100), np.ones(100)].astype(int)
+    s = rng.random(200)  # a chance-level scorer: F1-max flags most parts
+    assert (s[y == 0] >= M.f1_max(y, s)[1]).mean() > 0.5
+    ch = M.choose_threshold(y, s, max_good_flagged=0.05)
+    assert ch.flagged_good_fraction <= 0.05 and "raised" in ch.rule
+
+
 def test_threshold_on_all_good_validation_never_flags_every_part():
     s = np.linspace(0.0, 1.0, 200)
     ch = M.choose_threshold(np.zeros(200), s, max_good_flagged=0.01)
