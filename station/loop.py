@@ -187,10 +187,11 @@ class Station:
         inspection = None
         if part.error is None and part.frame is not None:
             inspection = self.inspector.inspect(part.frame)
-            elapsed_ms = 1e3 * (time.perf_counter() - part.t_trigger)
-            decision = decide(inspection.score, self.threshold, elapsed_ms=elapsed_ms,
+            t = time.perf_counter()
+            decision = decide(inspection.score, self.threshold, elapsed_ms=1e3 * (t - part.t_trigger),
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
                               invalid_fraction=inspection.invalid_fraction)
+            inspection.timings_ms["decision"] = 1e3 * (time.perf_counter() - t)
         else:
             decision = decide(None, self.threshold, error=part.error or "no frame")
         self._finish(part, inspection, decision)
@@ -215,7 +216,8 @@ class Station:
             score=inspection.score if inspection else None, threshold=self.threshold,
             model_id=self.inspector.detector.model_id, reason=decision.reason, grab_ms=part.grab_ms,
             demosaic_ms=timings.get("demosaic"), priors_ms=timings.get("priors"), model_ms=timings.get("model"),
-            decision_ms=None, io_ms=1e3 * (t_io - t_decided), total_ms=1e3 * (t_decided - part.t_trigger),
+            decision_ms=timings.get("decision"), io_ms=1e3 * (t_io - t_decided),
+            total_ms=1e3 * (t_decided - part.t_trigger),
             io_delivered=delivered, ground_truth_label=truth, image_path=image_path)
         self.log.append(record)
         self.stats.add(record.decision, record.total_ms, truth)

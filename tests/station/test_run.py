@@ -78,13 +78,13 @@ def test_sim_run_logs_every_part_and_scores_against_ground_truth(setup, capsys) 
                  "--summary-json", str(tmp / "s.json")]) == 0
     rows = sqlite3.connect(tmp / "log.sqlite").execute(
         "SELECT decision, part_id, score, threshold, model_id, ground_truth_label, io_delivered, image_path,"
-        " demosaic_ms, model_ms FROM inspections ORDER BY id").fetchall()
+        " demosaic_ms, model_ms, decision_ms, io_ms FROM inspections ORDER BY id").fetchall()
     assert len(rows) == 8
     assert [r[1] for r in rows] == [f"P{i}" for i in range(1, 9)]  # the simulated PLC's part ids, in order
-    for decision, _, score, thr, model_id, truth, delivered, image, demosaic_ms, model_ms in rows:
+    for decision, _, score, thr, model_id, truth, delivered, image, demosaic_ms, model_ms, decision_ms, io_ms in rows:
         assert decision in ("pass", "reject") and 0.0 <= score <= 1.0 and thr == 0.5
         assert model_id.startswith("best-tiny-fused-") and truth in (0, 1) and delivered == 1
-        assert demosaic_ms > 0 and model_ms > 0
+        assert demosaic_ms > 0 and model_ms > 0 and decision_ms >= 0 and io_ms >= 0  # every stage timed
         assert (decision == "reject") == (score > 0.5)
         if decision == "reject":
             with np.load(image) as f:  # the rejected part's raw mosaic and frame-sized heatmap are kept
