@@ -13,8 +13,8 @@ import sys
 from station import __version__
 from station.errors import USER_ERRORS
 
-COMMANDS = ["run", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train", "eval",
-            "normals"]
+COMMANDS = ["run", "view", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train",
+            "eval", "normals"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 
 

@@ -131,10 +131,19 @@ class InspectionLog:
             sql, args = sql + " WHERE decision = ?", (decision,)
         return int(self._db.execute(sql, args).fetchone()[0])
 
+    def last_id(self) -> int:
+        """The newest row's ``id`` (0 for an empty log)."""
+        return int(self._db.execute("SELECT COALESCE(MAX(id), 0) FROM inspections").fetchone()[0])
+
     def rows(self, since_unix_s: float | None = None, until_unix_s: float | None = None,
-             decision: str | None = None, batch_size: int = 1000) -> Iterator[dict[str, Any]]:
-        """Records as dicts (``id`` first, then ``COLUMNS``) in time order, streamed in batches."""
+             decision: str | None = None, batch_size: int = 1000, after_id: int | None = None
+             ) -> Iterator[dict[str, Any]]:
+        """Records as dicts (``id`` first, then ``COLUMNS``) in time order, streamed in batches; ``after_id``:
+        only rows written after that row (for following a live log)."""
         where, args = [], []
+        if after_id is not None:
+            where.append("id > ?")
+            args.append(after_id)
         if since_unix_s is not None:
             where.append("time_unix_s >= ?")
             args.append(since_unix_s)

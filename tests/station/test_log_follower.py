@@ -1,0 +1,61 @@
+"""``station view``: a viewer attached to a running station through its SQLite log (another connection)."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from model.priors.mosaic import stokes_to_mosaic
+from model.priors.testing import detailed_stokes
+from station.cli import main
+from station.inspection_log import InspectionLog, InspectionRecord
+from station.log_follower import LogFollower
+from station.reject_store import RejectStore
+from station.viewer import ViewerFeed
+
+
+def record(decision: str, part: str, **kw: object) -> InspectionRecord:
+    return InspectionRecord(decision=decision, time_unix_s=time.time(), part_id=part, total_ms=50.0, **kw)
+
+
+def test_follower_shows_only_new_parts_with_the_saved_images_of_rejects(tmp_path: Path) -> None:
+    station_log = InspectionLog(tmp_path / "log.sqlite")  # the station's own writer stays open throughout
+    station_log.append(record("pass", "old"))
+    feed = ViewerFeed(maxsize=8)
+    follower = LogFollower(tmp_path / "log.sqlite", feed)
+    assert follower.poll() == 0  # attached: history is not replayed
+    s0, s1, s2 = detailed_stokes(48, 64)
+    raw = (np.clip(stokes_to_mosaic(s0, s1, s2), 0, 1) * 255).astype(np.uint8)
+    heat = np.zeros((48, 64), np.float32)
+    heat[10:20, 10:20] = 0.9
+    image = RejectStore(tmp_path / "rejects").save("P2", 2, raw, heat)
+    station_log.append([record("pass", "P1", score=0.1, threshold=0.5),
+                        record("reject", "P2", score=0.9, threshold=0.5, reason="score", image_path=image),
+                        record("reject", "P3", score=0.8, threshold=0.5, image_path=str(tmp_path / "gone.npz"))])
+    assert follower.poll() == 3 and follower.poll() == 0
+    gone = feed.latest()  # the GUI shows the newest
+    assert gone.part_id == "P3" and "unreadable" in gone.reason  # retention deleted it: said, not a crash
+    follower2 = LogFollower(tmp_path / "log.sqlite", feed := ViewerFeed(maxsize=8), from_start=True)
+    follower2.poll()
+    shown = list(feed._q.queue)  # every frame put, oldest first (maxsize 8 > 4 rows)
+    assert [f.part_id for f in shown][-3:] == ["P1", "P2", "P3"]
+    p2 = shown[-2]
+    assert p2.decision == "reject" and p2.intensity.shape == (48, 64) and p2.dolp is not None
+    np.testing.assert_allclose(p2.heatmap, heat, atol=1e-3)  # stored as float16
+    assert shown[-3].reason == "passed parts keep no image" and shown[-3].heatmap is None
+    assert p2.stats["parts"] == 3 and p2.stats["rejects"] == 1 and follower2.stats()["rejects"] == 2
+    follower.close()
+    follower2.close()
+    station_log.close()
+
+
+def test_view_command_runs_offscreen_and_names_a_missing_log(tmp_path: Path, monkeypatch, capsys) -> None:
+    pytest.importorskip("pyqtgraph")
+    monkeypatch.setenv("QT_QPA_PLATFORM", "offscreen")
+    InspectionLog(tmp_path / "log.sqlite").close()
+    assert main(["view", "--db", str(tmp_path / "log.sqlite"), "--seconds", "0.5"]) == 0
+    assert main(["view", "--db", str(tmp_path / "nope.sqlite"), "--seconds", "0.5"]) == 2
+    assert "nope.sqlite" in capsys.readouterr().err
