@@ -40,9 +40,8 @@ class DraemDetector:
         from model.draem.checkpoint import load_checkpoint, paths
         from model.draem.train import resolve_device
 
-        if precision not in ("fp32", "bf16"):
-            raise ModelLoadError(f"[model] precision = {precision!r}: station run supports fp32 and bf16 (ONNX "
-                                 f"export exists only in station bench model so far)")
+        if precision not in ("fp32", "bf16", "onnx"):
+            raise ModelLoadError(f"[model] precision = {precision!r}: choose fp32, bf16 or onnx")
         pt, js = paths(path)
         if not js.is_file():
             raise ModelLoadError(f"{js}: model not found ([model] path = {str(path)!r}); train one with "
@@ -61,7 +60,15 @@ class DraemDetector:
         if chosen is None:
             raise ModelLoadError(f"{js}: the model has no threshold; set [decision] threshold in station.toml")
         self.net = ck.detector.to(self.device)
-        if self.device.type == "cpu":
+        if precision == "onnx":  # ONNX Runtime on CPU, checked against torch at load
+            import tempfile
+
+            from model.draem.onnx_export import OnnxDetector
+
+            self.device = torch.device("cpu")
+            with tempfile.TemporaryDirectory() as tmp:
+                self.net = OnnxDetector.from_detector(ck.detector.cpu(), tmp, torch.get_num_threads())
+        elif self.device.type == "cpu":
             self.net = self.net.to(memory_format=torch.channels_last)
         self.config = cfg
         self.threshold = float(chosen)
@@ -85,7 +92,7 @@ class DraemDetector:
         box = roi_box(self.config.roi, x.shape[1:])
         xt, _ = crop_resize(x, box, self.config.input_size_px, self.config.priors)
         xt = xt.unsqueeze(0).to(self.device)
-        if self.device.type == "cpu":
+        if self.device.type == "cpu" and self.precision != "onnx":
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
             out = self.net.predict(xt)

@@ -93,3 +93,15 @@ def test_bf16_decides_like_fp32_within_the_bound() -> None:
     assert max(scores) - min(scores) > 10 * BF16_SCORE_BOUND  # the frames really do score differently
     print(f"scores {min(scores):.3f}..{max(scores):.3f}; bf16 vs fp32 max |difference| {max(diffs):.4f}")
     assert max(diffs) <= BF16_SCORE_BOUND, diffs
+
+
+def test_onnx_runtime_scores_like_torch_on_the_shipped_model() -> None:
+    pytest.importorskip("onnxruntime")
+    shipped = Path(__file__).parents[2] / "model" / "weights" / "default"
+    torch_path = Inspector(DraemDetector(shipped, "cpu", "fp32"), IMX250MZR)
+    onnx_path = Inspector(DraemDetector(shipped, "cpu", "onnx"), IMX250MZR)
+    for seed, kind in enumerate(KINDS):
+        frame = Frame(hostile_frame(kind, 8, seed), "Mono8", 8, seed + 1, 0, time.time_ns())
+        a, b = torch_path.inspect(frame), onnx_path.inspect(frame)
+        assert a.error is None and b.error is None
+        assert abs(a.score - b.score) <= 1e-4 and float(np.abs(a.heatmap - b.heatmap).max()) <= 1e-3
