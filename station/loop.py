@@ -228,6 +228,11 @@ class Station:
                                       inspection.heatmap, decision.reason, self.stats.summary()))
 
     # -- control -------------------------------------------------------------------------------------------
+    @property
+    def grabbed(self) -> int:
+        """Parts taken from the camera so far (each ends in one log row; frames lost in transport add theirs)."""
+        return self._grabbed
+
     def run(self, max_parts: int | None = None, progress_every_s: float = 5.0) -> LiveStats:
         """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; drain and return."""
         acq = threading.Thread(target=self._acquire, args=(max_parts,), name="acquisition", daemon=True)

@@ -73,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
                   f"p99 {samples[-1]['p99_ms']:.0f} ms", end="", flush=True)
         print()
         rows = log.count()
-        grabbed = station._grabbed
+        grabbed = station.grabbed
         lost = camera.statistics().dropped  # frame-id gaps: each one a not-inspected row of its own
         counts = dict(station.stats.counts)
     q = max(1, len(samples) // 4)
