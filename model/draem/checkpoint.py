@@ -64,40 +64,71 @@ def paths(path: str | Path) -> tuple[Path, Path]:
     return stem.with_name(stem.name + ".pt"), stem.with_name(stem.name + ".json")
 
 
-def save_checkpoint(path: str | Path, detector: Detector, threshold: float | None = None, threshold_rule: str = "",
-                    data_manifest_sha256: str | None = None, metrics: dict[str, Any] | None = None,
-                    train: dict[str, Any] | None = None) -> tuple[Path, Path]:
-    """Write ``<path>.pt`` (state_dict) and ``<path>.json`` atomically (temporary name, then rename)."""
+def write_checkpoint_files(path: str | Path, module: torch.nn.Module, meta: dict[str, Any]) -> tuple[Path, Path]:
+    """Write ``<path>.pt`` (the module's state_dict, on CPU) and ``<path>.json`` (``meta`` plus ``weights_file`` and
+    ``weights_sha256``), each under a temporary name then renamed: a crash never leaves a half file under the
+    final name. Shared by every checkpoint format of the project."""
     pt, js = paths(path)
     pt.parent.mkdir(parents=True, exist_ok=True)
-    state = {k: v.detach().cpu().contiguous() for k, v in detector.state_dict().items()}
+    state = {k: v.detach().cpu().contiguous() for k, v in module.state_dict().items()}
     tmp = pt.with_name(pt.name + ".tmp")
     torch.save(state, tmp)
     tmp.replace(pt)
-    n = detector.normalizer
-    meta = {
-        "format": FORMAT, "version": SIDECAR_VERSION, "convention_version": CONVENTION_VERSION,
-        "code_version": code_version(), "model": detector.config.to_dict(),
-        "normalization": {"mean": list(n.mean), "std": list(n.std)},
-        "threshold": threshold, "threshold_rule": threshold_rule, "data_manifest_sha256": data_manifest_sha256,
-        "weights_file": pt.name, "weights_sha256": sha256_file(pt),
-        "created": time.strftime("%Y-%m-%dT%H:%M:%S"), "metrics": metrics or {}, "train": train or {},
-    }
+    meta = {**meta, "weights_file": pt.name, "weights_sha256": sha256_file(pt)}
     tmp = js.with_name(js.name + ".tmp")
     tmp.write_text(json.dumps(meta, indent=1, allow_nan=True))
     tmp.replace(js)
     return pt, js
 
 
+def read_json_sidecar(js: Path, error: type[CheckpointError] = CheckpointError, what: str = "checkpoint"
+                      ) -> dict[str, Any]:
+    """The parsed sidecar ``js`` of a ``what`` checkpoint; ``error`` naming it when missing or unreadable."""
+    if not js.is_file():
+        raise error(f"{js}: {what} sidecar missing")
+    try:
+        return json.loads(js.read_text())
+    except (OSError, json.JSONDecodeError) as exc:
+        raise error(f"{js}: unreadable sidecar ({exc})") from None
+
+
+def load_weights(js: Path, meta: dict[str, Any], map_location: str | torch.device = "cpu", verify_hash: bool = True,
+                 error: type[CheckpointError] = CheckpointError) -> dict[str, torch.Tensor]:
+    """The state_dict named by sidecar ``js`` (``meta["weights_file"]``), loaded with ``weights_only=True`` after
+    checking its sha256; ``error`` naming the file when missing, replaced, corrupt or not a state_dict."""
+    pt = js.with_name(str(meta.get("weights_file") or ""))
+    if not meta.get("weights_file") or not pt.is_file():
+        raise error(f"{pt}: weights file missing (named in {js})")
+    if verify_hash and meta.get("weights_sha256") and sha256_file(pt) != meta["weights_sha256"]:
+        raise error(f"{pt}: weights do not match the sha256 in {js} (file replaced or corrupt)")
+    try:
+        state = torch.load(pt, map_location=map_location, weights_only=True)
+    except Exception as exc:  # torch raises several types for corrupt or pickled files
+        raise error(f"{pt}: cannot load weights safely ({type(exc).__name__}: {exc})") from None
+    if not isinstance(state, dict):
+        raise error(f"{pt}: not a state_dict")
+    return state
+
+
+def save_checkpoint(path: str | Path, detector: Detector, threshold: float | None = None, threshold_rule: str = "",
+                    data_manifest_sha256: str | None = None, metrics: dict[str, Any] | None = None,
+                    train: dict[str, Any] | None = None) -> tuple[Path, Path]:
+    """Write ``<path>.pt`` (state_dict) and ``<path>.json`` atomically (``write_checkpoint_files``)."""
+    n = detector.normalizer
+    meta = {
+        "format": FORMAT, "version": SIDECAR_VERSION, "convention_version": CONVENTION_VERSION,
+        "code_version": code_version(), "model": detector.config.to_dict(),
+        "normalization": {"mean": list(n.mean), "std": list(n.std)},
+        "threshold": threshold, "threshold_rule": threshold_rule, "data_manifest_sha256": data_manifest_sha256,
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S"), "metrics": metrics or {}, "train": train or {},
+    }
+    return write_checkpoint_files(path, detector, meta)
+
+
 def read_sidecar(path: str | Path) -> dict[str, Any]:
     """The sidecar of checkpoint ``path``, checked for format, version and convention version."""
     _, js = paths(path)
-    if not js.is_file():
-        raise CheckpointError(f"{js}: checkpoint sidecar missing")
-    try:
-        meta = json.loads(js.read_text())
-    except (OSError, json.JSONDecodeError) as exc:
-        raise CheckpointError(f"{js}: unreadable sidecar ({exc})") from None
+    meta = read_json_sidecar(js)
     if meta.get("format") != FORMAT:
         raise CheckpointError(f"{js}: not a {FORMAT} sidecar (format {meta.get('format')!r})")
     if meta.get("version") != SIDECAR_VERSION:
@@ -120,10 +151,7 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
     meta = read_sidecar(path)
     _, js = paths(path)
     pt = js.with_name(meta["weights_file"])
-    if not pt.is_file():
-        raise CheckpointError(f"{pt}: weights file missing (named in {js})")
-    if verify_hash and meta.get("weights_sha256") and sha256_file(pt) != meta["weights_sha256"]:
-        raise CheckpointError(f"{pt}: weights do not match the sha256 in {js} (file replaced or corrupt)")
+    state = load_weights(js, meta, map_location, verify_hash)
     try:
         config = ModelConfig.from_dict(meta["model"])
         norm = Normalizer(tuple(meta["normalization"]["mean"]), tuple(meta["normalization"]["std"]))
@@ -132,12 +160,6 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
         raise CheckpointError(f"{js}: invalid model description ({exc})") from None
     if expect_priors is not None and tuple(expect_priors) != config.priors:
         raise CheckpointError(f"{js}: model uses priors {list(config.priors)}, expected {list(expect_priors)}")
-    try:
-        state = torch.load(pt, map_location=map_location, weights_only=True)
-    except Exception as exc:  # torch raises several types for corrupt or pickled files
-        raise CheckpointError(f"{pt}: cannot load weights safely ({type(exc).__name__}: {exc})") from None
-    if not isinstance(state, dict):
-        raise CheckpointError(f"{pt}: not a state_dict")
     missing = sorted(set(detector.state_dict()) - set(state))
     unexpected = sorted(set(state) - set(detector.state_dict()))
     if missing or unexpected:

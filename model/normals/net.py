@@ -13,7 +13,6 @@ model (``NormalNetConfig``), inputs, weights_file, weights_sha256, created, data
 
 from __future__ import annotations
 
-import json
 import time
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
@@ -25,7 +24,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from model.draem.checkpoint import code_version, paths, sha256_file
+from model.draem.checkpoint import code_version, load_weights, paths, read_json_sidecar, write_checkpoint_files
 from model.priors.conventions import CONVENTION_VERSION
 
 from .errors import NormalsCheckpointError, NormalsError
@@ -127,23 +126,14 @@ def count_parameters(net: nn.Module) -> int:
 def save_normal_net(path: str | Path, net: NormalUNet, data_manifest_sha256: str | None = None,
                     train: dict[str, Any] | None = None, metrics: dict[str, Any] | None = None) -> tuple[Path, Path]:
     """Write ``<path>.pt`` (state_dict) and ``<path>.json`` (sidecar), each under a temporary name then renamed."""
-    pt, js = paths(path)
-    pt.parent.mkdir(parents=True, exist_ok=True)
-    state = {k: v.detach().cpu().contiguous() for k, v in net.state_dict().items()}
-    tmp = pt.with_name(pt.name + ".tmp")
-    torch.save(state, tmp)
-    tmp.replace(pt)
     meta = {
         "format": FORMAT, "version": SIDECAR_VERSION, "convention_version": CONVENTION_VERSION,
         "code_version": code_version(), "model": net.config.to_dict(), "inputs": list(INPUT_CHANNELS),
         "output": "unit normal, camera frame: x image right, y image up, z toward the camera",
-        "weights_file": pt.name, "weights_sha256": sha256_file(pt), "created": time.strftime("%Y-%m-%dT%H:%M:%S"),
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S"),
         "data_manifest_sha256": data_manifest_sha256, "train": train or {}, "metrics": metrics or {},
     }
-    tmp = js.with_name(js.name + ".tmp")
-    tmp.write_text(json.dumps(meta, indent=1, allow_nan=True))
-    tmp.replace(js)
-    return pt, js
+    return write_checkpoint_files(path, net, meta)
 
 
 def load_normal_net(path: str | Path, map_location: str | torch.device = "cpu") -> tuple[NormalUNet, dict[str, Any]]:
@@ -152,12 +142,7 @@ def load_normal_net(path: str | Path, map_location: str | torch.device = "cpu") 
     Raises ``NormalsCheckpointError`` naming the file when either is missing or unreadable, or when the sidecar's
     format, version, convention, inputs, hash or architecture do not match the weights or this code."""
     _, js = paths(path)
-    if not js.is_file():
-        raise NormalsCheckpointError(f"{js}: normal-estimator sidecar missing")
-    try:
-        meta = json.loads(js.read_text())
-    except (OSError, json.JSONDecodeError) as exc:
-        raise NormalsCheckpointError(f"{js}: unreadable sidecar ({exc})") from None
+    meta = read_json_sidecar(js, NormalsCheckpointError, "normal-estimator")
     if meta.get("format") != FORMAT or meta.get("version") != SIDECAR_VERSION:
         raise NormalsCheckpointError(f"{js}: not a {FORMAT} version {SIDECAR_VERSION} sidecar "
                                      f"(format {meta.get('format')!r}, version {meta.get('version')!r})")
@@ -168,20 +153,11 @@ def load_normal_net(path: str | Path, map_location: str | torch.device = "cpu") 
         raise NormalsCheckpointError(f"{js}: inputs {meta.get('inputs')} differ from this code's "
                                      f"{list(INPUT_CHANNELS)}")
     pt = js.with_name(str(meta.get("weights_file", "")))
-    if not meta.get("weights_file") or not pt.is_file():
-        raise NormalsCheckpointError(f"{pt}: weights file missing (named in {js})")
-    if meta.get("weights_sha256") and sha256_file(pt) != meta["weights_sha256"]:
-        raise NormalsCheckpointError(f"{pt}: weights do not match the sha256 in {js} (file replaced or corrupt)")
+    state = load_weights(js, meta, map_location, error=NormalsCheckpointError)
     try:
         net = NormalUNet(NormalNetConfig.from_dict(meta.get("model") or {}))
     except NormalsError as exc:
         raise NormalsCheckpointError(f"{js}: invalid model description ({exc})") from None
-    try:
-        state = torch.load(pt, map_location=map_location, weights_only=True)
-    except Exception as exc:  # torch raises several types for corrupt or pickled files
-        raise NormalsCheckpointError(f"{pt}: cannot load weights safely ({type(exc).__name__}: {exc})") from None
-    if not isinstance(state, dict):
-        raise NormalsCheckpointError(f"{pt}: not a state_dict")
     try:
         net.load_state_dict(state)
     except RuntimeError as exc:
