@@ -14,7 +14,12 @@ from pathlib import Path
 from drivers.camera import Camera
 from drivers.camera import CameraConfig as DriverCameraConfig
 from station.config import ConfigError, StationConfig
-from station.loop import LineLink, NoLink
+from station.inspection_log import InspectionLog
+from station.inspector import Inspector
+from station.loop import LineLink, NoLink, Station
+from station.model_detector import DraemDetector
+from station.reject_store import RejectStore
+from station.viewer import ViewerFeed
 
 log = logging.getLogger(__name__)
 
@@ -95,3 +100,21 @@ def open_link(cfg: StationConfig, stack: ExitStack) -> LineLink:
     if cfg.io.mode == "sim_plc":
         plc.start()  # triggers start only once the station listens
     return link
+
+
+def load_detector(cfg: StationConfig) -> DraemDetector:
+    """The model ``[model]`` names, with ``[decision] threshold`` overriding its own."""
+    return DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold)
+
+
+def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, link: LineLink,
+                  inspection_log: InspectionLog, *, viewer: ViewerFeed | None = None,
+                  rejects: RejectStore | None = None) -> Station:
+    """The inspection loop with the ``[priors]``, ``[acquisition]`` and ``[camera]`` settings; with a viewer, the
+    priors it shows are computed too."""
+    inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
+                          display_priors=("intensity", "dolp", "aolp") if viewer else ())
+    return Station(camera, inspector, link, inspection_log, threshold=detector.threshold,
+                   cycle_time_ms=cfg.acquisition.cycle_time_ms, queue_size=cfg.acquisition.queue_size,
+                   backpressure=cfg.acquisition.backpressure, grab_timeout_ms=cfg.camera.timeout_ms,
+                   viewer=viewer, rejects=rejects)

@@ -88,17 +88,18 @@ class DraemDetector:
         from model.draem.preprocess import crop_resize, roi_box, stack_priors
         from model.draem.train import autocast
 
-        x = stack_priors(priors, self.config.priors)
-        box = roi_box(self.config.roi, x.shape[1:])
-        xt, _ = crop_resize(x, box, self.config.input_size_px, self.config.priors)
+        shape = next(iter(priors.values())).shape[:2]
+        top, left, h, w = roi_box(self.config.roi, shape)
+        # stack only the square the network sees, not whole frames (the same values crop_resize would cut out)
+        x = stack_priors({k: v[top:top + h, left:left + w] for k, v in priors.items()}, self.config.priors)
+        xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.config.priors)
         xt = xt.unsqueeze(0).to(self.device)
         if self.device.type == "cpu" and self.precision != "onnx":
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
             out = self.net.predict(xt)
         amap = out.anomaly_map[0].float().cpu().numpy()
-        top, left, h, w = box
-        heat = np.zeros(x.shape[1:], np.float32)
+        heat = np.zeros(shape, np.float32)
         heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
         return Inference(float(out.score[0]), heat)
 

@@ -37,19 +37,16 @@ def run(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from station.assembly import open_camera, open_link
+    from station.assembly import build_station, load_detector, open_camera, open_link
     from station.benchmarks.report import markdown_table, write_report
     from station.config import load_config
     from station.inspection_log import InspectionLog
-    from station.inspector import Inspector
-    from station.loop import Station
-    from station.model_detector import DraemDetector
 
     cfg = load_config(args.config)
     cam = dataclasses.replace(cfg.camera, kind="sim", **({"frame_rate_hz": args.frame_rate_hz}
                                                           if args.frame_rate_hz else {}))
     cfg = dataclasses.replace(cfg, camera=cam)
-    detector = DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold)
+    detector = load_detector(cfg)
     detector.warm_up()
     samples: list[dict] = []
     with tempfile.TemporaryDirectory() as tmp, ExitStack() as stack:
@@ -57,10 +54,7 @@ def run(args: argparse.Namespace) -> int:
         camera = open_camera(cfg)
         stack.callback(camera.close)
         link = open_link(cfg, stack)
-        station = Station(camera, Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic), link, log,
-                          threshold=detector.threshold, cycle_time_ms=cfg.acquisition.cycle_time_ms,
-                          queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
-                          grab_timeout_ms=cfg.camera.timeout_ms)
+        station = build_station(cfg, detector, camera, link, log)
         worker = threading.Thread(target=station.run, args=(args.parts,), name="station", daemon=True)
         t0 = time.perf_counter()
         worker.start()

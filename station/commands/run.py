@@ -36,13 +36,10 @@ def confusion_table(confusion: dict[str, int]) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from station.assembly import open_camera, open_link
+    from station.assembly import build_station, load_detector, open_camera, open_link
     from station.config import load_config
     from station.errors import UserError
     from station.inspection_log import InspectionLog
-    from station.inspector import Inspector
-    from station.loop import Station
-    from station.model_detector import DraemDetector
     from station.reject_store import RejectStore
 
     if args.frames is not None and args.frames < 1:
@@ -50,7 +47,7 @@ def run(args: argparse.Namespace) -> int:
     cfg = load_config(args.config)
     if args.camera:
         cfg = dataclasses.replace(cfg, camera=dataclasses.replace(cfg.camera, kind=args.camera))
-    detector = DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold)
+    detector = load_detector(cfg)
     print(f"model {detector.model_id}: priors {', '.join(detector.config.priors)}, threshold "
           f"{detector.threshold:.4g}, warm-up {detector.warm_up():.0f} ms per part on {detector.device}")
     with ExitStack() as stack:
@@ -66,13 +63,8 @@ def run(args: argparse.Namespace) -> int:
             from station.viewer import ViewerFeed
 
             viewer = ViewerFeed()
-        inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
-                              display_priors=("intensity", "dolp", "aolp") if viewer else ())
         link = open_link(cfg, stack)
-        station = Station(camera, inspector, link, inspection_log, threshold=detector.threshold,
-                          cycle_time_ms=cfg.acquisition.cycle_time_ms, queue_size=cfg.acquisition.queue_size,
-                          backpressure=cfg.acquisition.backpressure, grab_timeout_ms=cfg.camera.timeout_ms,
-                          viewer=viewer, rejects=rejects)
+        station = build_station(cfg, detector, camera, link, inspection_log, viewer=viewer, rejects=rejects)
         print(f"inspecting with camera {cfg.camera.kind}, PLC {cfg.io.mode}, log {cfg.log.path}"
               + (f", {args.frames} parts" if args.frames else ", until Ctrl-C"))
         if viewer is None:
