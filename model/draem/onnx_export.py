@@ -20,7 +20,7 @@ MAX_ABS_ERROR = 1e-4
 """Largest |ONNX - torch| anomaly-map difference accepted at export (measured ~6e-8 for the fast preset)."""
 
 
-class _MapOnly(nn.Module):
+class MapOnly(nn.Module):
     """Eval-mode DRAEM returning only the anomaly map (ONNX wants tensors, not dataclasses)."""
 
     def __init__(self, net: nn.Module) -> None:
@@ -44,7 +44,7 @@ def export_onnx(detector: Detector, out_dir: str | Path) -> dict[str, Path]:
         files[name] = out / f"{name}.onnx"
         with warnings.catch_warnings():  # shape checks in forward() become constants: the size is fixed anyway
             warnings.simplefilter("ignore", torch.jit.TracerWarning)
-            torch.onnx.export(_MapOnly(net), (x,), str(files[name]), input_names=["x"], output_names=["map"],
+            torch.onnx.export(MapOnly(net), (x,), str(files[name]), input_names=["x"], output_names=["map"],
                               dynamic_axes={"x": {0: "n"}, "map": {0: "n"}}, dynamo=False)
         net.eval()  # the exporter may leave the module in train mode
     return files

@@ -28,26 +28,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="skip repeats once one run of a configuration takes longer than this")
 
 
-def _map_only_class():
-    import torch
-
-    class MapOnly(torch.nn.Module):
-        """Eval-mode DRAEM returning only the (N, H, W) anomaly map (ONNX wants tensors, not dataclasses)."""
-
-        def __init__(self, net: torch.nn.Module):
-            super().__init__()
-            self.net = net
-
-        def forward(self, x: torch.Tensor) -> torch.Tensor:
-            return self.net(x).anomaly_map
-
-    return MapOnly
-
-
-def _MapOnly(net):
-    return _map_only_class()(net)
-
-
 def _time(fn, repeats: int, max_seconds: float) -> tuple[float, int]:
     fn()  # warm-up
     ts = []
@@ -83,11 +63,13 @@ def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
     if precision == "onnx":
         import onnxruntime as ort
 
+        from model.draem.onnx_export import MapOnly
+
         sessions, max_err = {}, 0.0
         with tempfile.TemporaryDirectory() as d:
             for k, n in nets.items():
                 f = Path(d) / f"{k}.onnx"
-                torch.onnx.export(_MapOnly(n), (inputs[k],), str(f), input_names=["x"], output_names=["map"],
+                torch.onnx.export(MapOnly(n), (inputs[k],), str(f), input_names=["x"], output_names=["map"],
                                   dynamo=False)
                 so = ort.SessionOptions()
                 so.intra_op_num_threads = args.threads
