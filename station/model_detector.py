@@ -10,17 +10,22 @@ import hashlib
 import logging
 from collections.abc import Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from station.errors import UserError
 from station.inspector import Inference
 
+if TYPE_CHECKING:
+    from model.normals.estimator import NormalEstimator
+
 log = logging.getLogger(__name__)
 
-STATION_PRIORS = {"intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin")}
-"""Model prior -> the ``model.priors`` maps it is built from. "normal" is missing on purpose: the learned normal
-estimator does not exist yet, and rendered ground-truth normals are not available at a station."""
+STATION_PRIORS = {"intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin"),
+                  "normal": ("intensity", "dolp", "aolp_cos", "aolp_sin")}
+"""Model prior -> the ``model.priors`` maps it is built from ("normal": the inputs of the learned normal
+estimator, ``model.normals.estimator.MAP_NAMES``; a test keeps the two equal)."""
 
 
 class ModelLoadError(UserError):
@@ -49,16 +54,13 @@ class DraemDetector:
         self.device = resolve_device(device)
         ck = load_checkpoint(path, map_location=self.device)  # CheckpointError names the file
         cfg = ck.detector.config
-        unusable = [p for p in cfg.priors if p not in STATION_PRIORS]
-        if unusable:
-            raise ModelLoadError(f"{js}: model uses priors {unusable} that a station cannot compute yet (no learned "
-                                 f"normal estimator); retrain with --priors {','.join(STATION_PRIORS)}")
         if cfg.roi != "center":
             raise ModelLoadError(f"{js}: model crops to roi {cfg.roi!r}, which needs ground truth at inference; "
                                  f"retrain with --roi center")
         chosen = threshold if threshold is not None else ck.threshold
         if chosen is None:
             raise ModelLoadError(f"{js}: the model has no threshold; set [decision] threshold in station.toml")
+        self.normals = self._normal_estimator(js, ck.meta) if "normal" in cfg.priors else None
         self.net = ck.detector.to(self.device)
         if precision == "onnx":  # ONNX Runtime on CPU, checked against torch at load
             import tempfile
@@ -73,12 +75,27 @@ class DraemDetector:
         self.config = cfg
         self.threshold = float(chosen)
         self.precision = precision
-        self.priors = tuple(n for p in cfg.priors for n in STATION_PRIORS[p])
+        self.priors = tuple(dict.fromkeys(n for p in cfg.priors for n in STATION_PRIORS[p]))
         sha = ck.meta.get("weights_sha256") or hashlib.sha256(pt.read_bytes()).hexdigest()
         self.model_id = f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}"
         self.meta = ck.meta
         log.info("model %s: priors %s, %s %dpx, roi %s, threshold %.4g, %s %s", self.model_id, list(cfg.priors),
                  cfg.fusion, cfg.input_size_px, cfg.roi, self.threshold, self.device, precision)
+
+    def _normal_estimator(self, js: Path, meta: Mapping) -> NormalEstimator:
+        """The learned normal estimator the model was trained with (fp32 torch on the model's device, also when
+        the DRAEM runs in ONNX Runtime)."""
+        from model.draem.errors import ModelError
+        from model.normals.estimator import load_for_checkpoint
+
+        try:
+            est = load_for_checkpoint(js, (meta.get("train") or {}).get("normal_prior"), self.device)
+        except ModelError as exc:
+            raise ModelLoadError(str(exc)) from None
+        if est.net.config.roi != "center":
+            raise ModelLoadError(f"{est.path}: normal estimator reads roi {est.net.config.roi!r}; a station needs "
+                                 f"'center'")
+        return est
 
     def infer(self, priors: Mapping[str, np.ndarray]) -> Inference:
         """Score one frame's prior maps; the heatmap is frame-sized (zero outside the region of interest)."""
@@ -91,7 +108,10 @@ class DraemDetector:
         shape = next(iter(priors.values())).shape[:2]
         top, left, h, w = roi_box(self.config.roi, shape)
         # stack only the square the network sees, not whole frames (the same values crop_resize would cut out)
-        x = stack_priors({k: v[top:top + h, left:left + w] for k, v in priors.items()}, self.config.priors)
+        cut = {k: v[top:top + h, left:left + w] for k, v in priors.items()}
+        if self.normals is not None:  # same square as the DRAEM's: both read roi "center"
+            cut["normal"] = self.normals.predict_box(cut, shape, (top, left, h, w))
+        x = stack_priors(cut, self.config.priors)
         xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.config.priors)
         xt = xt.unsqueeze(0).to(self.device)
         if self.device.type == "cpu" and self.precision != "onnx":

@@ -165,3 +165,18 @@ def load_normal_net(path: str | Path, map_location: str | torch.device = "cpu") 
         raise NormalsCheckpointError(f"{pt}: weights do not match the architecture in {js} "
                                      f"({first[1].strip() if len(first) > 1 else first[0]})") from None
     return net.eval(), meta
+
+
+def copy_normal_net(src: str | Path, dst: str | Path) -> tuple[Path, Path]:
+    """Copy checkpoint ``src`` to ``<dst>.pt`` + ``<dst>.json`` byte for byte (same weights sha256), after checking
+    that it loads; the sidecar names the new weights file."""
+    import json
+    import shutil
+
+    load_normal_net(src)
+    sjs, (dpt, djs) = paths(src)[1], paths(dst)
+    meta = json.loads(sjs.read_text())
+    dpt.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(sjs.with_name(meta["weights_file"]), dpt)
+    djs.write_text(json.dumps({**meta, "weights_file": dpt.name}, indent=1))
+    return dpt, djs

@@ -133,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import load_checkpoint
     from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
     from station.benchmarks.report import markdown_table, write_report
-    from station.commands.train import NORMAL_SOURCE, load_split, manifest_sha256
+    from station.commands.train import load_split, manifest_sha256
 
     ck = load_checkpoint(args.model)
     cfg, thr = ck.detector.config, ck.threshold
@@ -143,7 +143,14 @@ def run(args: argparse.Namespace) -> int:
                         f"one per prior set and evaluate each)")
     out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
     out.mkdir(parents=True, exist_ok=True)
-    sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit, roi=cfg.roi)
+    normal_prior = ck.meta.get("train", {}).get("normal_prior") if "normal" in cfg.priors else None
+    normals = None
+    if normal_prior and normal_prior.get("source") == "learned":
+        from model.draem.checkpoint import paths
+        from model.normals.estimator import load_for_checkpoint
+
+        normals = load_for_checkpoint(paths(args.model)[1], normal_prior)
+    sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit, roi=cfg.roi, normals=normals)
     data = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
     ev = evaluate(ck.detector, data)
     rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
@@ -170,7 +177,7 @@ def run(args: argparse.Namespace) -> int:
     payload = {"model": str(args.model), "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
-               "normal_source": NORMAL_SOURCE if "normal" in cfg.priors else None, "rows": rows,
+               "normal_prior": normal_prior, "rows": rows,
                "ablation": ablation, "plots": files}
     cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
             "flagged_good", "detected"]

@@ -2,8 +2,9 @@
 
 Bridge: ``sim.dataset`` sample -> ``model.priors.compute_priors`` on the raw mosaic (what the camera would give)
 -> stacked prior channels -> square crop around the part (object mask) -> network input size -> ``model.draem``.
-The normal prior comes from the renderer's ground-truth normals until the learned normal estimator exists (an
-upper bound on what an estimated normal map can give; stated in every report).
+The normal prior comes from a learned normal estimator (``--normal-net``, ``model.normals.estimator``), copied
+beside the checkpoint so the station computes the same normals; without one, from the renderer's ground-truth
+normals (a research upper bound that a station cannot run; stated in every report).
 """
 
 from __future__ import annotations
@@ -14,12 +15,17 @@ import json
 import logging
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from station.errors import UserError
 
+if TYPE_CHECKING:
+    from model.normals.estimator import NormalEstimator
+
 log = logging.getLogger(__name__)
 
-NORMAL_SOURCE = "rendered ground truth (learned estimator not yet available)"
+NORMAL_NET_FILE = "normal_net"
+"""Stem of the normal estimator's copy beside the checkpoints (``<out>/normal_net.{pt,json}``)."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -32,6 +38,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--roi", default="center", choices=("center", "object"),
                    help="center: centre square of the frame, what a station runs; object: square around the rendered "
                         "object mask (needs ground truth at inference: research upper bound)")
+    p.add_argument("--normal-net", default=None,
+                   help="learned normal estimator (station normals --out .../normal_net) for the normal prior; "
+                        "without it the rendered ground-truth normals are used (research only: a station refuses)")
     p.add_argument("--size", type=int, default=None, help="input size in pixels (multiple of 32; default: preset's)")
     p.add_argument("--steps", type=int, default=2000, help="optimiser steps")
     p.add_argument("--batch-size", type=int, default=8)
@@ -64,11 +73,26 @@ def manifest_sha256(root: str | Path) -> str:
     return hashlib.sha256((Path(root) / "manifest.json").read_bytes()).hexdigest()
 
 
+def dataset_fov_x_deg(root: str | Path) -> float | None:
+    """The horizontal field of view (degrees) of a rendered set's camera (its first sample's); None if unknown."""
+    from sim.dataset import open_dataset
+
+    ds = open_dataset(root)
+    idx = ds.indices()
+    return _fov(ds.load(idx[0], ground_truth=False).params) if idx else None
+
+
+def _fov(params: dict) -> float | None:
+    return (params.get("scene", {}).get("camera") or {}).get("fov_x_deg")
+
+
 def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int, limit: int | None = None,
-               good_only: bool = False, progress: bool = True, roi: str = "center") -> SplitTensors:
+               good_only: bool = False, progress: bool = True, roi: str = "center",
+               normals: NormalEstimator | None = None) -> SplitTensors:
     """Read one split of a rendered set into tensors at the network input size, cropped to ``roi`` (see
     ``model.draem.config.ModelConfig.roi``). Object and defect masks come along (for anomaly synthesis and the
-    pixel metrics) whatever the roi."""
+    pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field of view must be the
+    set's), or from the rendered ground truth when it is None."""
     import numpy as np
     import torch
     from tqdm import tqdm
@@ -83,6 +107,10 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         raise UserError(f"{root}: no complete samples in split {split!r}")
     wanted = [p for p in priors if p != "normal"]
     names = [n for p in wanted for n in (("aolp_cos", "aolp_sin") if p == "aolp" else (p,))] or ["intensity"]
+    if "normal" in priors and normals is not None:
+        from model.normals.estimator import MAP_NAMES
+
+        names = list(dict.fromkeys(names + list(MAP_NAMES)))
     xs, objs, defs, labels, types, used = [], [], [], [], [], []
     for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
         if limit is not None and len(used) >= limit:
@@ -92,10 +120,16 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
             continue
         maps = dict(compute_priors(s.raw, ds.manifest.get("layout", "imx250mzr"), priors=names,
                                    bit_depth=ds.manifest.get("bit_depth")))
-        if "normal" in priors:
+        if "normal" in priors and normals is not None:
+            fov = _fov(s.params)
+            if fov is not None and normals.fov_x_deg is not None and abs(fov - normals.fov_x_deg) > 1e-3:
+                raise UserError(f"{root}: sample {i} has a {fov:.4g} deg field of view, the normal estimator reads "
+                                f"{normals.fov_x_deg:.4g} deg frames; one set, one lens")
+            maps["normal"] = normals.predict_frame(maps)
+        elif "normal" in priors:
             if s.normal is None:
-                raise UserError(f"{root}: sample {i} has no ground-truth normals (render without --no-ground-truth), "
-                                f"and the learned normal estimator is not available yet")
+                raise UserError(f"{root}: sample {i} has no ground-truth normals (render without --no-ground-truth); "
+                                f"pass --normal-net to use the learned estimator")
             maps["normal"] = s.normal
         if s.object_mask is None:
             raise UserError(f"{root}: sample {i} has no object mask (render with ground truth)")
@@ -116,6 +150,26 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     return SplitTensors(torch.stack(xs), torch.stack(objs), torch.stack(defs), torch.tensor(labels), types, used)
 
 
+def normal_estimator(path: str | None, data: str | Path, out: Path) -> NormalEstimator | None:
+    """The learned normal estimator at ``path`` for frames of the set ``data``, copied to ``out/normal_net`` (the
+    checkpoint's companion); None (ground truth) without ``path``."""
+    if path is None:
+        log.warning("normal prior from the rendered ground truth (no --normal-net): a research upper bound; the "
+                    "station refuses such a model")
+        return None
+    from model.normals.estimator import NormalEstimator
+    from model.normals.net import copy_normal_net
+
+    copy_normal_net(path, out / NORMAL_NET_FILE)
+    return NormalEstimator.load(out / NORMAL_NET_FILE, dataset_fov_x_deg(data))
+
+
+def normal_prior_record(normals: NormalEstimator | None) -> dict:
+    from model.normals.estimator import describe
+
+    return describe(normals, NORMAL_NET_FILE + ".json")
+
+
 def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.config import ModelConfig, check_priors
@@ -126,11 +180,13 @@ def run(args: argparse.Namespace) -> int:
     config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size, args.roi)
     out = Path(args.out or f"runs/train/{args.preset}-{args.fusion}")
     size = config.input_size_px
-    tr = load_split(args.data, "train", priors, size, args.limit, good_only=True, roi=config.roi)
-    va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi)
+    normals = normal_estimator(args.normal_net, args.data, out) if "normal" in priors else None
+    normal_prior = normal_prior_record(normals) if "normal" in priors else None
+    tr = load_split(args.data, "train", priors, size, args.limit, good_only=True, roi=config.roi, normals=normals)
+    va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals)
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
-             len(tr.index), len(va.index), int(va.label.sum()), size, size, NORMAL_SOURCE if "normal" in priors
-             else "not used")
+             len(tr.index), len(va.index), int(va.label.sum()), size, size,
+             (normal_prior or {}).get("source", "not used"))
     rendered = EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered")
     has_both = 0 < int(va.label.sum()) < len(va.index)
     val = rendered if has_both else synthetic_eval_data(
@@ -146,7 +202,7 @@ def run(args: argparse.Namespace) -> int:
     ev = evaluate(ck.detector, rendered if has_both else val)
     choice = choose_threshold((rendered if has_both else val).label.numpy(), ev.scores)
     save_checkpoint(out / "best", ck.detector, choice.threshold, choice.rule, sha, ev.metrics,
-                    {**ck.meta.get("train", {}), "normal_source": NORMAL_SOURCE if "normal" in priors else None})
+                    {**ck.meta.get("train", {}), "normal_prior": normal_prior})
     summary = {"best": str(res.best_path), "steps": res.steps_done, "seconds": round(res.seconds, 1),
                "val_kind": val.kind, "threshold": choice.threshold, "threshold_rule": choice.rule,
                "flagged_good_fraction": choice.flagged_good_fraction, "detected_fraction": choice.detected_fraction,

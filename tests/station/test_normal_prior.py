@@ -1,0 +1,113 @@
+"""The learned normal prior from training to the station: ``station train --normal-net`` copies the estimator
+beside the checkpoint, and the station feeds the DRAEM the same normals (and every other channel) as training."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import sqlite3
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+from test_run import make_dataset, write_config
+
+from drivers.frame import Frame
+from model.normals.estimator import MAP_NAMES
+from model.normals.net import NormalNetConfig, NormalUNet, save_normal_net
+from model.priors.conventions import IMX250MZR
+from station.cli import main
+from station.commands.train import load_split
+from station.inspector import Inspector
+from station.model_detector import STATION_PRIORS, DraemDetector, ModelLoadError
+
+
+@pytest.fixture(scope="module")
+def trained(tmp_path_factory) -> tuple[Path, Path, Path]:
+    """(dataset, normal net stem, DRAEM output folder) after a 2-step ``station train`` over intensity + normal."""
+    tmp = tmp_path_factory.mktemp("normal_prior")
+    ds = make_dataset(tmp / "ds")
+    torch.manual_seed(0)
+    net = NormalUNet(NormalNetConfig(base_width=4, levels=2, input_size_px=32))
+    with torch.no_grad():
+        net.head.weight.normal_(std=0.5)  # the head starts at zero (normals = view): make the output depend on it
+    save_normal_net(tmp / "nets" / "my_net", net)
+    out = tmp / "train"
+    assert main(["train", "--data", str(ds), "--priors", "intensity,normal", "--preset", "tiny", "--fusion", "fused",
+                 "--size", "32", "--steps", "2", "--batch-size", "2", "--eval-every", "2", "--device", "cpu",
+                 "--normal-net", str(tmp / "nets" / "my_net"), "--out", str(out)]) == 0
+    return ds, tmp / "nets" / "my_net", out
+
+
+def test_checkpoint_names_its_estimator_and_carries_a_copy(trained) -> None:
+    _, net_stem, out = trained
+    record = json.loads((out / "best.json").read_text())["train"]["normal_prior"]
+    original = json.loads(net_stem.with_suffix(".json").read_text())
+    assert record["source"] == "learned" and record["file"] == "normal_net.json"
+    assert record["weights_sha256"] == original["weights_sha256"]  # the copy holds the same weights
+    assert (out / "normal_net.pt").is_file() and STATION_PRIORS["normal"] == MAP_NAMES
+
+
+def test_station_feeds_the_model_what_training_fed_it(trained) -> None:
+    ds, _, out = trained
+    det = DraemDetector(out / "best", device="cpu")
+    assert det.normals is not None and set(det.priors) == set(MAP_NAMES)
+    sp = load_split(ds, "test", det.config.priors, det.config.input_size_px, progress=False, roi="center",
+                    normals=det.normals)
+    seen = []
+    predict = det.net.predict
+    det.net.predict = lambda x: seen.append(x.detach().clone()) or predict(x)
+    inspector = Inspector(det, IMX250MZR)
+    from sim.dataset import open_dataset
+
+    d = open_dataset(ds)
+    for k, i in enumerate(sp.index):
+        s = d.load(i)
+        res = inspector.inspect(Frame(s.raw, "Mono8", 8, k, 0, 0))
+        assert res.error is None and 0.0 <= res.score <= 1.0
+    x = torch.cat(seen)
+    normal = x[:, 1:4]
+    assert torch.allclose(normal.norm(dim=1), torch.ones(1), atol=1e-3)
+    assert float(normal[:, 2].std()) > 1e-3  # the estimator's normals, not a constant "facing the camera"
+    assert torch.allclose(x, sp.priors, atol=1e-4), float((x - sp.priors).abs().max())
+
+
+def test_station_runs_a_normal_model_and_refuses_bad_estimators(trained, tmp_path, capsys) -> None:
+    ds, _, out = trained
+    model = tmp_path / "m"
+    shutil.copytree(out, model)
+    cfg = write_config(tmp_path, model / "best", ds)
+    assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "3"]) == 0
+    rows = sqlite3.connect(tmp_path / "log.sqlite").execute("SELECT decision, score FROM inspections").fetchall()
+    assert len(rows) == 3 and all(d in ("pass", "reject") and 0 <= s <= 1 for d, s in rows)
+
+    (model / "normal_net.pt").write_bytes(b"not weights")
+    with pytest.raises(ModelLoadError, match=r"normal_net\.pt"):
+        DraemDetector(model / "best", device="cpu")
+    (model / "normal_net.pt").unlink()
+    with pytest.raises(ModelLoadError, match=r"normal_net\.pt: weights file missing"):
+        DraemDetector(model / "best", device="cpu")
+
+
+def test_ground_truth_normals_train_but_do_not_run(tmp_path) -> None:
+    ds = make_dataset(tmp_path / "ds")
+    from sim.dataset import open_dataset
+
+    d = open_dataset(ds)
+    for i in d.indices():  # the test set has no rendered normals: give it some
+        sd = tmp_path / "ds" / "samples" / f"{i:06d}"
+        assert (sd / "gt.npz").is_file()
+        with np.load(sd / "gt.npz") as f:
+            arrays = dict(f)
+        n = np.zeros((*arrays["object_mask"].shape, 3), np.float32)
+        n[..., 2] = 1
+        arrays["normal"] = n
+        np.savez(sd / "gt.npz", **arrays)
+    assert main(["train", "--data", str(ds), "--priors", "intensity,normal", "--preset", "tiny", "--fusion", "fused",
+                 "--size", "32", "--steps", "1", "--batch-size", "2", "--eval-every", "1", "--device", "cpu",
+                 "--out", str(tmp_path / "t")]) == 0
+    record = json.loads((tmp_path / "t" / "best.json").read_text())["train"]["normal_prior"]
+    assert record == {"source": "ground truth"}
+    with pytest.raises(ModelLoadError, match="ground truth, not a learned normal estimator"):
+        DraemDetector(tmp_path / "t" / "best", device="cpu")
