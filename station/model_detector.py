@@ -18,6 +18,9 @@ from station.errors import UserError
 from station.inspector import Inference
 
 if TYPE_CHECKING:
+    import torch
+
+    from model.draem.detector import DetectorOutput
     from model.normals.estimator import NormalEstimator
 
 log = logging.getLogger(__name__)
@@ -35,11 +38,13 @@ class ModelLoadError(UserError):
 class DraemDetector:
     """Implements ``station.inspector.Detector`` for a checkpoint folder stem (``<path>.pt`` + ``<path>.json``).
 
-    device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32" or "bf16" (autocast). ``threshold``
-    overrides the checkpoint's threshold (``[decision] threshold``)."""
+    device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32", "bf16" (autocast) or "onnx".
+    ``threshold`` overrides the checkpoint's threshold (``[decision] threshold``). ``early_exit_margin``: None
+    runs every member of a per-prior ensemble; 0 stops once the rest cannot change the decision (exact); m > 0
+    also once the running mean is more than m from the threshold (``model.draem.early_exit``)."""
 
     def __init__(self, path: str | Path, device: str = "auto", precision: str = "fp32",
-                 threshold: float | None = None) -> None:
+                 threshold: float | None = None, early_exit_margin: float | None = None) -> None:
         import torch
 
         from model.draem.checkpoint import load_checkpoint, paths
@@ -76,6 +81,12 @@ class DraemDetector:
         self.threshold = float(chosen)
         self.precision = precision
         self.priors = tuple(dict.fromkeys(n for p in cfg.priors for n in STATION_PRIORS[p]))
+        self.members = tuple(cfg.networks())
+        if early_exit_margin is not None and not 0 <= early_exit_margin <= 1:
+            raise ModelLoadError(f"early exit margin {early_exit_margin} must be in [0, 1]")
+        self.early_exit_margin = early_exit_margin if len(self.members) > 1 else None
+        self.members_run = 0
+        """Members run so far over all parts (with early exit, fewer than parts x members)."""
         sha = ck.meta.get("weights_sha256") or hashlib.sha256(pt.read_bytes()).hexdigest()
         self.model_id = f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}"
         self.meta = ck.meta
@@ -117,11 +128,32 @@ class DraemDetector:
         if self.device.type == "cpu" and self.precision != "onnx":
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
-            out = self.net.predict(xt)
+            if self.early_exit_margin is None:
+                out = self.net.predict(xt)
+                self.members_run += len(self.members)
+            else:
+                out = self._predict_early(xt)
         amap = out.anomaly_map[0].float().cpu().numpy()
         heat = np.zeros(shape, np.float32)
         heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
         return Inference(float(out.score[0]), heat)
+
+    def _predict_early(self, xt: torch.Tensor) -> DetectorOutput:
+        """Members one by one in the model's prior order until ``model.draem.early_exit.decided``; the output
+        averages the members run."""
+        import torch
+
+        from model.draem.detector import DetectorOutput
+        from model.draem.early_exit import decided
+
+        outs = []
+        for name in self.members:
+            outs.append(self.net.predict(xt, members=(name,)))
+            self.members_run += 1
+            if decided([float(o.score[0]) for o in outs], len(self.members), self.threshold, self.early_exit_margin):
+                break
+        return DetectorOutput(torch.stack([o.anomaly_map for o in outs]).mean(0),
+                              torch.stack([o.score for o in outs]).mean(0), {}, {})
 
     def warm_up(self, runs: int = 2) -> float:
         """Run inference on flat frames (first calls allocate memory and pick kernels, which would put the first

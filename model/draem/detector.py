@@ -3,6 +3,7 @@ normalisation and image scoring that belong to it. Input is physical prior value
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import torch
@@ -68,15 +69,17 @@ class Detector(nn.Module):
         return self.normalizer(x)
 
     @torch.no_grad()
-    def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None) -> DetectorOutput:
-        """x: (N, C, S, S) physical priors stacked as ``config.channel_slices``; object_mask: (N, S, S) bool."""
+    def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None,
+                members: Sequence[str] | None = None) -> DetectorOutput:
+        """x: (N, C, S, S) physical priors stacked as ``config.channel_slices``; object_mask: (N, S, S) bool;
+        ``members``: run only these (default all), and average over them."""
         if x.ndim != 4 or x.shape[1] != self.config.in_channels:
             raise ModelError(f"detector input must be (N, {self.config.in_channels}, H, W) for priors "
                              f"{self.config.priors}, got {tuple(x.shape)}")
         z = self.normalize(x)
         maps, scores = {}, {}
-        for name, net in self.members.items():
-            out = net(z[:, self.member_slice(name)])
+        for name in self.members if members is None else members:
+            out = self.members[name](z[:, self.member_slice(name)])
             assert isinstance(out, DraemEvalOutput), "predict needs eval mode: call detector.eval()"
             maps[name] = out.anomaly_map.float()
             scores[name] = image_scores(maps[name], object_mask, self.config.score_window)

@@ -8,6 +8,7 @@ returning the anomaly map (1, S, S); normalisation and image scoring stay in num
 from __future__ import annotations
 
 import warnings
+from collections.abc import Sequence
 from pathlib import Path
 
 import torch
@@ -78,10 +79,12 @@ class OnnxDetector:
         return onnx
 
     @torch.no_grad()
-    def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None) -> DetectorOutput:
+    def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None,
+                members: Sequence[str] | None = None) -> DetectorOutput:
         z = self.detector.normalize(x.float().contiguous())
         maps, scores = {}, {}
-        for name, session in self.sessions.items():
+        for name in self.sessions if members is None else members:
+            session = self.sessions[name]
             member_in = z[:, self.detector.member_slice(name)].contiguous().numpy()
             maps[name] = torch.from_numpy(session.run(None, {"x": member_in})[0]).float()
             scores[name] = image_scores(maps[name], object_mask, self.config.score_window)
