@@ -68,6 +68,30 @@ def ablation_rows(ev, data) -> list[dict]:
     return rows
 
 
+EARLY_EXIT_MARGINS = (None, 0.0, 0.05, 0.1, 0.2)
+"""Rules compared by ``early_exit_rows``: None runs every member, 0 is the exact rule, m > 0 the margin rule."""
+
+
+def early_exit_rows(ev, label, threshold: float, members: tuple[str, ...]) -> list[dict]:
+    """What early exit of the ensemble (``model.draem.early_exit``, members run in ``members`` order) costs on
+    these parts: members run per part, decisions that differ from running all members, image AUROC."""
+    import numpy as np
+
+    from model.draem import metrics as M
+    from model.draem.early_exit import simulate
+
+    scores = np.stack([ev.member_scores[m] for m in members], 1)
+    full = scores.mean(1) > threshold
+    rows = []
+    for margin in EARLY_EXIT_MARGINS:
+        s, used = (scores.mean(1), np.full(len(scores), len(members))) if margin is None else \
+            simulate(scores, threshold, margin)
+        rows.append({"early_exit": "off" if margin is None else "exact" if margin == 0 else f"margin {margin}",
+                     "members_per_part": float(used.mean()), "decisions_changed": int(((s > threshold) != full).sum()),
+                     "image_auroc": M.auroc(np.asarray(label, bool), s)})
+    return rows
+
+
 def _ablation_plot(out: Path, rows: list[dict]) -> str:
     import matplotlib
 
@@ -171,6 +195,8 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"{args.data}: split {args.split!r} has no rendered defects; AUROC is undefined")
     files = [] if args.no_plots else _plots(out, roc, data, ev.maps, ev.scores, thr)
     ablation = ablation_rows(ev, data) if args.ablation else []
+    early = early_exit_rows(ev, sp.label.numpy(), thr, tuple(cfg.networks())) if ev.member_scores and thr is not None \
+        else []
     if ablation and not args.no_plots:
         files.append(_ablation_plot(out, ablation))
     manifest_ok = ck.meta.get("data_manifest_sha256")
@@ -178,13 +204,17 @@ def run(args: argparse.Namespace) -> int:
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": normal_prior, "rows": rows,
-               "ablation": ablation, "plots": files}
+               "ablation": ablation, "early_exit": early, "plots": files}
     cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
             "flagged_good", "detected"]
     table = markdown_table(rows, cols)
     if ablation:
         table += "\n\nAblation (ensemble members averaged, rendered defects):\n\n" + markdown_table(
             ablation, ["priors", "members", "image_auroc", "pixel_auroc", "pixel_ap"])
+    if early:
+        table += (f"\n\nEarly exit of the ensemble (members in order {', '.join(cfg.networks())}; threshold "
+                  f"{thr:.4g}; rendered defects):\n\n" + markdown_table(
+                      early, ["early_exit", "members_per_part", "decisions_changed", "image_auroc"]))
     write_report(out, "eval", json.loads(json.dumps(payload, default=float)), table)
     print(table)
     print(f"report: {out / 'eval.json'}, {out / 'eval.md'}" + (f", plots: {', '.join(files)}" if files else ""))

@@ -59,3 +59,23 @@ def test_early_exit_is_refused_out_of_range_and_ignored_for_one_network(ensemble
     det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp"), "fused", 32))
     save_checkpoint(tmp_path / "fused", det, threshold=0.5)
     assert DraemDetector(tmp_path / "fused", "cpu", early_exit_margin=0.1).early_exit_margin is None
+
+
+def test_eval_reports_the_cost_of_each_rule() -> None:
+    from types import SimpleNamespace
+
+    from station.commands.eval import early_exit_rows
+
+    rng = np.random.default_rng(0)
+    label = rng.random(200) < 0.3
+    base = np.where(label, 0.7, 0.3)
+    members = ("intensity", "aolp", "dolp")
+    ev = SimpleNamespace(member_scores={m: np.clip(base + rng.normal(0, 0.2, 200), 0, 1) for m in members})
+    rows = early_exit_rows(ev, label, 0.5, members)
+    assert [r["early_exit"] for r in rows] == ["off", "exact", "margin 0.05", "margin 0.1", "margin 0.2"]
+    assert rows[0]["members_per_part"] == 3 and rows[0]["decisions_changed"] == 0
+    assert rows[1]["decisions_changed"] == 0 and rows[1]["members_per_part"] < 3
+    # a smaller margin stops sooner (the running mean is more often that far from the threshold); exact runs most
+    used = [r["members_per_part"] for r in rows[1:]]
+    assert used[0] >= max(used[1:]) and used[1] <= used[2] <= used[3]
+    assert rows[2]["decisions_changed"] >= rows[4]["decisions_changed"]
