@@ -104,7 +104,8 @@ def open_link(cfg: StationConfig, stack: ExitStack) -> LineLink:
 
 def load_detector(cfg: StationConfig) -> DraemDetector:
     """The model ``[model]`` names, with ``[decision] threshold`` overriding its own."""
-    return DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold)
+    return DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold,
+                         cfg.model.early_exit_margin)
 
 
 def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, link: LineLink,

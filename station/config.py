@@ -77,6 +77,7 @@ class ModelConfig:
     path: str = "model/weights/default"
     device: str = _opt("auto", choices=("auto", "cpu", "cuda"))
     precision: str = _opt("fp32", choices=("fp32", "bf16", "onnx"))
+    early_exit_margin: float | None = _opt(None, range=(0.0, 1.0))
 
 
 @dataclass(frozen=True)
