@@ -2,7 +2,9 @@
 
 Latency is per part (one image through every member: 4 priors = 4 networks for the ensemble, 1 for the fused
 network), warm, batch 1, median of ``--repeats``; the published DRAEM size (``paper`` preset, one network,
-256 px, fp32) is the baseline ratio. Accuracy per configuration needs trained checkpoints: see ``station eval``.
+256 px, fp32) is the baseline ratio. A model with the normal prior also runs the learned normal estimator once per
+part (row "normal-net", ``model.normals``, fp32 torch at the station): add its time to the model's. Accuracy per
+configuration needs trained checkpoints: see ``station eval``.
 """
 
 from __future__ import annotations
@@ -98,6 +100,24 @@ def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
     return row
 
 
+def _measure_normal_net(args) -> dict:
+    """The learned normal estimator's default architecture (``NormalNetConfig``), fp32, batch 1."""
+    import torch
+
+    from model.normals.net import NormalNetConfig, NormalUNet, count_parameters
+
+    net = NormalUNet(NormalNetConfig()).eval()
+    x = torch.randn(1, net.config.in_channels, net.config.input_size_px, net.config.input_size_px)
+
+    def run():
+        with torch.no_grad():
+            net(x)
+
+    ms, reps = _time(run, args.repeats, args.max_seconds)
+    return {"preset": "normal-net", "size": net.config.input_size_px, "precision": "fp32", "fusion": "-",
+            "networks": 1, "params_M": count_parameters(net) / 1e6, "ms_per_part": ms, "runs": reps}
+
+
 def run(args: argparse.Namespace) -> int:
     import torch
 
@@ -116,6 +136,8 @@ def run(args: argparse.Namespace) -> int:
                 for precision in args.precisions.split(","):
                     rows.append(_measure(preset, size, precision, fusion, args))
                     print(rows[-1], flush=True)
+    rows.append(_measure_normal_net(args))  # PRIORS include the normal prior
+    print(rows[-1], flush=True)
     base = rows[0]["ms_per_part"] if not args.no_baseline else None
     for r in rows:
         r["speedup_vs_paper"] = base / r["ms_per_part"] if base else float("nan")

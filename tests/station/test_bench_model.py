@@ -1,0 +1,17 @@
+"""``station bench model``: one row per configuration plus the normal estimator, written as JSON and Markdown."""
+
+from __future__ import annotations
+
+import json
+
+from station.cli import main
+
+
+def test_bench_model_rows(tmp_path) -> None:
+    assert main(["bench", "model", "--presets", "tiny", "--precisions", "fp32", "--fusions", "ensemble,fused",
+                 "--repeats", "1", "--no-baseline", "--out", str(tmp_path)]) == 0
+    rows = json.loads((tmp_path / "model.json").read_text())["rows"]
+    assert [(r["preset"], r["fusion"], r["networks"]) for r in rows] == [
+        ("tiny", "ensemble", 4), ("tiny", "fused", 1), ("normal-net", "-", 1)]
+    assert all(r["ms_per_part"] > 0 and r["params_M"] > 0 for r in rows)
+    assert "normal-net" in (tmp_path / "model.md").read_text()
