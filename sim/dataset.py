@@ -24,6 +24,13 @@ Split rule (``SPLIT_RULE``): by index, ``i % 10`` in {0, 1} -> test (20 %, as th
 (10 % of all, a slice of the paper's training 80 % kept for thresholds), else train. Defects are placed with
 probability ``defect_fraction`` in val and test samples only (DRAEM trains on good parts and makes its own
 anomalies) unless ``defects_in_train``; a placed defect that is not visible gives label 0.
+
+Empty samples (``empty_rate`` > 0; ``is_empty``): the same randomised scene (camera, light, background) rendered
+without the part, for the station's presence check: ``params.json`` has ``"empty": true`` (the key is absent on
+samples that show the part), label 0, no defect, object and defect masks all False. Which indices are empty
+follows from the manifest alone (seed, index, ``empty_rate``), in every split; ``Dataset.indices`` leaves them out
+unless asked (training and evaluation want parts). With ``empty_rate`` 0 (the default) the manifest's ``config``
+has no ``empty_rate`` key, so sets rendered before it existed resume unchanged.
 """
 
 from __future__ import annotations
@@ -73,6 +80,8 @@ class DatasetSpec:
     ground_truth: bool = True
     defect_fraction: float = 0.5
     defects_in_train: bool = False
+    empty_rate: float = 0.0
+    """Fraction of samples rendered without the part (see ``is_empty``); 0 = none."""
     mesh: str = ""
     materials: dict[str, Any] = field(default_factory=dict)
     mesh_scale: float = 1.0
@@ -86,6 +95,8 @@ class DatasetSpec:
         object.__setattr__(self, "spp", sampler_spp(self.spp) if self.spp >= 1 else self.spp)
         if not 0.0 <= self.defect_fraction <= 1.0:
             raise SimError(f"defect fraction must be in [0, 1], got {self.defect_fraction}")
+        if not 0.0 <= self.empty_rate <= 1.0:
+            raise SimError(f"empty rate must be in [0, 1], got {self.empty_rate}")
         if self.seed < 0:
             raise SimError(f"seed must be >= 0, got {self.seed}")
         if self.mesh_scale <= 0:
@@ -99,6 +110,8 @@ class DatasetSpec:
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
         d.pop("variant")  # the variant changes speed, not the distribution of samples
+        if not d["empty_rate"]:
+            d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
         return json.loads(json.dumps(d))  # tuples -> lists, as read back from JSON
 
     @classmethod
@@ -155,25 +168,35 @@ def prepare(spec: DatasetSpec) -> ObjectModel:
     return model
 
 
+def is_empty(seed: int, index: int, empty_rate: float) -> bool:
+    """Whether sample ``index`` of a set with this ``seed`` and ``empty_rate`` is rendered without the part. Its
+    own random stream (``default_rng([seed, index, 2])``), so the samples that show the part are the same
+    whatever ``empty_rate`` is."""
+    return empty_rate > 0 and bool(np.random.default_rng([seed, index, 2]).random() < empty_rate)
+
+
 def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample:
     """Render sample ``index`` in memory (deterministic in ``spec.seed`` and ``index``)."""
     rng = np.random.default_rng([spec.seed, index])
     split = split_of(index)
-    params = sample_scene(rng, spec.scene, model)
+    params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
+    empty = is_empty(spec.seed, index, spec.empty_rate)
     defect = None
-    wants_defect = split != "train" or spec.defects_in_train
+    wants_defect = (split != "train" or spec.defects_in_train) and not empty
     if wants_defect and rng.random() < spec.defect_fraction:
         kind = str(rng.choice(list(spec.defects.usable_types(model))))
         to_world = object_to_world(params["pose"])
         cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
         defect = apply_defect(model, kind, rng, spec.defects, cam_obj, params["materials"])
     mi_seed = int(rng.integers(2**32))
-    out = render_sample(model, params, defect, spec.render_settings(), mi_seed)
+    out = render_sample(model, params, defect, spec.render_settings(), mi_seed, empty=empty)
     frame = simulate(out.s0, out.s1, out.s2, spec.sensor, np.random.default_rng([spec.seed, index, 1]))
     label = int(out.defect_mask is not None and bool(out.defect_mask.any()))
     record = {"index": index, "split": split, "label": label, "defect": defect.info if defect else None,
               "mitsuba_seed": mi_seed, "scene": params, "render_seconds": out.seconds,
               "n_saturated": frame.n_saturated}
+    if empty:
+        record["empty"] = True
     if defect is not None and out.defect_mask is not None:
         record["defect"]["visible_px"] = int(out.defect_mask.sum())
     sample = Sample(index, frame.raw, record, label, split)
@@ -299,6 +322,7 @@ def render_set(root: str | Path, spec: DatasetSpec, count: int, shard: tuple[int
     print(f"rendering {len(todo)} of {len(mine)} samples (shard {k}/{n}) into {root}; "
           f"{len(mine) - len(todo)} already done")
     labels = {0: 0, 1: 0}
+    n_empty = 0
     t0 = time.perf_counter()
     with tqdm(total=len(mine), initial=len(mine) - len(todo), unit="sample", dynamic_ncols=True,
               disable=not progress) as bar:
@@ -306,11 +330,12 @@ def render_set(root: str | Path, spec: DatasetSpec, count: int, shard: tuple[int
             sample = generate_sample(spec, model, i)
             write_sample(root, sample)
             labels[sample.label] += 1
+            n_empty += bool(sample.params.get("empty"))
             bar.update(1)
     dt = time.perf_counter() - t0
     if todo:
         print(f"rendered {len(todo)} samples in {dt:.1f} s ({dt / len(todo):.2f} s/sample); "
-              f"{labels[1]} with a visible defect")
+              f"{labels[1]} with a visible defect" + (f", {n_empty} without the part (empty)" if n_empty else ""))
     return len(todo)
 
 
@@ -332,15 +357,26 @@ class Dataset:
             raise SimError(f"{path}: rendered with convention version {self.manifest.get('convention_version')}, "
                            f"this code uses {CONVENTION_VERSION}: re-render")
         self._indices = sorted(int(p.name) for p in (self.root / "samples").glob("[0-9]" * 6) if p.is_dir())
+        config = self.manifest.get("config") or {}
+        self.empty_rate = float(config.get("empty_rate", 0.0))
+        """Fraction of samples rendered without the part (0 for sets from before the key)."""
+        self._seed = int(config.get("seed", self.manifest.get("seed", 0)))
+        self._empty = {i for i in self._indices if is_empty(self._seed, i, self.empty_rate)}
 
     def __len__(self) -> int:
         return len(self._indices)
 
-    def indices(self, split: str | None = None) -> list[int]:
-        """Complete sample indices, all or of one split ("train", "val", "test")."""
+    def is_empty(self, index: int) -> bool:
+        """Whether sample ``index`` shows no part (known from the manifest; ``sim.dataset.is_empty``)."""
+        return is_empty(self._seed, index, self.empty_rate)
+
+    def indices(self, split: str | None = None, empty: bool | None = False) -> list[int]:
+        """Complete sample indices, all or of one split ("train", "val", "test"). ``empty``: False (default) only
+        samples that show the part, True only the empty ones, None both."""
         if split not in (None, "train", "val", "test"):
             raise SimError(f"unknown split {split!r}; use train, val or test")
-        return [i for i in self._indices if split is None or split_of(i) == split]
+        return [i for i in self._indices if (split is None or split_of(i) == split)
+                and (empty is None or (i in self._empty) == empty)]
 
     def load(self, index: int, ground_truth: bool = True) -> Sample:
         d = sample_dir(self.root, index)

@@ -148,11 +148,15 @@ def label_image(sid: np.ndarray, scene, labels: dict[str, int]) -> np.ndarray:
 
 
 def render_sample(model: ObjectModel, params: dict, defect: DefectResult | None, settings: RenderSettings,
-                  seed: int) -> RenderOutput:
+                  seed: int, *, empty: bool = False) -> RenderOutput:
     """Render one sampled scene (``sim.scene.sample_scene`` params) with the object ``model`` (or the
-    defective one in ``defect``). Deterministic for a given ``seed`` (uint32)."""
+    defective one in ``defect``). ``empty``: the same scene (camera, light, background) without the object, for
+    frames with no part in view (masks all False, ``part_index`` 0; ``defect`` must be None). Deterministic for a
+    given ``seed`` (uint32)."""
     import mitsuba as mi
 
+    if empty and defect is not None:
+        raise SimError("an empty scene cannot show a defect")
     set_variant(settings.variant)
     t0 = time.perf_counter()
     shown = defect.model if defect is not None else model
@@ -160,7 +164,7 @@ def render_sample(model: ObjectModel, params: dict, defect: DefectResult | None,
     materials = dict(params["materials"])
     if defect is not None:
         materials[DEFECT_PART] = defect.material
-    parts = pose_parts(shown, to_world)
+    parts = [] if empty else pose_parts(shown, to_world)
     scene_dict, keys = build_scene(params, parts, materials, settings.width, settings.height, settings.spp,
                                    settings.background_size_m)
     scene = load_scene(scene_dict)

@@ -28,6 +28,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--defects", type=float, default=0.5, metavar="FRACTION",
                    help="fraction of val/test samples given a defect (default 0.5)")
     p.add_argument("--defects-in-train", action="store_true", help="also put defects into train samples")
+    p.add_argument("--empty-rate", type=float, default=0.0, metavar="FRACTION",
+                   help="fraction of samples rendered without the part (same scene, no part in view: for the "
+                        "station's presence check; any split; training and evaluation skip them); default 0")
     p.add_argument("--shard", type=parse_shard, default=(0, 1), metavar="K/N",
                    help="render only indices i with i %% N == K (0 <= K < N), for parallel jobs")
     p.add_argument("--seed", type=int, default=0)
@@ -101,7 +104,8 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
     return DatasetSpec.from_dict({
         "seed": args.seed, "width": args.width, "height": args.height, "spp": spp,
         "ground_truth": not args.no_ground_truth, "defect_fraction": args.defects,
-        "defects_in_train": args.defects_in_train, "mesh": args.mesh, "materials": materials,
+        "defects_in_train": args.defects_in_train, "empty_rate": args.empty_rate, "mesh": args.mesh,
+        "materials": materials,
         "mesh_scale": args.mesh_scale, "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
     })
