@@ -20,11 +20,12 @@ FRAME_SCHEMA_VERSION = 1
 class GroundTruth:
     """What a simulated part really is.
 
-    label        1 if the part has a defect (``defect_mask`` non-empty), else 0.
+    label        1 if the part has a defect (``defect_mask`` non-empty), else 0 (also 0 when no part is in view).
     defect_mask  (H, W) bool, True on defect pixels, same shape as the frame's mosaic; None if not known.
     sample_index index of the rendered sample in its dataset (None when rendered on the fly).
     split        the sample's split in its dataset ("train" | "val" | "test"), or None.
     params       every sampled scene parameter (pose, material, defect type...), as in ``params.json``.
+    present      False when the frame shows no part (an empty scene: ``"empty": true`` in ``params.json``).
     """
 
     label: int
@@ -32,6 +33,7 @@ class GroundTruth:
     sample_index: int | None = None
     split: str | None = None
     params: dict[str, Any] = field(default_factory=dict)
+    present: bool = True
 
 
 @dataclass(frozen=True, eq=False)

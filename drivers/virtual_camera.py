@@ -1,8 +1,10 @@
 """The virtual polarization camera: ``drivers.camera.Camera`` backed by a rendered dataset (``sim.dataset``).
 
 Each frame is one rendered part, drawn at random (so poses come in random order): with probability
+``empty_rate`` from the set's empty samples (the scene without the part, ``sim.dataset``), else with probability
 ``defect_rate`` from the samples with a defect (label 1), else from the good ones. The frame carries its ground
-truth (label, defect mask, sample index, split, scene parameters) so the station can score its decisions live.
+truth (label, defect mask, sample index, split, scene parameters, whether a part is in view) so the station can
+score its decisions live.
 
 Keeping up with the frame rate: samples are decoded once into an in-memory pool at ``open()`` (raw mosaic and
 defect mask only; the float ground truth is not loaded), stratified over good and defective samples and capped at
@@ -33,19 +35,21 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class VirtualCameraConfig:
-    """dataset: folder written by ``station render``; defect_rate: fraction of frames showing a defective part;
+    """dataset: folder written by ``station render``; defect_rate: fraction of the parts shown that are defective;
     split: replay only this split ("train" | "val" | "test"), None = all; seed: the draw order; cache_mb: memory
-    for the decoded pool."""
+    for the decoded pool; empty_rate: fraction of frames with no part in view (the set needs empty samples)."""
 
     dataset: str
     defect_rate: float = 0.2
     split: str | None = None
     seed: int = 0
     cache_mb: float = 512.0
+    empty_rate: float = 0.0
 
     def __post_init__(self) -> None:
-        if not 0.0 <= self.defect_rate <= 1.0:
-            raise CameraConfigError(f"virtual camera defect_rate = {self.defect_rate}: must be in [0, 1]")
+        for name in ("defect_rate", "empty_rate"):
+            if not 0.0 <= getattr(self, name) <= 1.0:
+                raise CameraConfigError(f"virtual camera {name} = {getattr(self, name)}: must be in [0, 1]")
 
 
 @dataclass(frozen=True)
@@ -63,6 +67,7 @@ class VirtualCamera(CameraBase):
         self.sim = sim
         self._good: list[_Cached] = []
         self._bad: list[_Cached] = []
+        self._empty: list[_Cached] = []
         self._rng = np.random.default_rng(sim.seed)
         self._opened = False
         self._started = False
@@ -81,7 +86,7 @@ class VirtualCamera(CameraBase):
         from sim.dataset import open_dataset
 
         ds = open_dataset(self.sim.dataset)
-        indices = ds.indices(self.sim.split)
+        indices = ds.indices(self.sim.split, empty=None)
         if not indices:
             raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no complete samples"
                                     + (f" in split {self.sim.split!r}" if self.sim.split else ""))
@@ -99,34 +104,45 @@ class VirtualCamera(CameraBase):
         from tqdm import tqdm
 
         labels = {i: self._label(ds, i) for i in indices}
+        empty = [i for i in indices if labels[i] is None]
         good = [i for i in indices if labels[i] == 0]
         bad = [i for i in indices if labels[i] == 1]
-        if self.sim.defect_rate > 0 and not bad:
-            raise CameraConfigError(f"virtual camera: defect_rate {self.sim.defect_rate} but {self.sim.dataset} "
-                                    f"has no sample with a defect (label 1)")
-        if self.sim.defect_rate < 1 and not good:
-            raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no good sample (label 0)")
-        budget = max(2, int(self.sim.cache_mb * 2**20 // (2 * frame_bytes)))  # raw + mask (1 B/px) per sample
-        n_bad = min(len(bad), max(1 if bad else 0, round(budget * self.sim.defect_rate)))
-        n_good = min(len(good), budget - n_bad)
-        pick_good = self._rng.permutation(good)[:n_good] if good else []
-        pick_bad = self._rng.permutation(bad)[:n_bad] if bad else []
-        for i in tqdm([*pick_good, *pick_bad], desc="virtual camera: loading parts", unit="part",
+        where = self.sim.dataset + (f" (split {self.sim.split!r})" if self.sim.split else "")
+        if self.sim.empty_rate > 0 and not empty:
+            raise CameraConfigError(f"virtual camera: empty_rate {self.sim.empty_rate} but {where} has no empty "
+                                    f"sample (no part in view); render a set with `station render --empty-rate`")
+        if self.sim.empty_rate < 1:
+            if self.sim.defect_rate > 0 and not bad:
+                raise CameraConfigError(f"virtual camera: defect_rate {self.sim.defect_rate} but {where} "
+                                        f"has no sample with a defect (label 1)")
+            if self.sim.defect_rate < 1 and not good:
+                raise CameraConfigError(f"virtual camera: {where} has no good sample (label 0)")
+        budget = max(3, int(self.sim.cache_mb * 2**20 // (2 * frame_bytes)))  # raw + mask (1 B/px) per sample
+        n_empty = min(len(empty), max(1 if empty and self.sim.empty_rate else 0, round(budget * self.sim.empty_rate)))
+        parts_budget = budget - n_empty
+        n_bad = min(len(bad), max(1 if bad else 0, round(parts_budget * self.sim.defect_rate)))
+        n_good = min(len(good), parts_budget - n_bad)
+        picks = [self._rng.permutation(pool)[:n] if pool else [] for pool, n in
+                 ((good, n_good), (bad, n_bad), (empty, n_empty))]
+        for i in tqdm([i for pick in picks for i in pick], desc="virtual camera: loading parts", unit="part",
                       disable=len(indices) < 50):
             c = self._load(ds, int(i))
-            (self._bad if c.ground_truth.label else self._good).append(c)
-        log.info("virtual camera: %d good + %d defective parts of %d in memory (%s, %d-bit)", len(self._good),
-                 len(self._bad), len(indices), self.sim.dataset, self.bit_depth)
+            gt = c.ground_truth
+            (self._empty if not gt.present else self._bad if gt.label else self._good).append(c)
+        log.info("virtual camera: %d good + %d defective parts + %d empty views of %d in memory (%s, %d-bit)",
+                 len(self._good), len(self._bad), len(self._empty), len(indices), self.sim.dataset, self.bit_depth)
 
     @staticmethod
-    def _label(ds: object, index: int) -> int:
+    def _label(ds: object, index: int) -> int | None:
+        """The sample's label, None for an empty sample (no part in view)."""
         import json
 
         from sim.dataset import sample_dir
 
         path = sample_dir(ds.root, index) / "params.json"  # type: ignore[attr-defined]
         try:
-            return int(json.loads(path.read_text())["label"])
+            params = json.loads(path.read_text())
+            return None if params.get("empty") else int(params["label"])
         except (OSError, ValueError, KeyError) as exc:
             raise CameraConfigError(f"virtual camera: {path}: no readable label ({exc})") from None
 
@@ -144,7 +160,8 @@ class VirtualCamera(CameraBase):
                     mask.flags.writeable = False
         raw = np.ascontiguousarray(sample.raw)
         raw.flags.writeable = False
-        return _Cached(index, raw, GroundTruth(sample.label, mask, index, sample.split, sample.params))
+        return _Cached(index, raw, GroundTruth(sample.label, mask, index, sample.split, sample.params,
+                                               present=not sample.params.get("empty", False)))
 
     def _check_config(self, config: CameraConfig) -> None:
         if config.trigger not in ("free_run", "software"):
@@ -193,8 +210,11 @@ class VirtualCamera(CameraBase):
             time.sleep(wait_s)
         now = time.monotonic()
         self._next_due = max(self._next_due + 1.0 / self.config.frame_rate_hz, now - 1.0 / self.config.frame_rate_hz)
-        pool = self._bad if (self._bad and (not self._good or self._rng.random() < self.sim.defect_rate)) \
-            else self._good
+        if self._empty and (not (self._good or self._bad) or self._rng.random() < self.sim.empty_rate):
+            pool = self._empty
+        else:
+            pool = self._bad if (self._bad and (not self._good or self._rng.random() < self.sim.defect_rate)) \
+                else self._good
         part = pool[int(self._rng.integers(len(pool)))]
         self._frame_id += 1
         self._stats.completed += 1
@@ -207,5 +227,5 @@ class VirtualCamera(CameraBase):
 
     def close(self) -> None:
         self.stop()
-        self._good, self._bad = [], []
+        self._good, self._bad, self._empty = [], [], []
         self._opened = False

@@ -32,7 +32,7 @@ def make_dataset(root: Path, n: int = 12, defective: tuple[int, ...] = (0, 1, 3)
 
 
 def cam(root: Path, **kw: object) -> VirtualCamera:
-    sim_kw = {k: kw.pop(k) for k in ("defect_rate", "split", "seed", "cache_mb") if k in kw}
+    sim_kw = {k: kw.pop(k) for k in ("defect_rate", "split", "seed", "cache_mb", "empty_rate") if k in kw}
     cfg = CameraConfig(**{"trigger": "free_run", "frame_rate_hz": 500.0, **kw})  # type: ignore[arg-type]
     return VirtualCamera(cfg, VirtualCameraConfig(str(root), **sim_kw))  # type: ignore[arg-type]
 
