@@ -18,6 +18,7 @@ from station.inspection_log import InspectionLog
 from station.inspector import Inspector
 from station.loop import LineLink, NoLink, Station
 from station.model_detector import DraemDetector
+from station.presence import PresenceCheck
 from station.reject_store import RejectStore
 from station.viewer import ViewerFeed
 
@@ -28,6 +29,9 @@ DEMO_DATASET = "data/sim-demo"
 DEMO_PARTS = 40
 DEMO_SEED = 7
 """Not the seed of the shipped model's training set (0), so the demo shows parts the model never saw."""
+DEMO_EMPTY_DATASET = "data/sim-demo-empty"
+"""The demo set with empty views, rendered instead (once) when ``[sim] empty_rate`` > 0 and ``dataset = ""``."""
+DEMO_EMPTY_RATE = 0.25
 
 
 def driver_camera_config(cfg: StationConfig) -> DriverCameraConfig:
@@ -45,15 +49,42 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
         return cfg.sim.dataset
     from sim.dataset import DatasetSpec, open_dataset, render_set
 
-    root = Path(DEMO_DATASET)
-    if (root / "manifest.json").is_file() and len(open_dataset(root)) >= DEMO_PARTS:
+    # the plain demo set stays as it was (make demo's first run); empty views only when asked for
+    empty_rate = DEMO_EMPTY_RATE if cfg.sim.empty_rate > 0 else 0.0
+    root = Path(DEMO_EMPTY_DATASET if empty_rate else DEMO_DATASET)
+    if (root / "manifest.json").is_file() and len(open_dataset(root).indices(empty=None)) >= DEMO_PARTS:
         return str(root)
-    print(f"[sim] dataset is empty: rendering {DEMO_PARTS} demo parts into {root} with Mitsuba (once; "
-          f"about 2 s each)")
+    print(f"[sim] dataset is empty: rendering {DEMO_PARTS} demo samples into {root} with Mitsuba (once; "
+          f"about 2 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
     spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": 16,
-                                  "defect_fraction": 0.5, "defects_in_train": True})
+                                  "defect_fraction": 0.5, "defects_in_train": True, "empty_rate": empty_rate})
+    if empty_rate:
+        _link_demo_parts(Path(DEMO_DATASET), root)
     render_set(root, spec, DEMO_PARTS)
     return str(root)
+
+
+def _link_demo_parts(src: Path, dst: Path) -> None:
+    """Hard-link the plain demo set's samples that show a part into the demo set with empty views: the same seed
+    renders them identically (``sim.dataset.is_empty`` draws from its own stream), so only the empty views are
+    rendered."""
+    import os
+    import shutil
+
+    from sim.dataset import is_complete, is_empty, sample_dir
+
+    if not (src / "manifest.json").is_file():
+        return
+    for i in range(DEMO_PARTS):
+        if is_empty(DEMO_SEED, i, DEMO_EMPTY_RATE) or not is_complete(src, i) or is_complete(dst, i):
+            continue
+        final = sample_dir(dst, i)
+        tmp = final.with_name(f"{final.name}.tmp-{os.getpid()}")  # renamed when whole, as sim.dataset writes
+        try:
+            shutil.copytree(sample_dir(src, i), tmp, copy_function=os.link)
+            os.rename(tmp, final)
+        except OSError:  # another file system: render it instead
+            shutil.rmtree(tmp, ignore_errors=True)
 
 
 def open_camera(cfg: StationConfig) -> Camera:
@@ -63,7 +94,7 @@ def open_camera(cfg: StationConfig) -> Camera:
         from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
 
         camera: Camera = VirtualCamera(dcfg, VirtualCameraConfig(ensure_sim_dataset(cfg), cfg.sim.defect_rate,
-                                                                 seed=cfg.sim.seed))
+                                                                 seed=cfg.sim.seed, empty_rate=cfg.sim.empty_rate))
     else:
         from drivers.aravis_camera import AravisCamera
 
@@ -108,13 +139,20 @@ def load_detector(cfg: StationConfig) -> DraemDetector:
                          cfg.model.early_exit_margin)
 
 
+def presence_check(cfg: StationConfig) -> PresenceCheck | None:
+    """The ``[presence]`` check, or None when disabled."""
+    p = cfg.presence
+    return PresenceCheck(p.min_dolp_contrast, p.cell_px) if p.enabled else None
+
+
 def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, link: LineLink,
                   inspection_log: InspectionLog, *, viewer: ViewerFeed | None = None,
                   rejects: RejectStore | None = None) -> Station:
-    """The inspection loop with the ``[priors]``, ``[acquisition]`` and ``[camera]`` settings; with a viewer, the
-    priors it shows are computed too."""
+    """The inspection loop with the ``[priors]``, ``[presence]``, ``[acquisition]`` and ``[camera]`` settings;
+    with a viewer, the priors it shows are computed too."""
     inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
-                          display_priors=("intensity", "dolp", "aolp") if viewer else ())
+                          display_priors=("intensity", "dolp", "aolp") if viewer else (),
+                          presence=presence_check(cfg))
     return Station(camera, inspector, link, inspection_log, threshold=detector.threshold,
                    cycle_time_ms=cfg.acquisition.cycle_time_ms, queue_size=cfg.acquisition.queue_size,
                    backpressure=cfg.acquisition.backpressure, grab_timeout_ms=cfg.camera.timeout_ms,

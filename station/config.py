@@ -86,6 +86,13 @@ class DecisionConfig:
 
 
 @dataclass(frozen=True)
+class PresenceConfig:
+    enabled: bool = True
+    min_dolp_contrast: float = _opt(0.10, range=(0.0, 1.0))
+    cell_px: int = _opt(12, range=(1, 4096))
+
+
+@dataclass(frozen=True)
 class IOConfig:
     mode: str = _opt("sim_plc", choices=("none", "sim_plc", "serial"))
     port: str = ""
@@ -106,6 +113,7 @@ class LogConfig:
 class SimConfig:
     dataset: str = ""
     defect_rate: float = _opt(0.2, range=(0.0, 1.0))
+    empty_rate: float = _opt(0.0, range=(0.0, 1.0))
     seed: int = _opt(0, range=(0, 2**63 - 1))
 
 
@@ -116,6 +124,7 @@ class StationConfig:
     priors: PriorsConfig = field(default_factory=PriorsConfig)
     model: ModelConfig = field(default_factory=ModelConfig)
     decision: DecisionConfig = field(default_factory=DecisionConfig)
+    presence: PresenceConfig = field(default_factory=PresenceConfig)
     io: IOConfig = field(default_factory=IOConfig)
     log: LogConfig = field(default_factory=LogConfig)
     sim: SimConfig = field(default_factory=SimConfig)

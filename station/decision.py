@@ -1,4 +1,7 @@
-"""Pass or reject, failing closed: a part that cannot be judged is rejected, and the reason says why."""
+"""Pass, reject or empty, failing closed: a part that cannot be judged is rejected, and the reason says why.
+
+"empty" (no part in view, from ``station.presence``) is not a judgement of a part: what the PLC is told about it
+is the loop's business (``station.loop``: REJECT when a part was announced, nothing in free run)."""
 
 from __future__ import annotations
 
@@ -9,22 +12,26 @@ from dataclasses import dataclass
 @dataclass(frozen=True)
 class Decision:
     decision: str
-    """"pass" or "reject" (see ``station.inspection_log.DECISIONS``)."""
+    """"pass", "reject" or "empty" (see ``station.inspection_log.DECISIONS``)."""
     reason: str | None = None
-    """Why a part was rejected; None for a pass."""
+    """Why a part was rejected or skipped as empty; None for a pass."""
 
 
 def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = None,
            cycle_time_ms: float | None = None, error: str | None = None,
-           invalid_fraction: float = 0.0, max_invalid_fraction: float = 0.01) -> Decision:
+           invalid_fraction: float = 0.0, max_invalid_fraction: float = 0.01, empty: str | None = None) -> Decision:
     """Decide one part. In order, each of these rejects with its reason: an ``error`` in an earlier stage;
-    more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range); a missing or
-    non-finite score; judgement later than the cycle time budget; ``score > threshold``. Otherwise pass."""
+    more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range). Then ``empty`` (the
+    presence check's reason, when it found no part) gives "empty" with that reason. Then each of these rejects:
+    a missing or non-finite score; judgement later than the cycle time budget; ``score > threshold``. Otherwise
+    pass. A frame whose pixels are unusable is rejected rather than called empty: its emptiness is not known."""
     if error:
         return Decision("reject", f"not judged: {error}")
     if invalid_fraction > max_invalid_fraction:
         return Decision("reject", f"not judged: {100 * invalid_fraction:.2f} % of input pixels invalid "
                                   f"(limit {100 * max_invalid_fraction:.2f} %)")
+    if empty is not None:
+        return Decision("empty", empty)
     if score is None or not math.isfinite(score):
         return Decision("reject", f"not judged: model score is {score}")
     if elapsed_ms is not None and cycle_time_ms is not None and elapsed_ms > cycle_time_ms:

@@ -1,5 +1,9 @@
 """One frame -> score and heatmap: demosaic, the priors the detector needs (and no others), the detector.
 
+With a presence check (``station.presence``), it runs on the priors before the detector; a frame with no part
+in view comes back with ``present`` False and no score: the detector does not run. Its priors (DoLP) are
+computed even when the detector does not read them; the check's own time is the "presence" stage.
+
 Every stage is timed. Errors do not escape: they come back in ``Inspection.error`` so the loop can reject the
 part with its reason (fail closed) and keep running.
 """
@@ -18,6 +22,7 @@ from model.priors import MosaicLayout
 from model.priors.api import check_prior_names, needs_polarization, priors_from_stokes
 from model.priors.demosaic import mosaic_to_stokes
 from model.priors.mosaic import normalize_mosaic
+from station.presence import Presence, PresenceCheck
 
 
 @dataclass(frozen=True)
@@ -47,18 +52,27 @@ class Inspection:
     invalid_fraction: float = 0.0
     n_saturated: int = 0
     error: str | None = None
+    presence: Presence | None = None
+    """The presence check's answer; None when there is no check (or the priors failed before it)."""
     timings_ms: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def present(self) -> bool:
+        """False only when the presence check found no part in view."""
+        return self.presence is None or self.presence.present
 
 
 class Inspector:
     """Frames -> ``Inspection``s for one detector, layout and demosaic method."""
 
     def __init__(self, detector: Detector, layout: MosaicLayout, method: str = "bilinear",
-                 display_priors: tuple[str, ...] = ()) -> None:
+                 display_priors: tuple[str, ...] = (), presence: PresenceCheck | None = None) -> None:
         self.detector = detector
         self.layout = layout
         self.method = method
-        self.names = check_prior_names(tuple(dict.fromkeys(detector.priors + display_priors)))
+        self.presence = presence
+        extra = presence.priors if presence is not None else ()
+        self.names = check_prior_names(tuple(dict.fromkeys(detector.priors + display_priors + extra)))
         self.polarization = needs_polarization(self.names)
 
     def inspect(self, frame: Frame) -> Inspection:
@@ -77,6 +91,17 @@ class Inspector:
         except Exception as exc:  # any failure here is a part we cannot judge
             result.error = f"frame {frame.frame_id}: priors failed: {type(exc).__name__}: {exc}"
             return result
+        if self.presence is not None:
+            try:
+                result.presence = self.presence(result.priors)
+            except Exception as exc:  # no answer is not "empty": the part is rejected, not skipped
+                result.error = f"frame {frame.frame_id}: presence check failed: {type(exc).__name__}: {exc}"
+                return result
+            t_check = time.perf_counter()
+            result.timings_ms["presence"] = 1e3 * (t_check - t_priors)
+            t_priors = t_check  # the model's time starts after the check
+            if not result.present:
+                return result  # nothing to judge: the model does not run
         try:
             inference = self.detector.infer(result.priors)
             result.score, result.heatmap = float(inference.score), inference.heatmap

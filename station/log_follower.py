@@ -52,8 +52,11 @@ class LogFollower:
     def stats(self) -> dict[str, float]:
         parts = sum(self.counts.values())
         lat = np.array(self.latencies) if self.latencies else np.zeros(1)
-        return {"parts": parts, "rejects": self.counts["reject"], "not_inspected": self.counts["not_inspected"],
-                "reject_rate": self.counts["reject"] / max(parts, 1), "p50_ms": float(np.percentile(lat, 50)),
+        return {"parts": parts, "rejects": self.counts["reject"], "empty": self.counts["empty"],
+                "not_inspected": self.counts["not_inspected"],
+                # of judged parts, as station report: empty frames (free run, between parts) would dilute it
+                "reject_rate": self.counts["reject"] / max(self.counts["pass"] + self.counts["reject"], 1),
+                "p50_ms": float(np.percentile(lat, 50)),
                 "p99_ms": float(np.percentile(lat, 99))}
 
     def _frame(self, row: dict[str, Any]) -> ViewFrame:

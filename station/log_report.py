@@ -17,8 +17,11 @@ PERCENTILES = (50, 90, 99)
 
 @dataclass(frozen=True)
 class LogSummary:
-    """Counts per decision, reject rate among judged parts, total latency percentiles (ms), score histogram,
-    and the confusion matrix against ground truth where the log has it (simulated camera)."""
+    """Counts per decision, reject rate among judged parts (pass + reject; "empty" frames are not judged), total
+    latency percentiles (ms), score histogram, and the confusion against ground truth where the log has it
+    (simulated camera): ``<truth>_<decision>`` with truth "good"/"bad" and decision "pass", "reject" or "empty"
+    ("good_empty"/"bad_empty": a part the presence check missed; frames whose ground truth shows no part are
+    logged without a label, so they are not in it)."""
 
     counts: dict[str, int]
     reject_rate: float
@@ -44,7 +47,7 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
             latencies.append(r["total_ms"])
         if r["score"] is not None and r["decision"] in scores:
             scores[r["decision"]].append(r["score"])
-        if r["ground_truth_label"] is not None and r["decision"] in ("pass", "reject"):
+        if r["ground_truth_label"] is not None and r["decision"] in ("pass", "reject", "empty"):
             truth = "bad" if r["ground_truth_label"] else "good"
             confusion[f"{truth}_{r['decision']}"] += 1
     judged = counts["pass"] + counts["reject"]
@@ -71,6 +74,10 @@ def format_summary(s: LogSummary) -> str:
         lines.append(f"against ground truth: good parts passed {c.get('good_pass', 0)}, good rejected "
                      f"{c.get('good_reject', 0)}, bad rejected {c.get('bad_reject', 0)}, bad passed (escapes) "
                      f"{c.get('bad_pass', 0)}")
+        missed = c.get("good_empty", 0) + c.get("bad_empty", 0)
+        if missed or s.counts.get("empty"):
+            lines.append(f"logged empty (no part in view): {s.counts.get('empty', 0)}, of which {missed} showed a "
+                         "part (presence check missed it)")
     return "\n".join(lines) + "\n"
 
 

@@ -6,7 +6,11 @@ configured backpressure. Every part ends in exactly one log row:
 - judged: ``pass`` or ``reject`` (with the reason);
 - could not be judged (grab timeout after a trigger, lost camera, priors or model error, NaN score, over the
   cycle time): ``reject`` with the reason, and the PLC is told REJECT (fail closed);
-- dropped by backpressure: ``not_inspected`` with the reason, and the PLC is told REJECT.
+- dropped by backpressure: ``not_inspected`` with the reason, and the PLC is told REJECT;
+- no part in view (``station.presence``, before the model runs): ``empty`` with the check's value as reason.
+  When the PLC announced a part (triggered), the PLC is told REJECT: a part was expected and not seen (missing,
+  misplaced, or a part the check cannot see), and an unseen part must never pass. Trigger-free, an empty frame
+  is the gap between parts: the PLC is told nothing and no image is kept.
 
 ``stop()`` (or SIGINT/SIGTERM through ``run_until_signal``) ends acquisition, drains the queue and flushes the log.
 """
@@ -82,24 +86,32 @@ class Part:
 
 @dataclass
 class LiveStats:
-    """Running statistics: counts per decision, confusion against ground truth, recent latencies."""
+    """Running statistics: counts per decision, confusion against ground truth, recent latencies.
+
+    ``confusion`` keys are ``<truth>_<decision>``: truth "good", "bad" (a part, by its label) or "none" (no part
+    in view); decision "pass", "reject" or "empty". So "none_empty" counts empty frames skipped, "good_empty" and
+    "bad_empty" parts the presence check missed, "none_pass"/"none_reject" empty frames the model judged."""
 
     counts: Counter[str] = field(default_factory=Counter)
     confusion: Counter[str] = field(default_factory=Counter)
     latencies_ms: deque[float] = field(default_factory=lambda: deque(maxlen=1000))
     started: float = field(default_factory=time.perf_counter)
 
-    def add(self, decision: str, total_ms: float | None, truth: int | None) -> None:
+    def add(self, decision: str, total_ms: float | None, truth: int | None, present: bool = True) -> None:
+        """One part; ``truth``: its label where known (None: no ground truth), ``present``: whether the ground
+        truth has a part in view."""
         self.counts[decision] += 1
         if total_ms is not None:
             self.latencies_ms.append(total_ms)
-        if truth is not None and decision in ("pass", "reject"):
-            self.confusion[f"{'bad' if truth else 'good'}_{decision}"] += 1
+        if truth is not None and decision in ("pass", "reject", "empty"):
+            kind = "none" if not present else "bad" if truth else "good"
+            self.confusion[f"{kind}_{decision}"] += 1
 
     def summary(self) -> dict[str, float]:
         n = sum(self.counts.values())
         lat = np.array(self.latencies_ms) if self.latencies_ms else np.zeros(1)
-        return {"parts": n, "rejects": self.counts["reject"], "not_inspected": self.counts["not_inspected"],
+        return {"parts": n, "rejects": self.counts["reject"], "empty": self.counts["empty"],
+                "not_inspected": self.counts["not_inspected"],
                 "parts_per_s": n / max(time.perf_counter() - self.started, 1e-9),
                 "p50_ms": float(np.percentile(lat, 50)), "p99_ms": float(np.percentile(lat, 99))}
 
@@ -188,9 +200,10 @@ class Station:
         if part.error is None and part.frame is not None:
             inspection = self.inspector.inspect(part.frame)
             t = time.perf_counter()
+            empty = inspection.presence.reason if inspection.presence and not inspection.present else None
             decision = decide(inspection.score, self.threshold, elapsed_ms=1e3 * (t - part.t_trigger),
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
-                              invalid_fraction=inspection.invalid_fraction)
+                              invalid_fraction=inspection.invalid_fraction, empty=empty)
             inspection.timings_ms["decision"] = 1e3 * (time.perf_counter() - t)
         else:
             decision = decide(None, self.threshold, error=part.error or "no frame")
@@ -200,13 +213,23 @@ class Station:
                 not_inspected: bool = False) -> None:
         """Tell the PLC, log the part, update statistics and the viewer (processing thread only)."""
         t_decided = time.perf_counter()
-        delivered = self.link.report(part.part_id, decision.decision, decision.reason) if part.announced else None
+        empty = decision.decision == "empty"
+        # an announced part that is not in view fails closed (REJECT); trigger-free, an empty frame is no part
+        tell_plc = part.announced and (self.link.triggered or not empty)
+        to_plc = "reject" if empty else decision.decision
+        delivered = self.link.report(part.part_id, to_plc, decision.reason) if tell_plc else None
         t_io = time.perf_counter()
         frame = part.frame
-        truth = frame.ground_truth.label if frame is not None and frame.ground_truth is not None else None
+        gt = frame.ground_truth if frame is not None else None
+        # no part in view has no good/defective label: logged as unknown, counted as "none" in the statistics
+        truth = gt.label if gt is not None and gt.present else None
         timings = inspection.timings_ms if inspection else {}
+        priors_ms = timings.get("priors")
+        if priors_ms is not None and "presence" in timings:
+            priors_ms += timings["presence"]  # the log has no column of its own for the check (~0.1 ms)
         image_path = None
-        if self.rejects is not None and frame is not None and decision.decision != "pass":
+        if (self.rejects is not None and frame is not None and decision.decision != "pass"
+                and (not empty or tell_plc)):
             image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
                                            inspection.heatmap if inspection else None)
         record = InspectionRecord(
@@ -215,12 +238,13 @@ class Station:
             camera_timestamp_ns=frame.timestamp_ns if frame else None,
             score=inspection.score if inspection else None, threshold=self.threshold,
             model_id=self.inspector.detector.model_id, reason=decision.reason, grab_ms=part.grab_ms,
-            demosaic_ms=timings.get("demosaic"), priors_ms=timings.get("priors"), model_ms=timings.get("model"),
+            demosaic_ms=timings.get("demosaic"), priors_ms=priors_ms, model_ms=timings.get("model"),
             decision_ms=timings.get("decision"), io_ms=1e3 * (t_io - t_decided),
             total_ms=1e3 * (t_decided - part.t_trigger),
             io_delivered=delivered, ground_truth_label=truth, image_path=image_path)
         self.log.append(record)
-        self.stats.add(record.decision, record.total_ms, truth)
+        self.stats.add(record.decision, record.total_ms, gt.label if gt is not None else None,
+                       gt.present if gt is not None else True)
         if self.viewer is not None and inspection is not None and "intensity" in inspection.priors:
             p = inspection.priors
             self.viewer.put(ViewFrame(part.part_id, decision.decision, inspection.score, self.threshold,

@@ -28,11 +28,17 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def confusion_table(confusion: dict[str, int]) -> str:
-    """The decisions against the virtual camera's ground truth as a 2x2 text table."""
+    """The decisions against the virtual camera's ground truth as a text table (``LiveStats.confusion`` keys):
+    good and defective parts x pass and reject, plus a column "empty" and a row "no part" when there were
+    frames skipped as empty or frames without a part."""
     g = lambda k: confusion.get(k, 0)  # noqa: E731
-    rows = [("", "pass", "reject"), ("good part", g("good_pass"), g("good_reject")),
-            ("defective part", g("bad_pass"), g("bad_reject"))]
-    return "\n".join(f"{a:>16} {b!s:>8} {c!s:>8}" for a, b, c in rows)
+    truths = [("good part", "good"), ("defective part", "bad")]
+    decisions = ["pass", "reject"]
+    if any(k.startswith("none_") or k.endswith("_empty") for k in confusion):
+        truths.append(("no part", "none"))
+        decisions.append("empty")
+    rows = [("", *decisions)] + [(name, *(g(f"{t}_{d}") for d in decisions)) for name, t in truths]
+    return "\n".join(f"{r[0]:>16}" + "".join(f" {v!s:>8}" for v in r[1:]) for r in rows)
 
 
 def run(args: argparse.Namespace) -> int:
