@@ -1,16 +1,20 @@
 """Run time against error for the whole station: the real loop on held-out rendered parts over a grid of settings.
 
-For each configuration (demosaic method x model checkpoint x precision) a ``station.loop.Station`` inspects
-``--parts`` parts from the virtual camera (the dataset's test split, never trained on; the same parts in the same
-order for every configuration), free-running as fast as processing allows (backpressure ``block``, no PLC), and
-logs to a temporary SQLite file. From the log:
+For each configuration (demosaic method x model checkpoint x precision x presence check on/off) a
+``station.loop.Station`` inspects ``--parts`` frames from the virtual camera (the dataset's test split, never
+trained on; the same frames in the same order for every configuration; ``--empty-rate`` of them show no part,
+which needs a set rendered with ``station render --empty-rate``), free-running as fast as processing allows
+(backpressure ``block``, no PLC), and logs to a temporary SQLite file. From the log:
 
-- latency per part = grab + demosaic + priors + model (+ decision): the work from trigger to decision for one
-  part when parts arrive one cycle apart (queue waiting, which only exists when parts arrive faster than that, is
-  left out); p50 and p99;
-- parts/s sustained over the run;
-- image AUROC of the scores against the virtual camera's ground truth, and the decisions' confusion at the
-  model's threshold.
+- latency per frame = grab + demosaic + priors (+ presence check) + model (+ decision): the work from trigger to
+  decision for one frame when frames arrive one cycle apart (queue waiting, which only exists when they arrive
+  faster than that, is left out); p50 and p99 over every inspected frame, empty ones included (the check's
+  saving);
+- parts/s (frames/s) sustained over the run;
+- image AUROC of the scores against the virtual camera's ground truth (frames that show a part and were judged),
+  and the decisions' confusion at the model's threshold;
+- the presence check against ground truth: the fraction of empty frames skipped (logged "empty", model not run)
+  and of frames showing a part wrongly skipped; and the check's own time per frame (p50).
 
 Writes JSON, a Markdown table and a Pareto plot (p99 latency against 1 - image AUROC), and names the
 configurations on the front.
@@ -29,15 +33,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--models", default="model/weights/default", help="comma-separated checkpoint paths")
     p.add_argument("--methods", default="bilinear,superpixel,residual", help="demosaic methods")
     p.add_argument("--precisions", default="fp32,bf16", help="fp32, bf16 (autocast)")
-    p.add_argument("--parts", type=int, default=200, help="parts per configuration")
-    p.add_argument("--defect-rate", type=float, default=0.5)
+    p.add_argument("--presence", default="on", help="presence check before the model: on, off, or on,off "
+                   "(thresholds as [presence] in station.toml's defaults)")
+    p.add_argument("--parts", type=int, default=200, help="frames per configuration")
+    p.add_argument("--defect-rate", type=float, default=0.5, help="fraction of the parts shown that are defective")
+    p.add_argument("--empty-rate", type=float, default=0.0,
+                   help="fraction of frames with no part in view (the set's test split needs empty samples)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--device", default="auto")
 
 
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
-            device: str) -> dict:
+            device: str, presence: bool = True, empty_rate: float = 0.0) -> dict:
     """One configuration through the real station loop; returns its row."""
+    from collections.abc import Mapping
+
     import numpy as np
 
     from drivers.camera import CameraConfig
@@ -45,37 +55,66 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from model.draem.metrics import auroc
     from model.priors import get_layout
     from sim.dataset import open_dataset
+    from station.config import PresenceConfig
     from station.inspection_log import InspectionLog
     from station.inspector import Inspector
     from station.loop import NoLink, Station
     from station.model_detector import DraemDetector
+    from station.presence import Presence, PresenceCheck
 
     detector = DraemDetector(model, device, precision)
     detector.warm_up()
     layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
     camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1000.0, timeout_ms=10000),
-                           VirtualCameraConfig(data, defect_rate, split="test", seed=seed))
+                           VirtualCameraConfig(data, defect_rate, split="test", seed=seed, empty_rate=empty_rate))
+
+    class TimedCheck(PresenceCheck):
+        """Keeps the check's own time per frame in ms (the log folds it into ``priors_ms``)."""
+
+        def __init__(self, min_dolp_contrast: float, cell_px: int) -> None:
+            super().__init__(min_dolp_contrast, cell_px)
+            self.ms: list[float] = []
+
+        def __call__(self, priors: Mapping[str, np.ndarray]) -> Presence:
+            t = time.perf_counter()
+            out = super().__call__(priors)
+            self.ms.append(1e3 * (time.perf_counter() - t))
+            return out
+
+    cfg = PresenceConfig()
+    check = TimedCheck(cfg.min_dolp_contrast, cfg.cell_px) if presence else None
     with tempfile.TemporaryDirectory() as tmp, InspectionLog(Path(tmp) / "log.sqlite") as log:
         camera.open()
         try:
-            station = Station(camera, Inspector(detector, layout, method), NoLink(), log,
-                              threshold=detector.threshold, cycle_time_ms=1e6, queue_size=1, backpressure="block",
-                              grab_timeout_ms=10000)
+            inspector = Inspector(detector, layout, method, presence=check)
+            station = Station(camera, inspector, NoLink(), log, threshold=detector.threshold, cycle_time_ms=1e6,
+                              queue_size=1, backpressure="block", grab_timeout_ms=10000)
             t = time.perf_counter()
-            station.run(parts, progress_every_s=1e9)
+            stats = station.run(parts, progress_every_s=1e9)
             seconds = time.perf_counter() - t
         finally:
             camera.close()
         rows = list(log.rows())
-    judged = [r for r in rows if r["score"] is not None]
-    lat = np.array([sum(r[k] or 0.0 for k in ("grab_ms", "demosaic_ms", "priors_ms", "model_ms")) for r in judged])
+    inspected = [r for r in rows if r["demosaic_ms"] is not None]
+    judged = [r for r in rows if r["score"] is not None and r["ground_truth_label"] is not None]
+    lat = np.array([sum(r[k] or 0.0 for k in ("grab_ms", "demosaic_ms", "priors_ms", "model_ms"))
+                    for r in inspected])
     y = np.array([r["ground_truth_label"] for r in judged])
     s = np.array([r["score"] for r in judged])
     flagged = s > detector.threshold
-    return {"model": detector.model_id, "method": method, "precision": precision, "parts": len(rows),
-            "judged": len(judged), "p50_ms": float(np.percentile(lat, 50)), "p99_ms": float(np.percentile(lat, 99)),
-            "model_p50_ms": float(np.median([r["model_ms"] for r in judged])),
-            "priors_p50_ms": float(np.median([(r["demosaic_ms"] or 0) + (r["priors_ms"] or 0) for r in judged])),
+    c = stats.confusion  # LiveStats: <truth>_<decision>, truth "none" = no part in view
+    n_empty = sum(v for k, v in c.items() if k.startswith("none_"))
+    n_parts = sum(v for k, v in c.items() if not k.startswith("none_"))
+    model_ms = [r["model_ms"] for r in rows if r["model_ms"] is not None]
+    return {"model": detector.model_id, "method": method, "precision": precision,
+            "presence": "on" if presence else "off", "parts": len(rows), "empty_frames": n_empty,
+            "judged": len(judged), "model_runs": len(model_ms),
+            "p50_ms": float(np.percentile(lat, 50)), "p99_ms": float(np.percentile(lat, 99)),
+            "model_p50_ms": float(np.median(model_ms)) if model_ms else float("nan"),
+            "priors_p50_ms": float(np.median([(r["demosaic_ms"] or 0) + (r["priors_ms"] or 0) for r in inspected])),
+            "presence_p50_ms": float(np.median(check.ms)) if check and check.ms else float("nan"),
+            "empty_skipped": c["none_empty"] / n_empty if n_empty else float("nan"),
+            "parts_skipped": (c["good_empty"] + c["bad_empty"]) / n_parts if n_parts else float("nan"),
             "parts_per_s": len(rows) / seconds, "image_auroc": auroc(y, s),
             "detected": float(flagged[y == 1].mean()) if (y == 1).any() else float("nan"),
             "flagged_good": float(flagged[y == 0].mean()) if (y == 0).any() else float("nan")}
@@ -100,7 +139,8 @@ def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
     fig, ax = plt.subplots(figsize=(6, 4))
     for i, r in enumerate(rows):
         ax.scatter(r["p99_ms"], 1 - r["image_auroc"], c="C3" if i in front else "C0", s=25)
-        ax.annotate(f"{r['method']}/{r['precision']}", (r["p99_ms"], 1 - r["image_auroc"]), fontsize=6)
+        ax.annotate(f"{r['method']}/{r['precision']}/presence {r.get('presence', 'off')}",
+                    (r["p99_ms"], 1 - r["image_auroc"]), fontsize=6)
     ax.axvline(100, color="k", ls=":", lw=0.8)
     ax.set(xlabel="p99 latency per part (ms)", ylabel="1 - image AUROC (held-out parts)",
            title="station run time against error (red: Pareto front)")
@@ -113,27 +153,34 @@ def run(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
     from station.benchmarks.report import markdown_table, write_report
+    from station.errors import UserError
 
-    grid = [(m, meth, prec) for m in args.models.split(",") for meth in args.methods.split(",")
-            for prec in args.precisions.split(",")]
+    presence = args.presence.split(",")
+    bad = [p for p in presence if p not in ("on", "off")]
+    if bad:
+        raise UserError(f"--presence: {bad[0]!r} is not on or off")
+    grid = [(m, meth, prec, pres) for m in args.models.split(",") for meth in args.methods.split(",")
+            for prec in args.precisions.split(",") for pres in presence]
     rows = []
-    for model, method, precision in tqdm(grid, desc="bench pipeline", unit="config"):
+    for model, method, precision, pres in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
-                            args.device))
+                            args.device, pres == "on", args.empty_rate))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
-    cols = ["model", "method", "precision", "parts", "p50_ms", "p99_ms", "priors_p50_ms", "model_p50_ms",
-            "parts_per_s", "image_auroc", "detected", "flagged_good", "pareto"]
-    table = (f"Station pipeline on {args.parts} held-out parts of {args.data} (test split), defect rate "
-             f"{args.defect_rate}\n\n" + markdown_table(rows, cols))
+    cols = ["model", "method", "precision", "presence", "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
+            "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
+            "image_auroc", "detected", "flagged_good", "pareto"]
+    table = (f"Station pipeline on {args.parts} held-out frames of {args.data} (test split), defect rate "
+             f"{args.defect_rate}, empty rate {args.empty_rate}\n\n" + markdown_table(rows, cols))
     write_report(out, "pipeline", {"args": {k: v for k, v in vars(args).items() if k != "func"}, "rows": rows,
                                    "front": [rows[i] for i in front], "plot": plot}, table)
     print(table)
-    print("front: " + "; ".join(f"{rows[i]['method']}/{rows[i]['precision']} ({rows[i]['p99_ms']:.0f} ms p99, "
+    print("front: " + "; ".join(f"{rows[i]['method']}/{rows[i]['precision']}/presence {rows[i]['presence']} "
+                                f"({rows[i]['p99_ms']:.0f} ms p99, "
                                 f"AUROC {rows[i]['image_auroc']:.3f})" for i in front))
     print(f"wrote {out / 'pipeline.json'}, {out / 'pipeline.md'}, {out / plot}")
     return 0

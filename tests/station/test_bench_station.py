@@ -40,3 +40,30 @@ def test_bench_soak_accounts_for_every_part(tmp_path: Path) -> None:
     r = report["result"]
     assert r["rows"] == r["grabbed"] == 12 and r["rows_match"] and len(report["samples"]) >= 2
     assert all(s["rss_mb"] > 10 for s in report["samples"]) and (out / "soak.png").is_file()
+
+
+def test_bench_pipeline_presence_axis_scores_the_check(tmp_path: Path) -> None:
+    import numpy as np
+    from test_presence import empty_mosaic, part_mosaic
+
+    from sim.dataset import DatasetSpec, Sample, init_dataset, is_empty, split_of, write_sample
+
+    data = tmp_path / "ds"  # test split 0, 1, 10, 11: 1 and 10 empty, 11 defective
+    init_dataset(data, DatasetSpec(seed=3, width=96, height=64, empty_rate=0.5), 20)
+    for i in (0, 1, 10, 11):
+        empty = is_empty(3, i, 0.5)
+        label = int(i == 11)
+        params = {"index": i, "split": split_of(i), "label": label, **({"empty": True} if empty else {})}
+        write_sample(data, Sample(i, empty_mosaic(i) if empty else part_mosaic(), params, label, split_of(i)))
+    out = tmp_path / "bench"
+    assert main(["bench", "pipeline", "--data", str(data), "--models", str(make_model(tmp_path / "m" / "best")),
+                 "--methods", "bilinear", "--precisions", "fp32", "--presence", "on,off", "--empty-rate", "0.4",
+                 "--parts", "10", "--out", str(out)]) == 0
+    on, off = json.loads((out / "pipeline.json").read_text())["rows"]
+    assert (on["presence"], off["presence"]) == ("on", "off")
+    assert on["empty_frames"] == off["empty_frames"] > 0  # the same frames in the same order
+    assert on["empty_skipped"] == 1.0 and on["parts_skipped"] == 0.0 and on["presence_p50_ms"] > 0
+    assert on["model_runs"] == 10 - on["empty_frames"] and off["model_runs"] == 10
+    assert off["empty_skipped"] == 0.0 and np.isnan(off["presence_p50_ms"])
+    assert on["judged"] == off["judged"] == 10 - on["empty_frames"]  # AUROC over parts only, both ways
+    assert "| presence |" in (out / "pipeline.md").read_text()
