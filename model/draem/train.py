@@ -6,6 +6,14 @@ all members in one loop on the same batches and the same synthetic masks; member
 over all of them is the same as one Adam each. Every ``eval_every`` steps the detector is evaluated on held-out
 data and checkpointed; the best image AUROC is kept (it swings over training, see NOTES), the last is kept for
 resuming. Data loading is the caller's: this module never reads files of the renderer.
+
+Scale-out: launched by ``torchrun`` (``distributed.py``), every process runs this loop on its own device with its own
+batches (``batch_size`` is per process: the global batch is ``batch_size x world size``, the learning rate is not
+scaled) and its own synthetic anomalies (seeds shifted by ``distributed.rank_seed``); DistributedDataParallel
+averages the gradients, so the weights stay identical on every rank. BatchNorm statistics are per process (no
+SyncBatchNorm); DDP copies rank 0's running statistics to the others at every forward. Rank 0 alone reads and
+writes checkpoints, evaluates, logs and shows progress; the others wait at a barrier. A single process is the
+default and runs exactly as before (same seeds, same results, same files).
 """
 
 from __future__ import annotations
@@ -21,7 +29,9 @@ from typing import Any, Protocol
 
 import numpy as np
 import torch
+from torch import nn
 
+from . import distributed
 from . import metrics as M
 from .anomaly import AnomalyConfig, synthesize
 from .checkpoint import load_checkpoint, paths, save_checkpoint
@@ -189,12 +199,20 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
 
 @dataclass
 class TrainResult:
+    """Paths name rank 0's files under ``out_dir``. ``is_main``: this process is rank 0 (always True for a single
+    process); the other ranks evaluated and wrote nothing, and their caller should stop there. ``history``: the
+    losses are the mean over ranks; evaluations are recorded on rank 0 only. ``detector``: the plain module as the
+    loop left it (last step's weights, identical on every rank; not the best)."""
+
     best_path: Path
     last_path: Path
     best_metrics: dict[str, float]
     history: list[dict[str, Any]]
     steps_done: int
     seconds: float
+    is_main: bool = True
+    world_size: int = 1
+    detector: Detector | None = field(default=None, repr=False)
 
 
 def _better(new: dict[str, float], old: dict[str, float] | None) -> bool:
@@ -205,6 +223,24 @@ def _better(new: dict[str, float], old: dict[str, float] | None) -> bool:
     return key(new) > key(old)
 
 
+class _MemberForward(nn.Module):
+    """Training forward of every member on its channels of the stacked input: ``{member: DraemTrainOutput}`` in
+    the detector's member order. One module over all members, so one DDP wraps the whole detector's weights."""
+
+    def __init__(self, detector: Detector):
+        super().__init__()
+        self.members = detector.members
+        self._slices = {name: detector.member_slice(name) for name in detector.members}
+
+    def forward(self, x: torch.Tensor) -> dict[str, DraemTrainOutput]:
+        outs = {}
+        for name, net in self.members.items():
+            o = net(x[:, self._slices[name]])
+            assert isinstance(o, DraemTrainOutput)
+            outs[name] = o
+        return outs
+
+
 def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_config: TrainConfig = TrainConfig(),
           val: EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
           progress: bool = True, on_eval: Callable[[int, dict[str, float]], None] | None = None) -> TrainResult:
@@ -212,55 +248,99 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
 
     ``val``: held-out data for keep-best (image AUROC, then pixel AUROC); None uses a fixed synthetic-anomaly set
     built from the first training samples, which is weaker evidence: pass rendered defects when there are some.
-    ``resume``: continue from ``out_dir/last`` when it exists (same model config required)."""
+    ``resume``: continue from ``out_dir/last`` when it exists (same model config required).
+
+    Under ``torchrun`` (``WORLD_SIZE`` > 1) this runs data-parallel (module docstring): the process group is joined
+    here unless the caller already did (``distributed.init``; it stays until the process exits); every rank passes
+    the same ``data``; ``val``, ``out_dir``, ``progress`` and ``on_eval`` matter on rank 0 only, which reads and
+    writes ``out_dir`` (the others need no access to it). Check ``TrainResult.is_main`` before using the files."""
+    info = distributed.current()
+    device = distributed.device_for(info, resolve_device(train_config.device))
+    distributed.init(info, device)
+    return _train(config, data, Path(out_dir), train_config, val, resume, data_manifest_sha256, progress, on_eval,
+                  info, device)
+
+
+def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val: EvalData | None, resume: bool,
+           data_manifest_sha256: str | None, progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None,
+           info: distributed.DistInfo, device: torch.device) -> TrainResult:
     from tqdm import tqdm
 
-    tc = train_config
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    device = resolve_device(tc.device)
+    main = info.is_main
+    if main:
+        out.mkdir(parents=True, exist_ok=True)
     precision = resolve_precision(tc.precision, device)
     channels_last = True if tc.channels_last is None else tc.channels_last
     if len(data) == 0:
         raise ModelError("no training samples")
-    if val is None:
+    if val is None and main:
         val = synthetic_eval_data(data, config.priors, seed=tc.seed + 1)
 
     state_file = out / "last.state.pt"
     start_step, best, history = 0, None, []
-    if resume and state_file.is_file():
-        ck = load_checkpoint(out / "last", map_location=device)
-        if ck.detector.config != config:
-            raise CheckpointError(f"{paths(out / 'last')[1]}: resuming a different model ({ck.meta['model']}); "
-                                  f"use another output folder or resume=False")
-        detector = ck.detector.to(device)
-        st = torch.load(state_file, map_location="cpu", weights_only=True)
-    else:
+    detector, st, normalizer, failure = None, None, None, None
+    if main and resume and state_file.is_file():
+        try:
+            ck = load_checkpoint(out / "last", map_location=device)
+            if ck.detector.config != config:
+                raise CheckpointError(f"{paths(out / 'last')[1]}: resuming a different model ({ck.meta['model']}); "
+                                      f"use another output folder or resume=False")
+            detector = ck.detector.to(device)
+            st = torch.load(state_file, map_location="cpu", weights_only=True)
+        except Exception as exc:  # distributed: every rank must learn it, or the others wait forever
+            if not info.enabled:
+                raise
+            failure = exc
+    if main and detector is None and failure is None:
         n_fit = min(len(data), 256)
         x_fit, _ = data.get(torch.arange(n_fit))
-        detector = Detector(config, Normalizer.fit(x_fit))  # all pixels: background is input too
+        normalizer = Normalizer.fit(x_fit)  # all pixels: background is input too
+    if info.enabled:  # rank 0's resume state and normalizer on every rank; its weights come with DDP below
+        shared = distributed.broadcast_object(info, {
+            "error": None if failure is None else f"{type(failure).__name__}: {failure}",
+            "normalizer": normalizer if detector is None else detector.normalizer, "state": st} if main else None)
+        if failure is not None:
+            raise failure
+        if shared["error"]:
+            raise ModelError(f"rank 0 could not resume from {out}: {shared['error']}")
+        normalizer, st = shared["normalizer"], shared["state"]
+    if detector is None:
+        detector = Detector(config, normalizer)
         detector.init_weights(torch.Generator().manual_seed(tc.seed))
         detector.to(device)
-        st = None
     if channels_last:
         detector.to(memory_format=torch.channels_last)
     detector.train()
+    forward: nn.Module = _MemberForward(detector)
+    if info.enabled:  # broadcasts rank 0's weights and buffers now, averages gradients in backward
+        from torch.nn.parallel import DistributedDataParallel
+
+        forward = DistributedDataParallel(forward, device_ids=[device.index] if device.type == "cuda" else None)
     optimizer = torch.optim.Adam(detector.parameters(), lr=tc.lr)
     milestones = [int(tc.steps * f) for f in tc.lr_milestones]
     scheduler = torch.optim.lr_scheduler.MultiStepLR(optimizer, milestones, gamma=tc.lr_gamma)
-    index_gen = torch.Generator().manual_seed(tc.seed)
-    synth_gen = torch.Generator(device=device).manual_seed(tc.seed + 7)
+    index_gen = torch.Generator().manual_seed(distributed.rank_seed(tc.seed, info.rank))
+    synth_gen = torch.Generator(device=device).manual_seed(distributed.rank_seed(tc.seed + 7, info.rank))
     if st is not None:
         optimizer.load_state_dict(st["optimizer"])
         scheduler.load_state_dict(st["scheduler"])
-        index_gen.set_state(st["index_gen"])
-        synth_gen.set_state(st["synth_gen"])
+        gens = st.get("rank_generators")
+        if gens is not None and len(gens) == info.world_size:
+            index_gen.set_state(gens[info.rank][0])
+            synth_gen.set_state(gens[info.rank][1])
+        elif info.rank == 0:
+            index_gen.set_state(st["index_gen"])
+            synth_gen.set_state(st["synth_gen"])
+        if (len(gens) if gens is not None else 1) != info.world_size and main:
+            log.warning("%s was saved by %d process(es), resuming with %d: ranks > 0 restart their random streams",
+                        state_file, len(gens) if gens is not None else 1, info.world_size)
         start_step = int(st["step"])
         best = st.get("best") or None
         history = list(st.get("history", []))
-        log.info("resuming %s at step %d of %d", out, start_step, tc.steps)
+        if main:
+            log.info("resuming %s at step %d of %d", out, start_step, tc.steps)
 
-    def checkpoint(step: int, metrics: dict[str, float]) -> None:
+    def checkpoint(step: int, metrics: dict[str, float], generators: list[Any] | None) -> None:
         nonlocal best
         train_info = {"step": step, "train_config": _jsonable(asdict(tc)), "precision": precision,
                       "device": str(device)}
@@ -270,13 +350,22 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
                             train=train_info)
         save_checkpoint(out / "last", detector, data_manifest_sha256=data_manifest_sha256, metrics=metrics,
                         train=train_info)
-        torch.save({"optimizer": optimizer.state_dict(), "scheduler": scheduler.state_dict(),
-                    "index_gen": index_gen.get_state(), "synth_gen": synth_gen.get_state(), "step": step,
-                    "best": best, "history": history}, state_file)
+        state = {"optimizer": optimizer.state_dict(), "scheduler": scheduler.state_dict(),
+                 "index_gen": index_gen.get_state(), "synth_gen": synth_gen.get_state(), "step": step,
+                 "best": best, "history": history}
+        if generators is not None:  # distributed: (index, synth) generator states per rank
+            state["rank_generators"] = generators
+        torch.save(state, state_file)
+
+    def generators() -> list[Any] | None:
+        """Every rank's generator states on rank 0 (a collective: all ranks call it); None for a single process."""
+        if not info.enabled:
+            return None
+        return distributed.all_gather_object(info, (index_gen.get_state(), synth_gen.get_state()))
 
     t0 = time.perf_counter()
     deadline = t0 + tc.max_minutes * 60 if tc.max_minutes else math.inf
-    bar = tqdm(total=tc.steps, initial=start_step, disable=not progress, unit="step", dynamic_ncols=True)
+    bar = tqdm(total=tc.steps, initial=start_step, disable=not (progress and main), unit="step", dynamic_ncols=True)
     step = start_step
     ema = None
     while step < tc.steps:
@@ -291,10 +380,8 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
         with autocast(device, precision):
             total = torch.zeros((), device=device)
             terms = {}
-            for name, net in detector.members.items():
+            for name, o in forward(aug).items():
                 sl = detector.member_slice(name)
-                o = net(aug[:, sl])
-                assert isinstance(o, DraemTrainOutput)
                 lt = draem_loss(clean[:, sl], o.reconstruction, o.logits, syn.mask)
                 total = total + lt.total
                 terms[name] = lt.as_floats()
@@ -304,30 +391,60 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
         scheduler.step()
         step += 1
         loss = float(total.detach())
-        if not math.isfinite(loss):
-            raise ModelError(f"training diverged at step {step}: loss {loss}")
+        stop = time.perf_counter() > deadline
+        diverged = not math.isfinite(loss)
+        if info.enabled:  # all ranks decide alike, or one waits forever for the others
+            loss, terms, diverged, stop = _agree(info, device, loss, terms, stop)
+        if diverged:
+            raise ModelError(f"training diverged at step {step}: loss {loss}"
+                             + (f" (mean over {info.world_size} ranks)" if info.enabled else ""))
         ema = loss if ema is None else 0.95 * ema + 0.05 * loss
-        rate = (step - start_step) * tc.batch_size / max(time.perf_counter() - t0, 1e-9)
+        rate = (step - start_step) * tc.batch_size * info.world_size / max(time.perf_counter() - t0, 1e-9)
         bar.set_postfix(loss=f"{ema:.4f}", samples_s=f"{rate:.1f}", lr=f"{scheduler.get_last_lr()[0]:.1e}")
         bar.update(1)
         history.append({"step": step, "loss": loss, **{f"{k}_{t}": v for k, d in terms.items() for t, v in d.items()}})
-        stop = time.perf_counter() > deadline
         if step % tc.eval_every == 0 or step == tc.steps or stop:
-            metrics = evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics
-            history.append({"step": step, "eval": metrics})
-            bar.write(f"step {step}: image AUROC {metrics['image_auroc']:.4f}, pixel AUROC "
-                      f"{metrics['pixel_auroc']:.4f}, AUPRO {metrics['aupro_0.3']:.4f} ({val.kind} anomalies)")
-            checkpoint(step, metrics)
-            if on_eval:
-                on_eval(step, metrics)
+            gens = generators()
+            if main:
+                assert val is not None
+                metrics = evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics
+                history.append({"step": step, "eval": metrics})
+                bar.write(f"step {step}: image AUROC {metrics['image_auroc']:.4f}, pixel AUROC "
+                          f"{metrics['pixel_auroc']:.4f}, AUPRO {metrics['aupro_0.3']:.4f} ({val.kind} anomalies)")
+                checkpoint(step, metrics, gens)
+                if on_eval:
+                    on_eval(step, metrics)
+            distributed.barrier(info)
         if stop:
-            log.info("stopping at step %d: max_minutes %.1f reached", step, tc.max_minutes)
+            if main:
+                log.info("stopping at step %d: max_minutes %.1f reached", step, tc.max_minutes)
             break
     bar.close()
-    if step == start_step and not (out / "best.json").exists():  # nothing to do but nothing saved yet
-        checkpoint(step, evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics)
+    if step == start_step:  # nothing to do, but maybe nothing saved yet
+        gens = generators()
+        if main and not (out / "best.json").exists():
+            assert val is not None
+            checkpoint(step, evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics,
+                       gens)
+        distributed.barrier(info)
+    if info.enabled:
+        best = distributed.broadcast_object(info, best)
     return TrainResult(paths(out / "best")[0], paths(out / "last")[0], best or {}, history, step,
-                       time.perf_counter() - t0)
+                       time.perf_counter() - t0, main, info.world_size, detector)
+
+
+def _agree(info: distributed.DistInfo, device: torch.device, loss: float, terms: dict[str, dict[str, float]],
+           stop: bool) -> tuple[float, dict[str, dict[str, float]], bool, bool]:
+    """One all-reduce per step: loss and loss terms averaged over ranks, diverged (a non-finite loss on any rank)
+    and stop (any rank past its deadline) true for all ranks alike."""
+    keys = [(k, t) for k, d in terms.items() for t in d]
+    sums = distributed.all_reduce_sum(info, [loss, *(terms[k][t] for k, t in keys), float(not math.isfinite(loss)),
+                                             float(stop)], device)
+    n = info.world_size
+    mean_terms: dict[str, dict[str, float]] = {}
+    for (k, t), v in zip(keys, sums[1:-2], strict=True):
+        mean_terms.setdefault(k, {})[t] = v / n
+    return sums[0] / n, mean_terms, sums[-2] > 0, sums[-1] > 0
 
 
 def _jsonable(d: Any) -> Any:
