@@ -157,9 +157,12 @@ def normal_estimator(path: str | None, data: str | Path, out: Path) -> NormalEst
         log.warning("normal prior from the rendered ground truth (no --normal-net): a research upper bound; the "
                     "station refuses such a model")
         return None
+    from model.draem.distributed import from_env
     from model.normals.estimator import NormalEstimator
     from model.normals.net import copy_normal_net
 
+    if not from_env().is_main:  # torchrun: rank 0 alone writes the copy, the other ranks read the source
+        return NormalEstimator.load(path, dataset_fov_x_deg(data))
     copy_normal_net(path, out / NORMAL_NET_FILE)
     return NormalEstimator.load(out / NORMAL_NET_FILE, dataset_fov_x_deg(data))
 
@@ -198,6 +201,8 @@ def run(args: argparse.Namespace) -> int:
     sha = manifest_sha256(args.data)
     res = train(config, TensorData(tr.priors, tr.object_mask), out, tc, val, resume=not args.no_resume,
                 data_manifest_sha256=sha)
+    if not res.is_main:  # torchrun: rank 0 alone evaluates, sets the threshold and writes the summary
+        return 0
     ck = load_checkpoint(out / "best")
     ev = evaluate(ck.detector, rendered if has_both else val)
     choice = choose_threshold((rendered if has_both else val).label.numpy(), ev.scores)
