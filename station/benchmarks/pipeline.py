@@ -1,6 +1,7 @@
 """Run time against error for the whole station: the real loop on held-out rendered parts over a grid of settings.
 
-For each configuration (demosaic method x model checkpoint x precision x presence check on/off) a
+For each configuration (demosaic method x model checkpoint x precision x presence check on/off x early exit of
+a per-prior ensemble) a
 ``station.loop.Station`` inspects ``--parts`` frames from the virtual camera (the dataset's test split, never
 trained on; the same frames in the same order for every configuration; ``--empty-rate`` of them show no part,
 which needs a set rendered with ``station render --empty-rate``), free-running as fast as processing allows
@@ -13,6 +14,7 @@ which needs a set rendered with ``station render --empty-rate``), free-running a
 - parts/s (frames/s) sustained over the run;
 - image AUROC of the scores against the virtual camera's ground truth (frames that show a part and were judged),
   and the decisions' confusion at the model's threshold;
+- members of a per-prior ensemble run per judged part (early exit: ``model.draem.early_exit``);
 - the presence check against ground truth: the fraction of empty frames skipped (logged "empty", model not run)
   and of frames showing a part wrongly skipped; and the check's own time per frame (p50).
 
@@ -32,7 +34,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--data", default="data/brick-v2", help="rendered set; its test split is inspected")
     p.add_argument("--models", default="model/weights/default", help="comma-separated checkpoint paths")
     p.add_argument("--methods", default="bilinear,superpixel,residual", help="demosaic methods")
-    p.add_argument("--precisions", default="fp32,bf16", help="fp32, bf16 (autocast)")
+    p.add_argument("--precisions", default="fp32,bf16", help="fp32, bf16 (autocast), onnx (ONNX Runtime)")
+    p.add_argument("--early-exit", default="off",
+                   help="per-prior ensembles: comma-separated off, exact (margin 0) or a margin in (0, 1]; "
+                        "single networks run off only")
     p.add_argument("--presence", default="on", help="presence check before the model: on, off, or on,off "
                    "(thresholds as [presence] in station.toml's defaults)")
     p.add_argument("--parts", type=int, default=200, help="frames per configuration")
@@ -44,7 +49,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
-            device: str, presence: bool = True, empty_rate: float = 0.0) -> dict:
+            device: str, presence: bool = True, empty_rate: float = 0.0, early_exit: float | None = None) -> dict:
     """One configuration through the real station loop; returns its row."""
     from collections.abc import Mapping
 
@@ -62,8 +67,9 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from station.model_detector import DraemDetector
     from station.presence import Presence, PresenceCheck
 
-    detector = DraemDetector(model, device, precision)
+    detector = DraemDetector(model, device, precision, early_exit_margin=early_exit)
     detector.warm_up()
+    detector.members_run = 0
     layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
     camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1000.0, timeout_ms=10000),
                            VirtualCameraConfig(data, defect_rate, split="test", seed=seed, empty_rate=empty_rate))
@@ -107,7 +113,10 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     n_parts = sum(v for k, v in c.items() if not k.startswith("none_"))
     model_ms = [r["model_ms"] for r in rows if r["model_ms"] is not None]
     return {"model": detector.model_id, "method": method, "precision": precision,
-            "presence": "on" if presence else "off", "parts": len(rows), "empty_frames": n_empty,
+            "presence": "on" if presence else "off",
+            "early_exit": "off" if early_exit is None else "exact" if early_exit == 0 else f"margin {early_exit:g}",
+            "members_per_part": detector.members_run / len(model_ms) if model_ms else float("nan"),
+            "parts": len(rows), "empty_frames": n_empty,
             "judged": len(judged), "model_runs": len(model_ms),
             "p50_ms": float(np.percentile(lat, 50)), "p99_ms": float(np.percentile(lat, 99)),
             "model_p50_ms": float(np.median(model_ms)) if model_ms else float("nan"),
@@ -130,6 +139,12 @@ def pareto_front(rows: list[dict]) -> list[int]:
     return front
 
 
+def label(r: dict) -> str:
+    """A configuration in a few words (plot and front)."""
+    ee = f"/early exit {r['early_exit']}" if r.get("early_exit", "off") != "off" else ""
+    return f"{r['model'].split('-')[0]}/{r['method']}/{r['precision']}/presence {r.get('presence', 'off')}{ee}"
+
+
 def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
     import matplotlib
 
@@ -139,7 +154,7 @@ def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
     fig, ax = plt.subplots(figsize=(6, 4))
     for i, r in enumerate(rows):
         ax.scatter(r["p99_ms"], 1 - r["image_auroc"], c="C3" if i in front else "C0", s=25)
-        ax.annotate(f"{r['method']}/{r['precision']}/presence {r.get('presence', 'off')}",
+        ax.annotate(label(r),
                     (r["p99_ms"], 1 - r["image_auroc"]), fontsize=6)
     ax.axvline(100, color="k", ls=":", lw=0.8)
     ax.set(xlabel="p99 latency per part (ms)", ylabel="1 - image AUROC (held-out parts)",
@@ -147,6 +162,27 @@ def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
     fig.savefig(out / "pipeline.png", dpi=120, bbox_inches="tight")
     plt.close(fig)
     return "pipeline.png"
+
+
+def _margin(text: str) -> float | None:
+    """``--early-exit`` value -> ``DraemDetector``'s early_exit_margin."""
+    from station.errors import UserError
+
+    if text in ("off", "exact"):
+        return None if text == "off" else 0.0
+    try:
+        m = float(text)
+    except ValueError:
+        m = -1.0
+    if not 0 < m <= 1:
+        raise UserError(f"--early-exit: {text!r} is not off, exact or a margin in (0, 1]")
+    return m
+
+
+def _is_ensemble(model: str) -> bool:
+    from model.draem.checkpoint import read_sidecar
+
+    return read_sidecar(model)["model"].get("fusion") == "ensemble"
 
 
 def run(args: argparse.Namespace) -> int:
@@ -159,19 +195,22 @@ def run(args: argparse.Namespace) -> int:
     bad = [p for p in presence if p not in ("on", "off")]
     if bad:
         raise UserError(f"--presence: {bad[0]!r} is not on or off")
-    grid = [(m, meth, prec, pres) for m in args.models.split(",") for meth in args.methods.split(",")
-            for prec in args.precisions.split(",") for pres in presence]
+    exits = [_margin(e) for e in args.early_exit.split(",")]
+    grid = [(m, meth, prec, pres, ee) for m in args.models.split(",") for meth in args.methods.split(",")
+            for prec in args.precisions.split(",") for pres in presence for ee in exits
+            if ee is None or _is_ensemble(m)]
     rows = []
-    for model, method, precision, pres in tqdm(grid, desc="bench pipeline", unit="config"):
+    for model, method, precision, pres, ee in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
-                            args.device, pres == "on", args.empty_rate))
+                            args.device, pres == "on", args.empty_rate, ee))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
-    cols = ["model", "method", "precision", "presence", "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
+    cols = ["model", "method", "precision", "presence", "early_exit", "members_per_part",
+            "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
             "image_auroc", "detected", "flagged_good", "pareto"]
     table = (f"Station pipeline on {args.parts} held-out frames of {args.data} (test split), defect rate "
@@ -179,8 +218,7 @@ def run(args: argparse.Namespace) -> int:
     write_report(out, "pipeline", {"args": {k: v for k, v in vars(args).items() if k != "func"}, "rows": rows,
                                    "front": [rows[i] for i in front], "plot": plot}, table)
     print(table)
-    print("front: " + "; ".join(f"{rows[i]['method']}/{rows[i]['precision']}/presence {rows[i]['presence']} "
-                                f"({rows[i]['p99_ms']:.0f} ms p99, "
+    print("front: " + "; ".join(f"{label(rows[i])} ({rows[i]['p99_ms']:.0f} ms p99, "
                                 f"AUROC {rows[i]['image_auroc']:.3f})" for i in front))
     print(f"wrote {out / 'pipeline.json'}, {out / 'pipeline.md'}, {out / plot}")
     return 0

@@ -67,3 +67,26 @@ def test_bench_pipeline_presence_axis_scores_the_check(tmp_path: Path) -> None:
     assert off["empty_skipped"] == 0.0 and np.isnan(off["presence_p50_ms"])
     assert on["judged"] == off["judged"] == 10 - on["empty_frames"]  # AUROC over parts only, both ways
     assert "| presence |" in (out / "pipeline.md").read_text()
+
+
+def test_bench_pipeline_early_exit_axis_for_ensembles_only(tmp_path: Path) -> None:
+    import torch
+
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+
+    ens = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "ensemble", 32))
+    ens.init_weights(torch.Generator().manual_seed(0))
+    save_checkpoint(tmp_path / "ens", ens, threshold=0.0)  # every part a reject after the first member
+    fused = make_model(tmp_path / "fused")
+    data = make_dataset(tmp_path / "ds", n=20)
+    out = tmp_path / "bench"
+    assert main(["bench", "pipeline", "--data", str(data), "--models", f"{tmp_path / 'ens'},{fused}",
+                 "--methods", "bilinear", "--precisions", "fp32", "--early-exit", "off,exact", "--parts", "4",
+                 "--out", str(out)]) == 0
+    rows = json.loads((out / "pipeline.json").read_text())["rows"]
+    got = [(r["model"].split("-")[0], r["early_exit"], r["members_per_part"]) for r in rows]
+    assert got == [("ens", "off", 3.0), ("ens", "exact", 1.0), ("fused", "off", 1.0)]
+    assert main(["bench", "pipeline", "--data", str(data), "--models", str(fused), "--early-exit", "2",
+                 "--out", str(out)]) == 2
