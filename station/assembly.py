@@ -136,7 +136,7 @@ def open_link(cfg: StationConfig, stack: ExitStack) -> LineLink:
 def load_detector(cfg: StationConfig) -> DraemDetector:
     """The model ``[model]`` names, with ``[decision] threshold`` overriding its own."""
     return DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold,
-                         cfg.model.early_exit_margin)
+                         cfg.model.early_exit_margin, cfg.model.fov_x_deg)
 
 
 def presence_check(cfg: StationConfig) -> PresenceCheck | None:

@@ -41,10 +41,12 @@ class DraemDetector:
     device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32", "bf16" (autocast) or "onnx".
     ``threshold`` overrides the checkpoint's threshold (``[decision] threshold``). ``early_exit_margin``: None
     runs every member of a per-prior ensemble; 0 stops once the rest cannot change the decision (exact); m > 0
-    also once the running mean is more than m from the threshold (``model.draem.early_exit``)."""
+    also once the running mean is more than m from the threshold (``model.draem.early_exit``). ``fov_x_deg``:
+    the lens's horizontal field of view for the normal prior's viewing directions (default: the training set's)."""
 
     def __init__(self, path: str | Path, device: str = "auto", precision: str = "fp32",
-                 threshold: float | None = None, early_exit_margin: float | None = None) -> None:
+                 threshold: float | None = None, early_exit_margin: float | None = None,
+                 fov_x_deg: float | None = None) -> None:
         import torch
 
         from model.draem.checkpoint import load_checkpoint, paths
@@ -66,6 +68,8 @@ class DraemDetector:
         if chosen is None:
             raise ModelLoadError(f"{js}: the model has no threshold; set [decision] threshold in station.toml")
         self.normals = self._normal_estimator(js, ck.meta) if "normal" in cfg.priors else None
+        if self.normals is not None and fov_x_deg is not None:
+            self.normals.fov_x_deg = float(fov_x_deg)
         self.net = ck.detector.to(self.device)
         if precision == "onnx":  # ONNX Runtime on CPU, checked against torch at load
             import tempfile

@@ -111,3 +111,14 @@ def test_ground_truth_normals_train_but_do_not_run(tmp_path) -> None:
     assert record == {"source": "ground truth"}
     with pytest.raises(ModelLoadError, match="ground truth, not a learned normal estimator"):
         DraemDetector(tmp_path / "t" / "best", device="cpu")
+
+
+def test_lens_field_of_view_overrides_the_training_sets(trained) -> None:
+    _, _, out = trained
+    rng = np.random.default_rng(0)
+    maps = {k: rng.random((48, 64)).astype(np.float32) for k in MAP_NAMES}
+    default = DraemDetector(out / "best", device="cpu")
+    wide = DraemDetector(out / "best", device="cpu", fov_x_deg=60.0)
+    assert default.normals.fov_x_deg is None and wide.normals.fov_x_deg == 60.0  # the test set has no fov: ortho
+    a, b = default.normals.predict_frame(maps), wide.normals.predict_frame(maps)
+    assert np.abs(a - b).max() > 1e-3  # other viewing directions, other normals
