@@ -117,7 +117,8 @@ class DraemDetector:
         import cv2
         import torch
 
-        from model.draem.preprocess import crop_resize, roi_box, stack_priors
+        from model.draem.preprocess import crop_resize, stack_priors
+        from model.draem.roi import roi_box
         from model.draem.train import autocast
 
         shape = next(iter(priors.values())).shape[:2]

@@ -1,6 +1,6 @@
 """Is a part in view? A cheap check on the DoLP map the inspector already computed, run before the model.
 
-Rule (``dolp_contrast``): inside the square the model scores (``model.draem.preprocess.center_box``), the DoLP
+Rule (``dolp_contrast``): inside the square the model scores (``model.draem.roi.center_box``), the DoLP
 map is averaged over cells of ``cell_px`` x ``cell_px`` pixels, a quadratic surface in (x, y) is fitted to the
 cell means by least squares, and the contrast is the largest absolute residual. A part is present when the
 contrast is at least the threshold.
@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from model.draem.preprocess import center_box
+from model.draem.roi import center_box
 
 MIN_CELLS = 8
 """At least 8 x 8 cells whatever the frame size: on fewer, the quadratic (6 coefficients) absorbs a part too."""

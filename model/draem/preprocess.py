@@ -46,40 +46,6 @@ def stack_priors(maps: Mapping[str, np.ndarray], priors: tuple[str, ...]) -> np.
     return np.stack([np.asarray(a, dtype=np.float32) for a in out])
 
 
-def object_box(object_mask: np.ndarray, margin: float = 0.1) -> tuple[int, int, int, int]:
-    """Square (top, left, size, size) box around the object's bounding box, ``margin`` (fraction of its side)
-    on each side, clipped to the image where possible; the whole image when the mask is empty."""
-    h, w = object_mask.shape
-    ys, xs = np.nonzero(object_mask)
-    if ys.size == 0:
-        s = min(h, w)
-        return (h - s) // 2, (w - s) // 2, s, s
-    cy, cx = (ys.min() + ys.max() + 1) / 2, (xs.min() + xs.max() + 1) / 2
-    side = max(ys.max() - ys.min() + 1, xs.max() - xs.min() + 1) * (1 + 2 * margin)
-    side = int(min(max(side, 8), min(h, w)))
-    top = int(np.clip(round(cy - side / 2), 0, h - side))
-    left = int(np.clip(round(cx - side / 2), 0, w - side))
-    return top, left, side, side
-
-
-def center_box(height: int, width: int) -> tuple[int, int, int, int]:
-    """The centre square (top, left, side, side) of a height x width frame; top and left even, so a crop of the
-    raw mosaic keeps its 2x2 polarizer layout."""
-    side = min(height, width)
-    return ((height - side) // 2) & ~1, ((width - side) // 2) & ~1, side, side
-
-
-def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None) -> tuple[int, int, int, int]:
-    """The square a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W)."""
-    if roi == "center":
-        return center_box(*shape)
-    if roi == "object":
-        if object_mask is None:
-            raise ModelError("roi 'object' needs the object mask (ground truth): not available at a station")
-        return object_box(object_mask)
-    raise ModelError(f"unknown roi {roi!r}")
-
-
 def crop_resize(x: np.ndarray | torch.Tensor, box: tuple[int, int, int, int], size_px: int, priors: tuple[str, ...],
                 masks: tuple[np.ndarray, ...] = ()) -> tuple[torch.Tensor, tuple[torch.Tensor, ...]]:
     """Crop (C, H, W) stacked priors to ``box`` and resize to (C, size_px, size_px) (bilinear, antialiased when

@@ -20,7 +20,8 @@ import numpy as np
 import torch
 import torch.nn.functional as F
 
-from model.draem.preprocess import crop_resize, roi_box
+from model.draem.preprocess import crop_resize
+from model.draem.roi import roi_box
 
 from .errors import NormalsError
 from .net import INPUT_CHANNELS, NormalUNet, load_normal_net, stack_inputs

@@ -53,7 +53,7 @@ def stack_inputs(maps: Mapping[str, np.ndarray], view: np.ndarray) -> np.ndarray
 @dataclass(frozen=True)
 class NormalNetConfig:
     """U-Net widths: ``base_width`` doubling over ``levels`` poolings; square input of ``input_size_px`` (a
-    multiple of 2**levels) cut from the frame by ``roi`` (``model.draem.preprocess.roi_box``)."""
+    multiple of 2**levels) cut from the frame by ``roi`` (``model.draem.roi.roi_box``)."""
 
     base_width: int = 16
     levels: int = 3

@@ -1,12 +1,13 @@
 """Training and running the learned normal estimator (``net.NormalUNet``) on rendered ground-truth normals.
 
 Data: one frame's prior maps, viewing directions and ground truth become one square sample through the same
-region of interest and resize as the DRAEM station (``model.draem.preprocess.roi_box`` / ``crop_resize``), so the
-estimator sees what the detector will see. Loss: mean (1 - cos) between predicted and true normals over object
-pixels. Adam, cosine learning-rate decay over the run (by steps, or by time when only minutes are given),
-seeded; optional mirror augmentation that is exact for polarization: a left-right mirror maps AoLP a -> pi - a
-(sin 2a changes sign) and negates the x of view and normal; an up-down mirror maps a -> -a and negates y. Data
-loading from files is the caller's (this package never reads the renderer's formats).
+region of interest and resize as the DRAEM station (``model.draem.roi.roi_box``,
+``model.draem.preprocess.crop_resize``), so the estimator sees what the detector will see. Loss: mean (1 - cos)
+between predicted and true normals over object pixels. Adam, cosine learning-rate decay over the run (by steps,
+or by time when only minutes are given), seeded; optional mirror augmentation that is exact for polarization: a
+left-right mirror maps AoLP a -> pi - a (sin 2a changes sign) and negates the x of view and normal; an up-down
+mirror maps a -> -a and negates y.
+Data loading from files is the caller's (this package never reads the renderer's formats).
 """
 
 from __future__ import annotations
@@ -21,7 +22,8 @@ from typing import Any
 import numpy as np
 import torch
 
-from model.draem.preprocess import crop_resize, roi_box
+from model.draem.preprocess import crop_resize
+from model.draem.roi import roi_box
 from model.draem.train import resolve_device
 
 from .errors import NormalsError

@@ -97,7 +97,8 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     import torch
     from tqdm import tqdm
 
-    from model.draem.preprocess import crop_resize, roi_box, stack_priors
+    from model.draem.preprocess import crop_resize, stack_priors
+    from model.draem.roi import roi_box
     from model.priors import compute_priors
     from sim.dataset import open_dataset
 

@@ -187,3 +187,12 @@ def test_the_check_asks_for_dolp_when_the_model_does_not() -> None:
     detector = CountingDetector()
     assert Inspector(detector, IMX250MZR).names == ("intensity",)
     assert Inspector(detector, IMX250MZR, presence=PresenceCheck()).names == ("intensity", "dolp")
+
+
+def test_presence_check_and_loop_import_without_torch() -> None:
+    import subprocess
+    import sys
+
+    # the check uses the model's region (model.draem.roi), not its torch preprocessing
+    code = "import sys; sys.modules['torch'] = None; import station.presence, station.loop; print('ok')"
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout == "ok\n"

@@ -1,0 +1,44 @@
+"""The square of a frame a network sees (``ModelConfig.roi``), as (top, left, height, width) in pixels.
+
+Numpy only, so the station's numerics (the presence check) can use the model's region without importing torch.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import ModelError
+
+
+def object_box(object_mask: np.ndarray, margin: float = 0.1) -> tuple[int, int, int, int]:
+    """Square (top, left, size, size) box around the object's bounding box, ``margin`` (fraction of its side)
+    on each side, clipped to the image where possible; the whole image when the mask is empty."""
+    h, w = object_mask.shape
+    ys, xs = np.nonzero(object_mask)
+    if ys.size == 0:
+        s = min(h, w)
+        return (h - s) // 2, (w - s) // 2, s, s
+    cy, cx = (ys.min() + ys.max() + 1) / 2, (xs.min() + xs.max() + 1) / 2
+    side = max(ys.max() - ys.min() + 1, xs.max() - xs.min() + 1) * (1 + 2 * margin)
+    side = int(min(max(side, 8), min(h, w)))
+    top = int(np.clip(round(cy - side / 2), 0, h - side))
+    left = int(np.clip(round(cx - side / 2), 0, w - side))
+    return top, left, side, side
+
+
+def center_box(height: int, width: int) -> tuple[int, int, int, int]:
+    """The centre square (top, left, side, side) of a height x width frame; top and left even, so a crop of the
+    raw mosaic keeps its 2x2 polarizer layout."""
+    side = min(height, width)
+    return ((height - side) // 2) & ~1, ((width - side) // 2) & ~1, side, side
+
+
+def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None) -> tuple[int, int, int, int]:
+    """The square a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W)."""
+    if roi == "center":
+        return center_box(*shape)
+    if roi == "object":
+        if object_mask is None:
+            raise ModelError("roi 'object' needs the object mask (ground truth): not available at a station")
+        return object_box(object_mask)
+    raise ModelError(f"unknown roi {roi!r}")
