@@ -360,15 +360,11 @@ class Dataset:
         config = self.manifest.get("config") or {}
         self.empty_rate = float(config.get("empty_rate", 0.0))
         """Fraction of samples rendered without the part (0 for sets from before the key)."""
-        self._seed = int(config.get("seed", self.manifest.get("seed", 0)))
-        self._empty = {i for i in self._indices if is_empty(self._seed, i, self.empty_rate)}
+        seed = int(config.get("seed", self.manifest.get("seed", 0)))
+        self._empty = {i for i in self._indices if is_empty(seed, i, self.empty_rate)}
 
     def __len__(self) -> int:
         return len(self._indices)
-
-    def is_empty(self, index: int) -> bool:
-        """Whether sample ``index`` shows no part (known from the manifest; ``sim.dataset.is_empty``)."""
-        return is_empty(self._seed, index, self.empty_rate)
 
     def indices(self, split: str | None = None, empty: bool | None = False) -> list[int]:
         """Complete sample indices, all or of one split ("train", "val", "test"). ``empty``: False (default) only
