@@ -24,7 +24,7 @@ from model.draem.preprocess import crop_resize
 from model.draem.roi import roi_box
 
 from .errors import NormalsError
-from .net import INPUT_CHANNELS, NormalUNet, load_normal_net, stack_inputs
+from .net import INPUT_CHANNELS, NormalUNet, load_normal_net, stack_maps
 from .sfp import view_directions
 
 MAP_NAMES = INPUT_CHANNELS[:4]
@@ -65,8 +65,7 @@ class NormalEstimator:
         top, left, h, w = box if box is not None else self.box(shape)
         size = self.net.config.input_size_px
         view = view_directions(shape, self.fov_x_deg, box=(top, left, h, w), size=size)
-        x4 = np.nan_to_num(stack_inputs(maps, np.zeros((*np.shape(maps[MAP_NAMES[0]]), 3), np.float32))[:4],
-                           nan=0.0, posinf=0.0, neginf=0.0)
+        x4 = np.nan_to_num(stack_maps(maps), nan=0.0, posinf=0.0, neginf=0.0)
         if x4.shape[1:] != (h, w):
             raise NormalsError(f"normal estimator: maps {x4.shape[1:]} do not cover the box {(h, w)}")
         xt, _ = crop_resize(x4, (0, 0, h, w), size, ("intensity", "dolp", "aolp"))

@@ -35,19 +35,27 @@ FORMAT = "polar-ano-normals"
 SIDECAR_VERSION = 1
 
 
-def stack_inputs(maps: Mapping[str, np.ndarray], view: np.ndarray) -> np.ndarray:
-    """(7, H, W) float32 network input from prior maps ("intensity", "dolp", "aolp_cos", "aolp_sin", each (H, W),
-    as ``model.priors.compute_priors`` returns them) and (H, W, 3) viewing directions."""
+def stack_maps(maps: Mapping[str, np.ndarray]) -> np.ndarray:
+    """(4, H, W) float32 prior channels of the input (``INPUT_CHANNELS[:4]``: "intensity", "dolp", "aolp_cos",
+    "aolp_sin", each (H, W), as ``model.priors.compute_priors`` returns them)."""
     try:
         chans = [np.asarray(maps[k], dtype=np.float32) for k in INPUT_CHANNELS[:4]]
     except KeyError as exc:
         raise NormalsError(f"prior maps lack {exc.args[0]!r}; the normal estimator needs "
                            f"{', '.join(INPUT_CHANNELS[:4])}; have {sorted(maps)}") from None
-    v = np.asarray(view, dtype=np.float32)
     shapes = {c.shape for c in chans}
-    if len(shapes) != 1 or v.shape != (*chans[0].shape, 3):
-        raise NormalsError(f"normal estimator inputs differ in shape: priors {sorted(shapes)}, view {v.shape}")
-    return np.stack([*chans, v[..., 0], v[..., 1], v[..., 2]])
+    if len(shapes) != 1:
+        raise NormalsError(f"normal estimator inputs differ in shape: priors {sorted(shapes)}")
+    return np.stack(chans)
+
+
+def stack_inputs(maps: Mapping[str, np.ndarray], view: np.ndarray) -> np.ndarray:
+    """(7, H, W) float32 network input: ``stack_maps(maps)`` and (H, W, 3) viewing directions."""
+    x = stack_maps(maps)
+    v = np.asarray(view, dtype=np.float32)
+    if v.shape != (*x.shape[1:], 3):
+        raise NormalsError(f"normal estimator inputs differ in shape: priors {x.shape[1:]}, view {v.shape}")
+    return np.concatenate([x, v.transpose(2, 0, 1)])
 
 
 @dataclass(frozen=True)

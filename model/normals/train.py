@@ -27,7 +27,7 @@ from model.draem.roi import roi_box
 from model.draem.train import resolve_device
 
 from .errors import NormalsError
-from .net import NormalNetConfig, NormalUNet, stack_inputs
+from .net import NormalNetConfig, NormalUNet, stack_maps
 from .sfp import view_directions
 
 log = logging.getLogger(__name__)
@@ -70,8 +70,10 @@ def prepare_sample(maps: Mapping[str, np.ndarray], object_mask: np.ndarray, size
     om = np.asarray(object_mask, dtype=bool)
     box = roi_box(roi, om.shape, om)
     view = view_directions(om.shape, fov_x_deg, box=box, size=size_px)
-    dummy = np.zeros((*om.shape, 3), np.float32)
-    full = stack_inputs(maps, dummy)[:4]
+    full = stack_maps(maps)
+    if full.shape[1:] != om.shape:
+        raise NormalsError(f"normal estimator inputs differ in shape: priors {full.shape[1:]}, object mask "
+                           f"{om.shape}")
     xt, (mt,) = crop_resize(full, box, size_px, ("intensity", "dolp", "aolp"), (om,))
     x = torch.cat([xt, torch.from_numpy(np.ascontiguousarray(view.transpose(2, 0, 1)))], 0)
     out: dict[str, Any] = {"x": x, "mask": mt, "box": box, "normal": None, "extra": []}
