@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import logging
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -42,11 +42,13 @@ class DraemDetector:
     ``threshold`` overrides the checkpoint's threshold (``[decision] threshold``). ``early_exit_margin``: None
     runs every member of a per-prior ensemble; 0 stops once the rest cannot change the decision (exact); m > 0
     also once the running mean is more than m from the threshold (``model.draem.early_exit``). ``fov_x_deg``:
-    the lens's horizontal field of view for the normal prior's viewing directions (default: the training set's)."""
+    the lens's horizontal field of view for the normal prior's viewing directions (default: the training set's).
+    ``members``: run only these members of a per-prior ensemble, and compute only their priors (the pipeline
+    benchmark's prior sets; the threshold stays the whole ensemble's, so only scores and their AUROC are meant)."""
 
     def __init__(self, path: str | Path, device: str = "auto", precision: str = "fp32",
                  threshold: float | None = None, early_exit_margin: float | None = None,
-                 fov_x_deg: float | None = None) -> None:
+                 fov_x_deg: float | None = None, members: Sequence[str] | None = None) -> None:
         import torch
 
         from model.draem.checkpoint import load_checkpoint, paths
@@ -61,13 +63,21 @@ class DraemDetector:
         self.device = resolve_device(device)
         ck = load_checkpoint(path, map_location=self.device)  # CheckpointError names the file
         cfg = ck.detector.config
-        if cfg.roi != "center":
+        if cfg.roi == "object":
             raise ModelLoadError(f"{js}: model crops to roi {cfg.roi!r}, which needs ground truth at inference; "
                                  f"retrain with --roi center")
         chosen = threshold if threshold is not None else ck.threshold
         if chosen is None:
             raise ModelLoadError(f"{js}: the model has no threshold; set [decision] threshold in station.toml")
-        self.normals = self._normal_estimator(js, ck.meta) if "normal" in cfg.priors else None
+        every = tuple(cfg.networks())
+        if members is not None and cfg.fusion != "ensemble":
+            raise ModelLoadError(f"{js}: a fused model has no members to choose")
+        if members is not None and (not members or not set(members) <= set(every)):
+            raise ModelLoadError(f"{js}: members {list(members)}: name some of the ensemble's {list(every)}")
+        self.members = tuple(members) if members is not None else every
+        self.used_priors = tuple(p for p in cfg.priors if cfg.fusion == "fused" or p in self.members)
+        """The model's priors its members read (all of them unless ``members`` leaves some out)."""
+        self.normals = self._normal_estimator(js, ck.meta) if "normal" in self.used_priors else None
         if self.normals is not None and fov_x_deg is not None:
             self.normals.fov_x_deg = float(fov_x_deg)
         self.net = ck.detector.to(self.device)
@@ -84,8 +94,7 @@ class DraemDetector:
         self.config = cfg
         self.threshold = float(chosen)
         self.precision = precision
-        self.priors = tuple(dict.fromkeys(n for p in cfg.priors for n in STATION_PRIORS[p]))
-        self.members = tuple(cfg.networks())
+        self.priors = tuple(dict.fromkeys(n for p in self.used_priors for n in STATION_PRIORS[p]))
         if early_exit_margin is not None and not 0 <= early_exit_margin <= 1:
             raise ModelLoadError(f"early exit margin {early_exit_margin} must be in [0, 1]")
         self.early_exit_margin = early_exit_margin if len(self.members) > 1 else None
@@ -125,16 +134,16 @@ class DraemDetector:
         top, left, h, w = roi_box(self.config.roi, shape)
         # stack only the square the network sees, not whole frames (the same values crop_resize would cut out)
         cut = {k: v[top:top + h, left:left + w] for k, v in priors.items()}
-        if self.normals is not None:  # same square as the DRAEM's: both read roi "center"
+        if self.normals is not None:  # same square as the DRAEM's: both read roi "center" ("frame" has no normal)
             cut["normal"] = self.normals.predict_box(cut, shape, (top, left, h, w))
-        x = stack_priors(cut, self.config.priors)
-        xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.config.priors)
-        xt = xt.unsqueeze(0).to(self.device)
+        x = stack_priors(cut, self.used_priors)
+        xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.used_priors)
+        xt = self._all_channels(xt).unsqueeze(0).to(self.device)
         if self.device.type == "cpu" and self.precision != "onnx":
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
             if self.early_exit_margin is None:
-                out = self.net.predict(xt)
+                out = self.net.predict(xt, members=self.members)
                 self.members_run += len(self.members)
             else:
                 out = self._predict_early(xt)
@@ -142,6 +151,23 @@ class DraemDetector:
         heat = np.zeros(shape, np.float32)
         heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
         return Inference(float(out.score[0]), heat)
+
+    def _all_channels(self, xt: torch.Tensor) -> torch.Tensor:
+        """(C, S, S) of the priors used -> the model's full channel stack; members left out (``members``) get
+        zeros they never read."""
+        import torch
+
+        from model.draem.config import PRIOR_CHANNELS, channel_slices
+
+        if self.used_priors == self.config.priors:
+            return xt
+        full = torch.zeros((self.config.in_channels, *xt.shape[1:]), dtype=xt.dtype)
+        start = 0
+        for p, sl in channel_slices(self.config.priors).items():
+            if p in self.used_priors:
+                full[sl] = xt[start:start + PRIOR_CHANNELS[p]]
+                start += PRIOR_CHANNELS[p]
+        return full
 
     def _predict_early(self, xt: torch.Tensor) -> DetectorOutput:
         """Members one by one in the model's prior order until ``model.draem.early_exit.decided``; the output

@@ -1,11 +1,11 @@
 """Run time against error for the whole station: the real loop on held-out rendered parts over a grid of settings.
 
-For each configuration (demosaic method x model checkpoint x precision x presence check on/off x early exit of
-a per-prior ensemble) a
-``station.loop.Station`` inspects ``--parts`` frames from the virtual camera (the dataset's test split, never
-trained on; the same frames in the same order for every configuration; ``--empty-rate`` of them show no part,
-which needs a set rendered with ``station render --empty-rate``), free-running as fast as processing allows
-(backpressure ``block``, no PLC), and logs to a temporary SQLite file. From the log:
+For each configuration (demosaic method x model checkpoint x precision x presence check on/off x prior set and
+early exit of a per-prior ensemble) a ``station.loop.Station`` inspects ``--parts`` frames from the virtual camera
+(the dataset's test split, never trained on; the same frames in the same order for every configuration;
+``--empty-rate`` of them show no part, which needs a set rendered with ``station render --empty-rate``),
+free-running as fast as processing allows (backpressure ``block``, no PLC), and logs to a temporary SQLite file.
+From the log:
 
 - latency per frame = grab + demosaic + priors (+ presence check) + model (+ decision): the work from trigger to
   decision for one frame when frames arrive one cycle apart (queue waiting, which only exists when they arrive
@@ -15,6 +15,9 @@ which needs a set rendered with ``station render --empty-rate``), free-running a
 - image AUROC of the scores against the virtual camera's ground truth (frames that show a part and were judged),
   and the decisions' confusion at the model's threshold;
 - members of a per-prior ensemble run per judged part (early exit: ``model.draem.early_exit``);
+- prior sets (the paper's ablation, ``station.commands.eval.ABLATION``): a per-prior ensemble runs only the members
+  of the set, and the station computes only their priors (no normal network without the normal prior); a fused
+  model is one prior set (its own), so a fused ablation is one checkpoint per set in ``--models``;
 - the presence check against ground truth: the fraction of empty frames skipped (logged "empty", model not run)
   and of frames showing a part wrongly skipped; and the check's own time per frame (p50).
 
@@ -38,6 +41,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--early-exit", default="off",
                    help="per-prior ensembles: comma-separated off, exact (margin 0) or a margin in (0, 1]; "
                         "single networks run off only")
+    p.add_argument("--prior-sets", default="all",
+                   help="per-prior ensembles: comma-separated R, R+AoLP, R+AoLP+DoLP, all (the paper's ablation; "
+                        "members the model lacks are skipped); fused models run their own priors")
     p.add_argument("--presence", default="on", help="presence check before the model: on, off, or on,off "
                    "(thresholds as [presence] in station.toml's defaults)")
     p.add_argument("--parts", type=int, default=200, help="frames per configuration")
@@ -49,7 +55,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
-            device: str, presence: bool = True, empty_rate: float = 0.0, early_exit: float | None = None) -> dict:
+            device: str, presence: bool = True, empty_rate: float = 0.0, early_exit: float | None = None,
+            members: tuple[str, ...] | None = None) -> dict:
     """One configuration through the real station loop; returns its row."""
     from collections.abc import Mapping
 
@@ -67,7 +74,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from station.model_detector import DraemDetector
     from station.presence import Presence, PresenceCheck
 
-    detector = DraemDetector(model, device, precision, early_exit_margin=early_exit)
+    detector = DraemDetector(model, device, precision, early_exit_margin=early_exit, members=members)
     detector.warm_up()
     detector.members_run = 0
     layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
@@ -107,12 +114,14 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
                     for r in inspected])
     y = np.array([r["ground_truth_label"] for r in judged])
     s = np.array([r["score"] for r in judged])
-    flagged = s > detector.threshold
+    # the threshold is the whole model's: a subset of an ensemble's members is measured by its scores alone
+    flagged = s > detector.threshold if members is None else np.full(s.shape, np.nan)
     c = stats.confusion  # LiveStats: <truth>_<decision>, truth "none" = no part in view
     n_empty = sum(v for k, v in c.items() if k.startswith("none_"))
     n_parts = sum(v for k, v in c.items() if not k.startswith("none_"))
     model_ms = [r["model_ms"] for r in rows if r["model_ms"] is not None]
-    return {"model": detector.model_id, "method": method, "precision": precision,
+    return {"model": detector.model_id, "fusion": detector.config.fusion, "priors": "+".join(detector.used_priors),
+            "method": method, "precision": precision,
             "presence": "on" if presence else "off",
             "early_exit": "off" if early_exit is None else "exact" if early_exit == 0 else f"margin {early_exit:g}",
             "members_per_part": detector.members_run / len(model_ms) if model_ms else float("nan"),
@@ -142,7 +151,8 @@ def pareto_front(rows: list[dict]) -> list[int]:
 def label(r: dict) -> str:
     """A configuration in a few words (plot and front)."""
     ee = f"/early exit {r['early_exit']}" if r.get("early_exit", "off") != "off" else ""
-    return f"{r['model'].split('-')[0]}/{r['method']}/{r['precision']}/presence {r.get('presence', 'off')}{ee}"
+    return (f"{r['model'].split('-')[0]}/{r['priors']}/{r['method']}/{r['precision']}/"
+            f"presence {r.get('presence', 'off')}{ee}")
 
 
 def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
@@ -179,6 +189,24 @@ def _margin(text: str) -> float | None:
     return m
 
 
+def _members(model: str, prior_set: str) -> tuple[str, ...] | bool | None:
+    """``--prior-sets`` entry -> ``DraemDetector``'s members for ``model``: None for all its members (also every
+    fused model's one configuration), False when ``model`` does not run this set (lacks a member, or is fused)."""
+    from model.draem.checkpoint import read_sidecar
+    from station.commands.eval import ABLATION
+    from station.errors import UserError
+
+    sets = dict(ABLATION)
+    if prior_set not in sets:
+        raise UserError(f"--prior-sets: {prior_set!r} is not one of {', '.join(sets)}")
+    cfg = read_sidecar(model)["model"]
+    if cfg.get("fusion") != "ensemble":
+        return None if prior_set == "all" else False
+    have = set(cfg["priors"])
+    wanted = have if prior_set == "all" else set(sets[prior_set])
+    return None if wanted == have else sets[prior_set] if wanted < have else False
+
+
 def _is_ensemble(model: str) -> bool:
     from model.draem.checkpoint import read_sidecar
 
@@ -196,20 +224,23 @@ def run(args: argparse.Namespace) -> int:
     if bad:
         raise UserError(f"--presence: {bad[0]!r} is not on or off")
     exits = [_margin(e) for e in args.early_exit.split(",")]
-    grid = [(m, meth, prec, pres, ee) for m in args.models.split(",") for meth in args.methods.split(",")
+    models = args.models.split(",")
+    members = {(m, s): _members(m, s) for m in models for s in args.prior_sets.split(",")}
+    grid = [(m, meth, prec, pres, ee, mem) for m in models for meth in args.methods.split(",")
             for prec in args.precisions.split(",") for pres in presence for ee in exits
+            for mem in dict.fromkeys(v for (mm, _), v in members.items() if mm == m and v is not False)
             if ee is None or _is_ensemble(m)]
     rows = []
-    for model, method, precision, pres, ee in tqdm(grid, desc="bench pipeline", unit="config"):
+    for model, method, precision, pres, ee, mem in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
-                            args.device, pres == "on", args.empty_rate, ee))
+                            args.device, pres == "on", args.empty_rate, ee, mem))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
-    cols = ["model", "method", "precision", "presence", "early_exit", "members_per_part",
+    cols = ["model", "fusion", "priors", "method", "precision", "presence", "early_exit", "members_per_part",
             "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
             "image_auroc", "detected", "flagged_good", "pareto"]

@@ -90,3 +90,29 @@ def test_bench_pipeline_early_exit_axis_for_ensembles_only(tmp_path: Path) -> No
     assert got == [("ens", "off", 3.0), ("ens", "exact", 1.0), ("fused", "off", 1.0)]
     assert main(["bench", "pipeline", "--data", str(data), "--models", str(fused), "--early-exit", "2",
                  "--out", str(out)]) == 2
+
+
+def test_bench_pipeline_prior_sets_run_part_of_an_ensemble(tmp_path: Path) -> None:
+    import torch
+
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+
+    ens = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "ensemble", 32))
+    ens.init_weights(torch.Generator().manual_seed(0))
+    save_checkpoint(tmp_path / "ens", ens, threshold=0.5)
+    fused = make_model(tmp_path / "fused")
+    out = tmp_path / "bench"
+    assert main(["bench", "pipeline", "--data", str(make_dataset(tmp_path / "ds", n=20)), "--models",
+                 f"{tmp_path / 'ens'},{fused}", "--methods", "bilinear", "--precisions", "fp32", "--prior-sets",
+                 "R,R+AoLP,R+AoLP+DoLP,all", "--parts", "4", "--out", str(out)]) == 0
+    rows = json.loads((out / "pipeline.json").read_text())["rows"]
+    got = [(r["model"].split("-")[0], r["priors"], r["members_per_part"]) for r in rows]
+    # "R+AoLP+DoLP" is this ensemble's "all" (no normal member): one row; a fused model runs its own priors once
+    assert got == [("ens", "intensity", 1.0), ("ens", "intensity+aolp", 2.0), ("ens", "intensity+dolp+aolp", 3.0),
+                   ("fused", "intensity+dolp+aolp", 1.0)]
+    assert all(r["flagged_good"] != r["flagged_good"] for r in rows[:2])  # NaN: a subset has no threshold
+    assert rows[2]["flagged_good"] == rows[2]["flagged_good"]
+    assert main(["bench", "pipeline", "--data", str(tmp_path / "ds"), "--models", str(fused), "--prior-sets", "RGB",
+                 "--out", str(out)]) == 2

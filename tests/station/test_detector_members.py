@@ -1,0 +1,69 @@
+"""``DraemDetector`` on part of a model: a subset of an ensemble's members (the pipeline benchmark's prior sets),
+and a model that sees the whole frame (roi "frame", the region of interest switched off)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+
+from model.draem.checkpoint import save_checkpoint
+from model.draem.config import ModelConfig
+from model.draem.detector import Detector
+from model.draem.errors import ModelError
+from model.draem.preprocess import crop_resize, stack_priors
+from model.draem.roi import roi_box
+from model.priors.api import priors_from_stokes
+from model.priors.testing import detailed_stokes
+from station.model_detector import DraemDetector, ModelLoadError
+
+NAMES = ("intensity", "dolp", "aolp_cos", "aolp_sin")
+
+
+def frames(n: int) -> list[dict[str, np.ndarray]]:
+    """n noisy 64 x 64 frames' prior maps, computed as the station computes them."""
+    rng = np.random.default_rng(0)
+    s0, s1, s2 = detailed_stokes(64, 64)
+    return [dict(priors_from_stokes(NAMES, s0 * rng.uniform(0.5, 1.0, s0.shape), s1, s2)) for _ in range(n)]
+
+
+def save(path: Path, priors: tuple[str, ...], fusion: str, roi: str = "center") -> Path:
+    det = Detector(ModelConfig.from_preset("tiny", priors, fusion, 32, roi))
+    det.init_weights(torch.Generator().manual_seed(0))
+    save_checkpoint(path, det, threshold=0.5, threshold_rule="test")
+    return path
+
+
+def test_a_subset_of_members_reads_only_its_priors_and_scores_as_those_members(tmp_path: Path) -> None:
+    path = save(tmp_path / "ens", ("intensity", "dolp", "aolp"), "ensemble")
+    maps = frames(2)
+    sub = DraemDetector(path, "cpu", members=("intensity", "aolp"))
+    assert sub.priors == ("intensity", "aolp_cos", "aolp_sin") and sub.used_priors == ("intensity", "aolp")
+    # the same two members run by the full model on the full stack give the same score: the zeros in the left-out
+    # member's channels are never read
+    full = DraemDetector(path, "cpu")
+    for m in maps:
+        x = stack_priors(m, full.config.priors)
+        top, left, h, w = roi_box("center", x.shape[1:])
+        xt, _ = crop_resize(x[:, top:top + h, left:left + w], (0, 0, h, w), 32, full.config.priors)
+        ref = full.net.predict(xt[None], members=("intensity", "aolp"))
+        only = {k: m[k] for k in sub.priors}  # what the inspector computes for this detector
+        assert sub.infer(only).score == pytest.approx(float(ref.score[0]), abs=1e-6)
+    assert sub.members_run == 2 * 2
+    with pytest.raises(ModelLoadError, match="normal"):
+        DraemDetector(path, "cpu", members=("normal",))
+    with pytest.raises(ModelLoadError, match="fused model"):
+        DraemDetector(save(tmp_path / "fused", ("intensity", "dolp"), "fused"), "cpu", members=("intensity",))
+
+
+def test_roi_frame_sees_the_whole_frame_and_center_only_its_square(tmp_path: Path) -> None:
+    wide = {k: np.concatenate([v, v[:, :32]], 1) for k, v in frames(1)[0].items()}  # 64 x 96: wider than tall
+    heat = {roi: DraemDetector(save(tmp_path / roi, ("intensity", "dolp", "aolp"), "fused", roi), "cpu")
+            .infer(wide).heatmap for roi in ("center", "frame")}
+    assert roi_box("frame", (64, 96)) == (0, 0, 64, 96) and roi_box("center", (64, 96)) == (0, 16, 64, 64)
+    assert not heat["center"][:, :16].any() and not heat["center"][:, 80:].any()
+    assert heat["frame"][:, :16].any() and heat["frame"][:, 80:].any()
+    with pytest.raises(ModelError, match="centre square"):
+        ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "frame")
