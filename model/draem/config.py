@@ -17,7 +17,7 @@ from .errors import ModelError
 PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3}
 """Input channels per prior, in the order the station stacks them for the fused network."""
 
-ROIS = ("center", "object")
+ROIS = ("center", "frame", "object")
 """Regions a network can see: see ``ModelConfig.roi``."""
 
 UNIT_VECTOR_PRIORS = ("aolp", "normal")
@@ -85,8 +85,10 @@ class ModelConfig:
     ``score_window_px``: side of the box filter before the max that gives the image score (DRAEM: 21 at 256 px);
     0 means scale 21 px with the input size (odd, at least 3).
     ``roi``: the region the network sees. "center": the centre square of the frame (the part's known position on
-    the line), image score over the whole square; what a station can run. "object": a square around the rendered
-    object mask, image score on the object only; needs ground truth at inference (research upper bound)."""
+    the line), image score over the whole square; what a station can run. "frame": the whole frame squeezed to the
+    square input (no crop: the region of interest switched off, for comparison; not with the normal prior, whose
+    estimator reads the centre square). "object": a square around the rendered object mask, image score on the
+    object only; needs ground truth at inference (research upper bound)."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -105,6 +107,8 @@ class ModelConfig:
         NetworkConfig(1, self.reconstructive_width, self.discriminative_width, self.input_size_px)
         if self.roi not in ROIS:
             raise ModelError(f"roi must be one of {', '.join(ROIS)}, got {self.roi!r}")
+        if self.roi == "frame" and "normal" in self.priors:
+            raise ModelError("roi 'frame' cannot take the normal prior: its estimator reads the centre square")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 

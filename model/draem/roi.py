@@ -1,4 +1,5 @@
-"""The square of a frame a network sees (``ModelConfig.roi``), as (top, left, height, width) in pixels.
+"""The region of a frame a network sees (``ModelConfig.roi``), as (top, left, height, width) in pixels; it is
+resized to the network's square input.
 
 Numpy only, so the station's numerics (the presence check) can use the model's region without importing torch.
 """
@@ -37,6 +38,8 @@ def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = N
     """The square a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W)."""
     if roi == "center":
         return center_box(*shape)
+    if roi == "frame":
+        return 0, 0, shape[0], shape[1]
     if roi == "object":
         if object_mask is None:
             raise ModelError("roi 'object' needs the object mask (ground truth): not available at a station")

@@ -35,9 +35,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--preset", default="fast", help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), tiny")
     p.add_argument("--fusion", default="ensemble", choices=("ensemble", "fused"),
                    help="ensemble: one DRAEM per prior, averaged (the paper); fused: one over all priors")
-    p.add_argument("--roi", default="center", choices=("center", "object"),
-                   help="center: centre square of the frame, what a station runs; object: square around the rendered "
-                        "object mask (needs ground truth at inference: research upper bound)")
+    p.add_argument("--roi", default="center", choices=("center", "frame", "object"),
+                   help="center: centre square of the frame, what a station runs; frame: the whole frame resized "
+                        "(no crop, for comparison); object: square around the rendered object mask (needs ground "
+                        "truth at inference: research upper bound)")
     p.add_argument("--normal-net", default=None,
                    help="learned normal estimator (station normals --out .../normal_net) for the normal prior; "
                         "without it the rendered ground-truth normals are used (research only: a station refuses)")
