@@ -18,13 +18,16 @@ from station.errors import UserError
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("eval", help="evaluate a trained detector (AUROC, AUPRO, AP, F1, per defect type, plots)")
-    p.add_argument("--model", required=True, help="checkpoint path without suffix (e.g. runs/train/fast-ensemble/best)")
+    p.add_argument("--model", required=True,
+                   help="checkpoint path without suffix (e.g. runs/train/fast-ensemble/best); "
+                   "with --ablation also several fused checkpoints, comma-separated, one per prior set")
     p.add_argument("--data", required=True, help="rendered dataset folder")
     p.add_argument("--split", default="test", choices=("train", "val", "test"))
     p.add_argument("--limit", type=int, default=None, help="at most N samples (smoke runs)")
     p.add_argument("--no-synthetic", action="store_true", help="skip the synthetic-anomaly evaluation")
     p.add_argument("--ablation", action="store_true",
-                   help="the paper's ablation (R, R+AoLP, R+AoLP+DoLP, all) by averaging an ensemble's members")
+                   help="the paper's ablation (R, R+AoLP, R+AoLP+DoLP, all): an ensemble's members averaged, or "
+                        "several fused models (--model A,B,...) side by side")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
     p.set_defaults(func=run)
@@ -92,7 +95,12 @@ def early_exit_rows(ev, label, threshold: float, members: tuple[str, ...]) -> li
     return rows
 
 
-def _ablation_plot(out: Path, rows: list[dict]) -> str:
+def prior_set_name(priors: tuple[str, ...]) -> str:
+    """The ablation's name for a set of priors ("R+AoLP", ...), or the priors joined by "+" outside it."""
+    return next((name for name, members in ABLATION if set(members) == set(priors)), "+".join(priors))
+
+
+def _ablation_plot(out: Path, rows: list[dict], fusion: str = "ensemble") -> str:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -104,7 +112,8 @@ def _ablation_plot(out: Path, rows: list[dict]) -> str:
     for k, (key, lab) in enumerate((("image_auroc", "image AUROC"), ("pixel_auroc", "pixel AUROC"))):
         ax.bar(x + (k - 0.5) * 0.38, [r[key] for r in rows], 0.38, label=lab)
     ax.set_xticks(x, [r["priors"] for r in rows])
-    ax.set(ylim=(0.4, 1.0), ylabel="AUROC", title="ablation: priors averaged in the ensemble")
+    ax.set(ylim=(0.4, 1.0), ylabel="AUROC", title="ablation: priors averaged in the ensemble" if fusion == "ensemble"
+           else "ablation: one fused model per prior set")
     ax.legend(fontsize=7)
     fig.savefig(out / "ablation.png", dpi=120, bbox_inches="tight")
     plt.close(fig)
@@ -151,32 +160,82 @@ def _plots(out: Path, results: dict, data, maps, scores, threshold) -> list[str]
     return files
 
 
-def run(args: argparse.Namespace) -> int:
-    import numpy as np
-
+def _load_and_evaluate(model: str, args: argparse.Namespace):
+    """Checkpoint ``model`` on ``args.data``'s split, as the station feeds it (its roi, its learned normal prior):
+    (checkpoint, split tensors, EvalData, evaluation)."""
     from model.draem.checkpoint import load_checkpoint
-    from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
-    from station.benchmarks.report import markdown_table, write_report
-    from station.commands.train import load_split, manifest_sha256
+    from model.draem.train import EvalData, evaluate
+    from station.commands.train import load_split
 
-    ck = load_checkpoint(args.model)
-    cfg, thr = ck.detector.config, ck.threshold
-    if args.ablation and (cfg.fusion != "ensemble" or "intensity" not in cfg.priors):
-        raise UserError(f"{args.model}: --ablation averages the members of a per-prior ensemble that includes "
-                        f"intensity; this model is {cfg.fusion} over {list(cfg.priors)} (for a fused model, train "
-                        f"one per prior set and evaluate each)")
-    out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
-    out.mkdir(parents=True, exist_ok=True)
+    ck = load_checkpoint(model)
+    cfg = ck.detector.config
     normal_prior = ck.meta.get("train", {}).get("normal_prior") if "normal" in cfg.priors else None
     normals = None
     if normal_prior and normal_prior.get("source") == "learned":
         from model.draem.checkpoint import paths
         from model.normals.estimator import load_for_checkpoint
 
-        normals = load_for_checkpoint(paths(args.model)[1], normal_prior)
+        normals = load_for_checkpoint(paths(model)[1], normal_prior)
     sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit, roi=cfg.roi, normals=normals)
     data = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
-    ev = evaluate(ck.detector, data)
+    return ck, sp, data, evaluate(ck.detector, data)
+
+
+def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
+    """The ablation over one fused model per prior set: each evaluated on the same split, rows in the paper's
+    order (rendered defects only)."""
+    from model.draem.checkpoint import read_sidecar
+    from station.benchmarks.report import markdown_table, write_report
+
+    order = [name for name, _ in ABLATION]
+    rows = []
+    for m in models:
+        cfg = read_sidecar(m)["model"]
+        if cfg.get("fusion") != "fused":
+            raise UserError(f"{m}: --ablation over several models takes fused models; this one is {cfg.get('fusion')}"
+                            f" (an ensemble's ablation: --ablation --model <ensemble>)")
+        ck, _, _, ev = _load_and_evaluate(m, args)
+        priors = ck.detector.config.priors
+        rows.append({"priors": prior_set_name(priors), "members": "+".join(priors), "model": m,
+                     "image_auroc": ev.metrics["image_auroc"], "pixel_auroc": ev.metrics["pixel_auroc"],
+                     "pixel_ap": ev.metrics["pixel_ap"], "n": ev.metrics["n"],
+                     "anomalous": ev.metrics["n_anomalous"]})
+    rows.sort(key=lambda r: order.index(r["priors"]) if r["priors"] in order else len(order))
+    out = Path(args.out or Path(models[0]).parent / f"ablation-fused-{args.split}")
+    out.mkdir(parents=True, exist_ok=True)
+    files = [] if args.no_plots else [_ablation_plot(out, rows, "fused")]
+    table = (f"Ablation, one fused model per prior set ({args.data}, split {args.split}, rendered defects):\n\n"
+             + markdown_table(rows, ["priors", "model", "n", "anomalous", "image_auroc", "pixel_auroc", "pixel_ap"]))
+    write_report(out, "eval", {"data": str(args.data), "split": args.split, "ablation": rows, "plots": files}, table)
+    print(table)
+    print(f"report: {out / 'eval.json'}, {out / 'eval.md'}" + (f", plots: {', '.join(files)}" if files else ""))
+    return 0
+
+
+def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
+    from station.benchmarks.report import markdown_table, write_report
+    from station.commands.train import manifest_sha256
+
+    models = args.model.split(",")
+    if len(models) > 1 and not args.ablation:
+        raise UserError(f"--model {args.model}: several models only with --ablation (one fused model per prior set)")
+    if args.ablation and len(models) > 1:
+        return fused_ablation(args, models)
+    from model.draem.checkpoint import read_sidecar
+
+    cfg0 = read_sidecar(args.model)["model"]
+    if args.ablation and (cfg0.get("fusion") != "ensemble" or "intensity" not in cfg0.get("priors", ())):
+        raise UserError(f"{args.model}: --ablation averages the members of a per-prior ensemble that includes "
+                        f"intensity; this model is {cfg0.get('fusion')} over {list(cfg0.get('priors', ()))} (for "
+                        f"fused models, train one per prior set and pass them all: --model A,B,...)")
+    out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
+    out.mkdir(parents=True, exist_ok=True)
+    ck, sp, data, ev = _load_and_evaluate(args.model, args)
+    cfg, thr = ck.detector.config, ck.threshold
+    normal_prior = ck.meta.get("train", {}).get("normal_prior") if "normal" in cfg.priors else None
     rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}
     good = sp.label == 0

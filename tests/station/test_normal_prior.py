@@ -57,7 +57,7 @@ def test_station_feeds_the_model_what_training_fed_it(trained) -> None:
                     normals=det.normals)
     seen = []
     predict = det.net.predict
-    det.net.predict = lambda x: seen.append(x.detach().clone()) or predict(x)
+    det.net.predict = lambda x, **kw: seen.append(x.detach().clone()) or predict(x, **kw)
     inspector = Inspector(det, IMX250MZR)
     from sim.dataset import open_dataset
 

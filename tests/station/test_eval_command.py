@@ -1,0 +1,62 @@
+"""``station eval``: one model's report, and the ablation over one fused model per prior set."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from test_run import make_dataset, make_model  # same folder (pytest puts it on sys.path)
+
+from station.cli import main
+
+
+@pytest.fixture(scope="module")
+def setup(tmp_path_factory) -> tuple[Path, Path, Path, Path]:
+    tmp = tmp_path_factory.mktemp("eval")
+    data = make_dataset(tmp / "ds", n=20)  # test split: 0, 1, 10, 11; 1 and 11 defective
+    return tmp, data, make_model(tmp / "r" / "best", ("intensity",)), make_model(tmp / "ra" / "best",
+                                                                                 ("intensity", "aolp"))
+
+
+def test_eval_reports_one_model(setup, capsys) -> None:
+    tmp, data, r, _ = setup
+    assert main(["eval", "--model", str(r), "--data", str(data), "--no-plots", "--out", str(tmp / "one")]) == 0
+    rep = json.loads((tmp / "one" / "eval.json").read_text())
+    first = rep["rows"][0]
+    assert (first["set"], first["n"], first["anomalous"]) == ("rendered, all defects", 4, 2)
+    assert 0.0 <= first["image_auroc"] <= 1.0 and rep["same_dataset_as_training"] is False
+    assert "| rendered, all defects |" in capsys.readouterr().out
+
+
+def test_fused_ablation_tabulates_one_model_per_prior_set_in_the_papers_order(setup) -> None:
+    tmp, data, r, ra = setup
+    out = tmp / "abl"
+    assert main(["eval", "--ablation", "--model", f"{ra},{r}", "--data", str(data), "--out", str(out)]) == 0
+    rep = json.loads((out / "eval.json").read_text())
+    assert [(row["priors"], row["model"]) for row in rep["ablation"]] == [("R", str(r)), ("R+AoLP", str(ra))]
+    assert (out / "ablation.png").stat().st_size > 1000
+    assert main(["eval", "--model", str(r), "--data", str(data), "--no-plots", "--out", str(tmp / "r-alone")]) == 0
+    single = json.loads((tmp / "r-alone" / "eval.json").read_text())["rows"][0]
+    assert rep["ablation"][0]["image_auroc"] == pytest.approx(single["image_auroc"])
+    assert rep["ablation"][0]["pixel_auroc"] == pytest.approx(single["pixel_auroc"])
+
+
+def test_eval_refuses_several_models_without_ablation_and_an_ensemble_among_them(setup, tmp_path, capsys) -> None:
+    import torch
+
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+
+    _, data, r, ra = setup
+    assert main(["eval", "--model", f"{r},{ra}", "--data", str(data)]) == 2
+    assert "only with --ablation" in capsys.readouterr().err
+    ens = Detector(ModelConfig.from_preset("tiny", ("intensity", "aolp"), "ensemble", 32))
+    ens.init_weights(torch.Generator().manual_seed(0))
+    save_checkpoint(tmp_path / "ens", ens, threshold=0.5)
+    assert main(["eval", "--ablation", "--model", f"{r},{tmp_path / 'ens'}", "--data", str(data),
+                 "--out", str(tmp_path / "o")]) == 2
+    assert "takes fused models" in capsys.readouterr().err
+    assert main(["eval", "--ablation", "--model", str(r), "--data", str(data), "--out", str(tmp_path / "o")]) == 2
+    assert "--model A,B" in capsys.readouterr().err
