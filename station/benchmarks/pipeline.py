@@ -120,8 +120,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     n_empty = sum(v for k, v in c.items() if k.startswith("none_"))
     n_parts = sum(v for k, v in c.items() if not k.startswith("none_"))
     model_ms = [r["model_ms"] for r in rows if r["model_ms"] is not None]
-    return {"model": detector.model_id, "fusion": detector.config.fusion, "priors": "+".join(detector.used_priors),
-            "method": method, "precision": precision,
+    return {"checkpoint": model, "model": detector.model_id, "fusion": detector.config.fusion,
+            "priors": "+".join(detector.used_priors), "method": method, "precision": precision,
             "presence": "on" if presence else "off",
             "early_exit": "off" if early_exit is None else "exact" if early_exit == 0 else f"margin {early_exit:g}",
             "members_per_part": detector.members_run / len(model_ms) if model_ms else float("nan"),
@@ -151,7 +151,9 @@ def pareto_front(rows: list[dict]) -> list[int]:
 def label(r: dict) -> str:
     """A configuration in a few words (plot and front)."""
     ee = f"/early exit {r['early_exit']}" if r.get("early_exit", "off") != "off" else ""
-    return (f"{r['model'].split('-')[0]}/{r['priors']}/{r['method']}/{r['precision']}/"
+    ck = Path(r.get("checkpoint") or r["model"].split("-")[0])
+    name = ck.parent.name if ck.name in ("best", "last") else ck.name  # runs/train/<name>/best
+    return (f"{name}/{r['priors']}/{r['method']}/{r['precision']}/"
             f"presence {r.get('presence', 'off')}{ee}")
 
 
@@ -240,7 +242,7 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
-    cols = ["model", "fusion", "priors", "method", "precision", "presence", "early_exit", "members_per_part",
+    cols = ["checkpoint", "fusion", "priors", "method", "precision", "presence", "early_exit", "members_per_part",
             "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
             "image_auroc", "detected", "flagged_good", "pareto"]

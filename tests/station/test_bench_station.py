@@ -7,7 +7,7 @@ from pathlib import Path
 
 from test_run import make_dataset, make_model, write_config  # same folder (pytest puts it on sys.path)
 
-from station.benchmarks.pipeline import pareto_front
+from station.benchmarks.pipeline import label, pareto_front
 from station.cli import main
 
 
@@ -15,6 +15,13 @@ def test_pareto_front_keeps_only_undominated_rows() -> None:
     rows = [{"p99_ms": 50, "image_auroc": 0.90}, {"p99_ms": 80, "image_auroc": 0.95},
             {"p99_ms": 90, "image_auroc": 0.93}, {"p99_ms": 40, "image_auroc": 0.70}]
     assert pareto_front(rows) == [0, 1, 3]  # 2 is slower and worse than 1
+
+
+def test_label_names_a_training_run_by_its_folder() -> None:
+    row = {"checkpoint": "runs/train/fused-R/best", "model": "best-fast-fused-0123abcd", "priors": "intensity",
+           "method": "bilinear", "precision": "fp32", "presence": "on"}
+    assert label(row) == "fused-R/intensity/bilinear/fp32/presence on"
+    assert label({**row, "checkpoint": "model/weights/default"}).startswith("default/")
 
 
 def test_bench_pipeline_runs_the_station_over_the_grid(tmp_path: Path) -> None:
