@@ -3,16 +3,19 @@
 For every defective sample of a rendered set (``--splits``, default test) the priors are computed from the raw
 mosaic as at the station (bilinear demosaic), cut to the centre square the network sees and compared, on object
 pixels, inside the defect mask and in a ring around it (the defect dilated by ``--ring`` of the square's side,
-minus the defect). The **visibility** of a defect in a prior is the difference of the two means in units of the
-ring's spread (a z-score; 1 = as different from its surroundings as the surroundings are among themselves):
+minus the defect). The **visibility** of a defect in a prior is the RMS deviation of its pixels from the ring's
+mean over the ring's own RMS deviation from that mean (1 = the defect's pixels stray from the neighbourhood's
+typical value as much as the neighbourhood's own pixels do). RMS, not the mean, so that a symmetric change (a
+dent tilts normals and AoLP both ways) counts as well as a shift:
 
-- intensity, DoLP: ``|mean(inside) - mean(ring)| / std(ring)``;
-- AoLP: the circular difference of the mean angles 2*phi over the ring's circular standard deviation of 2*phi;
-- normal (the rendered ground truth, the learned prior's upper bound): the angle between the mean normals inside
-  and in the ring over the ring's RMS angle to its mean normal.
+- intensity, DoLP: ``rms(inside - mean(ring)) / std(ring)``;
+- AoLP: the same with circular differences of 2*phi from the ring's circular mean;
+- normal (the rendered ground truth, the learned prior's upper bound): RMS angle of the normals inside to the
+  ring's mean direction over the ring's RMS angle to it.
 
 At the full centre square and at the network's input size (``--size``, area-resized). Writes JSON, a Markdown
-table (median per defect type and the fraction of defects visible in at least one prior, z > 1) and a bar plot.
+table (median per defect type and the fraction of defects visible in at least one camera prior, z > ``VISIBLE``)
+and a bar plot.
 """
 
 from __future__ import annotations
@@ -24,6 +27,9 @@ from pathlib import Path
 import numpy as np
 
 PRIORS = ("intensity", "dolp", "aolp", "normal")
+VISIBLE = 2.0
+"""z above which a defect counts as visible: its pixels stray twice as far as the neighbourhood's own (a piece of
+the neighbourhood scores about 1, and the largest of three such scores often exceeds 1)."""
 MAPS = ("intensity", "dolp", "aolp_cos", "aolp_sin")
 
 
@@ -34,29 +40,30 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--ring", type=float, default=0.05, help="ring width as a fraction of the square's side")
 
 
+def _rms_ratio(dev_inside: np.ndarray, dev_ring: np.ndarray) -> float:
+    """RMS of the inside's deviations over the ring's (floored at 1e-6)."""
+    return float(np.sqrt(np.mean(dev_inside**2)) / max(float(np.sqrt(np.mean(dev_ring**2))), 1e-6))
+
+
 def scalar_z(inside: np.ndarray, ring: np.ndarray) -> float:
-    """|mean(inside) - mean(ring)| / std(ring) of two 1-D samples (std floored at 1e-6)."""
-    return float(abs(inside.mean() - ring.mean()) / max(float(ring.std()), 1e-6))
+    """rms(inside - mean(ring)) / std(ring) of two 1-D samples."""
+    m = ring.mean()
+    return _rms_ratio(inside - m, ring - m)
 
 
 def angle_z(cos_in: np.ndarray, sin_in: np.ndarray, cos_ring: np.ndarray, sin_ring: np.ndarray) -> float:
-    """Circular z of an angle given as (cos, sin) samples (here of 2*AoLP): the difference of the circular means
-    over the ring's circular standard deviation sqrt(-2 ln R)."""
-    m_in, m_ring = np.mean(cos_in + 1j * sin_in), np.mean(cos_ring + 1j * sin_ring)
-    d = abs(float(np.angle(m_in * np.conj(m_ring))))
-    r = min(max(float(abs(m_ring)), 1e-12), 1.0)
-    return d / max(float(np.sqrt(-2.0 * np.log(r))), 1e-6)
+    """``scalar_z`` for an angle given as (cos, sin) samples (here of 2*AoLP): circular differences (radians,
+    wrapped to [-pi, pi]) from the ring's circular mean."""
+    m = np.mean(cos_ring + 1j * sin_ring)
+    m = m / max(float(abs(m)), 1e-12)
+    return _rms_ratio(np.angle((cos_in + 1j * sin_in) * np.conj(m)), np.angle((cos_ring + 1j * sin_ring) * np.conj(m)))
 
 
 def normal_z(inside: np.ndarray, ring: np.ndarray) -> float:
-    """(n, 3) unit normals: angle between the mean directions inside and in the ring over the ring's RMS angle to
-    its own mean direction (radians over radians)."""
-    def unit(v: np.ndarray) -> np.ndarray:
-        return v / max(float(np.linalg.norm(v)), 1e-12)
-
-    a, b = unit(inside.mean(0)), unit(ring.mean(0))
-    spread = np.arccos(np.clip(ring @ b, -1.0, 1.0))
-    return float(np.arccos(np.clip(a @ b, -1.0, 1.0)) / max(float(np.sqrt(np.mean(spread**2))), 1e-6))
+    """(n, 3) unit normals: RMS angle of ``inside`` to the ring's mean direction over the ring's RMS angle to it."""
+    m = ring.mean(0)
+    m = m / max(float(np.linalg.norm(m)), 1e-12)
+    return _rms_ratio(np.arccos(np.clip(inside @ m, -1.0, 1.0)), np.arccos(np.clip(ring @ m, -1.0, 1.0)))
 
 
 def visibility(maps: dict[str, np.ndarray], obj: np.ndarray, defect: np.ndarray, ring_px: int) -> dict[str, float]:
@@ -90,8 +97,8 @@ def _resize(maps: dict[str, np.ndarray], obj: np.ndarray, defect: np.ndarray, si
 
 
 def summarise(per_defect: list[dict]) -> list[dict]:
-    """Median z per (scale, defect type), plus "all", and the fraction visible (z > 1) in at least one prior
-    measured from the polarization camera (normal excluded: it is ground truth here)."""
+    """Median z per (scale, defect type), plus "all", and the fraction visible (z > VISIBLE) in each camera prior
+    and in at least one (normal excluded: it is ground truth here)."""
     groups: dict[tuple[str, str], list[dict]] = defaultdict(list)
     for r in per_defect:
         groups[(r["scale"], r["type"])].append(r)
@@ -102,7 +109,9 @@ def summarise(per_defect: list[dict]) -> list[dict]:
         for p in PRIORS:
             vals = [r[p] for r in rs if p in r]
             row[f"{p}_z"] = float(np.median(vals)) if vals else float("nan")
-        row["visible_any"] = float(np.mean([max(r["intensity"], r["dolp"], r["aolp"]) > 1 for r in rs]))
+        for p in PRIORS[:3]:
+            row[f"visible_{p}"] = float(np.mean([r[p] > VISIBLE for r in rs]))
+        row["visible_any"] = float(np.mean([max(r["intensity"], r["dolp"], r["aolp"]) > VISIBLE for r in rs]))
         rows.append(row)
     return rows
 
@@ -119,7 +128,8 @@ def _plot(out: Path, rows: list[dict], scale: str) -> str:
     for k, p in enumerate(PRIORS):
         ax.bar(x + (k - 1.5) * 0.2, [r[f"{p}_z"] for r in sel], 0.2, label=p + (" (ground truth)" if p == "normal"
                                                                                   else ""))
-    ax.axhline(1.0, color="k", ls=":", lw=0.8)
+    ax.axhline(1.0, color="k", ls=":", lw=0.8)  # like the neighbourhood
+    ax.axhline(VISIBLE, color="k", ls="--", lw=0.8)
     ax.set_xticks(x, [f"{r['defect']}\n(n={r['n']})" for r in sel], fontsize=7)
     ax.set(ylabel="median visibility z", title=f"rendered defects against their surroundings ({scale})")
     ax.legend(fontsize=7)
@@ -164,10 +174,10 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plots = [_plot(out, rows, scale) for scale in dict.fromkeys(r["scale"] for r in rows)]
-    table = (f"Visibility of rendered defects in each prior ({args.data}, {args.splits}; median z, 1 = as different "
-             f"as the ring around the defect varies):\n\n" + markdown_table(
+    table = (f"Visibility of rendered defects in each prior ({args.data}, {args.splits}; median z: 1 = like the ring "
+             f"around the defect; visible_any: z > {VISIBLE:g} in intensity, DoLP or AoLP):\n\n" + markdown_table(
                  rows, ["scale", "defect", "n", "pixels", "intensity_z", "dolp_z", "aolp_z", "normal_z",
-                        "visible_any"]))
+                        "visible_intensity", "visible_dolp", "visible_aolp", "visible_any"]))
     write_report(out, "defects", {"args": {k: v for k, v in vars(args).items() if k != "func"}, "rows": rows,
                                   "per_defect": per_defect, "plots": plots}, table)
     print(table)
