@@ -35,7 +35,7 @@ def center_box(height: int, width: int) -> tuple[int, int, int, int]:
 
 
 def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None) -> tuple[int, int, int, int]:
-    """The square a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W)."""
+    """The region a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W)."""
     if roi == "center":
         return center_box(*shape)
     if roi == "frame":

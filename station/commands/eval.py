@@ -215,6 +215,7 @@ def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from model.draem.checkpoint import read_sidecar
     from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
     from station.benchmarks.report import markdown_table, write_report
     from station.commands.train import manifest_sha256
@@ -224,8 +225,6 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"--model {args.model}: several models only with --ablation (one fused model per prior set)")
     if args.ablation and len(models) > 1:
         return fused_ablation(args, models)
-    from model.draem.checkpoint import read_sidecar
-
     cfg0 = read_sidecar(args.model)["model"]
     if args.ablation and (cfg0.get("fusion") != "ensemble" or "intensity" not in cfg0.get("priors", ())):
         raise UserError(f"{args.model}: --ablation averages the members of a per-prior ensemble that includes "
