@@ -189,6 +189,7 @@ class ServedFrame:
     frame_id      GigE Vision block id as sent (16 bit: 1..65535, wraps to 1) = the receiver's ``device_frame_id``.
     timestamp_ns  device timestamp, ns since 1970 = the receiver's ``Frame.timestamp_ns``; unique per frame.
     sample_index  the dataset sample shown; label 1 defective / 0 good; split and defect type as in ``params.json``.
+    present       False when the frame shows no part (an empty scene; label 0).
     """
 
     frame_id: int
@@ -197,6 +198,7 @@ class ServedFrame:
     label: int
     split: str | None
     defect_type: str | None
+    present: bool = True
 
 
 def read_truth(path: str | Path) -> dict[int, ServedFrame]:
@@ -225,7 +227,7 @@ def _genicam_xml(base: str, pixel_format: str, code: int) -> str:
 class GvCameraServer:
     """A ``VirtualCamera`` served as a GigE Vision device; see the module docstring.
 
-    dataset, defect_rate, seed, split, cache_mb: as ``VirtualCameraConfig``.
+    dataset, defect_rate, seed, split, cache_mb, empty_rate: as ``VirtualCameraConfig``.
     interface        name ("lo") or IPv4 address to serve on; loopback only unless ``allow_network``.
     serial           device serial number (at most 15 characters).
     truth_path       JSON Lines file that receives one ``ServedFrame`` per frame (appended; line-buffered).
@@ -236,7 +238,7 @@ class GvCameraServer:
     def __init__(self, dataset: str, *, interface: str = "lo", defect_rate: float = 0.2, seed: int = 0,
                  split: str | None = None, cache_mb: float = 512.0, serial: str = "POLARSIM1",
                  truth_path: str | Path | None = None, allow_network: bool = False,
-                 trigger_poll_hz: float = 200.0, keep_recent: int = 100_000) -> None:
+                 trigger_poll_hz: float = 200.0, keep_recent: int = 100_000, empty_rate: float = 0.0) -> None:
         if not serial or len(serial) > _SERIAL_MAX or not serial.isascii():
             raise CameraConfigError(f"GigE Vision server: serial {serial!r}: 1-{_SERIAL_MAX} ASCII characters")
         if trigger_poll_hz <= 0:
@@ -248,7 +250,7 @@ class GvCameraServer:
         self.trigger_poll_hz = trigger_poll_hz
         # The virtual camera only draws parts here: the GigE device paces the frames, so no pacing of its own.
         self._camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1e9),
-                                     VirtualCameraConfig(dataset, defect_rate, split, seed, cache_mb))
+                                     VirtualCameraConfig(dataset, defect_rate, split, seed, cache_mb, empty_rate))
         self.recent: collections.deque[ServedFrame] = collections.deque(maxlen=keep_recent)
         self.n_served = 0
         self.n_defective = 0
@@ -389,7 +391,8 @@ class GvCameraServer:
         assert gt is not None and gt.sample_index is not None  # the virtual camera always sets both
         defect = gt.params.get("defect") if gt.params else None
         rec = ServedFrame(int(lib.arv_buffer_get_frame_id(buffer)), int(lib.arv_buffer_get_timestamp(buffer)),
-                          gt.sample_index, gt.label, gt.split, defect.get("type") if isinstance(defect, dict) else None)
+                          gt.sample_index, gt.label, gt.split, defect.get("type") if isinstance(defect, dict) else None,
+                          gt.present)
         with self._lock:
             self.recent.append(rec)
             self.n_served += 1

@@ -26,6 +26,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="allow a non-loopback interface (the camera then answers on that network)")
     p.add_argument("--defect-rate", type=float, default=0.2, metavar="R",
                    help="fraction of frames showing a defective part (default 0.2)")
+    p.add_argument("--empty-rate", type=float, default=0.0, metavar="R",
+                   help="fraction of frames showing no part (the set needs empty samples: station render "
+                        "--empty-rate; default 0)")
     p.add_argument("--seed", type=int, default=0, help="draw order of the parts (default 0)")
     p.add_argument("--serial", default="POLARSIM1", help="device serial number (default POLARSIM1)")
     p.add_argument("--truth", default=None, metavar="FILE",
@@ -41,7 +44,8 @@ def run(args: argparse.Namespace) -> int:
     if args.seconds is not None and args.seconds <= 0:
         raise UserError(f"--seconds must be > 0, got {args.seconds}")
     server = GvCameraServer(args.dataset, interface=args.interface, defect_rate=args.defect_rate, seed=args.seed,
-                            serial=args.serial, truth_path=args.truth, allow_network=args.allow_network)
+                            serial=args.serial, truth_path=args.truth, allow_network=args.allow_network,
+                            empty_rate=args.empty_rate)
     stop = threading.Event()
     previous = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
     for s in previous:

@@ -35,11 +35,13 @@ pytestmark = pytest.mark.skipif(not in_private_netns(), reason="GigE Vision only
 
 W, H = 48, 32
 DEFECTIVE = (1, 3, 5)
+EMPTY = (6, 7)
 
 
-def make_dataset(root: Path, n: int = 8, bit_depth: int = 8) -> Path:
+def make_dataset(root: Path, n: int = 8, bit_depth: int = 8, empty: tuple[int, ...] = ()) -> Path:
     """Tiny mosaics, distinct in every pixel; the sample index is encoded in pixel (0, 0) (and, scaled, in the
-    rest), so a frame shows which part it is and any reordering of bytes shows too."""
+    rest), so a frame shows which part it is and any reordering of bytes shows too. ``empty``: samples that show
+    no part (``"empty": true``, label 0)."""
     init_dataset(root, DatasetSpec(width=W, height=H, sensor=SensorConfig(bit_depth=bit_depth)), n)
     y, x = np.mgrid[:H, :W]
     for i in range(n):
@@ -52,9 +54,9 @@ def make_dataset(root: Path, n: int = 8, bit_depth: int = 8) -> Path:
         if i in DEFECTIVE:
             mask[4:8, 4:8] = True
         label = int(mask.any())
-        write_sample(root, Sample(i, raw, {"index": i, "split": split_of(i), "label": label,
-                                           "defect": {"type": "dent"} if label else None}, label, split_of(i),
-                                  defect_mask=mask, object_mask=np.ones((H, W), bool)))
+        params = {"index": i, "split": split_of(i), "label": label, "defect": {"type": "dent"} if label else None}
+        write_sample(root, Sample(i, raw, params | ({"empty": True} if i in empty else {}), label, split_of(i),
+                                  defect_mask=mask, object_mask=np.full((H, W), i not in empty)))
     return root
 
 
@@ -101,6 +103,21 @@ def test_frames_are_the_datasets_mosaics_byte_for_byte(server: GvCameraServer, d
         assert rec.defect_type == ("dent" if rec.label else None)
     assert {truth[f.timestamp_ns].label for f in frames} == {0, 1}  # defect_rate 0.5 draws both kinds
     assert (stats.completed, stats.failed, stats.dropped) == (24, 0, 0)
+
+
+def test_empty_views_are_served_and_recorded_as_no_part(tmp_path: Path) -> None:
+    ds = make_dataset(tmp_path / "ds", n=8, empty=EMPTY)
+    with (GvCameraServer(str(ds), defect_rate=0.5, empty_rate=0.5, truth_path=tmp_path / "truth.jsonl"),
+          AravisCamera(cfg()) as cam):
+        cam.start()
+        frames = [cam.grab() for _ in range(24)]
+        cam.stop()
+    truth = read_truth(tmp_path / "truth.jsonl")
+    shown = [truth[f.timestamp_ns] for f in frames]
+    assert all(r.present == (r.sample_index not in EMPTY) for r in shown)
+    assert {r.present for r in shown} == {True, False}  # empty_rate 0.5 draws both
+    assert all(r.label == 0 for r in shown if not r.present)
+    assert all(f.raw[0, 0] == truth[f.timestamp_ns].sample_index for f in frames)
 
 
 def test_12bit_set_is_served_as_mono12_and_other_formats_are_refused(tmp_path: Path) -> None:
