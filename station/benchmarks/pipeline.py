@@ -191,17 +191,16 @@ def _margin(text: str) -> float | None:
     return m
 
 
-def _members(model: str, prior_set: str) -> tuple[str, ...] | bool | None:
-    """``--prior-sets`` entry -> ``DraemDetector``'s members for ``model``: None for all its members (also every
-    fused model's one configuration), False when ``model`` does not run this set (lacks a member, or is fused)."""
-    from model.draem.checkpoint import read_sidecar
+def _members(cfg: dict, prior_set: str) -> tuple[str, ...] | bool | None:
+    """``--prior-sets`` entry -> ``DraemDetector``'s members for a model with sidecar config ``cfg``: None for all
+    its members (also every fused model's one configuration), False when the model does not run this set (lacks a
+    member, or is fused)."""
     from station.commands.eval import ABLATION
     from station.errors import UserError
 
     sets = dict(ABLATION)
     if prior_set not in sets:
         raise UserError(f"--prior-sets: {prior_set!r} is not one of {', '.join(sets)}")
-    cfg = read_sidecar(model)["model"]
     if cfg.get("fusion") != "ensemble":
         return None if prior_set == "all" else False
     have = set(cfg["priors"])
@@ -209,15 +208,10 @@ def _members(model: str, prior_set: str) -> tuple[str, ...] | bool | None:
     return None if wanted == have else sets[prior_set] if wanted < have else False
 
 
-def _is_ensemble(model: str) -> bool:
-    from model.draem.checkpoint import read_sidecar
-
-    return read_sidecar(model)["model"].get("fusion") == "ensemble"
-
-
 def run(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
+    from model.draem.checkpoint import read_sidecar
     from station.benchmarks.report import markdown_table, write_report
     from station.errors import UserError
 
@@ -227,11 +221,12 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"--presence: {bad[0]!r} is not on or off")
     exits = [_margin(e) for e in args.early_exit.split(",")]
     models = args.models.split(",")
-    members = {(m, s): _members(m, s) for m in models for s in args.prior_sets.split(",")}
+    cfgs = {m: read_sidecar(m)["model"] for m in models}  # each sidecar read once
+    members = {(m, s): _members(cfgs[m], s) for m in models for s in args.prior_sets.split(",")}
     grid = [(m, meth, prec, pres, ee, mem) for m in models for meth in args.methods.split(",")
             for prec in args.precisions.split(",") for pres in presence for ee in exits
             for mem in dict.fromkeys(v for (mm, _), v in members.items() if mm == m and v is not False)
-            if ee is None or _is_ensemble(m)]
+            if ee is None or cfgs[m].get("fusion") == "ensemble"]
     rows = []
     for model, method, precision, pres, ee, mem in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
