@@ -109,6 +109,7 @@ class DatasetSpec:
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
+        d["scene"] = self.scene.to_dict()
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key

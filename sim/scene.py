@@ -13,7 +13,7 @@ frame has x toward image LEFT and z away from the camera (../shared/NOTES.md); `
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass, fields, replace
 from typing import Any
 
 import numpy as np
@@ -32,6 +32,7 @@ ALPHA_TYPES = ("pplastic", "roughplastic", "roughconductor", "roughdielectric")
 FINISHES = ("rough", "smooth", "either")
 BACKGROUNDS = ("plain", "checkerboard", "noise")
 BACKGROUND_MATERIALS = ("diffuse", "pplastic")
+ANGLES_ANY_SIGN = ("yaw_deg", "camera_azimuth_deg", "light_azimuth_deg")
 
 
 @dataclass(frozen=True)
@@ -42,19 +43,28 @@ class SceneConfig:
     camera_radius_m: tuple[float, float] = (0.4, 0.49)
     camera_polar_deg: tuple[float, float] = (0.0, 60.0)
     """Angle of the camera from the vertical above the object."""
+    camera_azimuth_deg: tuple[float, float] = (0.0, 360.0)
+    """Direction of the camera from the object, counter-clockwise from world +x (270 = from -y: image up is +y)."""
     camera_target_jitter_m: float = 0.003
     focal_length_mm: float = 50.0
     sensor_width_mm: float = IMX250MZR_WIDTH_MM
     object_xy_m: float = 0.02
-    """The object rests at a uniform (x, y) in [-object_xy_m, object_xy_m]^2 with a uniform yaw."""
+    """The object rests at a uniform (x, y) in [-object_xy_m, object_xy_m]^2."""
+    yaw_deg: tuple[float, float] = (0.0, 360.0)
+    """Rotation of the resting object about the vertical (a fixture on a line narrows it)."""
+    rest_pose: int = -1
+    """Index into the mesh's stable resting poses (most probable first); -1 = drawn by their probabilities."""
     light_radius_m: tuple[float, float] = (1.0, 1.5)
     light_polar_deg: tuple[float, float] = (0.0, 60.0)
+    light_azimuth_deg: tuple[float, float] = (0.0, 360.0)
     light_intensity: tuple[float, float] = (2.25, 3.375)
     """Spot light radiant intensity (W/sr, Mitsuba units)."""
     light_cutoff_deg: float = 15.0
     ambient_radiance: float = 0.02
     """Constant environment (keeps shadows from being exactly black); 0 = none."""
     colour: tuple[float, float] = (0.0, 1.0)
+    background_colour: tuple[float, float] | None = None
+    """Reflectance range of the ground's colours; None = ``colour``'s."""
     alpha_rough: tuple[float, float] = (0.1, 0.7)
     alpha_smooth: tuple[float, float] = (0.001, 0.011)
     background_size_m: float = 1.0
@@ -64,6 +74,12 @@ class SceneConfig:
     def __post_init__(self) -> None:
         for f in fields(self):
             v = getattr(self, f.name)
+            if f.name == "rest_pose":
+                if not isinstance(v, int) or v < -1:
+                    raise SimError(f"scene.rest_pose: an index >= 0 of a stable pose, or -1 for random; got {v!r}")
+                continue
+            if v is None:
+                continue
             if f.name == "backgrounds":
                 bad = [b for b in v if b not in BACKGROUNDS]
                 if bad or not v:
@@ -72,7 +88,7 @@ class SceneConfig:
             if isinstance(v, tuple):
                 if len(v) != 2 or not all(np.isfinite(x) for x in v) or v[0] > v[1]:
                     raise SimError(f"scene.{f.name}: need a range (lo, hi) with lo <= hi, got {v}")
-                if min(v) < 0:
+                if min(v) < 0 and f.name not in ANGLES_ANY_SIGN:
                     raise SimError(f"scene.{f.name}: values must be >= 0, got {v}")
             elif not (np.isfinite(v) and v >= 0):
                 raise SimError(f"scene.{f.name}: must be a number >= 0, got {v}")
@@ -82,8 +98,9 @@ class SceneConfig:
         for key in ("alpha_rough", "alpha_smooth"):
             if getattr(self, key)[0] <= 0:
                 raise SimError(f"scene.{key}: roughness alpha must be > 0, got {getattr(self, key)}")
-        if self.colour[1] > 1:
-            raise SimError(f"scene.colour: reflectance must be in [0, 1], got {self.colour}")
+        for key in ("colour", "background_colour"):
+            if getattr(self, key) is not None and getattr(self, key)[1] > 1:
+                raise SimError(f"scene.{key}: reflectance must be in [0, 1], got {getattr(self, key)}")
         if self.camera_radius_m[0] <= 0 or self.focal_length_mm <= 0 or self.sensor_width_mm <= 0:
             raise SimError("scene: camera_radius_m, focal_length_mm and sensor_width_mm must be > 0")
         if self.camera_radius_m[0] * np.cos(np.radians(self.camera_polar_deg[1])) < 0.05:
@@ -101,20 +118,33 @@ class SceneConfig:
         return cls(**{k: tuple(v) if isinstance(v, list) else v for k, v in d.items()})
 
     def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        """The config as a dict; keys added after sets were rendered are left out at their defaults, so the
+        manifests of those sets still match on resume."""
+        d = asdict(self)
+        for key in LATER_KEYS:
+            if d[key] == getattr(SceneConfig, key):
+                d.pop(key)
+        return d
+
+
+LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose", "background_colour")
+"""SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
 
 def _uniform(rng: np.random.Generator, r: tuple[float, float]) -> float:
     return float(rng.uniform(r[0], r[1]))
 
 
-def _on_shell(rng: np.random.Generator, radius: tuple[float, float], polar_deg: tuple[float, float]) -> np.ndarray:
-    """A point on a spherical shell, uniform in area over the polar band (cos of the polar angle uniform)."""
+def _on_shell(rng: np.random.Generator, radius: tuple[float, float], polar_deg: tuple[float, float],
+              azimuth_deg: tuple[float, float] = (0.0, 360.0)) -> np.ndarray:
+    """A point on a spherical shell, uniform in area over the polar and azimuth band (cos of the polar angle
+    uniform)."""
     r = _uniform(rng, radius)
     cos_lo, cos_hi = np.cos(np.radians(polar_deg[1])), np.cos(np.radians(polar_deg[0]))
     ct = rng.uniform(cos_lo, cos_hi)
     st = np.sqrt(max(0.0, 1 - ct * ct))
-    phi = rng.uniform(0, 2 * np.pi)
+    az_lo, az_hi = np.radians(azimuth_deg)
+    phi = az_lo + (az_hi - az_lo) * rng.random()  # = rng.uniform(0, 2 pi) for the default: same stream
     return r * np.array([st * np.cos(phi), st * np.sin(phi), ct])
 
 
@@ -191,26 +221,33 @@ def _up_for(forward: np.ndarray) -> list[float]:
 def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel) -> dict[str, Any]:
     """Draw every scene parameter (JSON-serialisable): pose, camera, light, materials, background."""
     transforms, probs = stable_poses(model)
-    k = int(rng.choice(len(probs), p=probs))
+    k = int(rng.choice(len(probs), p=probs))  # drawn even when fixed, so every later draw is the same
+    if cfg.rest_pose >= 0:
+        if cfg.rest_pose >= len(probs):
+            raise SimError(f"scene.rest_pose: {cfg.rest_pose}, but object {model.name!r} has {len(probs)} stable "
+                           f"poses (0..{len(probs) - 1})")
+        k = cfg.rest_pose
+    yaw_lo, yaw_hi = np.radians(cfg.yaw_deg)  # lo + (hi - lo) U: rng.uniform(0, 2 pi)'s draw for the default
     pose = {"index": k, "probability": float(probs[k]), "rest_transform": transforms[k].tolist(),
-            "yaw_rad": float(rng.uniform(0, 2 * np.pi)),
+            "yaw_rad": float(yaw_lo + (yaw_hi - yaw_lo) * rng.random()),
             "xy_m": [float(x) for x in rng.uniform(-cfg.object_xy_m, cfg.object_xy_m, 2)]}
     to_world = object_to_world(pose)
     verts = np.concatenate([p.vertices for p in model.parts])
     world = verts @ to_world[:3, :3].T + to_world[:3, 3]
     centre = 0.5 * (world.min(0) + world.max(0))
     target = centre + rng.uniform(-cfg.camera_target_jitter_m, cfg.camera_target_jitter_m, 3)
-    cam = centre + _on_shell(rng, cfg.camera_radius_m, cfg.camera_polar_deg)
-    light = centre + _on_shell(rng, cfg.light_radius_m, cfg.light_polar_deg)
+    cam = centre + _on_shell(rng, cfg.camera_radius_m, cfg.camera_polar_deg, cfg.camera_azimuth_deg)
+    light = centre + _on_shell(rng, cfg.light_radius_m, cfg.light_polar_deg, cfg.light_azimuth_deg)
     materials = {key: sample_material(rng, spec, cfg) for key, spec in model.materials.items()}
     bg_kind = str(rng.choice(list(cfg.backgrounds)))
+    bg_colour = cfg.colour if cfg.background_colour is None else cfg.background_colour
     # pplastic, not roughplastic: Mitsuba's roughplastic leaves light unpolarized in polarized variants (S1 = S2 = 0
     # on 99.8 % of the ground in renderer version 1) and its constructor precomputes tables (55 ms per sample)
     background = {
         "kind": bg_kind,
         "material": sample_material(rng, {"type": str(rng.choice(list(BACKGROUND_MATERIALS))), "finish": "rough"},
-                                    cfg),
-        "colour2": [_uniform(rng, cfg.colour) for _ in range(3)],
+                                    replace(cfg, colour=bg_colour)),
+        "colour2": [_uniform(rng, bg_colour) for _ in range(3)],
         "scale": float(rng.uniform(5, 60)),  # checker squares / noise blobs per metre... per plane side
         "noise_seed": int(rng.integers(2**31)),
     }

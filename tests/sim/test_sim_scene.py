@@ -1,0 +1,69 @@
+"""Scene randomisation ranges (SceneConfig): the fixed-station keys and the draws of sets rendered before them."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sim.dataset import DatasetSpec
+from sim.errors import SimError
+from sim.meshes import usb_brick
+from sim.scene import SceneConfig, camera_axes, sample_scene
+
+LINE_PRESET = Path(__file__).resolve().parents[2] / "sim" / "presets" / "line.toml"
+
+
+def test_default_ranges_draw_what_earlier_sets_drew() -> None:
+    # Values drawn by the code before yaw, azimuth, rest pose and ground colour became ranges (commit d332253):
+    # a set rendered then must be reproduced sample for sample.
+    p = sample_scene(np.random.default_rng([0, 5]), SceneConfig(), usb_brick())
+    assert p["pose"]["index"] == 1
+    assert p["pose"]["yaw_rad"] == pytest.approx(3.4416088468621964, rel=1e-12)
+    np.testing.assert_allclose(p["camera"]["origin"], [-0.3807002291301368, 0.09562077037936681, 0.2518675106759474],
+                               rtol=1e-12)
+    np.testing.assert_allclose(p["light"]["origin"], [0.033997148190859916, -0.9886159498341112, 0.7111364266042016],
+                               rtol=1e-12)
+    np.testing.assert_allclose(p["background"]["colour2"], [0.44200728163291403, 0.8735617179369904,
+                                                            0.7009057180555119], rtol=1e-12)
+
+
+def test_default_manifest_has_no_new_keys() -> None:
+    # Resuming a set compares manifests: keys at their defaults stay out, so older sets still resume.
+    scene = DatasetSpec().to_dict()["scene"]
+    assert not {"yaw_deg", "rest_pose", "camera_azimuth_deg", "light_azimuth_deg", "background_colour"} & set(scene)
+    line = DatasetSpec.from_dict({"scene": {"rest_pose": 0}}).to_dict()["scene"]
+    assert line["rest_pose"] == 0
+
+
+def test_line_preset_fixes_pose_orientation_and_ground() -> None:
+    scene = tomllib.loads(LINE_PRESET.read_text())["scene"]
+    cfg = SceneConfig.from_dict(scene)
+    model = usb_brick()
+    for i in range(40):
+        p = sample_scene(np.random.default_rng([0, i]), cfg, model)
+        assert p["pose"]["index"] == 0
+        assert -5 <= np.degrees(p["pose"]["yaw_rad"]) <= 5
+        target, cam, light = (np.asarray(x) for x in (p["camera"]["target"], p["camera"]["origin"],
+                                                       p["light"]["origin"]))
+        d = cam - target
+        polar = np.degrees(np.arccos(d[2] / np.linalg.norm(d)))
+        azimuth = np.degrees(np.arctan2(d[1], d[0])) % 360
+        assert 29.5 <= polar <= 35.5 and 264 <= azimuth <= 276  # target jitter 1 mm at 0.39 m
+        assert np.degrees(np.arctan2(*(light - target)[1::-1])) % 360 == pytest.approx(90, abs=6)
+        assert camera_axes(p["camera"])[1][1] > 0.8  # image up is world +y: the part lies the same way in every frame
+        assert p["background"]["kind"] == "plain"
+        assert all(0.05 <= c <= 0.15 for c in p["background"]["colour2"] + p["background"]["material"]["colour"])
+
+
+@pytest.mark.parametrize(("key", "value", "words"), [
+    ("rest_pose", 99, "rest_pose: 99"),
+    ("rest_pose", -2, "scene.rest_pose"),
+    ("background_colour", (0.5, 1.5), "scene.background_colour"),
+    ("yaw_deg", (10.0, -10.0), "scene.yaw_deg"),
+])
+def test_bad_ranges_name_the_key(key: str, value, words: str) -> None:
+    with pytest.raises(SimError, match=words):
+        sample_scene(np.random.default_rng(0), SceneConfig(**{key: value}), usb_brick())
