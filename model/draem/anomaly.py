@@ -33,6 +33,7 @@ import torch
 from .config import PRIOR_CHANNELS, UNIT_VECTOR_PRIORS, channel_slices
 from .errors import ModelError
 from .perlin import fractal_noise, perlin_masks
+from .vectors import unit_vectors
 
 
 @dataclass(frozen=True)
@@ -65,8 +66,7 @@ def _uniform(b: int, lo: float, hi: float, g: torch.Generator) -> torch.Tensor:
 
 
 def _normalise(v: torch.Tensor, fallback: torch.Tensor) -> torch.Tensor:
-    n = torch.linalg.vector_norm(v, dim=1, keepdim=True)
-    return torch.where(n > 1e-6, v / n.clamp_min(1e-6), fallback)
+    return unit_vectors(v, 1, fallback=fallback)
 
 
 def _texture_scalar(b: int, h: int, w: int, g: torch.Generator) -> torch.Tensor:

@@ -14,6 +14,7 @@ import torch.nn.functional as F
 
 from .config import PRIOR_CHANNELS, UNIT_VECTOR_PRIORS, channel_slices
 from .errors import ModelError
+from .vectors import unit_vectors
 
 
 def stack_priors(maps: Mapping[str, np.ndarray], priors: tuple[str, ...]) -> np.ndarray:
@@ -57,9 +58,7 @@ def crop_resize(x: np.ndarray | torch.Tensor, box: tuple[int, int, int, int], si
                       antialias=hh > size_px)[0]
     for p, sl in channel_slices(priors).items():
         if p in UNIT_VECTOR_PRIORS:
-            v = t[sl]
-            n = torch.linalg.vector_norm(v, dim=0, keepdim=True)
-            t[sl] = torch.where(n > 1e-6, v / n.clamp_min(1e-6), v)
+            t[sl] = unit_vectors(t[sl], 0, fallback=t[sl])
     out_masks = []
     for m in masks:
         mt = torch.as_tensor(np.asarray(m, dtype=np.float32))[top:top + hh, left:left + ww][None, None]

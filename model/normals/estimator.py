@@ -22,6 +22,7 @@ import torch.nn.functional as F
 
 from model.draem.preprocess import crop_resize
 from model.draem.roi import roi_box
+from model.draem.vectors import unit_vectors
 
 from .errors import NormalsError
 from .net import INPUT_CHANNELS, NormalUNet, load_normal_net, stack_maps
@@ -73,7 +74,7 @@ class NormalEstimator:
         device = next(self.net.parameters()).device
         n = self.net(x.to(device)).float()
         n = F.interpolate(n, size=(h, w), mode="bilinear", align_corners=False) if (h, w) != (size, size) else n
-        n = F.normalize(n, dim=1, eps=1e-6)[0]
+        n = unit_vectors(n, 1)[0]
         return n.permute(1, 2, 0).cpu().numpy().astype(np.float32, copy=False)
 
     def predict_frame(self, maps: Mapping[str, np.ndarray]) -> np.ndarray:

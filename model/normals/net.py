@@ -25,6 +25,7 @@ import torch.nn.functional as F
 from torch import nn
 
 from model.draem.checkpoint import code_version, load_weights, paths, read_json_sidecar, write_checkpoint_files
+from model.draem.vectors import unit_vectors
 from model.priors.conventions import CONVENTION_VERSION
 
 from .errors import NormalsCheckpointError, NormalsError
@@ -124,7 +125,7 @@ class NormalUNet(nn.Module):
             skips = skips[:-1]
             h = F.interpolate(h, size=skip.shape[-2:], mode="bilinear", align_corners=False)
             h = block(torch.cat([h, skip], 1))
-        return F.normalize(self.head(h) + x[:, VIEW_SLICE], dim=1, eps=1e-6)
+        return unit_vectors(self.head(h) + x[:, VIEW_SLICE], 1)
 
 
 def count_parameters(net: nn.Module) -> int:
