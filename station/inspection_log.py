@@ -1,7 +1,9 @@
 """The inspection log: one SQLite row per part, durable on commit, with streaming export.
 
 SQLite in WAL mode with ``synchronous=FULL``: a row whose ``append`` returned survives a crash or power loss.
-The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Decisions:
+The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Version 2 added
+``ground_truth_present``: opening a version-1 log for writing adds the column (NULL in the old rows); a version-1
+log opened read-only reads it as NULL. Decisions:
 
 pass           judged good (score <= threshold)
 reject         judged bad (score > threshold), or could not be judged (fail closed; ``reason`` says why)
@@ -22,7 +24,8 @@ from typing import Any
 
 from station.errors import UserError
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
+ADDED_IN_VERSION_2 = ("ground_truth_present",)
 DECISIONS = ("pass", "reject", "empty", "not_inspected")
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
 EXPORT_FORMATS = ("csv", "jsonl", "parquet")
@@ -54,6 +57,9 @@ class InspectionRecord:
     total_ms: float | None = None
     io_delivered: bool | None = None
     ground_truth_label: int | None = None
+    """1 defective, 0 good, for a simulated part in view; None without ground truth or with no part in view."""
+    ground_truth_present: bool | None = None
+    """Whether the simulated frame showed a part (scores the presence check); None without ground truth."""
     image_path: str | None = None
 
     def __post_init__(self) -> None:
@@ -64,7 +70,9 @@ class InspectionRecord:
 COLUMNS = tuple(f.name for f in fields(InspectionRecord))
 _SQL_TYPES = {"decision": "TEXT NOT NULL", "time_unix_s": "REAL NOT NULL", "part_id": "TEXT", "model_id": "TEXT",
               "reason": "TEXT", "image_path": "TEXT", "camera_frame_id": "INTEGER", "camera_timestamp_ns": "INTEGER",
-              "io_delivered": "INTEGER", "ground_truth_label": "INTEGER"}
+              "io_delivered": "INTEGER", "ground_truth_label": "INTEGER",
+              "ground_truth_present": "INTEGER"}
+_BOOL_COLUMNS = ("io_delivered", "ground_truth_present")
 
 
 def _create_sql() -> str:
@@ -103,15 +111,22 @@ class InspectionLog:
                 version = self._db.execute("PRAGMA user_version").fetchone()[0]
                 if version == 0:
                     self._db.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
+                elif version == 1:
+                    with self._db:  # one transaction: the column and the version change together
+                        for c in ADDED_IN_VERSION_2:
+                            self._db.execute(f"ALTER TABLE inspections ADD COLUMN {c} {_SQL_TYPES[c]}")
+                        self._db.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
                 self._db.commit()
             version = self._db.execute("PRAGMA user_version").fetchone()[0]
+            have = {r[1] for r in self._db.execute("PRAGMA table_info(inspections)")}
         except OSError as exc:
             raise LogError(f"inspection log {self.path}: cannot open: {exc}") from None
         except sqlite3.Error as exc:
             raise _db_error(self.path, "open", exc) from None
-        if version != SCHEMA_VERSION:
-            raise LogError(f"inspection log {self.path}: schema version {version}, this station writes "
+        if version not in (1, SCHEMA_VERSION):
+            raise LogError(f"inspection log {self.path}: schema version {version}, this station reads 1 and "
                            f"{SCHEMA_VERSION}; export it with the station version that wrote it")
+        self._select = ", ".join(c if c in have else f"NULL AS {c}" for c in COLUMNS)
 
     def append(self, records: InspectionRecord | Sequence[InspectionRecord]) -> None:
         """Write and commit records; durable when this returns. A full disk raises LogError (nothing half-written:
@@ -153,7 +168,7 @@ class InspectionLog:
         if decision is not None:
             where.append("decision = ?")
             args.append(decision)
-        sql = f"SELECT id, {', '.join(COLUMNS)} FROM inspections"
+        sql = f"SELECT id, {self._select} FROM inspections"
         if where:
             sql += " WHERE " + " AND ".join(where)
         cur = self._db.execute(sql + " ORDER BY time_unix_s, id", args)
@@ -161,8 +176,9 @@ class InspectionLog:
         while batch := cur.fetchmany(batch_size):
             for values in batch:
                 row = dict(zip(names, values, strict=True))
-                if row["io_delivered"] is not None:
-                    row["io_delivered"] = bool(row["io_delivered"])
+                for c in _BOOL_COLUMNS:
+                    if row[c] is not None:
+                        row[c] = bool(row[c])
                 yield row
 
     def apply_retention(self, retention_days: float, now_unix_s: float | None = None) -> list[str]:
@@ -225,7 +241,8 @@ def _export_parquet(rows: Iterator[dict[str, Any]], path: Path, names: list[str]
 
     types = {"id": pa.int64(), "decision": pa.string(), "part_id": pa.string(), "model_id": pa.string(),
              "reason": pa.string(), "image_path": pa.string(), "camera_frame_id": pa.int64(),
-             "camera_timestamp_ns": pa.int64(), "io_delivered": pa.bool_(), "ground_truth_label": pa.int64()}
+             "camera_timestamp_ns": pa.int64(), "io_delivered": pa.bool_(), "ground_truth_label": pa.int64(),
+             "ground_truth_present": pa.bool_()}
     schema = pa.schema([(c, types.get(c, pa.float64())) for c in names])
     n = 0
     with pq.ParquetWriter(path, schema) as writer:

@@ -19,9 +19,10 @@ PERCENTILES = (50, 90, 99)
 class LogSummary:
     """Counts per decision, reject rate among judged parts (pass + reject; "empty" frames are not judged), total
     latency percentiles (ms), score histogram, and the confusion against ground truth where the log has it
-    (simulated camera): ``<truth>_<decision>`` with truth "good"/"bad" and decision "pass", "reject" or "empty"
-    ("good_empty"/"bad_empty": a part the presence check missed; frames whose ground truth shows no part are
-    logged without a label, so they are not in it)."""
+    (simulated camera): ``<truth>_<decision>`` with truth "good"/"bad" (a part in view, by its label) or "none"
+    (``ground_truth_present`` false: no part in view) and decision "pass", "reject" or "empty" ("good_empty"/
+    "bad_empty": a part the presence check missed; "none_pass"/"none_reject": an empty view it let through; logs
+    of schema version 1 have no presence column, so their empty views are not in it)."""
 
     counts: dict[str, int]
     reject_rate: float
@@ -47,9 +48,12 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
             latencies.append(r["total_ms"])
         if r["score"] is not None and r["decision"] in scores:
             scores[r["decision"]].append(r["score"])
-        if r["ground_truth_label"] is not None and r["decision"] in ("pass", "reject", "empty"):
-            truth = "bad" if r["ground_truth_label"] else "good"
-            confusion[f"{truth}_{r['decision']}"] += 1
+        if r["decision"] in ("pass", "reject", "empty"):
+            if r["ground_truth_present"] is False:
+                confusion[f"none_{r['decision']}"] += 1
+            elif r["ground_truth_label"] is not None:
+                truth = "bad" if r["ground_truth_label"] else "good"
+                confusion[f"{truth}_{r['decision']}"] += 1
     judged = counts["pass"] + counts["reject"]
     edges = np.linspace(0.0, 1.0, bins + 1)
     return LogSummary(
@@ -78,6 +82,10 @@ def format_summary(s: LogSummary) -> str:
         if missed or s.counts.get("empty"):
             lines.append(f"logged empty (no part in view): {s.counts.get('empty', 0)}, of which {missed} showed a "
                          "part (presence check missed it)")
+        judged_empty = c.get("none_pass", 0) + c.get("none_reject", 0)
+        if judged_empty or c.get("none_empty"):
+            lines.append(f"frames without a part: {c.get('none_empty', 0)} logged empty, {judged_empty} judged as a "
+                         "part (presence check let them through)")
     return "\n".join(lines) + "\n"
 
 

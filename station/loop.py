@@ -241,7 +241,8 @@ class Station:
             demosaic_ms=timings.get("demosaic"), priors_ms=priors_ms, model_ms=timings.get("model"),
             decision_ms=timings.get("decision"), io_ms=1e3 * (t_io - t_decided),
             total_ms=1e3 * (t_decided - part.t_trigger),
-            io_delivered=delivered, ground_truth_label=truth, image_path=image_path)
+            io_delivered=delivered, ground_truth_label=truth,
+            ground_truth_present=gt.present if gt is not None else None, image_path=image_path)
         self.log.append(record)
         self.stats.add(record.decision, record.total_ms, gt.label if gt is not None else None,
                        gt.present if gt is not None else True)

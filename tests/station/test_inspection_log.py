@@ -131,3 +131,68 @@ def test_report_cli_writes_json_and_png(tmp_path):
     assert "reject rate (of judged parts): 25.00 %" in r.stdout
     assert json.loads((tmp_path / "r" / "report.json").read_text())["counts"]["reject"] == 5
     assert (tmp_path / "r" / "report.png").read_bytes()[:4] == b"\x89PNG"
+
+
+V1_COLUMNS = [c for c in COLUMNS if c != "ground_truth_present"]
+
+
+def _v1_log(path) -> None:
+    """A log as schema version 1 wrote it (no ground_truth_present column), with two rows."""
+    import sqlite3
+
+    cols = ", ".join(f"{c} {'TEXT' if c in ('decision', 'part_id', 'model_id', 'reason', 'image_path') else 'REAL'}"
+                     for c in V1_COLUMNS)
+    db = sqlite3.connect(path)
+    db.execute(f"CREATE TABLE inspections (id INTEGER PRIMARY KEY AUTOINCREMENT, {cols})")
+    for i in range(2):
+        db.execute(f"INSERT INTO inspections (decision, time_unix_s, part_id, ground_truth_label) "
+                   f"VALUES ('pass', {1000.0 + i}, 'old{i}', 0)")
+    db.execute("PRAGMA user_version=1")
+    db.commit()
+    db.close()
+
+
+def test_version_1_log_reads_and_is_migrated_on_write(tmp_path):
+    db = tmp_path / "v1.sqlite"
+    _v1_log(db)
+    with InspectionLog(db, readonly=True) as log:  # read-only: the old file is not touched
+        rows = list(log.rows())
+    assert [r["part_id"] for r in rows] == ["old0", "old1"] and all(r["ground_truth_present"] is None for r in rows)
+    out = tmp_path / "v1.csv"
+    with InspectionLog(db, readonly=True) as log:
+        assert export_rows(log.rows(), out, "csv") == 2
+    assert next(csv.DictReader(out.open())).keys() == {"id", *COLUMNS}
+    with InspectionLog(db) as log:  # writing adds the column; old rows keep their values
+        log.append(rec(5, "empty", ground_truth_present=False))
+        rows = list(log.rows())
+    assert [r["part_id"] for r in rows] == ["old0", "old1", "P5"]
+    assert [r["ground_truth_present"] for r in rows] == [None, None, False]
+    assert rows[0]["ground_truth_label"] == 0
+    import sqlite3
+
+    assert sqlite3.connect(db).execute("PRAGMA user_version").fetchone()[0] == 2
+
+
+def test_newer_schema_is_refused_by_name(tmp_path):
+    import sqlite3
+
+    db = tmp_path / "v9.sqlite"
+    con = sqlite3.connect(db)
+    con.execute("PRAGMA user_version=9")
+    con.close()
+    with pytest.raises(LogError, match=r"v9\.sqlite: schema version 9"):
+        InspectionLog(db, readonly=True)
+
+
+def test_report_scores_the_presence_check_on_empty_views(tmp_path):
+    from station.log_report import format_summary, summarize
+
+    rows = [rec(0, "empty", ground_truth_present=False), rec(1, "pass", ground_truth_present=False),
+            rec(2, "empty", ground_truth_label=1, ground_truth_present=True),
+            rec(3, "pass", ground_truth_label=0, ground_truth_present=True)]
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append(rows)
+        s = summarize(log.rows())
+    assert s.confusion == {"none_empty": 1, "none_pass": 1, "bad_empty": 1, "good_pass": 1}
+    text = format_summary(s)
+    assert "1 logged empty, 1 judged as a part" in text and "of which 1 showed a part" in text

@@ -17,6 +17,7 @@ from model.priors.testing import detailed_stokes
 from station.config import ConfigError, StationConfig, parse_config
 from station.inspection_log import InspectionLog
 from station.inspector import Inference, Inspector
+from station.log_report import summarize
 from station.loop import Station
 from station.presence import PresenceCheck, dolp_contrast
 from station.reject_store import RejectStore
@@ -167,6 +168,9 @@ def test_empty_frames_are_logged_empty_and_the_model_does_not_run(tmp_path) -> N
     assert [d for _, d, _ in link.reports] == ["pass", "pass", "pass"]
     assert stats.confusion == {"good_pass": 2, "bad_pass": 1, "none_empty": 2}
     assert stats.summary()["empty"] == 2
+    # the log alone scores the check afterwards, as the live statistics did
+    assert [r["ground_truth_present"] for r in rows] == [True, False, True, False, True]
+    assert summarize(rows).confusion == stats.confusion
 
 
 def test_an_announced_part_not_in_view_is_rejected_at_the_plc(tmp_path) -> None:
@@ -181,6 +185,7 @@ def test_without_the_check_empty_frames_go_to_the_model(tmp_path) -> None:
     rows, detector, _, stats = run_station(tmp_path, ["part", "empty"], triggered=False, presence=False)
     assert [r["decision"] for r in rows] == ["pass", "pass"] and detector.calls == 2
     assert stats.confusion == {"good_pass": 1, "none_pass": 1}
+    assert summarize(rows).confusion == stats.confusion
 
 
 def test_the_check_asks_for_dolp_when_the_model_does_not() -> None:
