@@ -24,12 +24,14 @@ from station.viewer import ViewerFeed
 
 log = logging.getLogger(__name__)
 
-DEMO_DATASET = "data/sim-demo"
+DEMO_DATASET = "data/sim-demo-line"
 """Where ``[sim] dataset = ""`` renders its parts on first use (``DEMO_PARTS`` of them, once)."""
+DEMO_SCENE = Path(__file__).resolve().parents[1] / "sim" / "presets" / "line.toml"
+"""The demo's scene: the fixed station the shipped model was trained on (``model/weights/README.md``)."""
 DEMO_PARTS = 40
 DEMO_SEED = 7
 """Not the seed of the shipped model's training set (0), so the demo shows parts the model never saw."""
-DEMO_EMPTY_DATASET = "data/sim-demo-empty"
+DEMO_EMPTY_DATASET = "data/sim-demo-line-empty"
 """The demo set with empty views, rendered instead (once) when ``[sim] empty_rate`` > 0 and ``dataset = ""``."""
 DEMO_EMPTY_RATE = 0.25
 
@@ -56,8 +58,11 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
         return str(root)
     print(f"[sim] dataset is empty: rendering {DEMO_PARTS} demo samples into {root} with Mitsuba (once; "
           f"about 2 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
-    spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": 16,
-                                  "defect_fraction": 0.5, "defects_in_train": True, "empty_rate": empty_rate})
+    import tomllib
+
+    spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": 8,
+                                  "defect_fraction": 0.5, "defects_in_train": True, "empty_rate": empty_rate,
+                                  "scene": tomllib.loads(DEMO_SCENE.read_text())["scene"]})
     if empty_rate:
         _link_demo_parts(Path(DEMO_DATASET), root)
     render_set(root, spec, DEMO_PARTS)
