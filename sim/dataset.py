@@ -151,6 +151,31 @@ class Sample:
     depth: np.ndarray | None = None
 
 
+OVERRIDE_SECTIONS = ("scene", "defects", "sensor")
+
+
+def read_overrides(path: str | Path) -> dict[str, dict[str, Any]]:
+    """A JSON or TOML file of ``[scene]``, ``[defects]``, ``[sensor]`` overrides (``station render --config``,
+    ``sim/presets/*.toml``), for ``DatasetSpec.from_dict``; a missing, unparsable or unknown-section file is a
+    SimError naming it."""
+    path = Path(path)
+    if not path.is_file():
+        raise SimError(f"--config {path}: no such file")
+    try:
+        if path.suffix == ".toml":
+            import tomllib
+
+            extra = tomllib.loads(path.read_text())
+        else:
+            extra = json.loads(path.read_text())
+    except Exception as exc:
+        raise SimError(f"--config {path}: cannot parse ({exc})") from None
+    bad = sorted(set(extra) - set(OVERRIDE_SECTIONS))
+    if bad:
+        raise SimError(f"--config {path}: unknown sections {bad}; use {', '.join(OVERRIDE_SECTIONS)}")
+    return extra
+
+
 def prepare(spec: DatasetSpec) -> ObjectModel:
     """Load and check everything a render needs (mesh, materials, defect types) before rendering anything;
     raises SimError naming the file, key or material."""

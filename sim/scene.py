@@ -136,7 +136,7 @@ def _uniform(rng: np.random.Generator, r: tuple[float, float]) -> float:
 
 
 def _on_shell(rng: np.random.Generator, radius: tuple[float, float], polar_deg: tuple[float, float],
-              azimuth_deg: tuple[float, float] = (0.0, 360.0)) -> np.ndarray:
+              azimuth_deg: tuple[float, float]) -> np.ndarray:
     """A point on a spherical shell, uniform in area over the polar and azimuth band (cos of the polar angle
     uniform)."""
     r = _uniform(rng, radius)

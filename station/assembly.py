@@ -49,7 +49,7 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
             raise ConfigError(f"{cfg.source}: [sim] dataset = {cfg.sim.dataset!r} is not a rendered set "
                               f"(no manifest.json; make one with `station render --out {cfg.sim.dataset}`)")
         return cfg.sim.dataset
-    from sim.dataset import DatasetSpec, open_dataset, render_set
+    from sim.dataset import DatasetSpec, open_dataset, read_overrides, render_set
 
     # the plain demo set stays as it was (make demo's first run); empty views only when asked for
     empty_rate = DEMO_EMPTY_RATE if cfg.sim.empty_rate > 0 else 0.0
@@ -57,12 +57,10 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
     if (root / "manifest.json").is_file() and len(open_dataset(root).indices(empty=None)) >= DEMO_PARTS:
         return str(root)
     print(f"[sim] dataset is empty: rendering {DEMO_PARTS} demo samples into {root} with Mitsuba (once; "
-          f"about 2 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
-    import tomllib
-
+          f"about 1.5 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
     spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": 8,
                                   "defect_fraction": 0.5, "defects_in_train": True, "empty_rate": empty_rate,
-                                  "scene": tomllib.loads(DEMO_SCENE.read_text())["scene"]})
+                                  **read_overrides(DEMO_SCENE)})
     if empty_rate:
         _link_demo_parts(Path(DEMO_DATASET), root)
     render_set(root, spec, DEMO_PARTS)

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import logging
-from pathlib import Path
 
 log = logging.getLogger(__name__)
 
@@ -72,26 +71,10 @@ def choose_spp(args: argparse.Namespace):
 
 
 def build_spec(args: argparse.Namespace, spp: int = 16):
-    from sim.dataset import DatasetSpec
+    from sim.dataset import DatasetSpec, read_overrides
     from sim.errors import SimError
 
-    extra: dict = {}
-    if args.config:
-        path = Path(args.config)
-        if not path.is_file():
-            raise SimError(f"--config {path}: no such file")
-        try:
-            if path.suffix == ".toml":
-                import tomllib
-
-                extra = tomllib.loads(path.read_text())
-            else:
-                extra = json.loads(path.read_text())
-        except Exception as exc:
-            raise SimError(f"--config {path}: cannot parse ({exc})") from None
-        bad = sorted(set(extra) - {"scene", "defects", "sensor"})
-        if bad:
-            raise SimError(f"--config {path}: unknown sections {bad}; use scene, defects, sensor")
+    extra = read_overrides(args.config) if args.config else {}
     materials = {}
     if args.materials:
         try:
