@@ -160,6 +160,11 @@ def _plots(out: Path, results: dict, data, maps, scores, threshold) -> list[str]
     return files
 
 
+def _normal_prior(ck) -> dict | None:
+    """The checkpoint's record of how its normal prior was made (None without a normal input)."""
+    return ck.meta.get("train", {}).get("normal_prior") if "normal" in ck.detector.config.priors else None
+
+
 def _load_and_evaluate(model: str, args: argparse.Namespace):
     """Checkpoint ``model`` on ``args.data``'s split, as the station feeds it (its roi, its learned normal prior):
     (checkpoint, split tensors, EvalData, evaluation)."""
@@ -169,7 +174,7 @@ def _load_and_evaluate(model: str, args: argparse.Namespace):
 
     ck = load_checkpoint(model)
     cfg = ck.detector.config
-    normal_prior = ck.meta.get("train", {}).get("normal_prior") if "normal" in cfg.priors else None
+    normal_prior = _normal_prior(ck)
     normals = None
     if normal_prior and normal_prior.get("source") == "learned":
         from model.draem.checkpoint import paths
@@ -234,7 +239,6 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     ck, sp, data, ev = _load_and_evaluate(args.model, args)
     cfg, thr = ck.detector.config, ck.threshold
-    normal_prior = ck.meta.get("train", {}).get("normal_prior") if "normal" in cfg.priors else None
     rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}
     good = sp.label == 0
@@ -261,7 +265,7 @@ def run(args: argparse.Namespace) -> int:
     payload = {"model": str(args.model), "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
-               "normal_prior": normal_prior, "rows": rows,
+               "normal_prior": _normal_prior(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "plots": files}
     cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
             "flagged_good", "detected"]
