@@ -75,6 +75,15 @@ EARLY_EXIT_MARGINS = (None, 0.0, 0.05, 0.1, 0.2)
 """Rules compared by ``early_exit_rows``: None runs every member, 0 is the exact rule, m > 0 the margin rule."""
 
 
+def channel_rows(detector, x, object_mask) -> list[dict]:
+    """``model.draem.channel_stats`` per input channel, as report rows."""
+    from dataclasses import asdict
+
+    from model.draem.channel_stats import channel_stats
+
+    return [asdict(c) for c in channel_stats(detector, x, object_mask)]
+
+
 def early_exit_rows(ev, label, threshold: float, members: tuple[str, ...]) -> list[dict]:
     """What early exit of the ensemble (``model.draem.early_exit``, members run in ``members`` order) costs on
     these parts: members run per part, decisions that differ from running all members, image AUROC."""
@@ -257,6 +266,7 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"{args.data}: split {args.split!r} has no rendered defects; AUROC is undefined")
     files = [] if args.no_plots else _plots(out, roc, data, ev.maps, ev.scores, thr)
     ablation = ablation_rows(ev, data) if args.ablation else []
+    channels = channel_rows(ck.detector, sp.priors[good], sp.object_mask[good]) if bool(good.any()) else []
     early = early_exit_rows(ev, sp.label.numpy(), thr, tuple(cfg.networks())) if ev.member_scores and thr is not None \
         else []
     if ablation and not args.no_plots:
@@ -266,13 +276,17 @@ def run(args: argparse.Namespace) -> int:
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": _normal_prior(ck), "rows": rows,
-               "ablation": ablation, "early_exit": early, "plots": files}
+               "ablation": ablation, "early_exit": early, "channels": channels, "plots": files}
     cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
             "flagged_good", "detected"]
     table = markdown_table(rows, cols)
     if ablation:
         table += "\n\nAblation (ensemble members averaged, rendered defects):\n\n" + markdown_table(
             ablation, ["priors", "members", "image_auroc", "pixel_auroc", "pixel_ap"])
+    if channels:
+        table += ("\n\nInput channels on good parts' object pixels (normalised; unexplained = reconstruction residual "
+                  "/ variance; adjacent_corr near 0 = pixel noise):\n\n"
+                  + markdown_table(channels, ["channel", "variance", "unexplained", "adjacent_corr"]))
     if early:
         table += (f"\n\nEarly exit of the ensemble (members in order {', '.join(cfg.networks())}; threshold "
                   f"{thr:.4g}; rendered defects):\n\n" + markdown_table(

@@ -27,6 +27,9 @@ def test_eval_reports_one_model(setup, capsys) -> None:
     assert (first["set"], first["n"], first["anomalous"]) == ("rendered, all defects", 4, 2)
     assert 0.0 <= first["image_auroc"] <= 1.0 and rep["same_dataset_as_training"] is False
     assert "| rendered, all defects |" in capsys.readouterr().out
+    # the input channel diagnosis, one row per channel of the model's priors (good parts of the split)
+    assert [c["channel"] for c in rep["channels"]] == ["intensity"]
+    assert rep["channels"][0]["variance"] > 0 and rep["channels"][0]["adjacent_corr"] is not None
 
 
 def test_fused_ablation_tabulates_one_model_per_prior_set_in_the_papers_order(setup) -> None:
