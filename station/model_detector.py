@@ -26,7 +26,7 @@ if TYPE_CHECKING:
 log = logging.getLogger(__name__)
 
 STATION_PRIORS = {"intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin"),
-                  "linpol": ("dolp", "aolp_cos", "aolp_sin"), "normal": ("intensity", "dolp", "aolp_cos", "aolp_sin")}
+                  "normal": ("intensity", "dolp", "aolp_cos", "aolp_sin")}
 """Model prior -> the ``model.priors`` maps it is built from ("normal": the inputs of the learned normal
 estimator, ``model.normals.estimator.MAP_NAMES``; a test keeps the two equal)."""
 

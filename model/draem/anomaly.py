@@ -15,8 +15,6 @@ Channel awareness (layout: ``config.channel_slices``; values in physical units b
     intensity, dolp   scalars in [0, 1]: blended linearly, clipped to [0, 1]
     aolp              (cos 2*aolp, sin 2*aolp): blended as vectors and renormalised, i.e. on the circle with
                       AoLP's period pi; a zero-length blend falls back to the source direction
-    linpol            dolp * (cos 2*aolp, sin 2*aolp), in the unit disc: blended linearly (a convex blend stays in
-                      the disc); procedural sources are a scalar texture times an AoLP texture
     normal            unit 3-vectors: blended and renormalised; procedural normals tilt up to 60 degrees from
                       the camera axis in a random azimuth
 
@@ -110,7 +108,7 @@ def _patches(x: torch.Tensor, priors: tuple[str, ...], g: torch.Generator) -> to
     # that is harmless (they only need to be plausible-looking but wrong), so no correction is applied
     out = src.clone()
     for p, sl in channel_slices(priors).items():
-        if p in ("aolp", "linpol"):
+        if p == "aolp":
             rot = _uniform(b, 0, 2 * math.pi, g).view(b, 1, 1)
             c, s = src[:, sl.start], src[:, sl.start + 1]
             out[:, sl.start], out[:, sl.start + 1] = torch.cos(rot) * c - torch.sin(rot) * s, \
@@ -128,9 +126,7 @@ def anomaly_sources(x: torch.Tensor, priors: tuple[str, ...], generator: torch.G
     tex = []
     for p in priors:
         tex.append(_texture_aolp(b, h, w, generator) if p == "aolp" else
-                   _texture_normal(b, h, w, generator) if p == "normal" else
-                   _texture_scalar(b, h, w, generator) * _texture_aolp(b, h, w, generator) if p == "linpol" else
-                   _texture_scalar(b, h, w, generator))
+                   _texture_normal(b, h, w, generator) if p == "normal" else _texture_scalar(b, h, w, generator))
     texture = torch.cat(tex, dim=1).to(x.dtype)
     if b < 2 or patch_fraction <= 0:
         return texture
@@ -168,7 +164,7 @@ def synthesize(x: torch.Tensor, priors: tuple[str, ...], generator: torch.Genera
     for p, sl in channel_slices(priors).items():
         xs, src = x[:, sl], source[:, sl]
         blend = (1 - beta) * src + beta * xs
-        blend = _normalise(blend, src) if p in UNIT_VECTOR_PRIORS else blend if p == "linpol" else blend.clamp(0, 1)
+        blend = _normalise(blend, src) if p in UNIT_VECTOR_PRIORS else blend.clamp(0, 1)
         out[:, sl] = xs * (1 - m) + blend * m
     maskf = mask.to(x.dtype)
     return SyntheticBatch(out, maskf, (maskf.flatten(1).amax(1) > 0).to(x.dtype))

@@ -18,7 +18,7 @@ from model.draem.detector import Detector
 from model.draem.errors import ModelError
 
 CHANNEL_NAMES = {"intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin"),
-                 "normal": ("normal_x", "normal_y", "normal_z"), "linpol": ("linpol_s1", "linpol_s2")}
+                 "normal": ("normal_x", "normal_y", "normal_z")}
 """Names of each prior's channels, in stacking order (``model.draem.preprocess.stack_priors``)."""
 
 

@@ -4,9 +4,6 @@ How a network sees each prior (values before normalisation; conventions in ``mod
     intensity  1 channel, unpolarized intensity S0/2 in [0, 1]
     dolp       1 channel, degree of linear polarization in [0, 1]
     aolp       2 channels (cos 2*aolp, sin 2*aolp), a unit vector: AoLP has period pi, so never the raw angle
-    linpol     2 channels dolp * (cos 2*aolp, sin 2*aolp) = (S1, S2) / S0, the linear polarization vector in the
-               unit disc: AoLP weighted by how well it is defined (not in the paper; where DoLP is near the
-               noise floor the unit vector is pixel noise at full amplitude, this one is near 0)
     normal     3 channels, unit surface normal in camera coordinates (x right, y up, z toward the camera)
 """
 
@@ -17,7 +14,7 @@ from typing import Any
 
 from .errors import ModelError
 
-PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3, "linpol": 2}
+PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3}
 """Input channels per prior, in the order the station stacks them for the fused network."""
 
 ROIS = ("center", "frame", "object")

@@ -17,28 +17,21 @@ from .errors import ModelError
 from .vectors import unit_vectors
 
 
-def _aolp_vector(maps: Mapping[str, np.ndarray]) -> list[np.ndarray]:
-    if "aolp_cos" in maps:
-        return [maps["aolp_cos"], maps["aolp_sin"]]
-    a2 = 2.0 * np.asarray(maps["aolp"], dtype=np.float32)
-    return [np.cos(a2), np.sin(a2)]
-
-
 def stack_priors(maps: Mapping[str, np.ndarray], priors: tuple[str, ...]) -> np.ndarray:
     """(C, H, W) float32 network channels from prior maps.
 
     ``maps`` holds (H, W) float arrays "intensity", "dolp", "aolp_cos" and "aolp_sin" (as returned by
     ``model.priors.compute_priors``; or "aolp" in radians, converted to (cos 2a, sin 2a)) and "normal" (H, W, 3),
-    unit camera-frame normals; "linpol" is built from "dolp" and the AoLP vector. Conventions:
-    ``model.priors.conventions``."""
+    unit camera-frame normals. Conventions: ``model.priors.conventions``."""
     out = []
     for p in priors:
         try:
             if p == "aolp":
-                out += _aolp_vector(maps)
-            elif p == "linpol":
-                dolp = np.asarray(maps["dolp"], dtype=np.float32)
-                out += [dolp * c for c in _aolp_vector(maps)]
+                if "aolp_cos" in maps:
+                    out += [maps["aolp_cos"], maps["aolp_sin"]]
+                else:
+                    a2 = 2.0 * np.asarray(maps["aolp"], dtype=np.float32)
+                    out += [np.cos(a2), np.sin(a2)]
             elif p == "normal":
                 n = np.asarray(maps["normal"], dtype=np.float32)
                 if n.ndim != 3 or n.shape[-1] != 3:

@@ -31,9 +31,7 @@ NORMAL_NET_FILE = "normal_net"
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("train", help="train the DRAEM detector on a rendered dataset (checkpoints, keep-best)")
     p.add_argument("--data", required=True, help="rendered dataset folder (station render --out)")
-    p.add_argument("--priors", default="intensity,dolp,aolp,normal",
-                   help="comma-separated: intensity,dolp,aolp,normal (the paper's); linpol = dolp * the AoLP "
-                        "vector, (S1, S2)/S0 (ours; see docs/model.md)")
+    p.add_argument("--priors", default="intensity,dolp,aolp,normal", help="comma-separated: intensity,dolp,aolp,normal")
     p.add_argument("--preset", default="fast", help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), tiny")
     p.add_argument("--fusion", default="ensemble", choices=("ensemble", "fused"),
                    help="ensemble: one DRAEM per prior, averaged (the paper); fused: one over all priors")
@@ -104,13 +102,13 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     from model.draem.roi import roi_box
     from model.priors import compute_priors
     from sim.dataset import open_dataset
-    from station.model_detector import STATION_PRIORS
 
     ds = open_dataset(root)
     idx = ds.indices(split)
     if not idx:
         raise UserError(f"{root}: no complete samples in split {split!r}")
-    names = list(dict.fromkeys(n for p in priors if p != "normal" for n in STATION_PRIORS[p])) or ["intensity"]
+    wanted = [p for p in priors if p != "normal"]
+    names = [n for p in wanted for n in (("aolp_cos", "aolp_sin") if p == "aolp" else (p,))] or ["intensity"]
     if "normal" in priors and normals is not None:
         from model.normals.estimator import MAP_NAMES
 

@@ -55,17 +55,3 @@ def test_half_of_the_samples_stay_clean_and_normals_stay_unit():
     assert 0.25 < float((syn.label == 0).float().mean()) < 0.8
     norm = torch.linalg.vector_norm(syn.augmented, dim=1)
     assert torch.allclose(norm, torch.ones_like(norm), atol=1e-5)
-
-
-def test_linpol_anomalies_stay_in_the_unit_disc_and_keep_negative_components(toy):
-    x, obj = toy(16, 64)
-    dolp, cs = x[:, 1:2], x[:, 2:4]
-    lp = torch.cat([x[:, :1], dolp * cs], 1)  # intensity, linpol = dolp * (cos 2a, sin 2a)
-    syn = synthesize(lp, ("intensity", "linpol"), torch.Generator().manual_seed(5),
-                     AnomalyConfig(anomaly_fraction=1.0), obj)
-    m = syn.mask.bool()
-    assert m.any()
-    norm = torch.linalg.vector_norm(syn.augmented[:, 1:3], dim=1)
-    assert float(norm.max()) <= 1 + 1e-5 and torch.isfinite(syn.augmented).all()
-    assert float(syn.augmented[:, 1:3][m.unsqueeze(1).expand(-1, 2, -1, -1)].min()) < 0  # not clipped to [0, 1]
-    assert (syn.augmented[:, 1][m] != lp[:, 1][m]).float().mean() > 0.9

@@ -67,17 +67,3 @@ def test_roi_frame_sees_the_whole_frame_and_center_only_its_square(tmp_path: Pat
     assert heat["frame"][:, :16].any() and heat["frame"][:, 80:].any()
     with pytest.raises(ModelError, match="centre square"):
         ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "frame")
-
-
-def test_a_linpol_model_computes_dolp_and_aolp_and_sees_s1_s2_over_s0(tmp_path: Path) -> None:
-    det = DraemDetector(save(tmp_path / "lp", ("intensity", "linpol"), "fused"), "cpu")
-    assert det.priors == ("intensity", "dolp", "aolp_cos", "aolp_sin")
-    s0, s1, s2 = detailed_stokes(64, 64)
-    maps = dict(priors_from_stokes(NAMES, s0, s1, s2))
-    x = stack_priors(maps, ("intensity", "linpol"))
-    inside = s0 > 0.05  # (S1, S2) / S0 is the linear polarization vector where the intensity is defined
-    np.testing.assert_allclose(x[1][inside], (s1 / s0)[inside], atol=1e-4)
-    np.testing.assert_allclose(x[2][inside], (s2 / s0)[inside], atol=1e-4)
-    assert 0.0 <= det.infer(maps).score <= 1.0
-    with pytest.raises(ModelError, match="dolp"):
-        stack_priors({k: v for k, v in maps.items() if k != "dolp"}, ("linpol",))
