@@ -174,8 +174,8 @@ def _normal_prior(ck) -> dict | None:
     return ck.meta.get("train", {}).get("normal_prior") if "normal" in ck.detector.config.priors else None
 
 
-def _load_and_evaluate(model: str, args: argparse.Namespace):
-    """Checkpoint ``model`` on ``args.data``'s split, as the station feeds it (its roi, its learned normal prior):
+def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None):
+    """Checkpoint ``model`` on ``data``'s split, as the station feeds it (its roi, its learned normal prior):
     (checkpoint, split tensors, EvalData, evaluation)."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.train import EvalData, evaluate
@@ -190,7 +190,7 @@ def _load_and_evaluate(model: str, args: argparse.Namespace):
         from model.normals.estimator import load_for_checkpoint
 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
-    sp = load_split(args.data, args.split, cfg.priors, cfg.input_size_px, args.limit, roi=cfg.roi, normals=normals)
+    sp = load_split(data, split, cfg.priors, cfg.input_size_px, limit, roi=cfg.roi, normals=normals)
     data = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
     return ck, sp, data, evaluate(ck.detector, data)
 
@@ -208,7 +208,7 @@ def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
         if cfg.get("fusion") != "fused":
             raise UserError(f"{m}: --ablation over several models takes fused models; this one is {cfg.get('fusion')}"
                             f" (an ensemble's ablation: --ablation --model <ensemble>)")
-        ck, _, _, ev = _load_and_evaluate(m, args)
+        ck, _, _, ev = load_and_evaluate(m, args.data, args.split, args.limit)
         priors = ck.detector.config.priors
         rows.append({"priors": prior_set_name(priors), "members": "+".join(priors), "model": m,
                      "image_auroc": ev.metrics["image_auroc"], "pixel_auroc": ev.metrics["pixel_auroc"],
@@ -246,7 +246,7 @@ def run(args: argparse.Namespace) -> int:
                         f"fused models, train one per prior set and pass them all: --model A,B,...)")
     out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
     out.mkdir(parents=True, exist_ok=True)
-    ck, sp, data, ev = _load_and_evaluate(args.model, args)
+    ck, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit)
     cfg, thr = ck.detector.config, ck.threshold
     rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import sqlite3
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -21,14 +22,15 @@ from station.cli import main
 W, H = 96, 64
 
 
-def make_dataset(root: Path, n: int = 10) -> Path:
-    """Polarized mosaics of a detailed scene; odd samples carry a defect (a bright patch) and its mask."""
+def make_dataset(root: Path, n: int = 10, defective: Callable[[int], bool] = lambda i: i % 2 == 1) -> Path:
+    """Polarized mosaics of a detailed scene; ``defective`` samples (default: odd) carry a defect (a bright patch)
+    and its mask."""
     init_dataset(root, DatasetSpec(width=W, height=H), n)
     s0, s1, s2 = detailed_stokes(H, W)
     for i in range(n):
         raw = np.clip(stokes_to_mosaic(s0, s1, s2) * 200, 0, 255).astype(np.uint8)
         mask = np.zeros((H, W), bool)
-        if i % 2:
+        if defective(i):
             mask[20:30, 40:50] = True
             raw[mask] = 255
         label = int(mask.any())
