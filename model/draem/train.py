@@ -243,12 +243,14 @@ class _MemberForward(nn.Module):
 
 def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_config: TrainConfig = TrainConfig(),
           val: EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
-          progress: bool = True, on_eval: Callable[[int, dict[str, float]], None] | None = None) -> TrainResult:
+          progress: bool = True, on_eval: Callable[[int, dict[str, float]], None] | None = None,
+          train_meta: dict[str, Any] | None = None) -> TrainResult:
     """Train a detector; checkpoints ``out_dir/last`` (+ ``last.state.pt`` for resuming) and ``out_dir/best``.
 
     ``val``: held-out data for keep-best (image AUROC, then pixel AUROC); None uses a fixed synthetic-anomaly set
     built from the first training samples, which is weaker evidence: pass rendered defects when there are some.
-    ``resume``: continue from ``out_dir/last`` when it exists (same model config required).
+    ``resume``: continue from ``out_dir/last`` when it exists (same model config required). ``train_meta``: extra
+    records for every checkpoint's ``train`` section (e.g. how the normal prior was made).
 
     Under ``torchrun`` (``WORLD_SIZE`` > 1) this runs data-parallel (module docstring): the process group is joined
     here unless the caller already did (``distributed.init``; it stays until the process exits); every rank passes
@@ -258,12 +260,12 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
     device = distributed.device_for(info, resolve_device(train_config.device))
     distributed.init(info, device)
     return _train(config, data, Path(out_dir), train_config, val, resume, data_manifest_sha256, progress, on_eval,
-                  info, device)
+                  info, device, train_meta or {})
 
 
 def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val: EvalData | None, resume: bool,
            data_manifest_sha256: str | None, progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None,
-           info: distributed.DistInfo, device: torch.device) -> TrainResult:
+           info: distributed.DistInfo, device: torch.device, train_meta: dict[str, Any]) -> TrainResult:
     from tqdm import tqdm
 
     main = info.is_main
@@ -342,7 +344,7 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
 
     def checkpoint(step: int, metrics: dict[str, float], generators: list[Any] | None) -> None:
         nonlocal best
-        train_info = {"step": step, "train_config": _jsonable(asdict(tc)), "precision": precision,
+        train_info = {**train_meta, "step": step, "train_config": _jsonable(asdict(tc)), "precision": precision,
                       "device": str(device)}
         if _better(metrics, best):
             best = dict(metrics)

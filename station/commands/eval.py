@@ -184,6 +184,9 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
     ck = load_checkpoint(model)
     cfg = ck.detector.config
     normal_prior = _normal_prior(ck)
+    if "normal" in cfg.priors and not normal_prior:
+        raise UserError(f"{model}: the model reads the normal prior but its sidecar does not record how that was made "
+                        f"(train.normal_prior; `last` checkpoints before 2026-11-23 lack it: copy it from `best`)")
     normals = None
     if normal_prior and normal_prior.get("source") == "learned":
         from model.draem.checkpoint import paths

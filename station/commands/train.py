@@ -202,7 +202,7 @@ def run(args: argparse.Namespace) -> int:
                      device=args.device, precision=args.precision, max_minutes=args.max_minutes)
     sha = manifest_sha256(args.data)
     res = train(config, TensorData(tr.priors, tr.object_mask), out, tc, val, resume=not args.no_resume,
-                data_manifest_sha256=sha)
+                data_manifest_sha256=sha, train_meta={"normal_prior": normal_prior} if normal_prior else None)
     if not res.is_main:  # torchrun: rank 0 alone evaluates, sets the threshold and writes the summary
         return 0
     ck = load_checkpoint(out / "best")

@@ -47,6 +47,18 @@ def test_checkpoint_names_its_estimator_and_carries_a_copy(trained) -> None:
     assert record["source"] == "learned" and record["file"] == "normal_net.json"
     assert record["weights_sha256"] == original["weights_sha256"]  # the copy holds the same weights
     assert (out / "normal_net.pt").is_file() and STATION_PRIORS["normal"] == MAP_NAMES
+    assert json.loads((out / "last.json").read_text())["train"]["normal_prior"] == record  # the final step too
+
+
+def test_eval_refuses_a_normal_model_that_does_not_say_where_its_normals_came_from(trained, tmp_path, capsys) -> None:
+    ds, _, out = trained
+    meta = json.loads((out / "last.json").read_text())
+    del meta["train"]["normal_prior"]
+    (tmp_path / "last.json").write_text(json.dumps(meta))
+    (tmp_path / "last.pt").write_bytes((out / "last.pt").read_bytes())
+    assert main(["eval", "--model", str(tmp_path / "last"), "--data", str(ds), "--no-plots",
+                 "--out", str(tmp_path / "e")]) == 2
+    assert "does not record how that was made" in capsys.readouterr().err
 
 
 def test_station_feeds_the_model_what_training_fed_it(trained) -> None:
