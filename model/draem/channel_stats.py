@@ -4,7 +4,7 @@ Per channel of the stacked priors, on good parts' object pixels: the variance of
 it the reconstruction leaves unexplained (mean squared residual / variance: 0 = reproduced, about 1 = not at all),
 and the correlation of horizontally adjacent pixels (near 1 for a smooth image, near 0 for pixel noise). A channel
 that is mostly pixel noise cannot be reconstructed, so its residual is noise the discriminative network must learn
-to ignore: the measured reason an added prior can lower accuracy (docs/model.md, the ablation on a fixed station).
+to ignore: a diagnosis of why a prior adds little (docs/model.md, the ablation on a fixed station).
 """
 
 from __future__ import annotations
