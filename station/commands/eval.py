@@ -194,8 +194,8 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
     sp = load_split(data, split, cfg.priors, cfg.input_size_px, limit, roi=cfg.roi, normals=normals)
-    data = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
-    return ck, sp, data, evaluate(ck.detector, data)
+    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
+    return ck, sp, tensors, evaluate(ck.detector, tensors)
 
 
 def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
