@@ -23,18 +23,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from model.draem.checkpoint import save_checkpoint
+    from model.draem.checkpoint import read_sidecar, save_checkpoint
     from model.draem.metrics import choose_threshold
     from station.commands.eval import load_and_evaluate
     from station.commands.train import manifest_sha256
 
     if not 0.0 <= args.max_good_flagged < 1.0:
         raise UserError(f"--max-good-flagged {args.max_good_flagged}: a fraction in [0, 1)")
-    ck, sp, _, ev = load_and_evaluate(args.model, args.data, "val")
-    sha = ck.meta.get("data_manifest_sha256")
+    sha = read_sidecar(args.model).get("data_manifest_sha256")  # before loading the split and running the model
     if sha and sha != manifest_sha256(args.data):
         raise UserError(f"{args.model}: trained on another set than {args.data} (manifest sha256 {sha[:12]}...); "
                         f"its threshold comes from that set's val split")
+    ck, sp, _, ev = load_and_evaluate(args.model, args.data, "val")
     labels = sp.label.numpy()
     if not 0 < int(labels.sum()) < len(labels):
         raise UserError(f"{args.data}: split 'val' needs good and defective parts to set a threshold "
