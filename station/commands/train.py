@@ -32,7 +32,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("train", help="train the DRAEM detector on a rendered dataset (checkpoints, keep-best)")
     p.add_argument("--data", required=True, help="rendered dataset folder (station render --out)")
     p.add_argument("--priors", default="intensity,dolp,aolp,normal", help="comma-separated: intensity,dolp,aolp,normal")
-    p.add_argument("--preset", default="fast", help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), tiny")
+    p.add_argument("--preset", default="fast",
+                   help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), lean (16/16 @ 128), tiny")
     p.add_argument("--fusion", default="ensemble", choices=("ensemble", "fused"),
                    help="ensemble: one DRAEM per prior, averaged (the paper); fused: one over all priors")
     p.add_argument("--roi", default="center", choices=("center", "frame", "object"),

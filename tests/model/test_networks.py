@@ -40,3 +40,21 @@ def test_config_channels_and_presets():
         ModelConfig.from_preset("fast", ("intensity", "colour"))
     with pytest.raises(ModelError, match="multiple of 32"):
         ModelConfig.from_preset("fast", ("dolp",), input_size_px=100)
+
+
+def test_lean_preset_costs_a_fraction_of_fast():
+    # the lean preset's note promises ~2.5x fewer FLOPs than fast for the same input
+    from torch.utils.flop_counter import FlopCounterMode
+
+    def gflop(preset: str) -> float:
+        cfg = ModelConfig.from_preset(preset, "intensity,aolp", "fused")
+        with torch.device("meta"):
+            net = Draem(cfg.networks()["fused"]).eval()
+            x = torch.empty(1, cfg.in_channels, cfg.input_size_px, cfg.input_size_px)
+        with FlopCounterMode(display=False) as fc, torch.no_grad():
+            net(x)
+        return fc.get_total_flops() / 1e9
+
+    fast, lean = gflop("fast"), gflop("lean")
+    assert ModelConfig.from_preset("lean").input_size_px == ModelConfig.from_preset("fast").input_size_px
+    assert 2.2 < fast / lean < 2.8
