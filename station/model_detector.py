@@ -38,7 +38,8 @@ class ModelLoadError(UserError):
 class DraemDetector:
     """Implements ``station.inspector.Detector`` for a checkpoint folder stem (``<path>.pt`` + ``<path>.json``).
 
-    device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32", "bf16" (autocast) or "onnx".
+    device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32", "bf16" (autocast), "onnx" (ONNX Runtime,
+    exported at load) or "int8" (ONNX Runtime on the quantized networks ``station quantize`` wrote beside it).
     ``threshold`` overrides the checkpoint's threshold (``[decision] threshold``). ``early_exit_margin``: None
     runs every member of a per-prior ensemble; 0 stops once the rest cannot change the decision (exact); m > 0
     also once the running mean is more than m from the threshold (``model.draem.early_exit``). ``fov_x_deg``:
@@ -54,8 +55,8 @@ class DraemDetector:
         from model.draem.checkpoint import load_checkpoint, paths
         from model.draem.train import resolve_device
 
-        if precision not in ("fp32", "bf16", "onnx"):
-            raise ModelLoadError(f"[model] precision = {precision!r}: choose fp32, bf16 or onnx")
+        if precision not in ("fp32", "bf16", "onnx", "int8"):
+            raise ModelLoadError(f"[model] precision = {precision!r}: choose fp32, bf16, onnx or int8")
         pt, js = paths(path)
         if not js.is_file():
             raise ModelLoadError(f"{js}: model not found ([model] path = {str(path)!r}); train one with "
@@ -89,6 +90,16 @@ class DraemDetector:
             self.device = torch.device("cpu")
             with tempfile.TemporaryDirectory() as tmp:
                 self.net = OnnxDetector.from_detector(ck.detector.cpu(), tmp, torch.get_num_threads())
+        elif precision == "int8":  # ONNX Runtime on CPU, networks made and checked by `station quantize`
+            from model.draem.errors import ModelError
+            from model.draem.quantize import int8_dir, load_int8
+
+            self.device = torch.device("cpu")
+            try:
+                self.net = load_int8(ck.detector.cpu(), int8_dir(path), ck.meta.get("weights_sha256", ""),
+                                     torch.get_num_threads())
+            except ModelError as exc:
+                raise ModelLoadError(str(exc)) from None
         elif self.device.type == "cpu":
             self.net = self.net.to(memory_format=torch.channels_last)
         self.config = cfg
@@ -139,7 +150,7 @@ class DraemDetector:
         x = stack_priors(cut, self.used_priors)
         xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.used_priors)
         xt = self._all_channels(xt).unsqueeze(0).to(self.device)
-        if self.device.type == "cpu" and self.precision != "onnx":
+        if self.device.type == "cpu" and self.precision not in ("onnx", "int8"):
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
             if self.early_exit_margin is None:

@@ -52,31 +52,49 @@ def export_onnx(detector: Detector, out_dir: str | Path) -> dict[str, Path]:
 
 
 class OnnxDetector:
-    """``Detector.predict`` with the member networks run by ONNX Runtime (CPU). Built by ``from_detector``,
-    which exports, loads and checks every member against torch on a seeded random input."""
+    """``Detector.predict`` with the member networks run by ONNX Runtime (CPU). Built by ``from_detector``
+    (exports, loads and checks every member against torch on a seeded random input) or ``from_files`` (networks
+    already on disk, e.g. int8 ones from ``model.draem.quantize``). Quacks like a ``Detector`` for
+    ``model.draem.train.evaluate`` (``eval``, ``train``, ``parameters`` are the torch detector's)."""
 
     def __init__(self, detector: Detector, sessions: dict[str, object]) -> None:
         self.detector, self.sessions, self.config = detector, sessions, detector.config
+        self.training = False
 
     @classmethod
-    def from_detector(cls, detector: Detector, work_dir: str | Path, threads: int | None = None) -> OnnxDetector:
+    def from_files(cls, detector: Detector, files: dict[str, Path], threads: int | None = None) -> OnnxDetector:
         try:
             import onnxruntime as ort
         except ImportError as exc:
-            raise ModelError(f"precision 'onnx' needs the onnx extra (pip install '.[onnx]'): {exc}") from None
-        files = export_onnx(detector, work_dir)
+            raise ModelError(f"ONNX Runtime inference needs the onnx extra (pip install '.[onnx]'): {exc}") from None
         options = ort.SessionOptions()
         if threads:
             options.intra_op_num_threads = threads
-        sessions = {k: ort.InferenceSession(str(f), options, providers=["CPUExecutionProvider"])
-                    for k, f in files.items()}
-        onnx = cls(detector, sessions)
+        try:
+            sessions = {k: ort.InferenceSession(str(f), options, providers=["CPUExecutionProvider"])
+                        for k, f in files.items()}
+        except Exception as exc:  # onnxruntime raises its own types for corrupt files
+            raise ModelError(f"{list(map(str, files.values()))}: ONNX Runtime cannot load it: {exc}") from None
+        return cls(detector, sessions)
+
+    @classmethod
+    def from_detector(cls, detector: Detector, work_dir: str | Path, threads: int | None = None) -> OnnxDetector:
+        onnx = cls.from_files(detector, export_onnx(detector, work_dir), threads)
         x = torch.rand(1, detector.config.in_channels, detector.config.input_size_px, detector.config.input_size_px,
                        generator=torch.Generator().manual_seed(0))
         err = float((onnx.predict(x).anomaly_map - detector.predict(x).anomaly_map).abs().max())
         if err > MAX_ABS_ERROR:
-            raise ModelError(f"ONNX export of {list(files)} differs from torch by {err:.3g} > {MAX_ABS_ERROR}")
+            raise ModelError(f"ONNX export of {list(onnx.sessions)} differs from torch by {err:.3g} > {MAX_ABS_ERROR}")
         return onnx
+
+    def parameters(self):  # evaluate() reads the device from the torch detector's parameters
+        return self.detector.parameters()
+
+    def eval(self) -> OnnxDetector:
+        return self
+
+    def train(self, mode: bool = True) -> OnnxDetector:  # inference only: nothing to switch
+        return self
 
     @torch.no_grad()
     def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None,

@@ -37,7 +37,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--data", default="data/brick-v2", help="rendered set; its test split is inspected")
     p.add_argument("--models", default="model/weights/default", help="comma-separated checkpoint paths")
     p.add_argument("--methods", default="bilinear,superpixel,residual", help="demosaic methods")
-    p.add_argument("--precisions", default="fp32,bf16", help="fp32, bf16 (autocast), onnx (ONNX Runtime)")
+    p.add_argument("--precisions", default="fp32,bf16",
+                   help="fp32, bf16 (autocast), onnx (ONNX Runtime), int8 (ONNX Runtime, after station quantize)")
     p.add_argument("--early-exit", default="off",
                    help="per-prior ensembles: comma-separated off, exact (margin 0) or a margin in (0, 1]; "
                         "single networks run off only")

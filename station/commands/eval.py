@@ -28,6 +28,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--ablation", action="store_true",
                    help="the paper's ablation (R, R+AoLP, R+AoLP+DoLP, all): an ensemble's members averaged, or "
                         "several fused models (--model A,B,...) side by side")
+    p.add_argument("--precision", default="fp32", choices=("fp32", "int8"),
+                   help="int8: the model's int8 networks from `station quantize` (ONNX Runtime, CPU)")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
     p.set_defaults(func=run)
@@ -174,14 +176,11 @@ def _normal_prior(ck) -> dict | None:
     return ck.meta.get("train", {}).get("normal_prior") if "normal" in ck.detector.config.priors else None
 
 
-def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None):
-    """Checkpoint ``model`` on ``data``'s split, as the station feeds it (its roi, its learned normal prior):
-    (checkpoint, split tensors, EvalData, evaluation)."""
-    from model.draem.checkpoint import load_checkpoint
-    from model.draem.train import EvalData, evaluate
+def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None):
+    """``data``'s split as checkpoint ``ck`` (loaded from ``model``) sees it at the station: its roi, its input
+    size, its learned normal prior. Returns ``station.commands.train.SplitTensors``."""
     from station.commands.train import load_split
 
-    ck = load_checkpoint(model)
     cfg = ck.detector.config
     normal_prior = _normal_prior(ck)
     if "normal" in cfg.priors and not normal_prior:
@@ -193,9 +192,34 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
         from model.normals.estimator import load_for_checkpoint
 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
-    sp = load_split(data, split, cfg.priors, cfg.input_size_px, limit, roi=cfg.roi, normals=normals)
+    return load_split(data, split, cfg.priors, cfg.input_size_px, limit, roi=cfg.roi, normals=normals)
+
+
+def inference_net(ck, model: str, precision: str):
+    """What runs the checkpoint: its torch detector ("fp32") or its int8 networks (``station quantize``)."""
+    if precision == "fp32":
+        return ck.detector
+    import torch
+
+    from model.draem.errors import ModelError
+    from model.draem.quantize import int8_dir, load_int8
+
+    try:
+        return load_int8(ck.detector, int8_dir(model), ck.meta.get("weights_sha256", ""), torch.get_num_threads())
+    except ModelError as exc:
+        raise UserError(str(exc)) from None
+
+
+def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None, precision: str = "fp32"):
+    """Checkpoint ``model`` on ``data``'s split, as the station feeds it (``model_split``), run at ``precision``:
+    (checkpoint, split tensors, EvalData, evaluation)."""
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.train import EvalData, evaluate
+
+    ck = load_checkpoint(model)
+    sp = model_split(ck, model, data, split, limit)
     tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
-    return ck, sp, tensors, evaluate(ck.detector, tensors)
+    return ck, sp, tensors, evaluate(inference_net(ck, model, precision), tensors)
 
 
 def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
@@ -211,7 +235,7 @@ def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
         if cfg.get("fusion") != "fused":
             raise UserError(f"{m}: --ablation over several models takes fused models; this one is {cfg.get('fusion')}"
                             f" (an ensemble's ablation: --ablation --model <ensemble>)")
-        ck, _, _, ev = load_and_evaluate(m, args.data, args.split, args.limit)
+        ck, _, _, ev = load_and_evaluate(m, args.data, args.split, args.limit, args.precision)
         priors = ck.detector.config.priors
         rows.append({"priors": prior_set_name(priors), "members": "+".join(priors), "model": m,
                      "image_auroc": ev.metrics["image_auroc"], "pixel_auroc": ev.metrics["pixel_auroc"],
@@ -249,7 +273,8 @@ def run(args: argparse.Namespace) -> int:
                         f"fused models, train one per prior set and pass them all: --model A,B,...)")
     out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
     out.mkdir(parents=True, exist_ok=True)
-    ck, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit)
+    ck, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision)
+    net = inference_net(ck, args.model, args.precision)
     cfg, thr = ck.detector.config, ck.threshold
     rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}
@@ -257,12 +282,12 @@ def run(args: argparse.Namespace) -> int:
     for t in sorted({t for t in sp.defect_type if t}):
         sel = np.array([(lab == 0) or (dt == t) for lab, dt in zip(sp.label.tolist(), sp.defect_type, strict=True)])
         sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered")
-        m = evaluate(ck.detector, sub)
+        m = evaluate(net, sub)
         rows.append(_rows(f"rendered, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
         roc[t] = (sub.label.numpy(), m.scores)
     if not args.no_synthetic and bool(good.any()):
         syn = synthetic_eval_data(TensorData(sp.priors[good], sp.object_mask[good]), cfg.priors, seed=4242)
-        m = evaluate(ck.detector, syn)
+        m = evaluate(net, syn)
         rows.append(_rows("synthetic (DRAEM-style)", m.metrics, thr, m.scores, syn.label.numpy()))
         roc["synthetic"] = (syn.label.numpy(), m.scores)
     if not rows[0]["anomalous"]:
@@ -275,7 +300,7 @@ def run(args: argparse.Namespace) -> int:
     if ablation and not args.no_plots:
         files.append(_ablation_plot(out, ablation))
     manifest_ok = ck.meta.get("data_manifest_sha256")
-    payload = {"model": str(args.model), "model_config": cfg.to_dict(), "threshold": thr,
+    payload = {"model": str(args.model), "precision": args.precision, "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": _normal_prior(ck), "rows": rows,

@@ -23,17 +23,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from model.draem.checkpoint import read_sidecar, save_checkpoint
+    from model.draem.checkpoint import save_checkpoint
     from model.draem.metrics import choose_threshold
     from station.commands.eval import load_and_evaluate
-    from station.commands.train import manifest_sha256
+    from station.commands.train import check_trained_on
 
     if not 0.0 <= args.max_good_flagged < 1.0:
         raise UserError(f"--max-good-flagged {args.max_good_flagged}: a fraction in [0, 1)")
-    sha = read_sidecar(args.model).get("data_manifest_sha256")  # before loading the split and running the model
-    if sha and sha != manifest_sha256(args.data):
-        raise UserError(f"{args.model}: trained on another set than {args.data} (manifest sha256 {sha[:12]}...); "
-                        f"its threshold comes from that set's val split")
+    sha = check_trained_on(args.model, args.data)  # before loading the split and running the model
     ck, sp, _, ev = load_and_evaluate(args.model, args.data, "val")
     labels = sp.label.numpy()
     if not 0 < int(labels.sum()) < len(labels):

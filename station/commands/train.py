@@ -75,6 +75,16 @@ def manifest_sha256(root: str | Path) -> str:
     return hashlib.sha256((Path(root) / "manifest.json").read_bytes()).hexdigest()
 
 
+def check_trained_on(model: str, data: str) -> str | None:
+    """The checkpoint's training-set manifest sha256 (None if unrecorded); UserError if ``data`` is another set."""
+    from model.draem.checkpoint import read_sidecar
+
+    sha = read_sidecar(model).get("data_manifest_sha256")
+    if sha and sha != manifest_sha256(data):
+        raise UserError(f"{model}: trained on another set than {data} (manifest sha256 {sha[:12]}...)")
+    return sha
+
+
 def dataset_fov_x_deg(root: str | Path) -> float | None:
     """The horizontal field of view (degrees) of a rendered set's camera (its first sample's); None if unknown."""
     from sim.dataset import open_dataset
