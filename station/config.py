@@ -76,7 +76,7 @@ class PriorsConfig:
 class ModelConfig:
     path: str = "model/weights/default"
     device: str = _opt("auto", choices=("auto", "cpu", "cuda"))
-    precision: str = _opt("fp32", choices=("fp32", "bf16", "onnx", "int8"))
+    precision: str = _opt("auto", choices=("auto", "fp32", "bf16", "onnx", "int8"))
     early_exit_margin: float | None = _opt(None, range=(0.0, 1.0))
     fov_x_deg: float | None = _opt(None, range=(1.0, 179.0))
 

@@ -29,6 +29,7 @@ def test_quantize_then_run_and_eval_in_int8(tmp_path: Path, capsys) -> None:
     assert meta["calibration"]["method"] == "minmax"  # identical synthetic parts: percentile's histogram cannot run
 
     fp32, int8 = DraemDetector(model, "cpu", "fp32"), DraemDetector(model, "cpu", "int8")
+    assert DraemDetector(model, "cpu", "auto").precision == "int8"  # auto takes the int8 networks where they exist
     rng = np.random.default_rng(0)
     priors = {"intensity": rng.random((96, 96), np.float32),
               "aolp_cos": np.ones((96, 96), np.float32), "aolp_sin": np.zeros((96, 96), np.float32)}
@@ -49,5 +50,6 @@ def test_quantize_then_run_and_eval_in_int8(tmp_path: Path, capsys) -> None:
 
 def test_int8_without_quantize_names_the_missing_file(tmp_path: Path) -> None:
     model = make_model(tmp_path / "m" / "last", ("intensity",))
+    assert DraemDetector(model, "cpu", "auto").precision == "fp32"
     with pytest.raises(ModelLoadError, match=r"last\.int8/int8\.json.*station quantize"):
         DraemDetector(model, "cpu", "int8")
