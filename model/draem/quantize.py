@@ -71,7 +71,7 @@ def quantize_detector(detector: Detector, calibration: torch.Tensor, out_dir: st
             item = next(self.items, None)
             return None if item is None else {"x": item}
 
-    members, method = {}, CALIBRATION
+    members, used = {}, set()
     with tempfile.TemporaryDirectory() as tmp:
         for name, fp32 in export_onnx(detector, tmp).items():
             pre = Path(tmp) / f"{name}.pre.onnx"
@@ -87,8 +87,10 @@ def quantize_detector(detector: Detector, calibration: torch.Tensor, out_dir: st
                     if method == "minmax":
                         raise
             members[name] = _sha256(out / f"{name}.onnx")
+            used.add(method)
     meta = {"format": FORMAT, "version": 1, "weights_sha256": weights_sha256, "members": members,
-            "calibration": {"method": method, "samples": int(calibration.shape[0]), **(provenance or {})}}
+            "calibration": {"method": "+".join(sorted(used)), "samples": int(calibration.shape[0]),
+                            **(provenance or {})}}
     (out / "int8.json").write_text(json.dumps(meta, indent=1))
     return out
 
