@@ -212,14 +212,15 @@ def inference_net(ck, model: str, precision: str):
 
 def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None, precision: str = "fp32"):
     """Checkpoint ``model`` on ``data``'s split, as the station feeds it (``model_split``), run at ``precision``:
-    (checkpoint, split tensors, EvalData, evaluation)."""
+    (checkpoint, the network that ran it (``inference_net``), split tensors, EvalData, evaluation)."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.train import EvalData, evaluate
 
     ck = load_checkpoint(model)
     sp = model_split(ck, model, data, split, limit)
     tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
-    return ck, sp, tensors, evaluate(inference_net(ck, model, precision), tensors)
+    net = inference_net(ck, model, precision)
+    return ck, net, sp, tensors, evaluate(net, tensors)
 
 
 def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
@@ -235,7 +236,7 @@ def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
         if cfg.get("fusion") != "fused":
             raise UserError(f"{m}: --ablation over several models takes fused models; this one is {cfg.get('fusion')}"
                             f" (an ensemble's ablation: --ablation --model <ensemble>)")
-        ck, _, _, ev = load_and_evaluate(m, args.data, args.split, args.limit, args.precision)
+        ck, _, _, _, ev = load_and_evaluate(m, args.data, args.split, args.limit, args.precision)
         priors = ck.detector.config.priors
         rows.append({"priors": prior_set_name(priors), "members": "+".join(priors), "model": m,
                      "image_auroc": ev.metrics["image_auroc"], "pixel_auroc": ev.metrics["pixel_auroc"],
@@ -273,8 +274,7 @@ def run(args: argparse.Namespace) -> int:
                         f"fused models, train one per prior set and pass them all: --model A,B,...)")
     out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
     out.mkdir(parents=True, exist_ok=True)
-    ck, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision)
-    net = inference_net(ck, args.model, args.precision)
+    ck, net, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision)
     cfg, thr = ck.detector.config, ck.threshold
     rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}

@@ -31,7 +31,7 @@ def run(args: argparse.Namespace) -> int:
     if not 0.0 <= args.max_good_flagged < 1.0:
         raise UserError(f"--max-good-flagged {args.max_good_flagged}: a fraction in [0, 1)")
     sha = check_trained_on(args.model, args.data)  # before loading the split and running the model
-    ck, sp, _, ev = load_and_evaluate(args.model, args.data, "val")
+    ck, _, sp, _, ev = load_and_evaluate(args.model, args.data, "val")
     labels = sp.label.numpy()
     if not 0 < int(labels.sum()) < len(labels):
         raise UserError(f"{args.data}: split 'val' needs good and defective parts to set a threshold "

@@ -22,7 +22,7 @@ def test_threshold_is_chosen_on_val_and_written_to_the_sidecar(tmp_path: Path, c
     assert before.threshold == 0.5
     assert main(["threshold", "--model", str(model), "--data", str(data)]) == 0
     after = load_checkpoint(model)
-    _, sp, _, ev = load_and_evaluate(str(model), data, "val")
+    _, _, sp, _, ev = load_and_evaluate(str(model), data, "val")
     assert sp.label.tolist() == [0, 1, 0]
     expected = choose_threshold(sp.label.numpy(), ev.scores)
     assert after.threshold == pytest.approx(expected.threshold) and after.threshold != 0.5
