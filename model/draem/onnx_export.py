@@ -51,6 +51,19 @@ def export_onnx(detector: Detector, out_dir: str | Path) -> dict[str, Path]:
     return files
 
 
+def session_options(threads: int | None = None):  # -> onnxruntime.SessionOptions (imported lazily)
+    """ONNX Runtime session options for every session of the project: ``threads`` intra-op threads (None: ORT's
+    default), and idle pool threads that sleep instead of spinning: spinning took the 2 cores from the station's
+    camera and decision threads (station bench pipeline, int8: p50 / p99 80 / 117 ms spinning, 59 / 77 not)."""
+    import onnxruntime as ort
+
+    options = ort.SessionOptions()
+    if threads:
+        options.intra_op_num_threads = threads
+    options.add_session_config_entry("session.intra_op.allow_spinning", "0")
+    return options
+
+
 class OnnxDetector:
     """``Detector.predict`` with the member networks run by ONNX Runtime (CPU). Built by ``from_detector``
     (exports, loads and checks every member against torch on a seeded random input) or ``from_files`` (networks
@@ -67,12 +80,7 @@ class OnnxDetector:
             import onnxruntime as ort
         except ImportError as exc:
             raise ModelError(f"ONNX Runtime inference needs the onnx extra (pip install '.[onnx]'): {exc}") from None
-        options = ort.SessionOptions()
-        if threads:
-            options.intra_op_num_threads = threads
-        # idle pool threads sleep instead of spinning: spinning took the 2 cores from the station's camera and
-        # decision threads (station bench pipeline, int8: p50 / p99 80 / 117 ms spinning, 59 / 77 not)
-        options.add_session_config_entry("session.intra_op.allow_spinning", "0")
+        options = session_options(threads)
         try:
             sessions = {k: ort.InferenceSession(str(f), options, providers=["CPUExecutionProvider"])
                         for k, f in files.items()}

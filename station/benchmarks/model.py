@@ -65,7 +65,7 @@ def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
     if precision == "onnx":
         import onnxruntime as ort
 
-        from model.draem.onnx_export import MapOnly
+        from model.draem.onnx_export import MapOnly, session_options
 
         sessions, max_err = {}, 0.0
         with tempfile.TemporaryDirectory() as d:
@@ -73,9 +73,8 @@ def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
                 f = Path(d) / f"{k}.onnx"
                 torch.onnx.export(MapOnly(n), (inputs[k],), str(f), input_names=["x"], output_names=["map"],
                                   dynamo=False)
-                so = ort.SessionOptions()
-                so.intra_op_num_threads = args.threads
-                sessions[k] = ort.InferenceSession(str(f), so, providers=["CPUExecutionProvider"])
+                sessions[k] = ort.InferenceSession(str(f), session_options(args.threads),
+                                                   providers=["CPUExecutionProvider"])
                 n.eval()  # the exporter may leave the module in train mode
                 with torch.no_grad():
                     ref = n(inputs[k]).anomaly_map.numpy()
