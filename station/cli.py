@@ -14,7 +14,7 @@ from station import __version__
 from station.errors import USER_ERRORS
 
 COMMANDS = ["run", "view", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train",
-            "threshold", "quantize", "eval", "normals"]
+            "ensemble", "threshold", "quantize", "eval", "normals"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 
 

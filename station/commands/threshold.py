@@ -22,22 +22,28 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
-def run(args: argparse.Namespace) -> int:
+def set_threshold(model: str, data: str, max_good_flagged: float = 0.05) -> str:
+    """Choose checkpoint ``model``'s threshold on ``data``'s validation split, write it into its sidecar, and say
+    what it does there (one line)."""
     from model.draem.checkpoint import save_checkpoint
     from model.draem.metrics import choose_threshold
     from station.commands.eval import load_and_evaluate
     from station.commands.train import check_trained_on
 
-    if not 0.0 <= args.max_good_flagged < 1.0:
-        raise UserError(f"--max-good-flagged {args.max_good_flagged}: a fraction in [0, 1)")
-    sha = check_trained_on(args.model, args.data)  # before loading the split and running the model
-    ck, _, sp, _, ev = load_and_evaluate(args.model, args.data, "val")
+    if not 0.0 <= max_good_flagged < 1.0:
+        raise UserError(f"--max-good-flagged {max_good_flagged}: a fraction in [0, 1)")
+    sha = check_trained_on(model, data)  # before loading the split and running the model
+    ck, _, sp, _, ev = load_and_evaluate(model, data, "val")
     labels = sp.label.numpy()
     if not 0 < int(labels.sum()) < len(labels):
-        raise UserError(f"{args.data}: split 'val' needs good and defective parts to set a threshold "
+        raise UserError(f"{data}: split 'val' needs good and defective parts to set a threshold "
                         f"({int(labels.sum())} of {len(labels)} defective)")
-    choice = choose_threshold(labels, ev.scores, args.max_good_flagged)
-    save_checkpoint(args.model, ck.detector, choice.threshold, choice.rule, sha, ev.metrics, ck.meta.get("train", {}))
-    print(f"{args.model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} validation parts it "
-          f"flags {choice.flagged_good_fraction:.1%} of good parts and {choice.detected_fraction:.1%} of defective")
+    choice = choose_threshold(labels, ev.scores, max_good_flagged)
+    save_checkpoint(model, ck.detector, choice.threshold, choice.rule, sha, ev.metrics, ck.meta.get("train", {}))
+    return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} validation parts it "
+            f"flags {choice.flagged_good_fraction:.1%} of good parts and {choice.detected_fraction:.1%} of defective")
+
+
+def run(args: argparse.Namespace) -> int:
+    print(set_threshold(args.model, args.data, args.max_good_flagged))
     return 0
