@@ -1,10 +1,13 @@
-"""DRAEM inference latency per preset x input size x precision (fp32, bf16, ONNX Runtime) x fusion, on this machine.
+"""DRAEM inference latency per preset x input size x precision (fp32, bf16, ONNX Runtime fp32 and int8) x fusion,
+on this machine.
 
 Latency is per part (one image through every member: 4 priors = 4 networks for the ensemble, 1 for the fused
 network), warm, batch 1, median of ``--repeats``; the published DRAEM size (``paper`` preset, one network,
-256 px, fp32) is the baseline ratio. A model with the normal prior also runs the learned normal estimator once per
-part (row "normal-net", ``model.normals``, fp32 torch at the station): add its time to the model's. Accuracy per
-configuration needs trained checkpoints: see ``station eval``.
+256 px, fp32) is the baseline ratio. The int8 rows quantize the random-weight networks as ``station quantize``
+does, calibrated on random inputs: their time is a trained model's, their error against fp32 is not. A model with
+the normal prior also runs the learned normal estimator once per part (row "normal-net", ``model.normals``, fp32
+torch at the station): add its time to the model's. Accuracy per configuration needs trained checkpoints: see
+``station eval`` and ``station bench pipeline``.
 """
 
 from __future__ import annotations
@@ -21,7 +24,9 @@ PRIORS = ("intensity", "dolp", "aolp", "normal")
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--presets", default="fast,tiny")
     p.add_argument("--sizes", default="", help="comma-separated input sizes (default: each preset's own)")
-    p.add_argument("--precisions", default="fp32,bf16,onnx", help="fp32, bf16 (CPU autocast), onnx (ONNX Runtime)")
+    p.add_argument("--precisions", default="fp32,bf16,onnx,int8",
+                   help="fp32, bf16 (CPU autocast), onnx (ONNX Runtime fp32), int8 (ONNX Runtime, quantized as "
+                        "station quantize does)")
     p.add_argument("--fusions", default="ensemble,fused")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--threads", type=int, default=2, help="torch / ONNX Runtime intra-op threads")
@@ -62,17 +67,23 @@ def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
     inputs = {k: torch.randn(1, n.config.in_channels, size, size) for k, n in nets.items()}
     row = {"preset": preset, "size": size, "precision": precision, "fusion": fusion, "networks": len(nets),
            "params_M": params / 1e6}
-    if precision == "onnx":
+    if precision in ("onnx", "int8"):
         import onnxruntime as ort
 
         from model.draem.onnx_export import MapOnly, session_options
+        from model.draem.quantize import quantize_detector
 
+        if precision == "int8" and fusion == "baseline":
+            raise ValueError("the paper-size baseline runs in fp32 only")
         sessions, max_err = {}, 0.0
         with tempfile.TemporaryDirectory() as d:
+            if precision == "int8":  # the detector's own members, calibrated on 8 random inputs
+                quantize_detector(det, torch.randn(8, cfg.in_channels, size, size), d, "random weights")
             for k, n in nets.items():
                 f = Path(d) / f"{k}.onnx"
-                torch.onnx.export(MapOnly(n), (inputs[k],), str(f), input_names=["x"], output_names=["map"],
-                                  dynamo=False)
+                if precision == "onnx":
+                    torch.onnx.export(MapOnly(n), (inputs[k],), str(f), input_names=["x"], output_names=["map"],
+                                      dynamo=False)
                 sessions[k] = ort.InferenceSession(str(f), session_options(args.threads),
                                                    providers=["CPUExecutionProvider"])
                 n.eval()  # the exporter may leave the module in train mode

@@ -15,3 +15,11 @@ def test_bench_model_rows(tmp_path) -> None:
         ("tiny", "ensemble", 4), ("tiny", "fused", 1), ("normal-net", "-", 1)]
     assert all(r["ms_per_part"] > 0 and r["params_M"] > 0 for r in rows)
     assert "normal-net" in (tmp_path / "model.md").read_text()
+
+
+def test_bench_model_int8_row_runs_quantized_networks(tmp_path) -> None:
+    assert main(["bench", "model", "--presets", "tiny", "--precisions", "onnx,int8", "--fusions", "fused",
+                 "--repeats", "1", "--no-baseline", "--out", str(tmp_path)]) == 0
+    onnx, int8 = json.loads((tmp_path / "model.json").read_text())["rows"][:2]
+    assert (onnx["precision"], int8["precision"]) == ("onnx", "int8")
+    assert onnx["onnx_max_abs_err"] < 1e-4 < int8["onnx_max_abs_err"]  # int8 really ran, not the fp32 graph
