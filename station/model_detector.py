@@ -36,14 +36,20 @@ class ModelLoadError(UserError):
 
 
 def auto_precision(path: str | Path, device: torch.device) -> str:
-    """``[model] precision = "auto"``: int8 on a CPU where ``station quantize`` made the model's int8 networks and
-    ONNX Runtime is installed (the fastest measured there at -0.3 to -1.2 points of image AUROC), else fp32."""
+    """``[model] precision = "auto"``: int8 on a CPU where ``station quantize`` made the model's int8 networks,
+    found them changing at most ``AUTO_MAX_CHANGED`` of the validation decisions, and ONNX Runtime is installed
+    (the fastest measured there at -0.3 to -1.2 points of image AUROC); fp32 otherwise, saying why."""
     import importlib.util
 
-    from model.draem.quantize import int8_dir
+    from model.draem.quantize import fit_for_auto, int8_dir
 
-    has_int8 = (int8_dir(path) / "int8.json").is_file() and importlib.util.find_spec("onnxruntime") is not None
-    return "int8" if device.type == "cpu" and has_int8 else "fp32"
+    folder = int8_dir(path)
+    if device.type != "cpu" or not (folder / "int8.json").is_file() or importlib.util.find_spec("onnxruntime") is None:
+        return "fp32"
+    fit, why = fit_for_auto(folder)
+    if not fit:
+        log.warning("%s: precision auto runs fp32, not its int8 networks: %s", path, why)
+    return "int8" if fit else "fp32"
 
 
 class DraemDetector:

@@ -6,7 +6,9 @@ networks are an approximation: their anomaly maps differ from the fp32 ones (a f
 scored like any other model (``station eval --precision int8``, ``station bench pipeline``), never assumed equal.
 
 On disk: ``<checkpoint>.int8/<member>.onnx`` plus ``int8.json`` recording the sha256 of the checkpoint weights
-they were made from, so a retrained checkpoint never runs with stale int8 networks. Needs the ``onnx`` extra.
+they were made from, so a retrained checkpoint never runs with stale int8 networks, and ``station quantize``'s
+validation check (decisions changed at the model's threshold), which ``precision = "auto"`` reads. Needs the
+``onnx`` extra.
 """
 
 from __future__ import annotations
@@ -29,6 +31,36 @@ CALIBRATION = "percentile"
 """Activation range rule: on the shipped model's test split percentile lost 0.3 points of image AUROC, min-max 1.
 Min-max is the fallback where percentile cannot run (a tensor constant over the calibration set); int8.json says
 which was used."""
+
+
+AUTO_MAX_CHANGED = 0.05
+"""``[model] precision = "auto"`` takes a model's int8 networks only where ``station quantize``'s validation check
+found them changing at most this fraction of the validation parts' decisions at the model's threshold (the
+all-priors ensemble's changed 15 of 40: int8 moved its scores across the threshold)."""
+
+
+def record_check(folder: str | Path, parts: int, decisions_changed: int | None, max_score_diff: float) -> None:
+    """Add the validation check of the int8 networks in ``folder`` (int8 against fp32 on ``parts`` validation
+    parts; ``decisions_changed`` None when the model has no threshold) to its ``int8.json``."""
+    js = Path(folder) / "int8.json"
+    meta = json.loads(js.read_text())
+    meta["validation"] = {"parts": parts, "decisions_changed": decisions_changed, "max_score_diff": max_score_diff}
+    js.write_text(json.dumps(meta, indent=1))
+
+
+def fit_for_auto(folder: str | Path) -> tuple[bool, str]:
+    """Whether ``precision = "auto"`` may run the int8 networks in ``folder`` (``AUTO_MAX_CHANGED``), and why
+    (or why not) in words."""
+    try:
+        check = json.loads((Path(folder) / "int8.json").read_text()).get("validation") or {}
+    except (OSError, ValueError) as exc:
+        return False, f"{Path(folder) / 'int8.json'}: unreadable ({exc})"
+    changed, parts = check.get("decisions_changed"), check.get("parts") or 0
+    if changed is None or parts < 1:
+        return False, f"{Path(folder) / 'int8.json'}: no validation check of decisions; rerun `station quantize`"
+    verdict = changed <= AUTO_MAX_CHANGED * parts
+    return verdict, (f"int8 changed {changed} of {parts} validation decisions "
+                     f"({'within' if verdict else 'over'} {AUTO_MAX_CHANGED:.0%})")
 
 
 def int8_dir(checkpoint: str | Path) -> Path:

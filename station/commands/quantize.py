@@ -1,6 +1,8 @@
 """``station quantize``: int8 copies of a checkpoint's networks for ONNX Runtime on CPU (``[model] precision =
 "int8"``), calibrated on good parts of the training split of the set it trained on, and what that costs on the
-validation split (image / pixel AUROC and decisions at the model's threshold, fp32 against int8)."""
+validation split (image / pixel AUROC and decisions at the model's threshold, fp32 against int8). That check is
+recorded in ``int8.json``: ``precision = "auto"`` runs int8 only where it changed few decisions
+(``model.draem.quantize.AUTO_MAX_CHANGED``)."""
 
 from __future__ import annotations
 
@@ -22,7 +24,7 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from model.draem.checkpoint import load_checkpoint
-    from model.draem.quantize import int8_dir, quantize_detector
+    from model.draem.quantize import fit_for_auto, int8_dir, quantize_detector, record_check
     from model.draem.train import EvalData, evaluate
     from station.benchmarks.report import markdown_table
     from station.commands.eval import inference_net, model_split
@@ -44,7 +46,10 @@ def run(args: argparse.Namespace) -> int:
              "max_score_diff": float(np.abs(e.scores - ev["fp32"].scores).max()),
              "decisions_changed": int(((e.scores > ck.threshold) != (ev["fp32"].scores > ck.threshold)).sum())
              if ck.threshold is not None else None} for p, e in ev.items()]
+    record_check(folder, len(labels), rows[1]["decisions_changed"], rows[1]["max_score_diff"])
     print(f"wrote {folder} (calibrated on {calib.priors.shape[0]} good training parts of {args.data}); "
           f"validation split, {len(labels)} parts:\n")
     print(markdown_table(rows, ["precision", "image_auroc", "pixel_auroc", "max_score_diff", "decisions_changed"]))
+    fit, why = fit_for_auto(folder)
+    print(f"\n{why}: precision \"auto\" {'runs int8' if fit else 'runs fp32; int8 only when asked for'}")
     return 0

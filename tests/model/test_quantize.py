@@ -11,7 +11,7 @@ import torch
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import ModelError
-from model.draem.quantize import int8_dir, load_int8, quantize_detector
+from model.draem.quantize import fit_for_auto, int8_dir, load_int8, quantize_detector, record_check
 
 pytest.importorskip("onnxruntime")
 onnx = pytest.importorskip("onnx")
@@ -50,3 +50,15 @@ def test_int8_copies_are_int8_score_close_and_tied_to_their_weights(tmp_path) ->
         load_int8(det, folder, "a" * 64)
     with pytest.raises(ModelError, match="station quantize"):
         load_int8(det, tmp_path / "elsewhere.int8", "a" * 64)
+
+
+def test_auto_takes_int8_only_after_a_validation_check_with_few_changed_decisions(tmp_path) -> None:
+    (tmp_path / "int8.json").write_text(json.dumps({"format": "polar-ano-int8", "members": {}}))
+    assert fit_for_auto(tmp_path) == (False, f"{tmp_path / 'int8.json'}: no validation check of decisions; rerun "
+                                             f"`station quantize`")
+    record_check(tmp_path, 40, 0, 0.04)
+    assert fit_for_auto(tmp_path)[0]
+    record_check(tmp_path, 40, 15, 0.1)  # the all-priors ensemble's int8 networks
+    assert fit_for_auto(tmp_path) == (False, "int8 changed 15 of 40 validation decisions (over 5%)")
+    record_check(tmp_path, 40, None, 0.1)  # no threshold: no decisions to compare
+    assert not fit_for_auto(tmp_path)[0]

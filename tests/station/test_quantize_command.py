@@ -28,8 +28,12 @@ def test_quantize_then_run_and_eval_in_int8(tmp_path: Path, capsys) -> None:
     assert meta["calibration"]["samples"] == 4 and meta["calibration"]["split"] == "train"
     assert meta["calibration"]["method"] == "minmax"  # identical synthetic parts: percentile's histogram cannot run
 
+    assert meta["validation"]["parts"] == 3 and meta["validation"]["decisions_changed"] is not None
     fp32, int8 = DraemDetector(model, "cpu", "fp32"), DraemDetector(model, "cpu", "int8")
-    assert DraemDetector(model, "cpu", "auto").precision == "int8"  # auto takes the int8 networks where they exist
+    js = tmp_path / "m" / "last.int8" / "int8.json"
+    for changed, expected in ((0, "int8"), (2, "fp32")):  # auto: int8 only where they changed few decisions
+        js.write_text(json.dumps({**meta, "validation": {**meta["validation"], "decisions_changed": changed}}))
+        assert DraemDetector(model, "cpu", "auto").precision == expected
     rng = np.random.default_rng(0)
     priors = {"intensity": rng.random((96, 96), np.float32),
               "aolp_cos": np.ones((96, 96), np.float32), "aolp_sin": np.zeros((96, 96), np.float32)}
