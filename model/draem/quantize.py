@@ -56,8 +56,10 @@ def fit_for_auto(folder: str | Path) -> tuple[bool, str]:
     except (OSError, ValueError) as exc:
         return False, f"{Path(folder) / 'int8.json'}: unreadable ({exc})"
     changed, parts = check.get("decisions_changed"), check.get("parts") or 0
-    if changed is None or parts < 1:
+    if parts < 1:
         return False, f"{Path(folder) / 'int8.json'}: no validation check of decisions; rerun `station quantize`"
+    if changed is None:
+        return False, "no decisions to compare (the model has no threshold: `station threshold`, then quantize)"
     verdict = changed <= AUTO_MAX_CHANGED * parts
     return verdict, (f"int8 changed {changed} of {parts} validation decisions "
                      f"({'within' if verdict else 'over'} {AUTO_MAX_CHANGED:.0%})")

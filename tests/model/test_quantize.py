@@ -61,4 +61,5 @@ def test_auto_takes_int8_only_after_a_validation_check_with_few_changed_decision
     record_check(tmp_path, 40, 15, 0.1)  # the all-priors ensemble's int8 networks
     assert fit_for_auto(tmp_path) == (False, "int8 changed 15 of 40 validation decisions (over 5%)")
     record_check(tmp_path, 40, None, 0.1)  # no threshold: no decisions to compare
-    assert not fit_for_auto(tmp_path)[0]
+    assert fit_for_auto(tmp_path) == (False, "no decisions to compare (the model has no threshold: `station "
+                                             "threshold`, then quantize)")
