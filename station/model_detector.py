@@ -57,7 +57,8 @@ class DraemDetector:
 
     device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32", "bf16" (autocast), "onnx" (ONNX Runtime,
     exported at load), "int8" (ONNX Runtime on the quantized networks ``station quantize`` wrote beside it) or
-    "auto" (int8 on a CPU where the model has them and ONNX Runtime is installed, else fp32).
+    "auto" (``auto_precision``: int8 on a CPU where the model has them, they passed ``station quantize``'s
+    validation check and ONNX Runtime is installed, else fp32).
     ``threshold`` overrides the checkpoint's threshold (``[decision] threshold``). ``early_exit_margin``: None
     runs every member of a per-prior ensemble; 0 stops once the rest cannot change the decision (exact); m > 0
     also once the running mean is more than m from the threshold (``model.draem.early_exit``). ``fov_x_deg``:
