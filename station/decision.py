@@ -23,8 +23,9 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
     """Decide one part. In order, each of these rejects with its reason: an ``error`` in an earlier stage;
     more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range). Then ``empty`` (the
     presence check's reason, when it found no part) gives "empty" with that reason. Then each of these rejects:
-    a missing or non-finite score; judgement later than the cycle time budget; ``score > threshold``. Otherwise
-    pass. A frame whose pixels are unusable is rejected rather than called empty: its emptiness is not known."""
+    a missing or non-finite score or threshold; judgement later than the cycle time budget; ``score > threshold``.
+    Otherwise pass. A frame whose pixels are unusable is rejected rather than called empty: its emptiness is not
+    known. (A NaN threshold would pass every part: ``score > NaN`` is False.)"""
     if error:
         return Decision("reject", f"not judged: {error}")
     if invalid_fraction > max_invalid_fraction:
@@ -34,6 +35,8 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
         return Decision("empty", empty)
     if score is None or not math.isfinite(score):
         return Decision("reject", f"not judged: model score is {score}")
+    if threshold is None or not math.isfinite(threshold):
+        return Decision("reject", f"not judged: threshold is {threshold}")
     if elapsed_ms is not None and cycle_time_ms is not None and elapsed_ms > cycle_time_ms:
         return Decision("reject", f"not judged in time: {elapsed_ms:.1f} ms > cycle time {cycle_time_ms:.1f} ms")
     if score > threshold:

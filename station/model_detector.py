@@ -74,13 +74,21 @@ class DraemDetector:
         from model.draem.checkpoint import load_checkpoint, paths
         from model.draem.train import resolve_device
 
+        from model.draem.errors import ModelError
+
         if precision not in ("auto", "fp32", "bf16", "onnx", "int8"):
             raise ModelLoadError(f"[model] precision = {precision!r}: choose auto, fp32, bf16, onnx or int8")
+        if Path(path).name in ("", ".", ".."):
+            raise ModelLoadError(f"[model] path = {str(path)!r}: names no model (give the checkpoint's path without "
+                                 f"suffix, e.g. model/weights/default)")
         pt, js = paths(path)
         if not js.is_file():
             raise ModelLoadError(f"{js}: model not found ([model] path = {str(path)!r}); train one with "
                                  f"`station train` or restore model/weights/ from git")
-        self.device = resolve_device(device)
+        try:
+            self.device = resolve_device(device)
+        except ModelError as exc:
+            raise ModelLoadError(f"[model] device = {device!r}: {exc}") from None
         if precision == "auto":
             precision = auto_precision(path, self.device)
         ck = load_checkpoint(path, map_location=self.device)  # CheckpointError names the file
@@ -112,7 +120,6 @@ class DraemDetector:
             with tempfile.TemporaryDirectory() as tmp:
                 self.net = OnnxDetector.from_detector(ck.detector.cpu(), tmp, torch.get_num_threads())
         elif precision == "int8":  # ONNX Runtime on CPU, networks made and checked by `station quantize`
-            from model.draem.errors import ModelError
             from model.draem.quantize import int8_dir, load_int8
 
             self.device = torch.device("cpu")

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -87,9 +88,45 @@ def read_json_sidecar(js: Path, error: type[CheckpointError] = CheckpointError, 
     if not js.is_file():
         raise error(f"{js}: {what} sidecar missing")
     try:
-        return json.loads(js.read_text())
-    except (OSError, json.JSONDecodeError) as exc:
+        meta = json.loads(js.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise error(f"{js}: unreadable sidecar ({exc})") from None
+    if not isinstance(meta, dict):
+        raise error(f"{js}: not a JSON object (a {type(meta).__name__}); not a {what} sidecar")
+    weights = meta.get("weights_file")
+    if weights is not None and not is_plain_file_name(weights):
+        raise error(f"{js}: weights_file = {weights!r}: must be a file name in the sidecar's folder (no path)")
+    return meta
+
+
+def is_plain_file_name(name: object) -> bool:
+    """Whether ``name`` is a bare file name (no folder part, not "." or ".."): what a sidecar may point to."""
+    return isinstance(name, str) and name not in ("", ".", "..") and "/" not in name and "\\" not in name
+
+
+def finite_number(value: object) -> bool:
+    """A real number (not a bool, not a string) that is finite."""
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def check_decision_numbers(js: Path, meta: dict[str, Any]) -> None:
+    """Every number of a sidecar that reaches a decision, checked where it is loaded: ``threshold`` null or finite in
+    [0, 1] (image scores are probabilities), ``normalization`` mean and std lists of finite numbers with std > 0.
+    CheckpointError naming the file and key otherwise (a NaN threshold would pass every part)."""
+    t = meta.get("threshold")
+    if t is not None and not (finite_number(t) and 0.0 <= t <= 1.0):
+        raise CheckpointError(f"{js}: threshold = {t!r}: must be a finite number in [0, 1] (or null until chosen)")
+    norm = meta.get("normalization")
+    if not isinstance(norm, dict):
+        raise CheckpointError(f"{js}: normalization = {norm!r}: must be an object with mean and std lists")
+    for key in ("mean", "std"):
+        v = norm.get(key)
+        if not isinstance(v, list) or not v or not all(finite_number(x) for x in v):
+            raise CheckpointError(f"{js}: normalization.{key} = {v!r}: must be a list of finite numbers")
+    if not all(x > 0 for x in norm["std"]):
+        raise CheckpointError(f"{js}: normalization.std = {norm['std']!r}: every std must be > 0")
+    if len(norm["mean"]) != len(norm["std"]):
+        raise CheckpointError(f"{js}: normalization: {len(norm['mean'])} means for {len(norm['std'])} stds")
 
 
 def load_weights(js: Path, meta: dict[str, Any], map_location: str | torch.device = "cpu", verify_hash: bool = True,
@@ -139,6 +176,7 @@ def read_sidecar(path: str | Path) -> dict[str, Any]:
     for key in ("model", "normalization", "weights_file"):
         if key not in meta:
             raise CheckpointError(f"{js}: sidecar lacks {key!r}")
+    check_decision_numbers(js, meta)
     return meta
 
 
@@ -156,8 +194,11 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
         config = ModelConfig.from_dict(meta["model"])
         norm = Normalizer(tuple(meta["normalization"]["mean"]), tuple(meta["normalization"]["std"]))
         detector = Detector(config, norm)
-    except (ModelError, KeyError, TypeError) as exc:
+    except (ModelError, KeyError, TypeError, AttributeError) as exc:
         raise CheckpointError(f"{js}: invalid model description ({exc})") from None
+    if len(norm.mean) != config.in_channels:
+        raise CheckpointError(f"{js}: normalization has {len(norm.mean)} channels, the model reads "
+                              f"{config.in_channels}")
     if expect_priors is not None and tuple(expect_priors) != config.priors:
         raise CheckpointError(f"{js}: model uses priors {list(config.priors)}, expected {list(expect_priors)}")
     missing = sorted(set(detector.state_dict()) - set(state))

@@ -39,6 +39,17 @@ found them changing at most this fraction of the validation parts' decisions at 
 all-priors ensemble's changed 15 of 40: int8 moved its scores across the threshold)."""
 
 
+def read_record(js: Path) -> dict:
+    """The parsed ``int8.json``; ModelError naming it when unreadable or not a JSON object."""
+    try:
+        meta = json.loads(js.read_text())
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        raise ModelError(f"{js}: unreadable int8 record ({exc})") from None
+    if not isinstance(meta, dict):
+        raise ModelError(f"{js}: not an int8 record (a JSON {type(meta).__name__}, not an object)")
+    return meta
+
+
 def record_check(folder: str | Path, parts: int, decisions_changed: int | None, max_score_diff: float) -> None:
     """Add the validation check of the int8 networks in ``folder`` (int8 against fp32 on ``parts`` validation
     parts; ``decisions_changed`` None when the model has no threshold) to its ``int8.json``."""
@@ -52,9 +63,11 @@ def fit_for_auto(folder: str | Path) -> tuple[bool, str]:
     """Whether ``precision = "auto"`` may run the int8 networks in ``folder`` (``AUTO_MAX_CHANGED``), and why
     (or why not) in words."""
     try:
-        check = json.loads((Path(folder) / "int8.json").read_text()).get("validation") or {}
-    except (OSError, ValueError) as exc:
-        return False, f"{Path(folder) / 'int8.json'}: unreadable ({exc})"
+        check = read_record(Path(folder) / "int8.json").get("validation") or {}
+    except ModelError as exc:
+        return False, str(exc)
+    if not isinstance(check, dict):
+        return False, f"{Path(folder) / 'int8.json'}: validation is not an object; rerun `station quantize`"
     changed, parts = check.get("decisions_changed"), check.get("parts") or 0
     if parts < 1:
         return False, f"{Path(folder) / 'int8.json'}: no validation check of decisions; rerun `station quantize`"
@@ -136,11 +149,11 @@ def load_int8(detector: Detector, folder: str | Path, weights_sha256: str, threa
     js = folder / "int8.json"
     if not js.is_file():
         raise ModelError(f"{js}: no int8 networks for this model; make them with `station quantize`")
+    meta = read_record(js)
     try:
-        meta = json.loads(js.read_text())
         members = dict(meta["members"])
     except (ValueError, KeyError, TypeError) as exc:
-        raise ModelError(f"{js}: not an int8 record ({exc})") from None
+        raise ModelError(f"{js}: not an int8 record (members: {exc})") from None
     if meta.get("weights_sha256") != weights_sha256:
         raise ModelError(f"{js}: made from other weights than this checkpoint's (sha256 "
                          f"{str(meta.get('weights_sha256'))[:12]} != {weights_sha256[:12]}); rerun `station quantize`")
