@@ -13,11 +13,6 @@ import numpy as np
 from .conventions import MosaicLayout, full_scale, get_layout
 from .stokes import stokes_to_intensity
 
-FLOAT_LIMIT = 1e6
-"""Float mosaics are clipped to +-FLOAT_LIMIT full scales (and counted): no sensor gives more, and it keeps
-every intermediate far from float32 overflow."""
-
-
 @dataclass(frozen=True)
 class NormalizedMosaic:
     """A mosaic in full-scale float32 units plus what was wrong with the input (nothing is silently fixed).
@@ -49,8 +44,8 @@ def normalize_mosaic(raw: np.ndarray, bit_depth: int | None = None) -> Normalize
     """Convert a raw mosaic to float32 full-scale units (1.0 = largest code of ``bit_depth``).
 
     uint8/uint16 inputs: codes above ``2**bit_depth - 1`` (junk in the unused bits) are clipped and counted.
-    Float inputs are taken as full-scale units already; NaN/Inf become 0 and values beyond +-FLOAT_LIMIT are
-    clipped, both counted and marked in ``invalid``.
+    Float inputs are taken as full-scale units already; NaN/Inf become 0 and values outside [0, 1] (no sensor
+    gives a negative or over-full-scale reading) are clipped to it, both counted and marked in ``invalid``.
     """
     check_mosaic(raw)
     fs = full_scale(raw.dtype, bit_depth)
@@ -60,10 +55,10 @@ def normalize_mosaic(raw: np.ndarray, bit_depth: int | None = None) -> Normalize
         n_nonfinite = int(np.count_nonzero(nonfinite))
         if n_nonfinite:
             data[nonfinite] = 0.0
-        out_of_range = np.abs(data) > FLOAT_LIMIT
+        out_of_range = (data < 0.0) | (data > 1.0)
         n_out = int(np.count_nonzero(out_of_range))
         if n_out:
-            np.clip(data, -FLOAT_LIMIT, FLOAT_LIMIT, out=data)
+            np.clip(data, 0.0, 1.0, out=data)
         n_saturated = int(np.count_nonzero(data >= 1.0))
         invalid = (nonfinite | out_of_range) if (n_nonfinite or n_out) else None
         return NormalizedMosaic(data, n_nonfinite, n_out, n_saturated, invalid)

@@ -24,7 +24,6 @@ from . import residual
 from .api import check_prior_names, needs_polarization
 from .conventions import DARK_S0, MIN_S12, POLARIZER_ANGLES_DEG, MosaicLayout, full_scale, get_layout
 from .demosaic import BILINEAR_KERNEL, METHODS
-from .mosaic import FLOAT_LIMIT
 
 TorchStokes = tuple[torch.Tensor, torch.Tensor | None, torch.Tensor | None]
 
@@ -72,15 +71,15 @@ def check_mosaic_tensor(raw: torch.Tensor) -> None:
 def normalize_mosaic_torch(raw: torch.Tensor, bit_depth: int | None = None) -> NormalizedMosaicTorch:
     """(N, H, W) float32 full-scale mosaic from a raw (H, W) or (N, H, W) tensor; the rules of
     ``mosaic.normalize_mosaic``: integer codes above ``2**bit_depth - 1`` clipped and counted; float input
-    taken as full scale, NaN/Inf -> 0 and beyond +-FLOAT_LIMIT clipped, both counted."""
+    taken as full scale, NaN/Inf -> 0 and outside [0, 1] clipped to it, both counted."""
     check_mosaic_tensor(raw)
     batch = raw if raw.ndim == 3 else raw.unsqueeze(0)
     if batch.dtype in _FLOAT_DTYPES:
         data = batch.to(torch.float32, copy=True)  # float64 beyond float32 range becomes Inf, as in numpy
         nonfinite = ~torch.isfinite(data)
         data = torch.where(nonfinite, torch.zeros((), dtype=data.dtype, device=data.device), data)
-        out_of_range = data.abs() > FLOAT_LIMIT
-        data = data.clamp(-FLOAT_LIMIT, FLOAT_LIMIT)
+        out_of_range = (data < 0.0) | (data > 1.0)
+        data = data.clamp(0.0, 1.0)
         return NormalizedMosaicTorch(data, nonfinite.sum(), out_of_range.sum(), (data >= 1.0).sum(),
                                      nonfinite | out_of_range)
     fs = full_scale(_NUMPY_DTYPE[batch.dtype], bit_depth)

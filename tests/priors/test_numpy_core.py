@@ -156,3 +156,12 @@ def test_float_mosaics_with_nan_inf_and_extremes_never_leak(raw, method):
     p = compute_priors(raw, method=method, priors=ALL)
     _check_priors(p)
     assert p.n_nonfinite == int((~np.isfinite(raw)).sum())
+
+
+def test_float_input_outside_full_scale_is_counted_and_clipped():
+    """A float mosaic is in full-scale units: below 0 or above 1 no sensor reads, so it is out of range."""
+    raw = np.full((8, 8), 0.5, np.float32)
+    raw[0, 0], raw[3, 4], raw[7, 7] = -0.2, 1.5, 1.0  # 1.0 is full scale, not out of range
+    p = compute_priors(raw, priors=ALL)
+    assert p.n_out_of_range == 2 and p.invalid.sum() == 2 and p.invalid[0, 0] and p.invalid[3, 4]
+    assert 0.0 <= p["intensity"].min() and p["intensity"].max() <= 1.0
