@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from drivers import pixel_formats
-from drivers.camera import CameraBase, CameraConfig, FrameIdTracker, backoff_delays_s
+from drivers.camera import CameraBase, CameraConfig, FrameIdTracker, backoff_delays_s, sensor_region
 from drivers.errors import CameraConfigError, CameraError, CameraLost, CameraNotFound, CameraTimeout, PixelFormatError
 from drivers.frame import Frame
 
@@ -224,15 +224,20 @@ class AravisCamera(CameraBase):
         Aravis, _, _ = _aravis()
         status = buf.get_status()
         device_id = buf.get_frame_id()
+        newest = self._tracker.newest
         frame_id, lost = self._tracker.update(device_id)
-        if lost:
-            self._stats.dropped += lost
+        self._stats.dropped += lost  # -1: a frame counted lost arrived late (it is counted below instead)
+        if lost > 0:
             log.warning("camera %s: %d frame(s) lost before frame id %d", self.name, lost, device_id)
-        if status != Aravis.BufferStatus.SUCCESS:
-            nick = status.value_nick
+        late = frame_id <= newest
+        if status != Aravis.BufferStatus.SUCCESS or late:
+            # a late frame is never delivered: in free run its frame number was already logged as lost, and with
+            # a trigger it belongs to an earlier part than the one now waiting for a frame
+            nick = "late" if status == Aravis.BufferStatus.SUCCESS else status.value_nick
             self._stats.failed += 1
             self._stats.failed_by_status[nick] = self._stats.failed_by_status.get(nick, 0) + 1
-            log.warning("camera %s: frame id %d incomplete (%s): not delivered", self.name, device_id, nick)
+            log.warning("camera %s: frame id %d %s: not delivered", self.name, device_id,
+                        "arrived out of order" if nick == "late" else f"incomplete ({nick})")
             return None
         width, height = buf.get_image_width(), buf.get_image_height()
         pf = self._format
@@ -305,8 +310,7 @@ class AravisCamera(CameraBase):
             except PixelFormatError as exc:
                 raise CameraConfigError(f"camera {self.name}: pixel_format {cfg.pixel_format!r}: {exc}") from None
         sensor_w, sensor_h = cam.get_sensor_size()
-        w = cfg.width or sensor_w - cfg.offset_x
-        h = cfg.height or sensor_h - cfg.offset_y
+        _, _, w, h = sensor_region(cfg, sensor_w, sensor_h)
         step("region", (cfg.offset_x, cfg.offset_y, w, h), cam.set_region, cfg.offset_x, cfg.offset_y, w, h)
         got = tuple(cam.get_region())
         if got != (cfg.offset_x, cfg.offset_y, w, h):

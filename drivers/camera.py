@@ -23,7 +23,8 @@ Failure rules (every implementation keeps them; tests hold them to it):
 - ``trigger()``: ``CameraError`` unless ``config.trigger == "software"`` and started.
 - ``grab(timeout_ms)``: returns only complete frames. ``CameraTimeout`` when no complete frame arrives in
   ``timeout_ms`` (default ``config.timeout_ms``): the camera stays usable. Incomplete frames (missing packets,
-  size mismatch...) are counted in ``statistics().failed`` and logged, never delivered. Frames lost before they
+  size mismatch...) and frames that arrive behind a newer one are counted in ``statistics().failed`` and logged,
+  never delivered: frame ids only increase. Frames lost before they
   reached the host (gaps in frame ids) are counted in ``dropped``. ``CameraLost`` when the device stops answering
   and, with ``config.reconnect``, every reconnect attempt failed; the statistics are kept. ``CameraError`` if
   not started.
@@ -32,6 +33,7 @@ Failure rules (every implementation keeps them; tests hold them to it):
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import logging
 from collections.abc import Iterator
@@ -106,7 +108,8 @@ class CameraStatistics:
     """Counters since the camera object was made (they survive stop/start, reconnects and close).
 
     completed        frames delivered by ``grab``.
-    failed           frames that arrived incomplete (missing packets, size mismatch, ...): counted, never delivered.
+    failed           frames that arrived incomplete (missing packets, size mismatch, ...) or out of order ("late":
+                     behind a newer frame): counted, never delivered.
     dropped          frames that never reached the host: gaps in the frame ids, buffer underruns.
     resent           packets the host asked the camera to resend (GigE Vision).
     missing_packets  packets that never arrived even after resend requests (GigE Vision).
@@ -177,27 +180,54 @@ class CameraBase:
         self.close()
 
 
+def sensor_region(config: CameraConfig, sensor_w: int, sensor_h: int) -> tuple[int, int, int, int]:
+    """(offset_x, offset_y, width, height) of ``config``'s region of interest on a ``sensor_w`` x ``sensor_h``
+    sensor (0 = the rest of the sensor); ``CameraConfigError`` naming the keys when it does not fit on the sensor
+    (some cameras, Aravis's fake among them, accept a region larger than their sensor and send garbage)."""
+    w = config.width or sensor_w - config.offset_x
+    h = config.height or sensor_h - config.offset_y
+    for axis, offset, size, sensor in (("x", config.offset_x, w, sensor_w), ("y", config.offset_y, h, sensor_h)):
+        name = "width" if axis == "x" else "height"
+        if size <= 0 or offset + size > sensor:
+            raise CameraConfigError(f"camera offset_{axis} + {name} = {offset} + {size} = {offset + size}: beyond the "
+                                    f"sensor's {sensor} pixels ({sensor_w} x {sensor_h})")
+    return config.offset_x, config.offset_y, w, h
+
+
 class FrameIdTracker:
     """Unwraps camera frame ids into a monotonic counter and counts the frames lost in between.
 
     GigE Vision 1.x block ids are 16 bit, run 1..65535 and wrap to 1 (0 is never used); GigE Vision 2.x
     extended ids are 64 bit and do not wrap. The tracker switches to 64-bit mode once it sees an id > 65535.
+    An id behind the newest one (less than half the 16-bit range back) is a late frame, not a wrap: with packet
+    loss and resends, frames complete out of order. A late frame that was counted lost when its gap was seen is
+    un-counted (lost = -1), so the net count never exceeds the ids actually skipped.
     After ``restart()`` (acquisition stopped and started) the next id is not compared with the last one, but the
     unwrapped counter keeps increasing.
     """
 
     WRAP = 65535
+    REMEMBER_LOST = 4096
+    """How many of the most recent ids counted lost are remembered, to un-count them when they arrive late."""
 
     def __init__(self) -> None:
         self._last_device: int | None = None
         self._unwrapped = 0
         self._wide = False
+        self._lost: collections.OrderedDict[int, None] = collections.OrderedDict()  # unwrapped ids counted lost
 
     def restart(self) -> None:
         self._last_device = None
+        self._lost.clear()
+
+    @property
+    def newest(self) -> int:
+        """The newest unwrapped id so far (0 before the first frame); an id at or below it is late or repeated."""
+        return self._unwrapped
 
     def update(self, device_id: int) -> tuple[int, int]:
-        """(unwrapped id, frames lost since the previous id) for the next complete or failed frame."""
+        """(unwrapped id, frames lost since the previous id) for the next complete or failed frame. The count is
+        -1 for a late frame that was counted lost before, 0 for a repeated id."""
         if device_id > self.WRAP:
             self._wide = True
         if self._last_device is None:
@@ -208,9 +238,19 @@ class FrameIdTracker:
             step = device_id - self._last_device
         else:
             step = ((device_id - 1) - (self._last_device - 1)) % self.WRAP
-        if step <= 0:  # duplicate or reordered id: keep monotonic, count nothing
-            log.warning("frame id %d after %d: not increasing", device_id, self._last_device)
-            step = 1
+            if step > self.WRAP // 2:  # behind the newest id: late, not 32,000+ frames ahead
+                step -= self.WRAP
+        if step <= 0:  # a late (reordered) or repeated id: the counter stays where it is
+            late = self._unwrapped + step
+            if late in self._lost:
+                del self._lost[late]
+                return late, -1
+            log.debug("frame id %d after %d: not increasing", device_id, self._last_device)
+            return late, 0
+        for missing in range(self._unwrapped + 1, self._unwrapped + min(step, self.REMEMBER_LOST + 1)):
+            self._lost[missing] = None
+        while len(self._lost) > self.REMEMBER_LOST:
+            self._lost.popitem(last=False)
         self._last_device = device_id
         self._unwrapped += step
         return self._unwrapped, step - 1

@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import pytest
 
-from drivers.camera import CameraConfig, FrameIdTracker, backoff_delays_s
+from drivers.camera import CameraConfig, FrameIdTracker, backoff_delays_s, sensor_region
 from drivers.errors import CameraConfigError
 from drivers.frame import Frame
 
@@ -41,6 +41,35 @@ def test_frame_id_gaps_count_lost_frames_across_the_wrap() -> None:
     assert t.update(2) == (4, 2)  # 65535 and 1 lost
     t.restart()
     assert t.update(100) == (5, 0)  # after a restart: no gap counted, still monotonic
+
+
+def test_reordered_frame_ids_are_late_frames_not_a_wrap() -> None:
+    """Packet loss with resends completes frames out of order: an id just behind the last one is a late frame that
+    was counted lost when its gap was seen (it was taken as a 16-bit wrap: 65534 lost frames each time)."""
+    t = FrameIdTracker()
+    t.update(100)
+    assert t.update(102) == (3, 1)  # 101 missing so far
+    assert t.update(101) == (2, -1)  # 101 arrived late: no longer lost
+    assert t.update(101) == (2, 0)  # the same id again: nothing to count
+    assert t.update(103) == (4, 0)
+    t2 = FrameIdTracker()  # across the wrap too
+    t2.update(65535)
+    assert t2.update(2) == (3, 1)
+    assert t2.update(1) == (2, -1)
+    lost = 0
+    t3 = FrameIdTracker()  # a lossy stream: the net count never exceeds the ids skipped
+    for i in [1, 3, 2, 5, 4, 7, 6, 6, 9, 8, 10]:
+        lost += t3.update(i)[1]
+    assert lost == 0
+
+
+def test_a_region_beyond_the_sensor_is_refused_naming_the_keys() -> None:
+    assert sensor_region(CameraConfig(width=320, height=240, offset_x=2), 640, 480) == (2, 0, 320, 240)
+    assert sensor_region(CameraConfig(offset_x=40), 640, 480) == (40, 0, 600, 480)
+    with pytest.raises(CameraConfigError, match="offset_x \\+ width = 0 \\+ 4000"):
+        sensor_region(CameraConfig(width=4000, height=4000), 640, 480)
+    with pytest.raises(CameraConfigError, match="offset_y"):
+        sensor_region(CameraConfig(offset_y=480), 640, 480)
 
 
 def test_extended_ids_do_not_wrap() -> None:
