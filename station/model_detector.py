@@ -72,9 +72,8 @@ class DraemDetector:
         import torch
 
         from model.draem.checkpoint import load_checkpoint, paths
-        from model.draem.train import resolve_device
-
         from model.draem.errors import ModelError
+        from model.draem.train import resolve_device
 
         if precision not in ("auto", "fp32", "bf16", "onnx", "int8"):
             raise ModelLoadError(f"[model] precision = {precision!r}: choose auto, fp32, bf16, onnx or int8")

@@ -13,6 +13,7 @@ import numpy as np
 from .conventions import MosaicLayout, full_scale, get_layout
 from .stokes import stokes_to_intensity
 
+
 @dataclass(frozen=True)
 class NormalizedMosaic:
     """A mosaic in full-scale float32 units plus what was wrong with the input (nothing is silently fixed).
