@@ -1,6 +1,8 @@
 """The inspection log: one SQLite row per part, durable on commit, with streaming export.
 
-SQLite in WAL mode with ``synchronous=FULL``: a row whose ``append`` returned survives a crash or power loss.
+SQLite in WAL mode with ``synchronous=FULL``: a row whose ``append`` returned survives a crash or power loss; the
+WAL is checkpointed and truncated often (``WAL_CHECKPOINT_PAGES``) so that it stays small. A file that is not an
+inspection log (another program's tables, a newer schema) is refused before anything in it is changed.
 The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Version 2 added
 ``ground_truth_present``: opening a version-1 log for writing adds the column (NULL in the old rows); a version-1
 log opened read-only reads it as NULL. Decisions:
@@ -17,7 +19,7 @@ import csv
 import json
 import sqlite3
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
@@ -25,6 +27,10 @@ from typing import Any
 from station.errors import UserError
 
 SCHEMA_VERSION = 2
+WAL_CHECKPOINT_PAGES = 64
+"""Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
+WAL_SIZE_LIMIT_BYTES = 256 * 1024
+"""... and truncate it back to this size afterwards: a small disk holds rows, not a stale WAL."""
 ADDED_IN_VERSION_2 = ("ground_truth_present",)
 DECISIONS = ("pass", "reject", "empty", "not_inspected")
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
@@ -105,8 +111,11 @@ class InspectionLog:
             else:
                 self.path.parent.mkdir(parents=True, exist_ok=True)
                 self._db = sqlite3.connect(self.path, check_same_thread=False)  # handed over, never shared
+                self._refuse_foreign()  # before anything below changes the file
                 self._db.execute("PRAGMA journal_mode=WAL")
                 self._db.execute("PRAGMA synchronous=FULL")
+                self._db.execute(f"PRAGMA wal_autocheckpoint={WAL_CHECKPOINT_PAGES}")
+                self._db.execute(f"PRAGMA journal_size_limit={WAL_SIZE_LIMIT_BYTES}")
                 self._db.executescript(_create_sql())
                 version = self._db.execute("PRAGMA user_version").fetchone()[0]
                 if version == 0:
@@ -128,17 +137,49 @@ class InspectionLog:
                            f"{SCHEMA_VERSION}; export it with the station version that wrote it")
         self._select = ", ".join(c if c in have else f"NULL AS {c}" for c in COLUMNS)
 
-    def append(self, records: InspectionRecord | Sequence[InspectionRecord]) -> None:
-        """Write and commit records; durable when this returns. A full disk raises LogError (nothing half-written:
-        the transaction is rolled back)."""
+    def _refuse_foreign(self) -> None:
+        """LogError when the file is another program's database or a newer log: checked on a fresh connection
+        before this class changes anything (journal mode, tables, version)."""
+        version = self._db.execute("PRAGMA user_version").fetchone()[0]
+        tables = {n for (n,) in self._db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        tables.discard("sqlite_sequence")
+        if version not in (0, 1, SCHEMA_VERSION):
+            raise LogError(f"inspection log {self.path}: schema version {version}, this station reads 1 and "
+                           f"{SCHEMA_VERSION}; export it with the station version that wrote it (file left as it was)")
+        foreign = sorted(tables - {"inspections"})
+        if foreign or (version and "inspections" not in tables):
+            raise LogError(f"inspection log {self.path}: another program's SQLite database (tables "
+                           f"{', '.join(foreign) or 'none of ours'}); choose another [log] path (file left as it was)")
+        if "inspections" in tables:
+            have = {r[1] for r in self._db.execute("PRAGMA table_info(inspections)")}
+            unknown = sorted(have - {"id", *COLUMNS})
+            if unknown:
+                raise LogError(f"inspection log {self.path}: table inspections has columns this station does not "
+                               f"know ({', '.join(unknown[:5])}); choose another [log] path (file left as it was)")
+
+    def append(self, records: InspectionRecord | Sequence[InspectionRecord]) -> list[int]:
+        """Write and commit records; durable when this returns; their row ids. A full disk raises LogError
+        (nothing half-written: the transaction is rolled back)."""
         batch = [records] if isinstance(records, InspectionRecord) else list(records)
         rows = [tuple(getattr(r, c) for c in COLUMNS) for r in batch]
+        sql = f"INSERT INTO inspections ({', '.join(COLUMNS)}) VALUES ({', '.join('?' * len(COLUMNS))})"
         try:
             with self._db:
-                self._db.executemany(
-                    f"INSERT INTO inspections ({', '.join(COLUMNS)}) VALUES ({', '.join('?' * len(COLUMNS))})", rows)
+                return [int(self._db.execute(sql, row).lastrowid) for row in rows]
         except sqlite3.Error as exc:
             raise _db_error(self.path, f"write {len(rows)} record(s)", exc) from None
+
+    def set_delivered(self, outcomes: Mapping[int, bool]) -> None:
+        """Set ``io_delivered`` of rows (by id): whether the PLC acknowledged the part's decision. One transaction;
+        LogError (nothing changed) when it cannot be written."""
+        if not outcomes:
+            return
+        try:
+            with self._db:
+                self._db.executemany("UPDATE inspections SET io_delivered = ? WHERE id = ?",
+                                     [(int(v), k) for k, v in outcomes.items()])
+        except sqlite3.Error as exc:
+            raise _db_error(self.path, f"record the PLC's answer for {len(outcomes)} row(s)", exc) from None
 
     def count(self, decision: str | None = None) -> int:
         sql, args = "SELECT COUNT(*) FROM inspections", ()

@@ -196,3 +196,43 @@ def test_report_scores_the_presence_check_on_empty_views(tmp_path):
     assert s.confusion == {"none_empty": 1, "none_pass": 1, "bad_empty": 1, "good_pass": 1}
     text = format_summary(s)
     assert "1 logged empty, 1 judged as a part" in text and "of which 1 showed a part" in text
+
+
+@pytest.mark.parametrize("kind", ["other tables", "version 99", "other columns"])
+def test_a_foreign_sqlite_file_is_refused_before_anything_in_it_changes(tmp_path, kind):
+    import hashlib
+    import sqlite3
+
+    db = tmp_path / "foreign.sqlite"
+    con = sqlite3.connect(db)
+    if kind == "other tables":
+        con.execute("CREATE TABLE orders (id INTEGER PRIMARY KEY, customer TEXT)")
+    elif kind == "version 99":
+        con.execute("CREATE TABLE inspections (id INTEGER PRIMARY KEY, decision TEXT)")
+        con.execute("PRAGMA user_version=99")
+    else:
+        con.execute("CREATE TABLE inspections (id INTEGER PRIMARY KEY, decision TEXT, colour TEXT)")
+    con.commit()
+    con.close()
+    before = hashlib.sha256(db.read_bytes()).hexdigest()
+    with pytest.raises(LogError, match=r"foreign\.sqlite: .*file left as it was"):
+        InspectionLog(db)
+    assert hashlib.sha256(db.read_bytes()).hexdigest() == before
+    assert not (tmp_path / "foreign.sqlite-wal").exists()
+    assert sqlite3.connect(db).execute("PRAGMA journal_mode").fetchone()[0] == "delete"
+
+
+def test_io_delivered_is_set_by_row_id_after_the_row_is_written(tmp_path):
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        ids = log.append([InspectionRecord("pass", 1000.0 + i, io_delivered=False) for i in range(3)])
+        assert ids == [1, 2, 3]
+        log.set_delivered({1: True, 3: True})
+        assert [r["io_delivered"] for r in log.rows()] == [True, False, True]
+
+
+def test_the_write_ahead_log_stays_small(tmp_path):
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        for i in range(3000):
+            log.append(rec(i, reason="x" * 200))
+        wal = tmp_path / "log.sqlite-wal"
+        assert wal.stat().st_size < 600 * 1024  # SQLite's default lets it grow to ~4 MB
