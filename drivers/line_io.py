@@ -14,18 +14,25 @@ of ``[A-Za-z0-9_.:-]``.
                      ERR <text>           the station refuses a line (over-long, not ASCII, unknown command,
                                           bad or duplicate id)
 
+Triggers are timestamped when their line reaches the host (``Trigger.t_arrival``, ``time.perf_counter()``), so
+the station measures a part's age from the PLC's announcement, not from when it got round to it.
+``expired(before)`` takes out triggers that waited too long (the station answers them as late while its camera
+is busy); after ``refuse_triggers(handler)`` (shutdown) every trigger, queued or new, is answered REJECT with the
+reason ``handler`` returns, in the I/O thread, so no announced part goes unanswered until the port closes.
+
 Delivery: a decision stays pending until the PLC sends ``ACK <id>``. If no ACK comes within ``ack_timeout_ms``
 it is sent again (at most ``max_resends`` times); while the link is down decisions wait in the queue and go out,
 in order, after the reconnect. A decision that still has no ACK after its resends, or is pending when the link is
 closed, is reported undelivered: an ERROR log line and ``on_undelivered(part_id, line)``, and it is listed by
-``undelivered()``. With ``require_ack=False`` a decision counts as delivered once written.
+``undelivered()``. With ``require_ack=False`` a decision counts as delivered once written. ``outcomes()`` hands
+out each settled decision once: (part id, True, when) acknowledged, (part id, False, when) given up.
 
 Faults: the peer disappearing shows as ``SerialException``/``OSError`` on read or write; the link is closed,
 logged once, and reopened with back-off (``reconnect_backoff_s`` doubling to ``reconnect_backoff_max_s``).
 Garbage, over-long lines, unknown commands and duplicate trigger ids are logged, counted and answered with ERR.
 Silence longer than ``3 * heartbeat_s`` (with a heartbeat configured) is logged as a stale link.
 
-``LineIO`` implements ``station.loop.LineLink``: ``triggered``, ``next_trigger(timeout_s)``, ``report(...)``.
+``LineIO`` implements ``station.loop.LineLink``.
 """
 
 from __future__ import annotations
@@ -33,7 +40,6 @@ from __future__ import annotations
 import collections
 import dataclasses
 import logging
-import queue
 import re
 import threading
 import time
@@ -89,6 +95,14 @@ class LineIOStats:
     reconnects: int = 0
 
 
+@dataclass(frozen=True)
+class Trigger:
+    """A part the PLC announced: its id and when the TRIG line reached the host (``time.perf_counter()`` s)."""
+
+    part_id: str
+    t_arrival: float
+
+
 @dataclass
 class _Pending:
     part_id: str
@@ -120,7 +134,10 @@ class LineIO:
         self.triggered = config.triggered
         self.on_undelivered = on_undelivered
         self._factory = serial_factory or _open_serial
-        self._triggers: queue.Queue[str] = queue.Queue()
+        self._triggers: collections.deque[Trigger] = collections.deque()
+        self._trigger_cond = threading.Condition()
+        self._refusing: Callable[[Trigger], str] | None = None
+        self._outcomes: list[tuple[str, bool, float]] = []
         self._outbox: collections.deque[_Pending] = collections.deque()  # not yet written
         self._inflight: dict[str, _Pending] = {}  # written, waiting for ACK
         self._undelivered: list[tuple[str, str]] = []
@@ -149,21 +166,49 @@ class LineIO:
     def link_up(self) -> bool:
         return self._link_up.is_set()
 
-    def next_trigger(self, timeout_s: float) -> str | None:
-        """The next part id the PLC announced, or None after ``timeout_s``."""
-        try:
-            return self._triggers.get(timeout=timeout_s)
-        except queue.Empty:
-            return None
+    has_plc = True
+    """A PLC answers (``station.loop.LineLink``): decisions are pending until ``outcomes`` settles them."""
+
+    def next_trigger(self, timeout_s: float) -> Trigger | None:
+        """The oldest part the PLC announced and nobody took yet, or None after ``timeout_s``."""
+        with self._trigger_cond:
+            if not self._trigger_cond.wait_for(lambda: self._triggers, timeout=timeout_s):
+                return None
+            return self._triggers.popleft()
+
+    def expired(self, before: float) -> list[Trigger]:
+        """Take out the waiting triggers that arrived before ``before`` (``time.perf_counter()`` s)."""
+        with self._trigger_cond:
+            out = []
+            while self._triggers and self._triggers[0].t_arrival < before:
+                out.append(self._triggers.popleft())
+            return out
+
+    def refuse_triggers(self, handler: Callable[[Trigger], str]) -> None:
+        """From now on answer every trigger REJECT at once with the reason ``handler(trigger)`` returns (called in
+        the caller's thread for those already waiting, then in the I/O thread; it may record the part first)."""
+        with self._trigger_cond:
+            self._refusing = handler
+            waiting = list(self._triggers)
+            self._triggers.clear()
+        for t in waiting:
+            self.report(t.part_id, "reject", handler(t))
 
     def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
-        """Queue PASS/REJECT for ``part_id``. True: the link is up and the line goes out now; False: the link is
-        down, the decision waits for the reconnect. Never blocks and never drops (see the module docstring)."""
+        """Queue PASS/REJECT for ``part_id``; False: sent once the link is up, acknowledged later (``outcomes``).
+        Never blocks and never drops (see the module docstring)."""
         line = decision_line(part_id, decision, reason)
         with self._lock:
             self.stats.decisions += 1
             self._outbox.append(_Pending(part_id, line))
-        return self.link_up
+        return False
+
+    def outcomes(self) -> list[tuple[str, bool, float]]:
+        """Decisions settled since the last call: (part id, True, when) acknowledged by the PLC (or written,
+        without ACKs), (part id, False, when) given up undelivered; ``when`` in ``time.perf_counter()`` s."""
+        with self._lock:
+            out, self._outcomes = self._outcomes, []
+        return out
 
     def undelivered(self) -> list[tuple[str, str]]:
         """(part id, decision line) of every decision reported undelivered so far."""
@@ -187,10 +232,11 @@ class LineIO:
     def close(self, flush_timeout_s: float = 1.0) -> list[tuple[str, str]]:
         """Flush (up to ``flush_timeout_s``), stop, report what is still pending as undelivered; return all
         undelivered decisions."""
-        if self._thread is not None:
+        if self._thread is not None:  # a second close has nothing left to do
             self.flush(flush_timeout_s)
             self._stop.set()
             self._thread.join(timeout=5)
+            self._thread = None
         with self._lock:
             left = list(self._outbox) + list(self._inflight.values())
             self._outbox.clear()
@@ -256,6 +302,7 @@ class LineIO:
                 stale_logged = True
 
     def _handle(self, line: bytes) -> None:
+        t_arrival = time.perf_counter()
         try:
             text = line.decode("ascii")
         except UnicodeDecodeError:
@@ -280,12 +327,21 @@ class LineIO:
                     self._seen.popitem(last=False)
                 self.stats.triggers += 1
                 if self.triggered:
-                    self._triggers.put(arg)
+                    trigger = Trigger(arg, t_arrival)
+                    with self._trigger_cond:
+                        refuse = self._refusing
+                        if refuse is None:
+                            self._triggers.append(trigger)
+                            self._trigger_cond.notify_all()
+                    if refuse is not None:
+                        self.report(arg, "reject", refuse(trigger))
                 else:
                     log.debug("trigger-free mode: TRIG %s ignored", arg)
         elif cmd == "ACK" and PART_ID.fullmatch(arg):
             with self._lock:
                 p = self._inflight.pop(arg, None)
+                if p is not None:
+                    self._outcomes.append((arg, True, t_arrival))
             if p is None:
                 log.info("PLC link %s: ACK for %r, which is not pending (late or repeated)", self.config.port, arg)
             else:
@@ -330,6 +386,8 @@ class LineIO:
                 self._outbox.popleft()
                 if self.config.require_ack:
                     self._inflight[p.part_id] = p
+                else:
+                    self._outcomes.append((p.part_id, True, time.perf_counter()))
 
     def _give_up(self, p: _Pending, why: str) -> None:
         text = p.line.decode().strip()
@@ -337,6 +395,7 @@ class LineIO:
         log.error("PLC link %s: decision UNDELIVERED: %s (%s)", self.config.port, text, why)
         with self._lock:
             self._undelivered.append((p.part_id, text))
+            self._outcomes.append((p.part_id, False, time.perf_counter()))
         if self.on_undelivered is not None:
             self.on_undelivered(p.part_id, text)
 

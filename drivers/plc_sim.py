@@ -73,12 +73,15 @@ class PLCRecord:
 
 
 class SimulatedPLC:
-    """See the module docstring. ``trigger_period_s=None``: parts only on ``trigger()``."""
+    """See the module docstring. ``trigger_period_s=None``: parts only on ``trigger()``; ``max_triggers``: the
+    periodic triggers stop after that many parts (None: until closed)."""
 
     def __init__(self, *, port: str | None = None, baudrate: int = 115200, trigger_period_s: float | None = None,
-                 heartbeat_s: float = 1.0, ack: bool = True, id_prefix: str = "P") -> None:
+                 heartbeat_s: float = 1.0, ack: bool = True, id_prefix: str = "P",
+                 max_triggers: int | None = None) -> None:
         self.trigger_period_s, self.heartbeat_s, self.ack, self.id_prefix = (trigger_period_s, heartbeat_s, ack,
                                                                              id_prefix)
+        self.max_triggers = max_triggers
         self._transport: Any = _SerialPort(port, baudrate) if port else _PtyMaster()
         self.station_port: str | None = self._transport.station_port
         self.record = PLCRecord()
@@ -134,7 +137,8 @@ class SimulatedPLC:
         while not self._stop.is_set():
             now = time.monotonic()
             try:
-                if self.trigger_period_s and now >= next_trig:
+                if (self.trigger_period_s and now >= next_trig
+                        and (self.max_triggers is None or len(self.record.triggers_sent) < self.max_triggers)):
                     self.trigger()
                     next_trig += self.trigger_period_s
                 if self.heartbeat_s and now >= next_hb:

@@ -106,8 +106,10 @@ def open_camera(cfg: StationConfig) -> Camera:
     return camera
 
 
-def open_link(cfg: StationConfig, stack: ExitStack) -> LineLink:
-    """The PLC link ``[io] mode`` names, started; closed (and undelivered decisions logged) by ``stack``."""
+def open_link(cfg: StationConfig, stack: ExitStack, max_parts: int | None = None) -> LineLink:
+    """The PLC link ``[io] mode`` names, started; closed (and undelivered decisions logged) by ``stack`` if the
+    station has not closed it. The simulated PLC announces ``max_parts`` parts (None: until closed), as a line
+    that stops feeding when the run is over."""
     if cfg.io.mode == "none":
         return NoLink()
     from drivers.line_io import LineIO, LineIOConfig
@@ -117,7 +119,8 @@ def open_link(cfg: StationConfig, stack: ExitStack) -> LineLink:
         from drivers.plc_sim import SimulatedPLC
 
         # One part per camera frame period: the PLC paces the line, as on a real one.
-        plc = SimulatedPLC(trigger_period_s=1.0 / cfg.camera.frame_rate_hz, heartbeat_s=cfg.io.heartbeat_s)
+        plc = SimulatedPLC(trigger_period_s=1.0 / cfg.camera.frame_rate_hz, heartbeat_s=cfg.io.heartbeat_s,
+                           max_triggers=max_parts)
         port = plc.station_port or ""
         stack.callback(plc.close)
     elif not port:

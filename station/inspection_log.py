@@ -43,7 +43,11 @@ class LogError(UserError):
 
 @dataclass(frozen=True)
 class InspectionRecord:
-    """One part. Times: ``time_unix_s`` when judged (host clock); latencies in milliseconds per stage."""
+    """One part. Times: ``time_unix_s`` when judged (host clock); latencies in milliseconds per stage, the part's
+    ``total_ms`` from its TRIG reaching the host (trigger-free: the grab's start) to the decision. The row is
+    written before the PLC hears the decision (write-ahead); ``io_delivered`` is False until the PLC acknowledges
+    it, then True with ``io_ms`` the time from decision to acknowledgement (False for good if it never does);
+    both None when there is no PLC to tell."""
 
     decision: str
     time_unix_s: float
@@ -169,15 +173,15 @@ class InspectionLog:
         except sqlite3.Error as exc:
             raise _db_error(self.path, f"write {len(rows)} record(s)", exc) from None
 
-    def set_delivered(self, outcomes: Mapping[int, bool]) -> None:
-        """Set ``io_delivered`` of rows (by id): whether the PLC acknowledged the part's decision. One transaction;
-        LogError (nothing changed) when it cannot be written."""
+    def set_delivered(self, outcomes: Mapping[int, tuple[bool, float | None]]) -> None:
+        """Set ``io_delivered`` and ``io_ms`` of rows (by id): whether the PLC acknowledged the part's decision,
+        and how long after the decision. One transaction; LogError (nothing changed) when it cannot be written."""
         if not outcomes:
             return
         try:
             with self._db:
-                self._db.executemany("UPDATE inspections SET io_delivered = ? WHERE id = ?",
-                                     [(int(v), k) for k, v in outcomes.items()])
+                self._db.executemany("UPDATE inspections SET io_delivered = ?, io_ms = ? WHERE id = ?",
+                                     [(int(ok), ms, k) for k, (ok, ms) in outcomes.items()])
         except sqlite3.Error as exc:
             raise _db_error(self.path, f"record the PLC's answer for {len(outcomes)} row(s)", exc) from None
 

@@ -17,11 +17,13 @@ configured backpressure. Every part ends in exactly one log row:
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import signal
 import threading
 import time
 from collections import Counter, deque
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Protocol
 
@@ -30,9 +32,10 @@ import numpy as np
 from drivers.camera import Camera
 from drivers.errors import CameraError, CameraTimeout
 from drivers.frame import Frame
+from drivers.line_io import Trigger
 from station.decision import Decision, decide
 from station.frame_queue import Closed, FrameQueue
-from station.inspection_log import InspectionLog, InspectionRecord
+from station.inspection_log import InspectionLog, InspectionRecord, LogError
 from station.inspector import Inspection, Inspector
 from station.reject_store import RejectStore
 from station.viewer import ViewerFeed, ViewFrame
@@ -44,17 +47,40 @@ MAX_LOST_ROWS = 10000
 
 
 class LineLink(Protocol):
-    """The station's side of the PLC link (``drivers.line_io`` and the simulated PLC provide it)."""
+    """The station's side of the PLC link (``drivers.line_io.LineIO`` over a serial port, the simulated PLC
+    included; ``NoLink`` without a PLC)."""
 
     triggered: bool
     """True: one part per PLC trigger; False: trigger-free, every frame is a part."""
+    has_plc: bool
+    """True: decisions go to a PLC that acknowledges them (``outcomes``); False: there is no one to tell."""
 
-    def next_trigger(self, timeout_s: float) -> str | None:
-        """The next part id, or None when no part arrived within ``timeout_s``."""
+    def next_trigger(self, timeout_s: float) -> Trigger | None:
+        """The oldest announced part not yet taken, or None when none arrived within ``timeout_s``."""
+        ...
+
+    def expired(self, before: float) -> list[Trigger]:
+        """Take out the waiting triggers that arrived before ``before`` (``time.perf_counter()`` s)."""
+        ...
+
+    def refuse_triggers(self, handler: Callable[[Trigger], str]) -> None:
+        """Answer every trigger from now on REJECT with the reason ``handler`` returns (shutdown)."""
         ...
 
     def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
-        """Send PASS/REJECT for ``part_id``; True delivered, False queued for later delivery, None no PLC."""
+        """Send PASS/REJECT for ``part_id`` (never blocks, never drops)."""
+        ...
+
+    def outcomes(self) -> list[tuple[str, bool, float]]:
+        """Decisions settled since the last call: (part id, acknowledged by the PLC, ``time.perf_counter()``)."""
+        ...
+
+    def flush(self, timeout_s: float) -> bool:
+        """Wait until every decision is settled; True if that happened within ``timeout_s``."""
+        ...
+
+    def close(self) -> object:
+        """Give up what is still unacknowledged and close the port (idempotent)."""
         ...
 
 
@@ -62,12 +88,28 @@ class NoLink:
     """Trigger-free operation without a PLC: every frame is a part, decisions go only to the log."""
 
     triggered = False
+    has_plc = False
 
-    def next_trigger(self, timeout_s: float) -> str | None:
+    def next_trigger(self, timeout_s: float) -> Trigger | None:
         return None
+
+    def expired(self, before: float) -> list[Trigger]:
+        return []
+
+    def refuse_triggers(self, handler: Callable[[Trigger], str]) -> None:
+        pass
 
     def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
         return None
+
+    def outcomes(self) -> list[tuple[str, bool, float]]:
+        return []
+
+    def flush(self, timeout_s: float) -> bool:
+        return True
+
+    def close(self) -> None:
+        pass
 
 
 @dataclass
@@ -76,12 +118,15 @@ class Part:
 
     part_id: str
     t_trigger: float
-    """``time.perf_counter()`` when the part arrived (trigger, or grab start when trigger-free)."""
+    """``time.perf_counter()`` when the part arrived: when its TRIG line reached the host (``Trigger.t_arrival``),
+    or the grab's start when trigger-free. Every latency of the part counts from here."""
     frame: Frame | None = None
     grab_ms: float | None = None
     error: str | None = None
     announced: bool = True
     """False for frames lost in transport: no PLC part id to answer."""
+    late_ms: float | None = None
+    """Set when the trigger was already older than the cycle time when acquisition took it (no frame taken)."""
 
 
 @dataclass
@@ -117,35 +162,43 @@ class LiveStats:
 
 
 class Station:
-    """Runs the loop over one camera, inspector, PLC link and log (all opened by the caller)."""
+    """Runs the loop over one camera, inspector, PLC link and log (opened by the caller; ``run`` closes the link
+    at its end, after the last announced part was answered)."""
 
     def __init__(self, camera: Camera, inspector: Inspector, link: LineLink, inspection_log: InspectionLog, *,
                  threshold: float, cycle_time_ms: float, queue_size: int = 4, backpressure: str = "drop_oldest",
                  grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
-                 rejects: RejectStore | None = None) -> None:
+                 rejects: RejectStore | None = None, settle_timeout_s: float = 2.0) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold, self.cycle_time_ms, self.grab_timeout_ms = threshold, cycle_time_ms, grab_timeout_ms
+        self.settle_timeout_s = settle_timeout_s
         self.queue: FrameQueue[Part] = FrameQueue(queue_size, backpressure)
         self.viewer = viewer
         self.rejects = rejects
         self.stats = LiveStats()
         self._stop = threading.Event()
         self._dropped: deque[Part] = deque()
-        self._last_frame_id: int | None = None
+        self._last_frame: tuple[int, float] | None = None  # (frame id, perf_counter) of the newest frame
         self._grabbed = 0
         self._counter = 0
+        self._records = RecordKeeper(inspection_log)
         self.fatal: str | None = None
 
     # -- acquisition thread -------------------------------------------------------------------------------
     def _next_part(self) -> Part | None:
         if self.link.triggered:
-            part_id = self.link.next_trigger(timeout_s=0.2)
-            if part_id is None:
+            trigger = self.link.next_trigger(timeout_s=0.2)
+            if trigger is None:
                 return None
+            part = Part(trigger.part_id, trigger.t_arrival)
+            age_ms = 1e3 * (time.perf_counter() - trigger.t_arrival)
+            if age_ms > self.cycle_time_ms and self.camera.config.trigger == "software":
+                # no frame belongs to it yet, and any frame now would come too late: answer it at once
+                part.late_ms = age_ms
+                return part
         else:
             self._counter += 1
-            part_id = str(self._counter)
-        part = Part(part_id, time.perf_counter())
+            part = Part(str(self._counter), time.perf_counter())
         try:
             if self.camera.config.trigger == "software":
                 self.camera.trigger()
@@ -154,24 +207,30 @@ class Station:
             if not self.link.triggered:  # free run: no part was announced, nothing to judge
                 log.warning("grab timeout without a trigger: %s", exc)
                 return None
-            part.error = f"no frame for part {part_id}: {exc}"
+            part.error = f"no frame for part {part.part_id}: {exc}"
         except CameraError as exc:  # lost camera (after the driver's reconnects): judge this part, then stop
-            part.error = f"camera error for part {part_id}: {exc}"
+            part.error = f"camera error for part {part.part_id}: {exc}"
             self.fatal = str(exc)
             self._stop.set()
         part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
         return part
 
     def _note_lost_frames(self, part: Part) -> None:
-        """Frames missing between two frame ids never reached the host: one not-inspected row each."""
+        """Free run: frames missing between two frame ids never reached the host, one not-inspected row each, at
+        most as many as the camera could have made in the time between (a reset counter is no lost frames).
+        Triggered: every announced part has its own row already; a gap adds none."""
         if part.frame is None:
             return
+        now = time.perf_counter()
         fid = part.frame.frame_id
-        if self._last_frame_id is not None:
-            for missing in range(self._last_frame_id + 1, min(fid, self._last_frame_id + 1 + MAX_LOST_ROWS)):
+        if self._last_frame is not None and not self.link.triggered:
+            last_id, last_t = self._last_frame
+            possible = int((now - last_t) * self.camera.config.frame_rate_hz * 1.5) + 1
+            for missing in range(last_id + 1, min(fid, last_id + 1 + possible, last_id + 1 + MAX_LOST_ROWS)):
                 self._dropped.append(Part(f"frame-{missing}", part.t_trigger, announced=False,
                                           error=f"frame {missing} lost before reaching the host"))
-        self._last_frame_id = fid
+        if self._last_frame is None or fid > self._last_frame[0]:
+            self._last_frame = (fid, now)
 
     def _acquire(self, max_parts: int | None) -> None:
         try:
@@ -195,9 +254,19 @@ class Station:
             reason = part.error or f"dropped: processing queue full ({self.queue.policy})"
             self._finish(part, None, Decision("reject", reason), not_inspected=True)
 
+    def _answer_expired(self) -> None:
+        """Parts announced more than a cycle ago that acquisition has not taken (camera stalled or reconnecting,
+        acquisition behind): rejected as late now, not when the camera comes back."""
+        for trigger in self.link.expired(time.perf_counter() - self.cycle_time_ms / 1e3):
+            age_ms = 1e3 * (time.perf_counter() - trigger.t_arrival)
+            self._finish(Part(trigger.part_id, trigger.t_arrival),
+                         None, Decision("reject", f"not judged in time: no frame taken within {age_ms:.0f} ms "
+                                                  f"of the trigger (cycle time {self.cycle_time_ms:.0f} ms)"))
+
     def _process(self, part: Part) -> None:
         inspection = None
-        if part.error is None and part.frame is not None:
+        late_ms = part.late_ms if part.late_ms is not None else 1e3 * (time.perf_counter() - part.t_trigger)
+        if part.error is None and part.frame is not None and late_ms <= self.cycle_time_ms:
             inspection = self.inspector.inspect(part.frame)
             t = time.perf_counter()
             empty = inspection.presence.reason if inspection.presence and not inspection.present else None
@@ -205,20 +274,21 @@ class Station:
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
                               invalid_fraction=inspection.invalid_fraction, empty=empty)
             inspection.timings_ms["decision"] = 1e3 * (time.perf_counter() - t)
+        elif part.error is None and (part.frame is not None or part.late_ms is not None):
+            decision = Decision("reject", f"not judged in time: {late_ms:.0f} ms after the trigger before the "
+                                          f"model could start (cycle time {self.cycle_time_ms:.0f} ms)")
         else:
             decision = decide(None, self.threshold, error=part.error or "no frame")
         self._finish(part, inspection, decision)
 
     def _finish(self, part: Part, inspection: Inspection | None, decision: Decision,
                 not_inspected: bool = False) -> None:
-        """Tell the PLC, log the part, update statistics and the viewer (processing thread only)."""
+        """Record the part (write-ahead: durable before the PLC hears of it), then tell the PLC, update statistics
+        and the viewer. A row that cannot be written turns the decision into a reject (fail closed)."""
         t_decided = time.perf_counter()
         empty = decision.decision == "empty"
         # an announced part that is not in view fails closed (REJECT); trigger-free, an empty frame is no part
-        tell_plc = part.announced and (self.link.triggered or not empty)
-        to_plc = "reject" if empty else decision.decision
-        delivered = self.link.report(part.part_id, to_plc, decision.reason) if tell_plc else None
-        t_io = time.perf_counter()
+        tell_plc = part.announced and self.link.has_plc and (self.link.triggered or not empty)
         frame = part.frame
         gt = frame.ground_truth if frame is not None else None
         # no part in view has no good/defective label: logged as unknown, counted as "none" in the statistics
@@ -239,18 +309,29 @@ class Station:
             score=inspection.score if inspection else None, threshold=self.threshold,
             model_id=self.inspector.detector.model_id, reason=decision.reason, grab_ms=part.grab_ms,
             demosaic_ms=timings.get("demosaic"), priors_ms=priors_ms, model_ms=timings.get("model"),
-            decision_ms=timings.get("decision"), io_ms=1e3 * (t_io - t_decided),
-            total_ms=1e3 * (t_decided - part.t_trigger),
-            io_delivered=delivered, ground_truth_label=truth,
+            decision_ms=timings.get("decision"), io_ms=None, total_ms=1e3 * (t_decided - part.t_trigger),
+            io_delivered=False if tell_plc else None, ground_truth_label=truth,
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path)
-        self.log.append(record)
+        record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
+        if tell_plc:
+            self.link.report(part.part_id, "pass" if record.decision == "pass" else "reject", record.reason)
         self.stats.add(record.decision, record.total_ms, gt.label if gt is not None else None,
                        gt.present if gt is not None else True)
         if self.viewer is not None and inspection is not None and "intensity" in inspection.priors:
             p = inspection.priors
-            self.viewer.put(ViewFrame(part.part_id, decision.decision, inspection.score, self.threshold,
+            self.viewer.put(ViewFrame(part.part_id, record.decision, inspection.score, self.threshold,
                                       p["intensity"], p.get("dolp"), p.get("aolp"), p.get("normal"),
-                                      inspection.heatmap, decision.reason, self.stats.summary()))
+                                      inspection.heatmap, record.reason, self.stats.summary()))
+
+    def _refused(self, trigger: Trigger) -> str:
+        """A part announced while the station stops: recorded, then rejected (``LineLink.refuse_triggers``)."""
+        reason = f"not judged: station stopping ({self.fatal})" if self.fatal else "not judged: station stopping"
+        record = InspectionRecord("reject", time.time(), part_id=trigger.part_id, threshold=self.threshold,
+                                  model_id=self.inspector.detector.model_id, reason=reason,
+                                  total_ms=1e3 * (time.perf_counter() - trigger.t_arrival), io_delivered=False)
+        record = self._records.write(record, awaits_plc=True, t_decided=time.perf_counter())
+        self.stats.add(record.decision, record.total_ms, None)
+        return reason
 
     # -- control -------------------------------------------------------------------------------------------
     @property
@@ -258,21 +339,30 @@ class Station:
         """Parts taken from the camera so far (each ends in one log row; frames lost in transport add theirs)."""
         return self._grabbed
 
+    @property
+    def unrecorded(self) -> int:
+        """Rows that could not be written yet (disk full or failing), kept in memory and retried every cycle."""
+        return self._records.backlog
+
     def run(self, max_parts: int | None = None, progress_every_s: float = 5.0) -> LiveStats:
-        """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; drain and return."""
+        """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; answer every part
+        announced until the link is closed; return the statistics."""
         acq = threading.Thread(target=self._acquire, args=(max_parts,), name="acquisition", daemon=True)
         self.camera.start()
         acq.start()
         last = time.perf_counter()
+        poll_s = min(0.2, self.cycle_time_ms / 2e3)
         try:
             while True:
                 try:
-                    part = self.queue.get(timeout_s=0.2)
+                    part = self.queue.get(timeout_s=poll_s)
                 except Closed:
                     break
                 self._finish_dropped()
                 if part is not None:
                     self._process(part)
+                self._answer_expired()
+                self._records.settle(self.link.outcomes())
                 if time.perf_counter() - last > progress_every_s:
                     last = time.perf_counter()
                     log.info("%s", ", ".join(f"{k} {v:.4g}" for k, v in self.stats.summary().items()))
@@ -281,7 +371,19 @@ class Station:
             acq.join(timeout=5)
             self.camera.stop()
             self._finish_dropped()
+            self._shut_down_link()
         return self.stats
+
+    def _shut_down_link(self) -> None:
+        """Every part announced from now on is recorded and rejected until the port closes; wait (up to
+        ``settle_timeout_s``) for the PLC's acknowledgements; record them; close the link."""
+        self.link.refuse_triggers(self._refused)
+        self.link.flush(self.settle_timeout_s)
+        self.link.close()
+        self._records.settle(self.link.outcomes())
+        if self._records.backlog:
+            log.error("%d inspection row(s) could not be written to %s (their parts were rejected at the PLC)",
+                      self._records.backlog, self.log.path)
 
     def stop(self) -> None:
         self._stop.set()
@@ -296,3 +398,80 @@ class Station:
         finally:
             for s, handler in previous.items():
                 signal.signal(s, handler)
+
+
+class RecordKeeper:
+    """Writes the log rows of the loop (from the processing thread, and from the PLC link's thread at shutdown):
+    write-ahead of the PLC, and fail closed when the log cannot be written.
+
+    A row that cannot be written (disk full, I/O error) is kept in memory (up to ``MAX_BACKLOG`` rows) and retried
+    before every later row, and its part is rejected at the PLC with the reason; the error is logged every time.
+    ``settle`` records the PLC's acknowledgements (``io_delivered``) of rows written or still waiting."""
+
+    MAX_BACKLOG = 100_000
+
+    def __init__(self, inspection_log: InspectionLog) -> None:
+        self.log = inspection_log
+        self._lock = threading.RLock()
+        self._backlog: deque[InspectionRecord] = deque()
+        self._row_of: dict[str, tuple[int, float]] = {}  # part id -> (row id, decided at), PLC answer open
+        self._unsettled: dict[str, tuple[bool, float]] = {}  # outcomes (acknowledged, when) not yet in the log
+        self.lost_rows = 0
+
+    @property
+    def backlog(self) -> int:
+        return len(self._backlog)
+
+    def write(self, record: InspectionRecord, awaits_plc: bool, t_decided: float) -> InspectionRecord:
+        """Write ``record`` (after any backlog) and return what was recorded: the record itself, or, when the log
+        fails, the same part rejected with the log's error as its reason (kept in the backlog). ``t_decided``
+        (``time.perf_counter()``): when the decision was made, for ``io_ms`` once the PLC acknowledges it."""
+        with self._lock:
+            try:
+                self._flush_backlog()
+                row_id = self.log.append(record)[0]
+            except LogError as exc:
+                log.error("%s; part %s is rejected (fail closed)", exc, record.part_id)
+                if record.decision == "pass":
+                    record = dataclasses.replace(record, decision="reject",
+                                                 reason=f"not recorded: {exc}; judged {record.decision}")
+                self._keep(record)
+                return record
+            if awaits_plc and record.part_id is not None:
+                self._row_of[record.part_id] = (row_id, t_decided)
+            return record
+
+    def settle(self, outcomes: list[tuple[str, bool, float]]) -> None:
+        """Record the PLC's answers: ``io_delivered`` True and ``io_ms`` from decision to acknowledgement for an
+        acknowledged decision (an unacknowledged one keeps False)."""
+        with self._lock:
+            self._unsettled.update((p, (ok, t)) for p, ok, t in outcomes)
+            try:
+                self._flush_backlog()
+                written = [p for p in self._unsettled if p in self._row_of]
+                self.log.set_delivered({self._row_of[p][0]: (True, 1e3 * (self._unsettled[p][1] - self._row_of[p][1]))
+                                        for p in written if self._unsettled[p][0]})
+            except LogError as exc:
+                log.error("%s (PLC acknowledgements kept for later)", exc)
+                return
+            for p in written:
+                del self._row_of[p], self._unsettled[p]
+            while len(self._unsettled) > self.MAX_BACKLOG:  # answers for rows neither written nor kept
+                del self._unsettled[next(iter(self._unsettled))]
+
+    def _keep(self, record: InspectionRecord) -> None:
+        if len(self._backlog) >= self.MAX_BACKLOG:
+            self._backlog.popleft()
+            self.lost_rows += 1
+        self._backlog.append(record)
+
+    def _flush_backlog(self) -> None:
+        """Write the rows kept while the log failed, oldest first, with the PLC answers known by now."""
+        while self._backlog:
+            r = self._backlog[0]
+            ok = self._unsettled.get(r.part_id, (False, 0.0))[0] if r.part_id is not None else False
+            row = dataclasses.replace(r, io_delivered=True) if ok else r
+            self.log.append(row)  # raises LogError: the rest stays kept
+            self._backlog.popleft()
+            if r.part_id is not None:
+                self._unsettled.pop(r.part_id, None)

@@ -69,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
             from station.viewer import ViewerFeed
 
             viewer = ViewerFeed()
-        link = open_link(cfg, stack)
+        link = open_link(cfg, stack, args.frames)
         station = build_station(cfg, detector, camera, link, inspection_log, viewer=viewer, rejects=rejects)
         print(f"inspecting with camera {cfg.camera.kind}, PLC {cfg.io.mode}, log {cfg.log.path}"
               + (f", {args.frames} parts" if args.frames else ", until Ctrl-C"))

@@ -95,13 +95,14 @@ def test_trigger_decision_ack_round_trip(pair: Socat) -> None:
     peer = Peer(pair.b)
     with LineIO(cfg(pair.a)) as io:
         peer.send(b"TRIG 17\r\nTRIG 18\n")
-        assert io.next_trigger(2.0) == "17" and io.next_trigger(2.0) == "18"
-        assert io.report("17", "pass", None) is True
-        assert io.report("18", "reject", "anomaly score 0.93") is True
+        assert io.next_trigger(2.0).part_id == "17" and io.next_trigger(2.0).part_id == "18"
+        assert io.report("17", "pass", None) is False  # pending until acknowledged
+        assert io.report("18", "reject", "anomaly score 0.93") is False
         assert peer.lines(2) == ["PASS 17", "REJECT 18 anomaly_score_0_93"]
-        assert io.pending() == 2  # until the PLC acknowledges
+        assert io.pending() == 2 and io.outcomes() == []  # until the PLC acknowledges
         peer.send(b"ACK 17\nACK 18\n")
         assert io.flush(2.0)
+        assert [o[:2] for o in io.outcomes()] == [("17", True), ("18", True)] and io.outcomes() == []
         assert io.next_trigger(0.05) is None
     assert io.undelivered() == [] and io.stats.acked == 2
     peer.close()
@@ -117,7 +118,7 @@ def test_faults_are_logged_counted_and_answered(pair: Socat, caplog: pytest.LogC
         peer.send(b"TRIG bad id!\n")
         peer.send(b"TRIG 5\nTRIG 5\n")
         peer.send(b"ERR conveyor jam\n")
-        assert io.next_trigger(2.0) == "5"
+        assert io.next_trigger(2.0).part_id == "5"
         errs = peer.lines(5)
         assert io.next_trigger(0.2) is None  # the duplicate never becomes a part
     assert errs == ["ERR not ASCII", "ERR line over 64 bytes", "ERR unknown command 'FOO'", "ERR bad part id",
@@ -134,7 +135,7 @@ def test_peer_disappears_decisions_wait_and_go_out_after_reconnect(pair: Socat,
     io = LineIO(cfg(pair.a))
     io.start()
     peer.send(b"TRIG 1\n")
-    assert io.next_trigger(2.0) == "1"
+    assert io.next_trigger(2.0).part_id == "1"
     peer.close()
     pair.kill()  # the PLC side vanishes
     deadline = time.monotonic() + 3
@@ -149,6 +150,7 @@ def test_peer_disappears_decisions_wait_and_go_out_after_reconnect(pair: Socat,
     assert got == ["REJECT 1 anomaly", "PASS 2"]
     peer.send(b"ACK 1\nACK 2\n")
     assert io.flush(2.0)
+    assert [o[:2] for o in io.outcomes()] == [("1", True), ("2", True)]  # acknowledged after the reconnect
     assert io.close() == []
     assert io.stats.disconnects >= 1 and io.stats.reconnects >= 1
     assert "PLC link" in caplog.text and "lost" in caplog.text
@@ -172,6 +174,7 @@ def test_unacknowledged_and_closed_while_down_are_reported_undelivered(pair: Soc
     io.report("10", "reject", "timeout")
     left = io.close(flush_timeout_s=0.2)
     assert left == [("9", "PASS 9"), ("10", "REJECT 10 timeout")] and io.stats.undelivered == 2
+    assert [o[:2] for o in io.outcomes()] == [("9", False), ("10", False)]  # never acknowledged: not delivered
 
 
 def test_station_heartbeat(pair: Socat) -> None:
@@ -204,8 +207,9 @@ def test_with_the_simulated_plc() -> None:
         with LineIO(cfg(plc.station_port, heartbeat_s=0.05)) as io:
             ids = []
             while len(ids) < 20:
-                part = io.next_trigger(2.0)
-                assert part is not None
+                trigger = io.next_trigger(2.0)
+                assert trigger is not None
+                part = trigger.part_id
                 ids.append(part)
                 io.report(part, "pass" if len(ids) % 3 else "reject", "anomaly")
             assert io.flush(3.0)
@@ -213,3 +217,36 @@ def test_with_the_simulated_plc() -> None:
     assert ids == [f"P{i}" for i in range(1, 21)]
     assert plc.record.decisions["P3"] == "REJECT anomaly" and plc.record.decisions["P1"] == "PASS"
     assert plc.record.duplicate_decisions == 0 and io.undelivered() == [] and plc.record.heartbeats >= 1
+
+
+def test_triggers_carry_their_arrival_time_and_stale_ones_can_be_taken_out(pair: Socat) -> None:
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a)) as io:
+        t0 = time.perf_counter()
+        peer.send(b"TRIG a1\nTRIG a2\n")
+        deadline = time.monotonic() + 2
+        while io.stats.triggers < 2 and time.monotonic() < deadline:
+            time.sleep(0.005)
+        time.sleep(0.3)  # the station is busy elsewhere: the triggers age in the queue
+        first = io.expired(before=time.perf_counter() - 0.2)
+        assert [t.part_id for t in first] == ["a1", "a2"]
+        assert all(t0 <= t.t_arrival <= t0 + 0.2 for t in first)  # when they reached the host, not when taken
+        assert io.next_trigger(0.05) is None
+    peer.close()
+
+
+def test_refusing_triggers_answers_waiting_and_new_ones_with_a_reason(pair: Socat) -> None:
+    peer = Peer(pair.b)
+    seen: list[str] = []
+    with LineIO(cfg(pair.a)) as io:
+        peer.send(b"TRIG w1\n")
+        deadline = time.monotonic() + 2
+        while io.stats.triggers < 1 and time.monotonic() < deadline:
+            time.sleep(0.005)
+        io.refuse_triggers(lambda t: seen.append(t.part_id) or "station stopping")
+        peer.send(b"TRIG n1\n")
+        assert peer.lines(2) == ["REJECT w1 station_stopping", "REJECT n1 station_stopping"]
+        assert seen == ["w1", "n1"] and io.next_trigger(0.05) is None
+        peer.send(b"ACK w1\nACK n1\n")
+        assert io.flush(2.0)
+    peer.close()

@@ -226,8 +226,8 @@ def test_io_delivered_is_set_by_row_id_after_the_row_is_written(tmp_path):
     with InspectionLog(tmp_path / "log.sqlite") as log:
         ids = log.append([InspectionRecord("pass", 1000.0 + i, io_delivered=False) for i in range(3)])
         assert ids == [1, 2, 3]
-        log.set_delivered({1: True, 3: True})
-        assert [r["io_delivered"] for r in log.rows()] == [True, False, True]
+        log.set_delivered({1: (True, 3.5), 3: (True, 1.0)})
+        assert [(r["io_delivered"], r["io_ms"]) for r in log.rows()] == [(True, 3.5), (False, None), (True, 1.0)]
 
 
 def test_the_write_ahead_log_stays_small(tmp_path):

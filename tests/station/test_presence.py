@@ -11,6 +11,7 @@ import pytest
 from drivers.camera import CameraBase, CameraConfig
 from drivers.errors import CameraTimeout
 from drivers.frame import Frame, GroundTruth
+from drivers.line_io import Trigger
 from model.priors import IMX250MZR, compute_priors
 from model.priors.mosaic import stokes_to_mosaic
 from model.priors.testing import detailed_stokes
@@ -18,7 +19,7 @@ from station.config import ConfigError, StationConfig, parse_config
 from station.inspection_log import InspectionLog
 from station.inspector import Inference, Inspector
 from station.log_report import summarize
-from station.loop import Station
+from station.loop import NoLink, Station
 from station.presence import PresenceCheck, dolp_contrast
 from station.reject_store import RejectStore
 
@@ -129,16 +130,24 @@ class CountingDetector:
         return Inference(0.1)
 
 
-class RecordingLink:
+class RecordingLink(NoLink):
+    has_plc = True
+
     def __init__(self, n: int, triggered: bool) -> None:
         self.triggered, self.pending, self.reports = triggered, [f"T{i}" for i in range(n)], []
+        self._settled: list = []
 
     def next_trigger(self, timeout_s):
-        return self.pending.pop(0) if self.pending else None
+        return Trigger(self.pending.pop(0), time.perf_counter()) if self.pending else None
 
     def report(self, part_id, decision, reason):
         self.reports.append((part_id, decision, reason))
-        return True
+        return False
+
+    def outcomes(self):  # the PLC acknowledges every decision at once
+        out = [(p, True, time.perf_counter()) for p, _, _ in self.reports[len(self._settled):]]
+        self._settled = list(self.reports)
+        return out
 
 
 def run_station(tmp_path, script, *, triggered: bool, presence: bool = True):
