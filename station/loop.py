@@ -18,6 +18,7 @@ configured backpressure. Every part ends in exactly one log row:
 from __future__ import annotations
 
 import dataclasses
+import json
 import logging
 import signal
 import threading
@@ -182,6 +183,8 @@ class Station:
         self._grabbed = 0
         self._counter = 0
         self._records = RecordKeeper(inspection_log)
+        self.stale_frames = 0
+        """Frames skipped because they were completed before their part could have been imaged."""
         self.fatal: str | None = None
 
     # -- acquisition thread -------------------------------------------------------------------------------
@@ -200,9 +203,7 @@ class Station:
             self._counter += 1
             part = Part(str(self._counter), time.perf_counter())
         try:
-            if self.camera.config.trigger == "software":
-                self.camera.trigger()
-            part.frame = self.camera.grab(self.grab_timeout_ms)
+            part.frame = self._grab_for(part)
         except CameraTimeout as exc:
             if not self.link.triggered:  # free run: no part was announced, nothing to judge
                 log.warning("grab timeout without a trigger: %s", exc)
@@ -214,6 +215,31 @@ class Station:
             self._stop.set()
         part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
         return part
+
+    def _grab_for(self, part: Part) -> Frame:
+        """The frame of ``part``: triggered, frames completed before the part could have been imaged are an earlier
+        part's (one that arrived after its own part timed out) and are skipped, never judged for this part.
+        Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host."""
+        software = self.camera.config.trigger == "software"
+        if software:
+            earliest = time.perf_counter()
+            self.camera.trigger()
+        else:
+            earliest = part.t_trigger - self.cycle_time_ms / 1e3
+        deadline = time.perf_counter() + self.grab_timeout_ms / 1e3
+        while True:
+            remaining_ms = max(1, int(1e3 * (deadline - time.perf_counter())))
+            frame = self.camera.grab(remaining_ms)
+            if not self.link.triggered or frame.host_timestamp_ns <= 0:
+                return frame
+            completed = time.perf_counter() - (time.time_ns() - frame.host_timestamp_ns) / 1e9
+            if completed >= earliest:
+                return frame
+            self.stale_frames += 1
+            log.warning("frame %d completed %.0f ms before part %s could be imaged: an earlier part's, skipped",
+                        frame.frame_id, 1e3 * (earliest - completed), part.part_id)
+            if time.perf_counter() >= deadline:
+                raise CameraTimeout(f"no frame of its own within {self.grab_timeout_ms} ms (only earlier parts')")
 
     def _note_lost_frames(self, part: Part) -> None:
         """Free run: frames missing between two frame ids never reached the host, one not-inspected row each, at
@@ -381,9 +407,7 @@ class Station:
         self.link.flush(self.settle_timeout_s)
         self.link.close()
         self._records.settle(self.link.outcomes())
-        if self._records.backlog:
-            log.error("%d inspection row(s) could not be written to %s (their parts were rejected at the PLC)",
-                      self._records.backlog, self.log.path)
+        self._records.give_up()
 
     def stop(self) -> None:
         self._stop.set()
@@ -458,6 +482,20 @@ class RecordKeeper:
                 del self._row_of[p], self._unsettled[p]
             while len(self._unsettled) > self.MAX_BACKLOG:  # answers for rows neither written nor kept
                 del self._unsettled[next(iter(self._unsettled))]
+
+    def give_up(self) -> None:
+        """At shutdown: rows still unwritten go to the process log (stderr), one JSON line each, so that no record
+        vanishes without a trace; their parts were rejected at the PLC."""
+        with self._lock:
+            try:
+                self._flush_backlog()
+            except LogError as exc:
+                log.error("%s: %d row(s) could not be written; they follow as JSON (parts rejected at the PLC)",
+                          exc, len(self._backlog))
+            for r in self._backlog:
+                log.error("UNRECORDED ROW %s", json.dumps(dataclasses.asdict(r)))
+            self.lost_rows += len(self._backlog)
+            self._backlog.clear()
 
     def _keep(self, record: InspectionRecord) -> None:
         if len(self._backlog) >= self.MAX_BACKLOG:

@@ -4,7 +4,8 @@ Files go to ``<image_dir>/<YYYY-MM-DD>/<part id>_f<frame id>.npz`` with arrays `
 its own dtype) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the model did
 not run). Written to a temporary name, then renamed, so a crash leaves no half file under the final name.
 A failed write (full or read-only disk) is logged and the part's row keeps ``image_path`` NULL: the decision
-and its log row never depend on the image.
+and its log row never depend on the image. Images are not written when less than ``reserve_bytes`` would stay free
+on their file system, so that images never take the room the log's rows need when both share a disk.
 """
 
 from __future__ import annotations
@@ -22,10 +23,27 @@ log = logging.getLogger(__name__)
 _UNSAFE = re.compile(r"[^A-Za-z0-9_.:-]+")
 
 
+RESERVE_BYTES = 16 * 2**20
+"""Free space kept for the inspection log: about 30,000 rows."""
+
+
 class RejectStore:
-    def __init__(self, image_dir: str | Path) -> None:
+    def __init__(self, image_dir: str | Path, reserve_bytes: int = RESERVE_BYTES) -> None:
         self.root = Path(image_dir)
+        self.reserve_bytes = reserve_bytes
         self.failures = 0
+
+    def _free_bytes(self) -> int:
+        """Free bytes on the file system the images go to (its nearest existing folder)."""
+        import shutil
+
+        folder = self.root
+        while not folder.exists() and folder != folder.parent:
+            folder = folder.parent
+        try:
+            return shutil.disk_usage(folder).free
+        except OSError:
+            return 0
 
     def save(self, part_id: str, frame_id: int | None, raw: np.ndarray, heatmap: np.ndarray | None) -> str | None:
         """Write one rejected part; returns the file path, or None when it could not be written (logged)."""
@@ -37,6 +55,9 @@ class RejectStore:
             arrays["heatmap"] = heatmap.astype(np.float16)
         tmp = path.with_name(path.name + ".tmp")
         try:
+            size = sum(a.nbytes for a in arrays.values())
+            if self._free_bytes() - size < self.reserve_bytes:
+                raise OSError(f"less than {self.reserve_bytes / 2**20:.0f} MiB would stay free for the log")
             path.parent.mkdir(parents=True, exist_ok=True)
             with open(tmp, "wb") as f:
                 np.savez(f, **arrays)

@@ -382,3 +382,45 @@ def test_a_full_disk_rejects_at_the_plc_keeps_answering_and_writes_the_rows_when
     rows = {r["part_id"]: r for r in log.rows()}
     assert sorted(rows) == sorted(answered) and station.unrecorded == 0  # written once the disk had room
     assert all("not recorded" in rows[p]["reason"] for p, d in answered.items() if d == "reject")
+
+
+def test_a_frame_completed_before_the_trigger_is_never_judged_for_that_part(tmp_path):
+    """A frame that arrived after its own part timed out would be judged for the next part: skipped instead."""
+    link = ScriptedLink(2)
+    camera = ScriptedCamera([0, 1, 0], trigger="software")
+    orig = camera.grab
+    stale = {"left": 1}
+
+    def grab(timeout_ms=None):
+        frame = orig(timeout_ms)
+        if frame.frame_id == 2 and stale["left"]:  # the defective part's frame, completed a second ago
+            stale["left"] = 0
+            return Frame(frame.raw, "Mono8", 8, 2, 0, time.time_ns() - 1_000_000_000,
+                         ground_truth=frame.ground_truth)
+        return frame
+
+    camera.grab = grab
+    camera.script = [0, 1, 0]
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block")
+    station.run(max_parts=2)
+    rows = list(log.rows())
+    assert [r["camera_frame_id"] for r in rows] == [1, 3] and station.stale_frames == 1
+
+
+def test_a_disk_that_stays_full_leaves_every_unwritten_row_in_the_process_log(tmp_path, caplog):
+    log = FailingLog(tmp_path / "log.sqlite", ok=2, full=10**9)
+    link = ScriptedLink(5)
+    station = Station(ScriptedCamera([0] * 5, trigger="software"), Inspector(BrightnessDetector(), IMX250MZR), link,
+                      log, threshold=0.5, cycle_time_ms=10_000.0, queue_size=16, backpressure="block")
+    station.run(max_parts=5)
+    assert [d for _, d in link.reports] == ["pass", "pass", "reject", "reject", "reject"]
+    unrecorded = [r.message for r in caplog.records if r.message.startswith("UNRECORDED ROW")]
+    assert len(unrecorded) == 3 and '"part_id": "T4"' in unrecorded[-1]
+
+
+def test_images_never_take_the_room_the_log_needs(tmp_path):
+    from station.reject_store import RejectStore
+
+    raw = np.zeros((4, 4), np.uint8)
+    assert RejectStore(tmp_path / "r", reserve_bytes=2**62).save("P1", 1, raw, None) is None
+    assert RejectStore(tmp_path / "r", reserve_bytes=0).save("P1", 1, raw, None) is not None
