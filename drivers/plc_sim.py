@@ -64,8 +64,13 @@ class _SerialPort:
 
 @dataclass
 class PLCRecord:
+    """What the PLC sent and received; times are ``time.monotonic()`` seconds on the PLC's side."""
+
     triggers_sent: list[str] = field(default_factory=list)
+    trigger_times: dict[str, float] = field(default_factory=dict)
     decisions: dict[str, str] = field(default_factory=dict)  # part id -> "PASS" or "REJECT <reason>"
+    decision_times: dict[str, float] = field(default_factory=dict)  # part id -> first decision received
+    acked: set[str] = field(default_factory=set)  # part ids the PLC acknowledged
     duplicate_decisions: int = 0
     heartbeats: int = 0
     errors: list[str] = field(default_factory=list)
@@ -101,6 +106,7 @@ class SimulatedPLC:
                 part_id = f"{self.id_prefix}{self._next}"
                 self._next += 1
             self.record.triggers_sent.append(part_id)
+            self.record.trigger_times[part_id] = time.monotonic()
         self.send(f"TRIG {part_id}\n".encode())
         return part_id
 
@@ -163,7 +169,11 @@ class SimulatedPLC:
             with self._lock:
                 if part_id in self.record.decisions:
                     self.record.duplicate_decisions += 1
+                else:
+                    self.record.decision_times[part_id] = time.monotonic()
                 self.record.decisions[part_id] = cmd if cmd == "PASS" else f"REJECT {reason}"
+                if self.ack:
+                    self.record.acked.add(part_id)
             if self.ack:
                 self.send(f"ACK {part_id}\n".encode())
         elif cmd == "HB":

@@ -173,6 +173,18 @@ class InspectionLog:
         except sqlite3.Error as exc:
             raise _db_error(self.path, f"write {len(rows)} record(s)", exc) from None
 
+    def amend_decision(self, row_id: int, decision: str, reason: str) -> None:
+        """Change one row's decision and reason (a pass found late after its row was written becomes a reject
+        before the PLC hears of it); LogError when it cannot be written."""
+        if decision not in DECISIONS:
+            raise ValueError(f"decision must be one of {DECISIONS}, got {decision!r}")
+        try:
+            with self._db:
+                self._db.execute("UPDATE inspections SET decision = ?, reason = ? WHERE id = ?",
+                                 (decision, reason, row_id))
+        except sqlite3.Error as exc:
+            raise _db_error(self.path, f"amend row {row_id}", exc) from None
+
     def set_delivered(self, outcomes: Mapping[int, tuple[bool, float | None]]) -> None:
         """Set ``io_delivered`` and ``io_ms`` of rows (by id): whether the PLC acknowledged the part's decision,
         and how long after the decision. One transaction; LogError (nothing changed) when it cannot be written."""

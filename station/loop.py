@@ -339,6 +339,11 @@ class Station:
             io_delivered=False if tell_plc else None, ground_truth_label=truth,
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path)
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
+        if tell_plc and record.decision == "pass":
+            late_ms = 1e3 * (time.perf_counter() - part.t_trigger)
+            if late_ms > self.cycle_time_ms:  # writing the row took the rest of the cycle: a late PASS is no PASS
+                record = self._records.amend(record, "reject", f"not judged in time: {late_ms:.1f} ms with its "
+                                                               f"log row > cycle time {self.cycle_time_ms:.1f} ms")
         if tell_plc:
             self.link.report(part.part_id, "pass" if record.decision == "pass" else "reject", record.reason)
         self.stats.add(record.decision, record.total_ms, gt.label if gt is not None else None,
@@ -369,6 +374,11 @@ class Station:
     def unrecorded(self) -> int:
         """Rows that could not be written yet (disk full or failing), kept in memory and retried every cycle."""
         return self._records.backlog
+
+    @property
+    def unrecorded_rows(self) -> int:
+        """Rows never written (the disk stayed full; each went to the process log as JSON at shutdown)."""
+        return self._records.lost_rows
 
     def run(self, max_parts: int | None = None, progress_every_s: float = 5.0) -> LiveStats:
         """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; answer every part
@@ -464,6 +474,24 @@ class RecordKeeper:
             if awaits_plc and record.part_id is not None:
                 self._row_of[record.part_id] = (row_id, t_decided)
             return record
+
+    def amend(self, record: InspectionRecord, decision: str, reason: str) -> InspectionRecord:
+        """``record`` (written or kept) with another decision and reason, in the log too; a row that cannot be
+        amended is kept for a retry like an unwritten one (the old row stays: reported in the process log)."""
+        new = dataclasses.replace(record, decision=decision, reason=reason)
+        with self._lock:
+            row = self._row_of.get(record.part_id or "")
+            if row is None:  # kept in the backlog, not written yet
+                for i, r in enumerate(self._backlog):
+                    if r is record:
+                        self._backlog[i] = new
+                return new
+            try:
+                self.log.amend_decision(row[0], decision, reason)
+            except LogError as exc:
+                log.error("%s; row %d still says %s, part %s is rejected", exc, row[0], record.decision,
+                          record.part_id)
+        return new
 
     def settle(self, outcomes: list[tuple[str, bool, float]]) -> None:
         """Record the PLC's answers: ``io_delivered`` True and ``io_ms`` from decision to acknowledgement for an

@@ -86,7 +86,9 @@ def run(args: argparse.Namespace) -> int:
             stats = station.stats
         camera_stats = camera.statistics().as_dict()
     summary = {**stats.summary(), "confusion": dict(stats.confusion), "camera": camera_stats,
-               "model_id": detector.model_id, "threshold": detector.threshold, "log": cfg.log.path}
+               "model_id": detector.model_id, "threshold": detector.threshold, "log": cfg.log.path,
+               "stale_frames": station.stale_frames, "unrecorded_rows": station.unrecorded_rows,
+               "plc_link": dataclasses.asdict(link.stats_snapshot()) if hasattr(link, "stats_snapshot") else None}
     print("\nsummary: " + ", ".join(f"{k} {v:.4g}" if isinstance(v, float) else f"{k} {v}"
                                     for k, v in stats.summary().items()))
     if stats.confusion:

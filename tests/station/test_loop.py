@@ -424,3 +424,27 @@ def test_images_never_take_the_room_the_log_needs(tmp_path):
     raw = np.zeros((4, 4), np.uint8)
     assert RejectStore(tmp_path / "r", reserve_bytes=2**62).save("P1", 1, raw, None) is None
     assert RejectStore(tmp_path / "r", reserve_bytes=0).save("P1", 1, raw, None) is not None
+
+
+class SlowLog(InspectionLog):
+    """A log whose writes take ``delay_s`` (a busy disk)."""
+
+    def __init__(self, path, delay_s):
+        super().__init__(path)
+        self.delay_s = delay_s
+
+    def append(self, records):
+        time.sleep(self.delay_s)
+        return super().append(records)
+
+
+def test_a_pass_that_turns_late_while_its_row_is_written_is_sent_and_logged_as_a_reject(tmp_path):
+    log = SlowLog(tmp_path / "log.sqlite", delay_s=0.08)
+    link = ScriptedLink(2)
+    station = Station(ScriptedCamera([0, 0], trigger="software"), Inspector(BrightnessDetector(), IMX250MZR), link,
+                      log, threshold=0.5, cycle_time_ms=50.0, queue_size=8, backpressure="block")
+    station.run(max_parts=2)
+    rows = list(log.rows())
+    assert [d for _, d in link.reports] == ["reject", "reject"]
+    assert [r["decision"] for r in rows] == ["reject", "reject"]
+    assert "with its log row" in rows[0]["reason"]  # judged in time, its row took the rest of the cycle
