@@ -23,7 +23,7 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
     """Decide one part. In order, each of these rejects with its reason: an ``error`` in an earlier stage;
     more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range). Then ``empty`` (the
     presence check's reason, when it found no part) gives "empty" with that reason. Then each of these rejects:
-    a missing or non-finite score or threshold; judgement later than the cycle time budget; ``score > threshold``.
+    a missing, non-finite or negative score (scores are probabilities) or a non-finite threshold; judgement later than the cycle time budget; ``score > threshold``.
     Otherwise pass. A frame whose pixels are unusable is rejected rather than called empty: its emptiness is not
     known. (A NaN threshold would pass every part: ``score > NaN`` is False.)"""
     if error:
@@ -33,7 +33,7 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
                                   f"(limit {100 * max_invalid_fraction:.2f} %)")
     if empty is not None:
         return Decision("empty", empty)
-    if score is None or not math.isfinite(score):
+    if score is None or not math.isfinite(score) or score < 0.0:
         return Decision("reject", f"not judged: model score is {score}")
     if threshold is None or not math.isfinite(threshold):
         return Decision("reject", f"not judged: threshold is {threshold}")

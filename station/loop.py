@@ -1,18 +1,23 @@
-"""The inspection loop: trigger -> grab -> demosaic -> priors -> model -> decision -> PLC -> log.
+"""The inspection loop: trigger -> grab -> demosaic -> priors -> model -> decision -> log -> PLC.
 
 Acquisition runs in its own thread and hands parts to processing through a bounded ``FrameQueue`` with the
-configured backpressure. Every part ends in exactly one log row:
+configured backpressure. A part's time counts from when its trigger reached the host. Every part the PLC announces
+(or every frame, trigger-free) ends in exactly one log row, written before the PLC hears the decision
+(write-ahead; ``RecordKeeper``), with ``io_delivered`` set once the PLC acknowledges it:
 
 - judged: ``pass`` or ``reject`` (with the reason);
-- could not be judged (grab timeout after a trigger, lost camera, priors or model error, NaN score, over the
-  cycle time): ``reject`` with the reason, and the PLC is told REJECT (fail closed);
+- could not be judged (no frame of its own after a trigger, lost camera, priors or model error, NaN score or
+  threshold, over the cycle time, a trigger older than the cycle before acquisition took it, a row that could not
+  be written): ``reject`` with the reason, and the PLC is told REJECT (fail closed);
 - dropped by backpressure: ``not_inspected`` with the reason, and the PLC is told REJECT;
 - no part in view (``station.presence``, before the model runs): ``empty`` with the check's value as reason.
   When the PLC announced a part (triggered), the PLC is told REJECT: a part was expected and not seen (missing,
   misplaced, or a part the check cannot see), and an unseen part must never pass. Trigger-free, an empty frame
   is the gap between parts: the PLC is told nothing and no image is kept.
 
-``stop()`` (or SIGINT/SIGTERM through ``run_until_signal``) ends acquisition, drains the queue and flushes the log.
+``stop()`` (or SIGINT/SIGTERM through ``run_until_signal``) ends acquisition and drains the queue; then every
+part announced until the PLC link closes is recorded and rejected ("station stopping"), the PLC's last
+acknowledgements are awaited and recorded, and the link is closed. Rules and faults: docs/fail-closed.md.
 """
 
 from __future__ import annotations

@@ -17,6 +17,7 @@ def test_score_against_threshold():
     ({"score": float("nan")}, "model score is nan"),
     ({"score": None}, "model score is None"),
     ({"score": float("inf")}, "model score is inf"),
+    ({"score": -0.25}, "model score is -0.25"),
     ({"score": 0.1, "error": "decode error: frame 17 truncated"}, "decode error: frame 17"),
     ({"score": 0.1, "invalid_fraction": 0.2}, "20.00 % of input pixels invalid"),
     ({"score": 0.1, "elapsed_ms": 140.0, "cycle_time_ms": 100.0}, "140.0 ms > cycle time 100.0 ms"),
