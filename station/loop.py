@@ -186,6 +186,7 @@ class Station:
         self._dropped: deque[Part] = deque()
         self._last_frame: tuple[int, float] | None = None  # (frame id, perf_counter) of the newest frame
         self._grabbed = 0
+        self._count_lock = threading.Lock()
         self._counter = 0
         self._records = RecordKeeper(inspection_log)
         self.stale_frames = 0
@@ -269,7 +270,7 @@ class Station:
                 part = self._next_part()
                 if part is None:
                     continue
-                self._grabbed += 1
+                self._count_part()
                 self._note_lost_frames(part)
                 self._dropped.extend(self.queue.put(part))  # finished by the processing thread, which owns the log
         except Exception as exc:  # an acquisition bug must not leave processing waiting forever
@@ -277,6 +278,10 @@ class Station:
             self.fatal = f"acquisition failed: {exc}"
         finally:
             self.queue.close()
+
+    def _count_part(self) -> None:
+        with self._count_lock:
+            self._grabbed += 1
 
     # -- processing ----------------------------------------------------------------------------------------
     def _finish_dropped(self) -> None:
@@ -289,6 +294,7 @@ class Station:
         """Parts announced more than a cycle ago that acquisition has not taken (camera stalled or reconnecting,
         acquisition behind): rejected as late now, not when the camera comes back."""
         for trigger in self.link.expired(time.perf_counter() - self.cycle_time_ms / 1e3):
+            self._count_part()
             age_ms = 1e3 * (time.perf_counter() - trigger.t_arrival)
             self._finish(Part(trigger.part_id, trigger.t_arrival),
                          None, Decision("reject", f"not judged in time: no frame taken within {age_ms:.0f} ms "
@@ -372,7 +378,8 @@ class Station:
     # -- control -------------------------------------------------------------------------------------------
     @property
     def grabbed(self) -> int:
-        """Parts taken from the camera so far (each ends in one log row; frames lost in transport add theirs)."""
+        """Parts taken so far: by acquisition, or answered as late while it was busy (each ends in one log row;
+        frames lost in transport add theirs). ``run(max_parts)`` stops at this count."""
         return self._grabbed
 
     @property

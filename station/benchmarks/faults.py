@@ -346,7 +346,8 @@ def hostile_files(args: argparse.Namespace, folder: Path) -> CaseResult:
         shutil.copy(model.with_suffix(".pt"), stem.with_suffix(".pt"))
         meta = json.loads(model.with_suffix(".json").read_text())
         meta["weights_file"] = stem.with_suffix(".pt").name
-        meta = edit(meta) or meta
+        new = edit(meta)
+        meta = meta if new is None else new
         stem.with_suffix(".json").write_text(json.dumps(meta, allow_nan=True))
         return json.dumps(str(stem))
 
