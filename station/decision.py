@@ -24,8 +24,9 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
     more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range). Then ``empty`` (the
     presence check's reason, when it found no part) gives "empty" with that reason. Then each of these rejects:
     a missing, non-finite or negative score (scores are probabilities) or a non-finite threshold; judgement later
-    than the cycle time budget; ``score > threshold``. Otherwise pass. A frame whose pixels are unusable is rejected rather than called empty: its emptiness is not
-    known. (A NaN threshold would pass every part: ``score > NaN`` is False.)"""
+    than the cycle time budget; ``score > threshold``. Otherwise pass. A frame whose pixels are unusable is
+    rejected rather than called empty: its emptiness is not known. (A NaN threshold would pass every part:
+    ``score > NaN`` is False.)"""
     if error:
         return Decision("reject", f"not judged: {error}")
     if invalid_fraction > max_invalid_fraction:
