@@ -230,6 +230,9 @@ class AravisCamera(CameraBase):
         if lost > 0:
             log.warning("camera %s: %d frame(s) lost before frame id %d", self.name, lost, device_id)
         late = frame_id <= newest
+        if late and lost == 0:  # a second buffer for a frame id already counted: nothing new to count
+            log.debug("camera %s: frame id %d again: not delivered", self.name, device_id)
+            return None
         if status != Aravis.BufferStatus.SUCCESS or late:
             # a late frame is never delivered: in free run its frame number was already logged as lost, and with
             # a trigger it belongs to an earlier part than the one now waiting for a frame
