@@ -3,8 +3,8 @@
 Runs the configured station (``station.toml``: model, priors, queue, backpressure) on the virtual camera with the
 simulated PLC for ``--parts`` parts, sampling the process's resident memory and the recent latency every
 ``--sample-s`` seconds. Checks at the end: log rows = parts the PLC announced (trigger-free: frames grabbed +
-frames lost; every part has exactly one row), memory growth between the first and last quarter of the run, latency drift. Writes JSON, Markdown and a
-plot of memory and latency against time.
+frames lost; every part has exactly one row), memory growth between the first and last quarter of the run,
+latency drift. Writes JSON, Markdown and a plot of memory and latency against time.
 """
 
 from __future__ import annotations

@@ -159,7 +159,7 @@ def test_frames_completed_out_of_order_under_loss_are_never_a_wrap() -> None:
     finally:
         f.kill()
     ids = [fr.frame_id for fr in frames]
-    assert all(b > a for a, b in zip(ids, ids[1:], strict=False)), ids
+    assert all(b > a for a, b in itertools.pairwise(ids)), ids
     assert 0 <= stats.dropped <= ids[-1] - ids[0], stats
     assert ids[-1] == stats.completed + stats.failed + stats.dropped
 
