@@ -323,11 +323,10 @@ def _drain(proc: subprocess.Popen[str]) -> str:
 
 def _fill(path: Path, leave_bytes: int) -> None:
     """Write ``path`` until the file system is full, then give back ``leave_bytes``."""
-    with open(path, "wb") as f:
+    with open(path, "wb", buffering=0) as f:
         try:
             while True:
                 f.write(b"\0" * 4096)
-                f.flush()
         except OSError:
             pass
     size = path.stat().st_size
