@@ -63,8 +63,9 @@ SCRIPT = textwrap.dedent('''
             t = self.pending.popleft()
             return Trigger(t.part_id, time.perf_counter())
         def report(self, part_id, decision, reason):
-            if self.log.count() and not any(r["part_id"] == part_id for r in self.log.rows(after_id=self.log.last_id() - 50)):
-                self.without_row += 1  # the PLC acts on a decision the log does not hold
+            recent = self.log.rows(after_id=self.log.last_id() - 50)
+            if decision == "pass" and not any(r["part_id"] == part_id for r in recent):
+                self.without_row += 1  # the PLC passes a part the log does not hold
             self.decisions[part_id] = decision
             self._out.append((part_id, True, time.perf_counter()))
             if len(self.decisions) == int(0.75 * N):
@@ -93,7 +94,7 @@ SCRIPT = textwrap.dedent('''
     print(json.dumps({"decisions": len(plc.decisions), "rows": len(rows), "rejected": len(rejected),
                       "unique": len({r["part_id"] for r in rows}), "unrecorded": station.unrecorded_rows,
                       "not_recorded": sum("not recorded" in (r["reason"] or "") for r in rows),
-                      "delivered": sum(bool(r["io_delivered"]) for r in rows)}))
+                      "delivered": sum(bool(r["io_delivered"]) for r in rows), "without_row": plc.without_row}))
 ''')
 
 
@@ -117,4 +118,5 @@ def test_full_disk_in_a_private_mount_namespace(tmp_path: Path) -> None:
     assert got["rows"] == got["unique"] == 400 and got["unrecorded"] == 0  # written once space returned
     assert got["rejected"] > 0 and got["not_recorded"] == got["rejected"]  # only parts whose row failed
     assert got["delivered"] == 400  # the PLC's ACKs reached the rows, the late ones included
+    assert got["without_row"] == 0  # no PASS before its row was durable
     assert "disk is full" in r.stderr or "full" in r.stderr
