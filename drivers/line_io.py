@@ -109,6 +109,12 @@ class _Pending:
     line: bytes
     sent_at: float | None = None  # monotonic time of the last send; None = not yet sent
     sends: int = 0
+    deadline: float | None = None  # perf_counter time after which a PASS never sent goes out as REJECT
+
+    @property
+    def decision(self) -> str:
+        """"pass" or "reject": what the line says."""
+        return "pass" if self.line.startswith(b"PASS ") else "reject"
 
 
 def reason_token(reason: str | None) -> str:
@@ -137,7 +143,7 @@ class LineIO:
         self._triggers: collections.deque[Trigger] = collections.deque()
         self._trigger_cond = threading.Condition()
         self._refusing: Callable[[Trigger], str] | None = None
-        self._outcomes: list[tuple[str, bool, float]] = []
+        self._outcomes: list[tuple[str, bool, float, str]] = []
         self._outbox: collections.deque[_Pending] = collections.deque()  # not yet written
         self._inflight: dict[str, _Pending] = {}  # written, waiting for ACK
         self._undelivered: list[tuple[str, str]] = []
@@ -194,18 +200,20 @@ class LineIO:
         for t in waiting:
             self.report(t.part_id, "reject", handler(t))
 
-    def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
+    def report(self, part_id: str, decision: str, reason: str | None, deadline: float | None = None) -> bool | None:
         """Queue PASS/REJECT for ``part_id``; False: sent once the link is up, acknowledged later (``outcomes``).
-        Never blocks and never drops (see the module docstring)."""
+        ``deadline`` (``time.perf_counter()`` s): a PASS still unsent then (the link was down) goes out as
+        ``REJECT <id> late_link`` instead, since the part has moved on. Never blocks and never drops."""
         line = decision_line(part_id, decision, reason)
         with self._lock:
             self.stats.decisions += 1
-            self._outbox.append(_Pending(part_id, line))
+            self._outbox.append(_Pending(part_id, line, deadline=deadline))
         return False
 
-    def outcomes(self) -> list[tuple[str, bool, float]]:
-        """Decisions settled since the last call: (part id, True, when) acknowledged by the PLC (or written,
-        without ACKs), (part id, False, when) given up undelivered; ``when`` in ``time.perf_counter()`` s."""
+    def outcomes(self) -> list[tuple[str, bool, float, str]]:
+        """Decisions settled since the last call: (part id, True, when, sent) acknowledged by the PLC (or written,
+        without ACKs), (part id, False, when, sent) given up undelivered; ``when`` in ``time.perf_counter()`` s,
+        ``sent`` the decision as it went out ("pass" or "reject": a late PASS goes out as a reject)."""
         with self._lock:
             out, self._outcomes = self._outcomes, []
         return out
@@ -341,7 +349,7 @@ class LineIO:
             with self._lock:
                 p = self._inflight.pop(arg, None)
                 if p is not None:
-                    self._outcomes.append((arg, True, t_arrival))
+                    self._outcomes.append((arg, True, t_arrival, p.decision))
             if p is None:
                 log.info("PLC link %s: ACK for %r, which is not pending (late or repeated)", self.config.port, arg)
             else:
@@ -379,6 +387,11 @@ class LineIO:
                 if not self._outbox:
                     return
                 p = self._outbox[0]
+                if p.sends == 0 and p.deadline is not None and p.decision == "pass" \
+                        and time.perf_counter() > p.deadline:  # never sent in time: the part has moved on
+                    p.line = decision_line(p.part_id, "reject", "late link")
+                    log.warning("PLC link %s: PASS %s not sent in time (link down): sent as REJECT", self.config.port,
+                                p.part_id)
             self._write(p.line)  # raises on a dead link: p stays queued
             p.sent_at, p.sends = time.monotonic(), p.sends + 1
             self.stats.sent += 1
@@ -387,7 +400,7 @@ class LineIO:
                 if self.config.require_ack:
                     self._inflight[p.part_id] = p
                 else:
-                    self._outcomes.append((p.part_id, True, time.perf_counter()))
+                    self._outcomes.append((p.part_id, True, time.perf_counter(), p.decision))
 
     def _give_up(self, p: _Pending, why: str) -> None:
         text = p.line.decode().strip()
@@ -395,7 +408,7 @@ class LineIO:
         log.error("PLC link %s: decision UNDELIVERED: %s (%s)", self.config.port, text, why)
         with self._lock:
             self._undelivered.append((p.part_id, text))
-            self._outcomes.append((p.part_id, False, time.perf_counter()))
+            self._outcomes.append((p.part_id, False, time.perf_counter(), p.decision))
         if self.on_undelivered is not None:
             self.on_undelivered(p.part_id, text)
 

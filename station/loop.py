@@ -73,12 +73,14 @@ class LineLink(Protocol):
         """Answer every trigger from now on REJECT with the reason ``handler`` returns (shutdown)."""
         ...
 
-    def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
-        """Send PASS/REJECT for ``part_id`` (never blocks, never drops)."""
+    def report(self, part_id: str, decision: str, reason: str | None, deadline: float | None = None) -> bool | None:
+        """Send PASS/REJECT for ``part_id`` (never blocks, never drops); a PASS that cannot go out before
+        ``deadline`` (``time.perf_counter()`` s) goes out as a REJECT."""
         ...
 
-    def outcomes(self) -> list[tuple[str, bool, float]]:
-        """Decisions settled since the last call: (part id, acknowledged by the PLC, ``time.perf_counter()``)."""
+    def outcomes(self) -> list[tuple[str, bool, float, str]]:
+        """Decisions settled since the last call: (part id, acknowledged by the PLC, ``time.perf_counter()``, the
+        decision as sent: "pass" or "reject")."""
         ...
 
     def flush(self, timeout_s: float) -> bool:
@@ -105,10 +107,10 @@ class NoLink:
     def refuse_triggers(self, handler: Callable[[Trigger], str]) -> None:
         pass
 
-    def report(self, part_id: str, decision: str, reason: str | None) -> bool | None:
+    def report(self, part_id: str, decision: str, reason: str | None, deadline: float | None = None) -> bool | None:
         return None
 
-    def outcomes(self) -> list[tuple[str, bool, float]]:
+    def outcomes(self) -> list[tuple[str, bool, float, str]]:
         return []
 
     def flush(self, timeout_s: float) -> bool:
@@ -356,7 +358,8 @@ class Station:
                 record = self._records.amend(record, "reject", f"not judged in time: {late_ms:.1f} ms with its "
                                                                f"log row > cycle time {self.cycle_time_ms:.1f} ms")
         if tell_plc:
-            self.link.report(part.part_id, "pass" if record.decision == "pass" else "reject", record.reason)
+            self.link.report(part.part_id, "pass" if record.decision == "pass" else "reject", record.reason,
+                             deadline=part.t_trigger + self.cycle_time_ms / 1e3)
         self.stats.add(record.decision, record.total_ms, gt.label if gt is not None else None,
                        gt.present if gt is not None else True)
         if self.viewer is not None and inspection is not None and "intensity" in inspection.priors:
@@ -460,8 +463,8 @@ class RecordKeeper:
         self.log = inspection_log
         self._lock = threading.RLock()
         self._backlog: deque[InspectionRecord] = deque()
-        self._row_of: dict[str, tuple[int, float]] = {}  # part id -> (row id, decided at), PLC answer open
-        self._unsettled: dict[str, tuple[bool, float]] = {}  # outcomes (acknowledged, when) not yet in the log
+        self._row_of: dict[str, tuple[int, float, str]] = {}  # part id -> (row id, decided at, decision)
+        self._unsettled: dict[str, tuple[bool, float, str]] = {}  # (acknowledged, when, sent) not yet in the log
         self.lost_rows = 0
 
     @property
@@ -484,7 +487,7 @@ class RecordKeeper:
                 self._keep(record)
                 return record
             if awaits_plc and record.part_id is not None:
-                self._row_of[record.part_id] = (row_id, t_decided)
+                self._row_of[record.part_id] = (row_id, t_decided, record.decision)
             return record
 
     def amend(self, record: InspectionRecord, decision: str, reason: str) -> InspectionRecord:
@@ -500,19 +503,27 @@ class RecordKeeper:
                 return new
             try:
                 self.log.amend_decision(row[0], decision, reason)
+                self._row_of[record.part_id or ""] = (row[0], row[1], decision)
             except LogError as exc:
                 log.error("%s; row %d still says %s, part %s is rejected", exc, row[0], record.decision,
                           record.part_id)
         return new
 
-    def settle(self, outcomes: list[tuple[str, bool, float]]) -> None:
+    def settle(self, outcomes: list[tuple[str, bool, float, str]]) -> None:
         """Record the PLC's answers: ``io_delivered`` True and ``io_ms`` from decision to acknowledgement for an
-        acknowledged decision (an unacknowledged one keeps False)."""
+        acknowledged decision (an unacknowledged one keeps False); a pass the link had to send as a reject (too
+        late) becomes a reject in its row."""
         with self._lock:
-            self._unsettled.update((p, (ok, t)) for p, ok, t in outcomes)
+            self._unsettled.update((p, (ok, t, sent)) for p, ok, t, sent in outcomes)
             try:
                 self._flush_backlog()
                 written = [p for p in self._unsettled if p in self._row_of]
+                for p in written:
+                    row_id, _, decided = self._row_of[p]
+                    if decided == "pass" and self._unsettled[p][2] != "pass":
+                        self.log.amend_decision(row_id, "reject", "not answered in time: PLC link down, the "
+                                                                  "PASS went out late as a REJECT")
+                        self._row_of[p] = (row_id, self._row_of[p][1], "reject")
                 self.log.set_delivered({self._row_of[p][0]: (True, 1e3 * (self._unsettled[p][1] - self._row_of[p][1]))
                                         for p in written if self._unsettled[p][0]})
             except LogError as exc:
@@ -547,7 +558,7 @@ class RecordKeeper:
         """Write the rows kept while the log failed, oldest first, with the PLC answers known by now."""
         while self._backlog:
             r = self._backlog[0]
-            ok = self._unsettled.get(r.part_id, (False, 0.0))[0] if r.part_id is not None else False
+            ok = self._unsettled.get(r.part_id, (False, 0.0, ""))[0] if r.part_id is not None else False
             row = dataclasses.replace(r, io_delivered=True) if ok else r
             self.log.append(row)  # raises LogError: the rest stays kept
             self._backlog.popleft()

@@ -133,6 +133,7 @@ def station_toml(folder: Path, args: argparse.Namespace, port: str, log_path: Pa
 
 
 def start_station(config: Path, summary: Path, frames: int | None = None) -> subprocess.Popen[str]:
+    """``station run`` on ``config``; ``frames``: stop after that many parts (None: until SIGTERM)."""
     argv = [sys.executable, "-m", "station.cli", "run", "--config", str(config), "--summary-json", str(summary)]
     if frames:
         argv += ["--frames", str(frames)]
@@ -218,7 +219,7 @@ def run_case(case: str, args: argparse.Namespace, work: Path) -> CaseResult:
         log_path = disk / "inspection.sqlite"
     config = station_toml(folder, args, pair.station, log_path, **over)
     t0 = time.perf_counter()
-    proc = start_station(config, summary_path, frames=None if case in ("sigterm", "camera_killed") else n)
+    proc = start_station(config, summary_path)
     plcs = [SimulatedPLC(port=pair.plc, trigger_period_s=None, heartbeat_s=1.0, id_prefix="A")]
     plcs[0].start()
     note = ""
@@ -265,13 +266,18 @@ def run_case(case: str, args: argparse.Namespace, work: Path) -> CaseResult:
             time.sleep(period)
         if case in ("sigterm", "camera_killed"):
             deadline = time.monotonic() + (60 if case == "camera_killed" else 15)
-            i = n
             while proc.poll() is None and time.monotonic() < deadline:  # the line keeps announcing parts
                 try:
                     plcs[-1].trigger()
                 except OSError:
                     pass
                 time.sleep(period)
+        else:  # the line stops feeding; once the answers have settled, the operator stops the station
+            answered = -1
+            while proc.poll() is None and answered != sum(len(p.record.decisions) for p in plcs):
+                answered = sum(len(p.record.decisions) for p in plcs)
+                time.sleep(2.0)
+            proc.send_signal(signal.SIGTERM)
         proc.wait(timeout=90)
     except Exception as exc:
         note = f"{note}; harness: {exc}".strip("; ")

@@ -250,3 +250,16 @@ def test_refusing_triggers_answers_waiting_and_new_ones_with_a_reason(pair: Soca
         peer.send(b"ACK w1\nACK n1\n")
         assert io.flush(2.0)
     peer.close()
+
+
+def test_a_pass_that_cannot_go_out_before_its_deadline_goes_out_as_a_reject(pair: Socat) -> None:
+    """A PASS queued while the link was down reached the PLC seconds later, after the part had moved on."""
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a)) as io:
+        io.report("7", "pass", None, deadline=time.perf_counter() - 0.5)  # already too late to pass
+        io.report("8", "pass", None, deadline=time.perf_counter() + 60)
+        assert peer.lines(2) == ["REJECT 7 late_link", "PASS 8"]
+        peer.send(b"ACK 7\nACK 8\n")
+        assert io.flush(2.0)
+        assert [(p, ok, sent) for p, ok, _, sent in io.outcomes()] == [("7", True, "reject"), ("8", True, "pass")]
+    peer.close()

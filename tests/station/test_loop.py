@@ -119,11 +119,11 @@ class ScriptedLink:
         for t in waiting:
             self.report(t.part_id, "reject", handler(t))
 
-    def report(self, part_id, decision, reason):
+    def report(self, part_id, decision, reason, deadline=None):
         if self.log is not None:
             assert any(r["part_id"] == part_id for r in self.log.rows()), f"decision for {part_id} before its row"
         self.reports.append((part_id, decision))
-        self._outcomes.append((part_id, self.ack is None or part_id in self.ack, time.perf_counter()))
+        self._outcomes.append((part_id, self.ack is None or part_id in self.ack, time.perf_counter(), decision))
         return False
 
     def outcomes(self):
@@ -287,9 +287,9 @@ def test_parts_announced_while_the_camera_stalls_are_answered_within_a_cycle(tmp
     answered_at = {}
     report = link.report
 
-    def timed_report(part_id, decision, reason):
+    def timed_report(part_id, decision, reason, deadline=None):
         answered_at[part_id] = time.perf_counter()
-        return report(part_id, decision, reason)
+        return report(part_id, decision, reason, deadline)
 
     link.report = timed_report
     announced = {}
@@ -447,3 +447,19 @@ def test_a_pass_that_turns_late_while_its_row_is_written_is_sent_and_logged_as_a
     assert [d for _, d in link.reports] == ["reject", "reject"]
     assert [r["decision"] for r in rows] == ["reject", "reject"]
     assert "with its log row" in rows[0]["reason"]  # judged in time, its row took the rest of the cycle
+
+
+def test_a_pass_the_link_sent_late_as_a_reject_is_a_reject_in_its_row(tmp_path):
+    link = ScriptedLink(2)
+    report = link.report
+
+    def late_link(part_id, decision, reason, deadline=None):  # T1's PASS waited for a reconnect past its deadline
+        return report(part_id, "reject" if part_id == "T1" else decision, reason, deadline)
+
+    link.report = late_link
+    station, log = make_station(tmp_path, ScriptedCamera([0, 0], trigger="software"), BrightnessDetector(), link,
+                                queue_size=8, backpressure="block")
+    station.run(max_parts=2)
+    rows = {r["part_id"]: r for r in log.rows()}
+    assert rows["T0"]["decision"] == "pass"
+    assert rows["T1"]["decision"] == "reject" and "PLC link down" in rows["T1"]["reason"]

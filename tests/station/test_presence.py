@@ -140,12 +140,12 @@ class RecordingLink(NoLink):
     def next_trigger(self, timeout_s):
         return Trigger(self.pending.pop(0), time.perf_counter()) if self.pending else None
 
-    def report(self, part_id, decision, reason):
+    def report(self, part_id, decision, reason, deadline=None):
         self.reports.append((part_id, decision, reason))
         return False
 
     def outcomes(self):  # the PLC acknowledges every decision at once
-        out = [(p, True, time.perf_counter()) for p, _, _ in self.reports[len(self._settled):]]
+        out = [(p, True, time.perf_counter(), d) for p, d, _ in self.reports[len(self._settled):]]
         self._settled = list(self.reports)
         return out
 
