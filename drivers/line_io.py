@@ -389,9 +389,9 @@ class LineIO:
                 p = self._outbox[0]
                 if p.sends == 0 and p.deadline is not None and p.decision == "pass" \
                         and time.perf_counter() > p.deadline:  # never sent in time: the part has moved on
-                    p.line = decision_line(p.part_id, "reject", "late link")
-                    log.warning("PLC link %s: PASS %s not sent in time (link down): sent as REJECT", self.config.port,
-                                p.part_id)
+                    p.line = decision_line(p.part_id, "reject", "late link")  # link down or I/O thread behind
+                    log.warning("PLC link %s: PASS %s could not be sent before its deadline: sent as REJECT",
+                                self.config.port, p.part_id)
             self._write(p.line)  # raises on a dead link: p stays queued
             p.sent_at, p.sends = time.monotonic(), p.sends + 1
             self.stats.sent += 1

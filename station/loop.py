@@ -462,7 +462,7 @@ class RecordKeeper:
     def __init__(self, inspection_log: InspectionLog) -> None:
         self.log = inspection_log
         self._lock = threading.RLock()
-        self._backlog: deque[InspectionRecord] = deque()
+        self._backlog: deque[tuple[InspectionRecord, float, bool]] = deque()  # (record, decided at, awaits PLC)
         self._row_of: dict[str, tuple[int, float, str]] = {}  # part id -> (row id, decided at, decision)
         self._unsettled: dict[str, tuple[bool, float, str]] = {}  # (acknowledged, when, sent) not yet in the log
         self.lost_rows = 0
@@ -484,7 +484,7 @@ class RecordKeeper:
                 if record.decision == "pass":
                     record = dataclasses.replace(record, decision="reject",
                                                  reason=f"not recorded: {exc}; judged {record.decision}")
-                self._keep(record)
+                self._keep((record, t_decided, awaits_plc))
                 return record
             if awaits_plc and record.part_id is not None:
                 self._row_of[record.part_id] = (row_id, t_decided, record.decision)
@@ -497,9 +497,9 @@ class RecordKeeper:
         with self._lock:
             row = self._row_of.get(record.part_id or "")
             if row is None:  # kept in the backlog, not written yet
-                for i, r in enumerate(self._backlog):
+                for i, (r, t, awaits) in enumerate(self._backlog):
                     if r is record:
-                        self._backlog[i] = new
+                        self._backlog[i] = (new, t, awaits)
                 return new
             try:
                 self.log.amend_decision(row[0], decision, reason)
@@ -521,8 +521,9 @@ class RecordKeeper:
                 for p in written:
                     row_id, _, decided = self._row_of[p]
                     if decided == "pass" and self._unsettled[p][2] != "pass":
-                        self.log.amend_decision(row_id, "reject", "not answered in time: PLC link down, the "
-                                                                  "PASS went out late as a REJECT")
+                        self.log.amend_decision(row_id, "reject", "not answered in time: the PASS could not go "
+                                                                  "out before the part's deadline (PLC link down or "
+                                                                  "behind) and went out as a REJECT")
                         self._row_of[p] = (row_id, self._row_of[p][1], "reject")
                 self.log.set_delivered({self._row_of[p][0]: (True, 1e3 * (self._unsettled[p][1] - self._row_of[p][1]))
                                         for p in written if self._unsettled[p][0]})
@@ -543,24 +544,24 @@ class RecordKeeper:
             except LogError as exc:
                 log.error("%s: %d row(s) could not be written; they follow as JSON (parts rejected at the PLC)",
                           exc, len(self._backlog))
-            for r in self._backlog:
+            for r, _, _ in self._backlog:
                 log.error("UNRECORDED ROW %s", json.dumps(dataclasses.asdict(r)))
             self.lost_rows += len(self._backlog)
             self._backlog.clear()
 
-    def _keep(self, record: InspectionRecord) -> None:
+    def _keep(self, entry: tuple[InspectionRecord, float, bool]) -> None:
         if len(self._backlog) >= self.MAX_BACKLOG:
-            self._backlog.popleft()
+            dropped, _, _ = self._backlog.popleft()
+            log.error("UNRECORDED ROW %s", json.dumps(dataclasses.asdict(dropped)))
             self.lost_rows += 1
-        self._backlog.append(record)
+        self._backlog.append(entry)
 
     def _flush_backlog(self) -> None:
-        """Write the rows kept while the log failed, oldest first, with the PLC answers known by now."""
+        """Write the rows kept while the log failed, oldest first; those awaiting the PLC's answer get it from
+        ``settle`` like any other row (it may have come meanwhile, or come later)."""
         while self._backlog:
-            r = self._backlog[0]
-            ok = self._unsettled.get(r.part_id, (False, 0.0, ""))[0] if r.part_id is not None else False
-            row = dataclasses.replace(r, io_delivered=True) if ok else r
-            self.log.append(row)  # raises LogError: the rest stays kept
+            r, t_decided, awaits_plc = self._backlog[0]
+            row_id = self.log.append(r)[0]  # raises LogError: the rest stays kept
             self._backlog.popleft()
-            if r.part_id is not None:
-                self._unsettled.pop(r.part_id, None)
+            if awaits_plc and r.part_id is not None:
+                self._row_of[r.part_id] = (row_id, t_decided, r.decision)

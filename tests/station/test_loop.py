@@ -80,6 +80,8 @@ class ScriptedLink:
         self.reports = []
         self.ack, self.log = ack, log
         self._outcomes = []
+        self._later = []
+        self.ack_later = False
         self.refuse = None
         self.closed = False
         self.lock = threading.Lock()
@@ -127,6 +129,9 @@ class ScriptedLink:
         return False
 
     def outcomes(self):
+        if self.ack_later:  # each ACK arrives one call later (after the station moved on)
+            out, self._later, self._outcomes = self._later, self._outcomes, []
+            return out
         out, self._outcomes = self._outcomes, []
         return out
 
@@ -383,6 +388,19 @@ def test_a_full_disk_rejects_at_the_plc_keeps_answering_and_writes_the_rows_when
     assert all("not recorded" in rows[p]["reason"] for p, d in answered.items() if d == "reject")
 
 
+def test_acks_that_arrive_after_a_kept_row_was_written_reach_it(tmp_path):
+    log = FailingLog(tmp_path / "log.sqlite", ok=2, full=3)
+    link = ScriptedLink(8)
+    link.ack_later = True
+    station = Station(ScriptedCamera([0] * 8, trigger="software"), Inspector(BrightnessDetector(), IMX250MZR), link,
+                      log, threshold=0.5, cycle_time_ms=10_000.0, queue_size=16, backpressure="block")
+    station.run(max_parts=8)
+    link.ack_later = False
+    station._records.settle(link.outcomes() + link._later)
+    rows = list(log.rows())
+    assert len(rows) == 8 and all(r["io_delivered"] for r in rows), [(r["part_id"], r["io_delivered"]) for r in rows]
+
+
 def test_a_frame_completed_before_the_trigger_is_never_judged_for_that_part(tmp_path):
     """A frame that arrived after its own part timed out would be judged for the next part: skipped instead."""
     link = ScriptedLink(2)
@@ -462,4 +480,4 @@ def test_a_pass_the_link_sent_late_as_a_reject_is_a_reject_in_its_row(tmp_path):
     station.run(max_parts=2)
     rows = {r["part_id"]: r for r in log.rows()}
     assert rows["T0"]["decision"] == "pass"
-    assert rows["T1"]["decision"] == "reject" and "PLC link down" in rows["T1"]["reason"]
+    assert rows["T1"]["decision"] == "reject" and "went out as a REJECT" in rows["T1"]["reason"]
