@@ -53,6 +53,9 @@ from drivers.errors import LineIOError
 log = logging.getLogger(__name__)
 
 MAX_LINE_BYTES = 64
+POLL_MS = 5
+"""The I/O thread's read timeout: a decision queued while it waits goes out at most this much later (it was 50 ms,
+half a 100 ms cycle). Incoming lines wake it at once either way."""
 PART_ID = re.compile(r"[A-Za-z0-9_.:-]{1,32}")
 REASON_CHARS = re.compile(r"[^a-z0-9_]+")
 
@@ -456,5 +459,5 @@ def _open_serial(config: LineIOConfig) -> Any:
     import serial
 
     extra = {} if "://" in config.port else {"exclusive": True}  # a second opener of a real port is an error
-    return serial.serial_for_url(config.port, baudrate=config.baudrate, timeout=min(config.timeout_ms, 50) / 1e3,
+    return serial.serial_for_url(config.port, baudrate=config.baudrate, timeout=min(config.timeout_ms, POLL_MS) / 1e3,
                                  write_timeout=config.timeout_ms / 1e3, **extra)
