@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import importlib
 
-BENCHMARKS = ["priors", "render", "camera", "model", "pipeline", "soak", "defects"]
+BENCHMARKS = ["priors", "render", "camera", "model", "pipeline", "soak", "defects", "visibility"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
