@@ -74,3 +74,11 @@ def test_render_visibility_writes_snr_and_summary_and_bench_compares_presets(tmp
                  "--spp", "2", "--out", str(bench)]) == 0
     assert len((bench / "a.jsonl").read_text().splitlines()) == 2
     assert np.isfinite(json.loads((bench / "visibility.json").read_text())["rows"][-1]["median_intensity"])
+
+
+def test_render_benchmark_times_samples_with_and_without_the_oracle() -> None:
+    from station.benchmarks.render import visibility_cost
+
+    row = visibility_cost(4, 1, 64, 48, "sim/presets/line.toml")
+    assert row["samples"] == 1 and row["visibility_s"] > row["oracle_s"] > 0
+    assert row["ratio"] == pytest.approx(row["visibility_s"] / row["plain_s"])
