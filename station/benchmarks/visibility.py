@@ -1,14 +1,14 @@
 """Defect detectability under candidate line presets: the oracle's SNR per prior for the same defects (same seeds).
 
-For each ``--config`` preset (a ``station render --config`` file: [scene], [defects], [sensor]), samples
-``0 .. --count - 1`` are drawn with a defect in every one (``defect_fraction`` 1, any split) from the same
-``--seed``: the same indices draw the same defect types and sizes under every preset (where on the part they land
-depends on the camera: defects are placed on faces that face it). Each defect is measured by the detectability
-oracle (``sim.oracle.defect_snr``: paired renders with and without it, around the defect only, matched-filter SNR
-against the preset's sensor noise). Per preset and defect type the report gives the median SNR per prior and the
-share of visible defects with SNR > ``--threshold`` in intensity alone versus in a polarization prior (DoLP or
-AoLP). Resumable: per-defect records are appended to ``<out>/<preset>.jsonl`` and skipped on the next run.
-Writes ``visibility.json``, ``visibility.md`` and ``visibility.png``.
+For each ``--config`` preset (a ``station render --config`` file: [scene], [defects], [sensor]), samples are drawn
+with a defect in every one (``defect_fraction`` 1, any split) from the same ``--seed``, and the first ``--per-type``
+indices of each defect type are measured: the same indices draw the same defect types and sizes under every preset
+(where on the part they land depends on the camera: defects are placed on faces that face it). Each defect is
+measured by the detectability oracle (``sim.oracle.defect_snr``: paired renders with and without it, around the
+defect only, matched-filter SNR against the preset's sensor noise). Per preset and defect type the report gives
+the median SNR per prior and the share of visible defects with SNR > ``--threshold`` in intensity alone versus in a
+polarization prior (DoLP or AoLP). Resumable: per-defect records are appended to ``<out>/<preset>.jsonl`` and
+skipped on the next run. Writes ``visibility.json``, ``visibility.md`` and ``visibility.png``.
 """
 
 from __future__ import annotations
@@ -31,7 +31,9 @@ CNR_COLUMNS = ["preset", "type", "median_cnr_intensity", "median_cnr_dolp", "med
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--config", action="append", required=True, metavar="TOML",
                    help="a candidate preset (repeat for each; e.g. sim/presets/line.toml)")
-    p.add_argument("--count", type=int, default=150, help="defects drawn per preset (>= 30 per type: 150 for 5 types)")
+    p.add_argument("--per-type", type=int, default=30, help="defects measured per type and preset")
+    p.add_argument("--count", type=int, default=400,
+                   help="sample indices scanned for --per-type defects of each type (the first ones of each type)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--width", type=int, default=640)
     p.add_argument("--height", type=int, default=480)
@@ -54,6 +56,21 @@ def preset_spec(path: str, args: argparse.Namespace):
                                   "sensor": extra.get("sensor", {})})
 
 
+def select_indices(spec, model, per_type: int, count: int) -> list[int]:
+    """The first ``per_type`` indices below ``count`` that draw each defect type (the type of an index is the same
+    under every preset: it comes from the same random stream, before anything the preset changes is used)."""
+    from sim.dataset import draw_sample
+
+    seen: dict[str, int] = {}
+    out = []
+    for i in range(count):
+        kind = draw_sample(spec, model, i).defect.info["type"]
+        if seen.get(kind, 0) < per_type:
+            seen[kind] = seen.get(kind, 0) + 1
+            out.append(i)
+    return out
+
+
 def measure_preset(path: str, args: argparse.Namespace, out: Path, progress: bool = True) -> list[dict[str, Any]]:
     """Per-defect records of one preset (``params.json``-style defect dicts with the oracle's keys plus ``index``),
     resuming from ``<out>/<preset>.jsonl``."""
@@ -74,8 +91,9 @@ def measure_preset(path: str, args: argparse.Namespace, out: Path, progress: boo
                 done[r["index"]] = r
     settings = RenderSettings(spec.width, spec.height, spec.spp, False, spec.max_depth,
                               spec.scene.background_size_m, spec.variant)
+    wanted = select_indices(spec, model, args.per_type, args.count)
     with open(log, "a") as fh:
-        for i in tqdm([i for i in range(args.count) if i not in done], desc=preset_name(path), unit="defect",
+        for i in tqdm([i for i in wanted if i not in done], desc=preset_name(path), unit="defect",
                       disable=not progress):
             draw = draw_sample(spec, model, i)
             if draw.defect is None:
@@ -85,7 +103,7 @@ def measure_preset(path: str, args: argparse.Namespace, out: Path, progress: boo
             fh.write(json.dumps(rec) + "\n")
             fh.flush()
             done[i] = rec
-    return [done[i] for i in sorted(done) if i < args.count]
+    return [done[i] for i in wanted if i in done]
 
 
 def _plot(out: Path, rows: list[dict[str, Any]], presets: list[str], threshold: float) -> str:
@@ -136,8 +154,9 @@ def run(args: argparse.Namespace) -> int:
         secs = [r["snr_oracle"]["seconds"] for r in recs if r["snr_oracle"]["pixels"] > 0]
         cost[name] = float(np.median(secs)) if secs else float("nan")
         rows += [{"preset": name, **r} for r in summarise(recs, args.threshold)]
-    table = (f"Defect detectability per preset (matched-filter SNR against sensor noise, sim/oracle.py; {args.count} "
-             f"defects per preset, seed {args.seed}, {args.width}x{args.height}, {args.spp} spp per oracle render; "
+    table = (f"Defect detectability per preset (matched-filter SNR against sensor noise, sim/oracle.py; "
+             f"{args.per_type} defects per type and preset, seed {args.seed}, {args.width}x{args.height}, "
+             f"{args.spp} spp per oracle render; "
              f"medians over visible defects; above_*: share with SNR > {args.threshold:g}):\n\n"
              + markdown_table(rows, COLUMNS))
     table += (f"\n\nPer-pixel contrast-to-noise (cnr = snr / sqrt(pixels)), median, and the share with cnr > "
