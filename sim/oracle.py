@@ -11,8 +11,12 @@ spp, so the four renders cost about two sample renders).
 Two domains:
   ``snr``           priors of each rendered pixel's noiseless Stokes (what the optics put on the sensor);
   ``snr_demosaic``  priors as the station computes them: the noiseless 2x2 mosaic of each render through the
-                    bilinear demosaic (``model.priors.compute_priors``), against the same per-pixel noise. The ratio
-                    of the two is what mosaic sampling and interpolation do to a defect of that size.
+                    bilinear demosaic (``model.priors.demosaic``), against the noise ``sim.visibility.prior_std``
+                    gives for the demosaiced Stokes (a pixel next to a highlight gets its neighbours' light and
+                    their shot noise); pixels with a saturated mosaic pixel in their 3x3 neighbourhood are left
+                    out. The ratio of the two is what mosaic sampling and interpolation do to a defect of that size.
+                    Caveat: at a few spp the rendering noise of neighbouring pixels leaks into the demosaiced S1, S2
+                    (as scene texture does at the camera), which scrambles AoLP where DoLP is low.
 Both sum over the defect's visible pixels (the sample's ``defect_mask``); changes outside it (a shadow the missing
 stud no longer casts) are not counted. A defect with no visible pixel has SNR 0 in every prior and is not rendered
 again.
@@ -84,13 +88,21 @@ def _maps(stokes: tuple[np.ndarray, np.ndarray, np.ndarray], sensor: SensorConfi
     return prior_values(s0, s1 * e, s2 * e)
 
 
-def _demosaic_maps(stokes: tuple[np.ndarray, np.ndarray, np.ndarray], sensor: SensorConfig) -> dict[str, np.ndarray]:
-    """Priors of the noiseless mosaic (clipped at full scale, as the sensor clips) through the bilinear demosaic."""
+def _demosaic(stokes: tuple[np.ndarray, np.ndarray, np.ndarray], sensor: SensorConfig
+              ) -> tuple[dict[str, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
+    """The station's view of a noiseless render: the 2x2 mosaic (clipped at full scale, as the sensor clips) through
+    the bilinear demosaic. Returns its priors, its Stokes (S1, S2 divided by the polarizer contrast again, so
+    ``prior_std`` can take them) and where a mosaic pixel of its 3x3 neighbourhood is saturated."""
+    import cv2
+
     from model.priors.demosaic import mosaic_to_stokes
 
-    mosaic = np.clip(ideal_mosaic(*stokes, sensor), 0.0, 1.0).astype(np.float32)
-    s0, s1, s2 = mosaic_to_stokes(mosaic, sensor.layout, "bilinear", True)
-    return prior_values(s0.astype(np.float64), s1.astype(np.float64), s2.astype(np.float64))
+    ideal = ideal_mosaic(*stokes, sensor)
+    s0, s1, s2 = mosaic_to_stokes(np.clip(ideal, 0.0, 1.0).astype(np.float32), sensor.layout, "bilinear", True)
+    s0, s1, s2 = (np.asarray(x, np.float64) for x in (s0, s1, s2))
+    e = sensor.polarizer_contrast
+    near_sat = cv2.dilate((ideal >= 1.0).astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+    return prior_values(s0, s1, s2), (s0, s1 / e, s2 / e), near_sat
 
 
 def _pair_std(good: tuple, bad: tuple, sensor: SensorConfig) -> dict[str, np.ndarray]:
@@ -105,17 +117,20 @@ def snr_from_pairs(pairs: list[tuple[RenderOutput, RenderOutput]], mask: np.ndar
     pairs of independent seeds the product of their differences is used (unbiased); with one, its square (biased
     upward by the rendering noise). The normal's difference comes from the first pair's ground truth (its 1-spp
     AOV pass is the same in every render of a pixel, so it has no rendering noise)."""
-    diffs, dem, stds = [], [], []
+    diffs, dem, stds, dem_stds = [], [], [], []
     for bad_out, good_out in pairs:
         bad, good = _exposed(bad_out, sensor), _exposed(good_out, sensor)
         mb, mg = _maps(bad, sensor), _maps(good, sensor)
         diffs.append(prior_differences(mb, mg))
-        dem.append(prior_differences(_demosaic_maps(bad, sensor), _demosaic_maps(good, sensor)))
         stds.append(_pair_std(good, bad, sensor))
+        (db, sb, nb), (dg, sg, ng) = _demosaic(bad, sensor), _demosaic(good, sensor)
+        dem.append(prior_differences(db, dg))
+        dem_stds.append({k: np.where(nb | ng, np.inf, v) for k, v in _pair_std(sg, sb, sensor).items()})
     std = {k: np.sqrt(np.mean([s[k] ** 2 for s in stds], axis=0)) for k in stds[0]}
+    dem_std = {k: np.sqrt(np.mean([s[k] ** 2 for s in dem_stds], axis=0)) for k in dem_stds[0]}
     a, b = diffs[0], diffs[-1]
     snr = {p: matched_snr(a[p], b[p], std[p], mask) for p in CAMERA_PRIORS}
-    snr_dem = {p: matched_snr(dem[0][p], dem[-1][p], std[p], mask) for p in CAMERA_PRIORS}
+    snr_dem = {p: matched_snr(dem[0][p], dem[-1][p], dem_std[p], mask) for p in CAMERA_PRIORS}
     bad0, good0 = pairs[0]
     if bad0.normal is not None and good0.normal is not None:
         dn = prior_differences({**_maps(_exposed(bad0, sensor), sensor), "normal": bad0.normal},

@@ -61,7 +61,7 @@ def test_uniform_disc_snr_is_sqrt_pixels_times_contrast_over_noise() -> None:
     want = np.sqrt(mask.sum()) * 0.1 / 2 / np.sqrt(0.5 * (var(0.2) + var(0.15)))
     assert snr["intensity"] == pytest.approx(want, rel=1e-3)
     assert snr["dolp"] == pytest.approx(0, abs=1e-6) and snr["aolp"] == pytest.approx(0, abs=1e-6)
-    assert dem["intensity"] == pytest.approx(want, rel=0.05)  # a 10 px disc loses little to the demosaic
+    assert 0.9 * want < dem["intensity"] < want  # the demosaic blurs the disc's 1-px rim: a few % lost
 
 
 @pytest.fixture(scope="module")
