@@ -106,29 +106,33 @@ def measure_preset(path: str, args: argparse.Namespace, out: Path, progress: boo
     return [done[i] for i in wanted if i in done]
 
 
-def _plot(out: Path, rows: list[dict[str, Any]], presets: list[str], threshold: float) -> str:
+def _plot(out: Path, rows: list[dict[str, Any]], presets: list[str], threshold: float, cnr: float) -> str:
+    """Shares per preset and defect type: SNR > threshold (top) and per-pixel CNR > cnr (bottom), in intensity
+    (left) and in DoLP or AoLP (right)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    types = [t for t in dict.fromkeys(r["type"] for r in rows)]
-    fig, axes = plt.subplots(1, 2, figsize=(12, 0.5 + 0.42 * len(presets) * 1.0 + 2.5))
+    types = list(dict.fromkeys(r["type"] for r in rows))
+    panels = ((f"SNR > {threshold:g} in intensity", "above_intensity"), (f"SNR > {threshold:g} in DoLP or AoLP",
+                                                                        "above_polarization"),
+              (f"per-pixel CNR > {cnr:g} in intensity", "cnr_intensity"),
+              (f"per-pixel CNR > {cnr:g} in DoLP or AoLP", "cnr_polarization"))
+    fig, axes = plt.subplots(2, 2, figsize=(12, 2 * (1.5 + 0.42 * len(presets))))
     y = np.arange(len(presets))
     hgt = 0.8 / len(types)
-    for k, t in enumerate(types):
-        sel = {r["preset"]: r for r in rows if r["type"] == t}
-        for ax, key in ((axes[0], "above_intensity"), (axes[1], "above_polarization")):
+    for ax, (title, key) in zip(axes.ravel(), panels, strict=True):
+        for k, t in enumerate(types):
+            sel = {r["preset"]: r for r in rows if r["type"] == t}
             ax.barh(y + (k - (len(types) - 1) / 2) * hgt, [sel[p][key] if p in sel else 0 for p in presets], hgt,
                     label=t)
-    for ax, title in ((axes[0], f"share with SNR > {threshold:g} in intensity"),
-                      (axes[1], f"share with SNR > {threshold:g} in DoLP or AoLP")):
         ax.set_yticks(y, presets, fontsize=7)
-        ax.set(xlim=(0, 1), title=title)
+        ax.set(xlim=(0, 1), title=f"share of defects with {title}")
         ax.invert_yaxis()
-    axes[1].legend(fontsize=7, loc="lower right")
+    axes[0, 1].legend(fontsize=7, loc="lower right")
     fig.tight_layout()
-    fig.savefig(out / "visibility.png", dpi=80)
+    fig.savefig(out / "visibility.png", dpi=72)
     plt.close(fig)
     return "visibility.png"
 
@@ -163,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
               f"{VISIBLE_CNR:g} in intensity versus in DoLP or AoLP:\n\n") + markdown_table(rows, CNR_COLUMNS)
     table += "\n\nDemosaic (priors through the 2x2 mosaic and bilinear demosaic), median SNR:\n\n" + markdown_table(
         rows, ["preset", "type", "median_demosaic_intensity", "median_demosaic_dolp", "median_demosaic_aolp"])
-    plots = [_plot(out, rows, names, args.threshold)]
+    plots = [_plot(out, rows, names, args.threshold, VISIBLE_CNR)]
     write_report(out, "visibility", {"args": {k: v for k, v in vars(args).items() if k != "func"},
                                      "rows": rows, "oracle_seconds_median": cost, "per_defect": per_defect,
                                      "wall_s": time.perf_counter() - t0, "plots": plots}, table)
