@@ -48,9 +48,10 @@ import numpy as np
 
 from model.priors.conventions import CONVENTION_VERSION
 
-from .defects import DefectConfig, apply_defect
+from .defects import DefectConfig, DefectResult, apply_defect
 from .errors import SimError
 from .meshes import ObjectModel, object_from_config
+from .oracle import DefectSNR, defect_snr
 from .render import RENDERER_VERSION, RenderSettings, render_sample
 from .scene import SceneConfig, material_keys_check, object_to_world, sample_scene, sampler_spp
 from .sensor import SensorConfig, simulate
@@ -82,6 +83,8 @@ class DatasetSpec:
     defects_in_train: bool = False
     empty_rate: float = 0.0
     """Fraction of samples rendered without the part (see ``is_empty``); 0 = none."""
+    visibility: bool = False
+    """Measure every placed defect's detectability (``sim.oracle``) into ``params.json``'s ``defect``."""
     mesh: str = ""
     materials: dict[str, Any] = field(default_factory=dict)
     mesh_scale: float = 1.0
@@ -107,12 +110,19 @@ class DatasetSpec:
         return RenderSettings(self.width, self.height, self.spp, self.ground_truth, self.max_depth,
                               self.scene.background_size_m, self.variant)
 
+    def oracle_settings(self) -> RenderSettings:
+        """The detectability oracle's renders: half the sample's spp each (four of them: two pairs)."""
+        return RenderSettings(self.width, self.height, sampler_spp(max(1, self.spp // 2)), False, self.max_depth,
+                              self.scene.background_size_m, self.variant)
+
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
         d["scene"] = self.scene.to_dict()
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
+        if not d["visibility"]:
+            d.pop("visibility")  # likewise for sets without the detectability oracle
         return json.loads(json.dumps(d))  # tuples -> lists, as read back from JSON
 
     @classmethod
@@ -201,8 +211,21 @@ def is_empty(seed: int, index: int, empty_rate: float) -> bool:
     return empty_rate > 0 and bool(np.random.default_rng([seed, index, 2]).random() < empty_rate)
 
 
-def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample:
-    """Render sample ``index`` in memory (deterministic in ``spec.seed`` and ``index``)."""
+@dataclass(frozen=True)
+class SampleDraw:
+    """Everything random about sample ``index`` before rendering: scene parameters, the defect (or None), the
+    Mitsuba seed, split and whether the part is left out."""
+
+    index: int
+    split: str
+    params: dict[str, Any]
+    defect: DefectResult | None
+    mitsuba_seed: int
+    empty: bool
+
+
+def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw:
+    """Draw sample ``index``'s scene and defect (deterministic in ``spec.seed`` and ``index``)."""
     rng = np.random.default_rng([spec.seed, index])
     split = split_of(index)
     params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
@@ -214,7 +237,22 @@ def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample
         to_world = object_to_world(params["pose"])
         cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
         defect = apply_defect(model, kind, rng, spec.defects, cam_obj, params["materials"])
-    mi_seed = int(rng.integers(2**32))
+    return SampleDraw(index, split, params, defect, int(rng.integers(2**32)), empty)
+
+
+def oracle_record(result: DefectSNR) -> dict[str, Any]:
+    """The oracle's keys in ``params.json``'s ``defect``: ``snr`` and ``snr_demosaic`` per prior, ``snr_best`` (the
+    camera prior with the largest snr) and ``snr_oracle`` (pixels, spp per oracle render, seconds)."""
+    d = result.to_dict()
+    return {"snr": d["snr"], "snr_demosaic": d["snr_demosaic"], "snr_best": d["best"],
+            "snr_oracle": {"pixels": d["pixels"], "spp": d["spp"], "seconds": d["seconds"]}}
+
+
+def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample:
+    """Render sample ``index`` in memory (deterministic in ``spec.seed`` and ``index``); with
+    ``spec.visibility`` also measure its defect's detectability (``sim.oracle``)."""
+    draw = draw_sample(spec, model, index)
+    params, defect, mi_seed, split, empty = draw.params, draw.defect, draw.mitsuba_seed, draw.split, draw.empty
     out = render_sample(model, params, defect, spec.render_settings(), mi_seed, empty=empty)
     frame = simulate(out.s0, out.s1, out.s2, spec.sensor, np.random.default_rng([spec.seed, index, 1]))
     label = int(out.defect_mask is not None and bool(out.defect_mask.any()))
@@ -225,6 +263,11 @@ def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample
         record["empty"] = True
     if defect is not None and out.defect_mask is not None:
         record["defect"]["visible_px"] = int(out.defect_mask.sum())
+        if spec.visibility:
+            result, _ = defect_snr(model, params, defect, spec.oracle_settings(), mi_seed, spec.sensor,
+                                   out.defect_mask)
+            record["defect"].update(oracle_record(result))
+            record["render_seconds"] = {**out.seconds, "oracle_s": result.seconds}
     sample = Sample(index, frame.raw, record, label, split)
     if spec.ground_truth:
         sample.s0, sample.s1, sample.s2 = frame.s0, frame.s1, frame.s2
@@ -269,7 +312,7 @@ def save_npz(path: str | Path, arrays: dict[str, np.ndarray]) -> None:
                 np.lib.format.write_array(fh, np.asanyarray(value), allow_pickle=False)
 
 
-IGNORED_ON_RESUME = ("count", "spp_choice")
+IGNORED_ON_RESUME = ("count", "spp_choice", "visibility")
 """Manifest keys that may differ when resuming (how spp was chosen does not change the samples; spp does)."""
 
 
@@ -362,7 +405,24 @@ def render_set(root: str | Path, spec: DatasetSpec, count: int, shard: tuple[int
     if todo:
         print(f"rendered {len(todo)} samples in {dt:.1f} s ({dt / len(todo):.2f} s/sample); "
               f"{labels[1]} with a visible defect" + (f", {n_empty} without the part (empty)" if n_empty else ""))
+    if spec.visibility:
+        write_visibility_summary(root)
     return len(todo)
+
+
+def write_visibility_summary(root: str | Path) -> dict[str, Any]:
+    """Summarise the oracle values of every complete sample (``sim.detectability.summarise``) into the manifest's
+    ``visibility`` key (atomically; any shard may run it, the last one sees all samples); returns the manifest."""
+    from .detectability import VISIBLE_SNR, read_records, summarise
+
+    path = Path(root) / "manifest.json"
+    manifest = json.loads(path.read_text())
+    manifest["visibility"] = {"threshold_snr": VISIBLE_SNR, "by_type": summarise(read_records(root)),
+                              "see": "sim/oracle.py (matched-filter SNR against sensor noise, paired renders)"}
+    tmp = path.with_name(f"manifest.json.tmp-{os.getpid()}")
+    tmp.write_text(json.dumps(manifest, indent=1, default=float))
+    os.replace(tmp, path)
+    return manifest
 
 
 class Dataset:

@@ -44,6 +44,9 @@ class RenderSettings:
     max_depth: int = 4
     background_size_m: float = 1.0
     variant: str | None = None
+    window: tuple[int, int, int, int] | None = None
+    """Render only the block (x0, y0, w, h) of the width x height image (``sim.scene.sensor_dict``); outputs are
+    then h x w. For the detectability oracle (``sim.oracle``), which needs only the pixels around a defect."""
 
     def __post_init__(self) -> None:
         if self.width < 2 or self.height < 2 or self.width % 2 or self.height % 2:
@@ -166,7 +169,7 @@ def render_sample(model: ObjectModel, params: dict, defect: DefectResult | None,
         materials[DEFECT_PART] = defect.material
     parts = [] if empty else pose_parts(shown, to_world)
     scene_dict, keys = build_scene(params, parts, materials, settings.width, settings.height, settings.spp,
-                                   settings.background_size_m)
+                                   settings.background_size_m, window=settings.window)
     scene = load_scene(scene_dict)
     t1 = time.perf_counter()
     seed = int(seed) & 0xFFFFFFFF
@@ -189,7 +192,7 @@ def render_sample(model: ObjectModel, params: dict, defect: DefectResult | None,
         out.part_index = label_image(ch["sid"], scene, labels).astype(np.uint8)
         out.object_mask = out.part_index > 0
         hit = np.rint(ch["sid"]) > 0
-        nn = ch["nn"].reshape(settings.height, settings.width, 3).astype(np.float64) @ camera_axes(params["camera"]).T
+        nn = ch["nn"].reshape(*ch["sid"].shape[:2], 3).astype(np.float64) @ camera_axes(params["camera"]).T
         length = np.linalg.norm(nn, axis=-1, keepdims=True)
         out.normal = np.where(hit[..., None] & (length > 0), nn / np.maximum(length, 1e-12), 0).astype(np.float32)
         out.depth_m = np.where(hit, _first(ch["dd"]) + NEAR_CLIP_M, 0).astype(np.float32)
@@ -197,7 +200,7 @@ def render_sample(model: ObjectModel, params: dict, defect: DefectResult | None,
         good_parts = [p for p in shown.parts if p.name != DEFECT_PART] + [defect.good_region]
         good_dict, good_keys = build_scene(params, pose_parts(shown.with_parts(good_parts), to_world), materials,
                                            settings.width, settings.height, 1, settings.background_size_m,
-                                           lights=False)
+                                           lights=False, window=settings.window)
         good_scene = load_scene(good_dict)
         mi.render(good_scene, integrator=_integrator("sid"), spp=1, seed=seed ^ 0x5EED)
         was = label_image(_channels(good_scene)["sid"], good_scene, {good_keys[-1]: 1}) > 0

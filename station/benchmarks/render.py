@@ -16,7 +16,8 @@ Two domains: ``dolp_rmse`` per rendered pixel (the error of gt.npz's s0..s2, the
 demosaic (``model.priors.compute_priors``), i.e. as the model sees it. The sensor noise the model sees is
 measured in that same domain (priors of a noisy 8-bit raw of r1 against priors of its noiseless mosaic), so
 ``below_sensor_noise`` compares like with like. ``--pipeline-samples`` times whole training samples
-(``generate_sample`` + ``write_sample``) per stage.
+(``generate_sample`` + ``write_sample``) per stage; ``--visibility-samples`` times defective samples with and
+without the detectability oracle (``station render --visibility``).
 """
 
 from __future__ import annotations
@@ -46,6 +47,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="'best', 'all' (adds scalar_spectral_polarized: ~17x slower) or a comma-separated list")
     p.add_argument("--pipeline-spp", default="16,8", help="spp values at which whole samples are timed ('' = none)")
     p.add_argument("--pipeline-samples", type=int, default=4, help="timed training samples per pipeline spp")
+    p.add_argument("--visibility-samples", type=int, default=4,
+                   help="defective samples timed with and without station render --visibility (0 = skip)")
+    p.add_argument("--visibility-config", default="sim/presets/line.toml",
+                   help="preset for the --visibility timing ('' = the default scene randomisation)")
     p.add_argument("--write-table", default="", metavar="JSON",
                    help="also write the measured curve for station render --dolp-error (e.g. sim/spp_table.json)")
 
@@ -137,6 +142,37 @@ def _pipeline(spp: int, n: int, width: int, height: int) -> dict[str, Any]:
     return {"spp": spp, "samples": len(rows), **{k: float(np.median([r[k] for r in rows])) for k in rows[0]}}
 
 
+def visibility_cost(spp: int, n: int, width: int, height: int, config: str = "") -> dict[str, Any]:
+    """Median seconds per defective sample (``generate_sample``, test split, defect placed and visible) without and
+    with the detectability oracle (``DatasetSpec.visibility``), and their ratio. Each sample is rendered once
+    before, untimed (kernels compile once per scene structure and oracle window size)."""
+    from sim import dataset as ds
+
+    extra = ds.read_overrides(config) if config else {}
+    base = {"seed": 0, "width": width, "height": height, "spp": spp, "defect_fraction": 1.0,
+            "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": extra.get("sensor", {})}
+    plain, oracle = ds.DatasetSpec.from_dict(base), ds.DatasetSpec.from_dict({**base, "visibility": True})
+    model = ds.prepare(plain)
+    rows = []
+    for i in (i for i in range(1000) if ds.split_of(i) == "test"):
+        if len(rows) >= n:
+            break
+        if not ds.generate_sample(oracle, model, i).label:
+            continue  # the defect is out of view: no oracle renders
+        t0 = time.perf_counter()
+        ds.generate_sample(plain, model, i)
+        t1 = time.perf_counter()
+        sample = ds.generate_sample(oracle, model, i)
+        t2 = time.perf_counter()
+        rows.append({"plain_s": t1 - t0, "visibility_s": t2 - t1,
+                     "oracle_s": sample.params["render_seconds"]["oracle_s"]})
+    if not rows:
+        return {"spp": spp, "samples": 0}
+    med = {k: float(np.median([r[k] for r in rows])) for k in rows[0]}
+    return {"spp": spp, "preset": config or "default", "samples": len(rows), **med,
+            "ratio": float(np.median([r["visibility_s"] / r["plain_s"] for r in rows]))}
+
+
 def run(args: argparse.Namespace) -> int:
     import matplotlib
 
@@ -202,6 +238,8 @@ def run(args: argparse.Namespace) -> int:
                        ({enough[variants[0]]} if enough[variants[0]] and args.pipeline_spp else set()), reverse=True)
     pipeline = [_pipeline(s, args.pipeline_samples, args.width, args.height) for s in pipe_spps
                 if args.pipeline_samples > 0]
+    vis_cost = [visibility_cost(s, args.visibility_samples, args.width, args.height, args.visibility_config)
+                for s in pipe_spps if args.visibility_samples > 0]
     load_end = os.getloadavg()[0]
     columns = ["variant", "spp", "s_per_sample", "dolp_rmse", "dolp_rmse_raw", "dolp_bias", "dolp_rmse_model",
                "dolp_p50_model", "aolp_rmse_deg", "aolp_err_deg", "below_sensor_noise"]
@@ -218,13 +256,18 @@ def run(args: argparse.Namespace) -> int:
                   f"{args.pipeline_samples}, seconds):\n\n")
         table += markdown_table(pipeline, ["spp", "s_per_sample", "cpu_s", "scene_build_s", "stokes_s",
                                            "gt_pass_s", "sensor_etc_s", "write_s", "gt_npz_mb"])
+    if vis_cost:
+        table += ("\nDefective samples with and without the detectability oracle (station render --visibility: two "
+                  "(defective, good) pairs at half the spp, around the defect only; generate_sample, median of "
+                  f"{args.visibility_samples}, seconds, preset {args.visibility_config or 'default'}):\n\n")
+        table += markdown_table(vis_cost, ["spp", "samples", "plain_s", "visibility_s", "oracle_s", "ratio"])
     json_path, md_path = write_report(args.out, "render", {
         "benchmark": "render", "renderer_version": RENDERER_VERSION, "width": args.width, "height": args.height,
         "scenes": args.scenes, "ref_spp": args.ref_spp, "ref_dolp_noise": float(np.mean(ref_noise)),
         "sensor_dolp_noise": sensor_noise, "sensor_dolp_p50": sensor_p50, "spp_below_sensor_noise": enough,
         "aolp_min_dolp": AOLP_MIN_DOLP,
         "load_average": [load_start, load_end], "wall_s": time.perf_counter() - t_start, "rows": rows,
-        "pipeline": pipeline}, table)
+        "pipeline": pipeline, "visibility_cost": vis_cost}, table)
     if args.write_table:
         _write_table(args, rows, variants[0], sensor_noise, sensor_p50, enough[variants[0]], load_start, load_end)
     _plot(plt, rows, variants, sensor_noise, json_path.with_suffix(".png"))

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import importlib
 
-BENCHMARKS = ["priors", "render", "camera", "model", "pipeline", "soak", "defects", "faults"]
+BENCHMARKS = ["priors", "render", "camera", "model", "pipeline", "soak", "defects", "faults", "visibility"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

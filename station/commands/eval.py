@@ -2,7 +2,8 @@
 
 Reports image AUROC, pixel AUROC, AUPRO (FPR <= 0.3), pixel AP, image F1-max and the checkpoint's threshold's
 effect, separately on rendered physical defects (all, and per defect type against all good parts) and on
-DRAEM-style synthetic anomalies on the good test parts. Writes JSON + Markdown, ROC curves and example heatmaps on
+DRAEM-style synthetic anomalies on the good test parts; on sets rendered with ``--visibility``, caught share and image
+AUROC per detectability bin (``station.detectability``). Writes JSON + Markdown, ROC curves and example heatmaps on
 a fixed [0, 1] scale (never per-image min-max, which makes good parts look bad).
 """
 
@@ -261,6 +262,8 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
     from station.benchmarks.report import markdown_table, write_report
     from station.commands.train import manifest_sha256
+    from station.detectability import COLUMNS as DETECTABILITY_COLUMNS
+    from station.detectability import detection_by_detectability, oracle_snr
 
     models = args.model.split(",")
     if len(models) > 1 and not args.ablation:
@@ -299,15 +302,22 @@ def run(args: argparse.Namespace) -> int:
         else []
     if ablation and not args.no_plots:
         files.append(_ablation_plot(out, ablation))
+    by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(args.data, sp.index),
+                                        sp.defect_type)
     manifest_ok = ck.meta.get("data_manifest_sha256")
     payload = {"model": str(args.model), "precision": args.precision, "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": _normal_prior(ck), "rows": rows,
-               "ablation": ablation, "early_exit": early, "channels": channels, "plots": files}
+               "ablation": ablation, "early_exit": early, "channels": channels, "by_detectability": by_snr,
+               "plots": files}
     cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
             "flagged_good", "detected"]
     table = markdown_table(rows, cols)
+    if by_snr:
+        table += ("\n\nDetection by detectability (the oracle's best-prior SNR, station/detectability.py; caught: "
+                  "score >= threshold; image AUROC: these defects against all good parts):\n\n"
+                  + markdown_table(by_snr, DETECTABILITY_COLUMNS))
     if ablation:
         table += "\n\nAblation (ensemble members averaged, rendered defects):\n\n" + markdown_table(
             ablation, ["priors", "members", "image_auroc", "pixel_auroc", "pixel_ap"])

@@ -48,6 +48,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--materials", default="",
                    help='JSON part -> material map for --mesh, e.g. \'{"*": "pplastic"}\'')
     p.add_argument("--mesh-scale", type=float, default=1.0, help="file units -> metres (0.001 for mm)")
+    p.add_argument("--visibility", action="store_true",
+                   help="detectability oracle: render each defective sample's scene again without the defect (two "
+                        "pairs at half the spp, around the defect only) and store the defect's SNR per prior in "
+                        "params.json (defect.snr, defect.snr_best) and a summary in the manifest")
     p.add_argument("--config", default="", help="JSON or TOML file with [scene], [defects], [sensor] overrides")
     p.add_argument("--variant", default=None, help="Mitsuba variant (default: best available, logged)")
     p.set_defaults(func=run)
@@ -88,6 +92,7 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "seed": args.seed, "width": args.width, "height": args.height, "spp": spp,
         "ground_truth": not args.no_ground_truth, "defect_fraction": args.defects,
         "defects_in_train": args.defects_in_train, "empty_rate": args.empty_rate, "mesh": args.mesh,
+        "visibility": getattr(args, "visibility", False),
         "materials": materials,
         "mesh_scale": args.mesh_scale, "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,

@@ -67,3 +67,15 @@ def test_line_preset_fixes_pose_orientation_and_ground() -> None:
 def test_bad_ranges_name_the_key(key: str, value, words: str) -> None:
     with pytest.raises(SimError, match=words):
         sample_scene(np.random.default_rng(0), SceneConfig(**{key: value}), usb_brick())
+
+
+def test_line_polar_preset_is_the_line_at_brewster_under_a_dome() -> None:
+    """sim/presets/line-polar.toml (the visibility study's choice) keeps the line's fixture and belt and changes
+    only the camera's elevation, the light and the bit depth."""
+    from sim.dataset import read_overrides
+
+    polar, line = read_overrides(LINE_PRESET.with_name("line-polar.toml")), read_overrides(LINE_PRESET)
+    changed = {k for k in set(polar["scene"]) | set(line["scene"]) if polar["scene"].get(k) != line["scene"].get(k)}
+    assert changed == {"camera_polar_deg", "light_intensity", "ambient_radiance"}
+    assert polar["scene"]["camera_polar_deg"][0] < np.degrees(np.arctan(1.5)) < polar["scene"]["camera_polar_deg"][1]
+    assert polar["sensor"] == {"bit_depth": 12, "exposure_gain": 2.0}

@@ -63,3 +63,23 @@ def test_eval_refuses_several_models_without_ablation_and_an_ensemble_among_them
     assert "takes fused models" in capsys.readouterr().err
     assert main(["eval", "--ablation", "--model", str(r), "--data", str(data), "--out", str(tmp_path / "o")]) == 2
     assert "--model A,B" in capsys.readouterr().err
+
+
+def test_eval_reports_detection_by_detectability_on_a_set_with_oracle_values(setup, tmp_path) -> None:
+    """Oracle values in params.json (as station render --visibility writes them) add the by-detectability table."""
+    import shutil
+
+    _, data, r, _ = setup
+    ds = tmp_path / "ds"
+    shutil.copytree(data, ds)
+    for i, snr in ((1, 0.5), (11, 42.0)):  # the two defective test samples
+        p = ds / f"samples/{i:06d}/params.json"
+        params = json.loads(p.read_text())
+        params["defect"].update(snr={"intensity": snr, "dolp": 0.1, "aolp": 0.2, "normal": 0.0}, snr_best="intensity")
+        p.write_text(json.dumps(params))
+    assert main(["eval", "--model", str(r), "--data", str(ds), "--no-plots", "--no-synthetic",
+                 "--out", str(tmp_path / "rep")]) == 0
+    rows = json.loads((tmp_path / "rep" / "eval.json").read_text())["by_detectability"]
+    assert {(row["type"], row["snr_bin"], row["defects"]) for row in rows} == {
+        ("all", "<1", 1), ("all", ">10", 1), ("stain", "<1", 1), ("stain", ">10", 1)}
+    assert "Detection by detectability" in (tmp_path / "rep" / "eval.md").read_text()
