@@ -4,6 +4,9 @@
     L_SSIM  1 - mean SSIM (11x11 Gaussian window, sigma 1.5, per channel), dynamic range L = 1 as DRAEM
             (the official code picks L from the image's range; our inputs are normalised, so L is fixed)
     focal   focal loss, gamma 2, no class weighting, on the softmax of the 2-class logits vs the mask
+
+Ours (mixed supervision): an optional per-pixel weight of the two reconstruction terms (``draem_loss``'s
+``recon_weight``), 0 where a rendered defect has no clean counterpart to reconstruct.
 """
 
 from __future__ import annotations
@@ -58,13 +61,32 @@ class LossTerms:
         return {k: float(getattr(self, k).detach()) for k in ("total", "l2", "ssim", "focal")}
 
 
-def draem_loss(clean: torch.Tensor, reconstruction: torch.Tensor, logits: torch.Tensor, mask: torch.Tensor
-               ) -> LossTerms:
+def ssim_window_weight(weight: torch.Tensor, window_size: int = 11) -> torch.Tensor:
+    """(N, H, W) weight for the SSIM term: the minimum of ``weight`` over each pixel's ``window_size`` square, so a
+    pixel with weight 0 enters no SSIM window that counts (its value then changes neither loss term)."""
+    pad = window_size // 2
+    return -F.max_pool2d(-weight.float().unsqueeze(1), window_size, stride=1, padding=pad).squeeze(1)
+
+
+def draem_loss(clean: torch.Tensor, reconstruction: torch.Tensor, logits: torch.Tensor, mask: torch.Tensor,
+               recon_weight: torch.Tensor | None = None) -> LossTerms:
     """``W_L2 * L2 + W_SSIM * (1 - SSIM) + W_FOCAL * focal`` (all weights 1, as published).
 
-    clean, reconstruction: (N, C, H, W); logits: (N, 2, H, W); mask: (N, H, W) in {0, 1}."""
+    clean, reconstruction: (N, C, H, W); logits: (N, 2, H, W); mask: (N, H, W) in {0, 1}, the discriminative target.
+    ``recon_weight``: optional (N, H, W) per-pixel weight in [0, 1] of the reconstruction terms (mixed supervision:
+    0 on a rendered defect whose clean render is unknown). None is the published loss, computed exactly as before.
+    With a weight, L2 is the weighted mean of the squared error over pixels and channels, and 1 - SSIM uses the
+    weighted mean of the SSIM map with the weight's minimum over each 11x11 SSIM window (``ssim_window_weight``):
+    a weight-0 pixel influences neither term. The focal term is never weighted."""
     rec = reconstruction.float()
-    l2 = F.mse_loss(rec, clean.float())
-    ssim = 1 - ssim_map(rec, clean.float()).mean()
     focal = focal_loss(logits, mask)
+    if recon_weight is None:
+        l2 = F.mse_loss(rec, clean.float())
+        ssim = 1 - ssim_map(rec, clean.float()).mean()
+    else:
+        c = rec.shape[1]
+        w = recon_weight.float().unsqueeze(1)
+        ws = ssim_window_weight(recon_weight).unsqueeze(1)
+        l2 = (w * (rec - clean.float()) ** 2).sum() / (w.sum() * c).clamp_min(1e-12)
+        ssim = 1 - (ws * ssim_map(rec, clean.float())).sum() / (ws.sum() * c).clamp_min(1e-12)
     return LossTerms(W_L2 * l2 + W_SSIM * ssim + W_FOCAL * focal, l2, ssim, focal)

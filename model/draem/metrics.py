@@ -1,8 +1,11 @@
 """Anomaly detection metrics: image AUROC, pixel AUROC, AUPRO (MVTec AD definition), pixel AP, F1-max, and
 the choice of the decision threshold.
 
-Conventions: a higher score means more anomalous; a part is flagged when ``score >= threshold``. AUROC and AP are
-scikit-learn's; a metric that is undefined (only one class present) is NaN, never a made-up number.
+Conventions: a higher score means more anomalous. ``f1_max`` / ``choose_threshold`` count a part as flagged when
+``score >= threshold``; the industrial metrics (``caught_at_false_reject``, ``detection_by_type``) use the station's
+rule, rejected when ``score > threshold`` (``station.decision.decide``). The two differ only for a score exactly
+equal to the threshold. AUROC and AP are scikit-learn's; a metric that is undefined (only one class present) is
+NaN, never a made-up number.
 """
 
 from __future__ import annotations
@@ -148,3 +151,113 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: f
     flagged = float((s[~y] >= t).mean()) if (~y).any() else math.nan
     detected = float((s[y] >= t).mean()) if y.any() else math.nan
     return ThresholdChoice(float(t), rule, flagged, detected)
+
+
+# Industrial metrics: parts caught at a fixed rate of good parts rejected, per defect type. Convention here is the
+# station's (``station.decision.decide``): a part is rejected when ``score > threshold`` (strictly), so the
+# threshold can be a good part's own score and that part passes.
+
+
+def _check_scores(name: str, labels: np.ndarray, scores: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    y = np.asarray(labels).reshape(-1).astype(bool)
+    s = np.asarray(scores, dtype=np.float64).reshape(-1)
+    if y.size != s.size:
+        raise ValueError(f"{name}: {y.size} labels but {s.size} scores")
+    if not np.all(np.isfinite(s)):
+        raise ValueError(f"{name}: scores contain NaN or Inf")
+    return y, s
+
+
+def false_reject_threshold(good_scores: np.ndarray, false_reject: float) -> float:
+    """The lowest threshold that rejects (``score > threshold``) at most ``false_reject`` of ``good_scores``.
+
+    That is the ``(k+1)``-th largest good score with ``k = floor(false_reject * n_good)`` allowed rejects: every good
+    part scoring above it is rejected, every one at or below it passes. With ties at that score fewer than ``k`` may
+    be rejected (never more). ``false_reject`` in [0, 1); raises ValueError without good parts or with a
+    non-finite score."""
+    if not 0.0 <= false_reject < 1.0:
+        raise ValueError(f"false_reject must be in [0, 1), got {false_reject}")
+    good = np.sort(np.asarray(good_scores, dtype=np.float64).reshape(-1))
+    if good.size == 0:
+        raise ValueError("no good parts: a false-reject rate cannot be set")
+    if not np.all(np.isfinite(good)):
+        raise ValueError("good-part scores contain NaN or Inf")
+    allowed = math.floor(false_reject * good.size + 1e-9)  # 1e-9: 0.29 * 100 is 28.999... in floating point
+    return float(good[good.size - allowed - 1])
+
+
+def caught_at_false_reject(labels: np.ndarray, scores: np.ndarray, false_reject: float,
+                           threshold_from: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[float, float]:
+    """(caught fraction, threshold): the share of defective parts (label 1) rejected at the threshold that rejects
+    at most ``false_reject`` of the good parts (``false_reject_threshold``; rejected means ``score > threshold``).
+
+    labels: (N,) {0, 1}, 1 = defective; scores: (N,) image scores, higher = more anomalous. The threshold is set on
+    the good parts of ``threshold_from = (labels, scores)`` when given (a validation set: the threshold is then
+    held fixed, as a station would), else on the good parts of ``labels``/``scores`` themselves (optimistic about
+    false rejects on new parts). Caught is NaN without defective parts. Raises ValueError when the threshold's set
+    has no good parts, or on NaN/Inf scores."""
+    y, s = _check_scores("caught_at_false_reject", labels, scores)
+    ty, ts = (y, s) if threshold_from is None else _check_scores("caught_at_false_reject threshold set",
+                                                                  *threshold_from)
+    t = false_reject_threshold(ts[~ty], false_reject)
+    caught = float((s[y] > t).mean()) if y.any() else math.nan
+    return caught, t
+
+
+@dataclass(frozen=True)
+class TypeDetection:
+    """How one defect type is detected. n_defective: parts of this type; image_auroc: this type's parts against
+    all good parts (NaN without either); caught: {false-reject rate: share of this type's parts rejected at that
+    rate's threshold} (NaN without parts of this type)."""
+
+    defect_type: str
+    n_defective: int
+    image_auroc: float
+    caught: dict[float, float]
+
+
+@dataclass(frozen=True)
+class DetectionReport:
+    """``detection_by_type``'s answer. thresholds: {false-reject rate: threshold}, one per rate, the same for every
+    type (held fixed); threshold_source: "validation" or "evaluated set" (its good parts); false_reject_observed:
+    {rate: share of the evaluated set's good parts rejected at that threshold} (can exceed the rate when the
+    threshold came from validation); n_good: good parts evaluated; overall: all defective parts together
+    (``defect_type`` "all"); per_type: {type: TypeDetection}, sorted by type."""
+
+    thresholds: dict[float, float]
+    threshold_source: str
+    false_reject_observed: dict[float, float]
+    n_good: int
+    overall: TypeDetection
+    per_type: dict[str, TypeDetection]
+
+
+def detection_by_type(labels: np.ndarray, scores: np.ndarray, types: np.ndarray | list[str],
+                      false_rejects: tuple[float, ...] = (0.01, 0.05),
+                      validation: tuple[np.ndarray, np.ndarray] | None = None) -> DetectionReport:
+    """Per defect type: image AUROC against all good parts, and the share caught at each false-reject rate.
+
+    labels: (N,) {0, 1}, 1 = defective; scores: (N,) image scores (higher = more anomalous; rejected when
+    ``score > threshold``, as the station); types: (N,) defect type per part (ignored for good parts). For each
+    rate in ``false_rejects`` one threshold is set on good parts only (``false_reject_threshold``): on
+    ``validation = (labels, scores)`` when given (held fixed: the honest figure), else on this set's good parts;
+    the same threshold is applied to every type. Raises ValueError when the threshold's set has no good parts."""
+    y, s = _check_scores("detection_by_type", labels, scores)
+    ty = np.asarray(types, dtype=object).reshape(-1)
+    if ty.size != y.size:
+        raise ValueError(f"detection_by_type: {ty.size} types for {y.size} parts")
+    vy, vs = (y, s) if validation is None else _check_scores("detection_by_type validation", *validation)
+    thresholds = {fr: false_reject_threshold(vs[~vy], fr) for fr in false_rejects}
+    good = s[~y]
+    observed = {fr: float((good > t).mean()) if good.size else math.nan for fr, t in thresholds.items()}
+
+    def one(name: str, sel: np.ndarray) -> TypeDetection:
+        d = s[sel]
+        lab = np.r_[np.zeros(good.size, bool), np.ones(d.size, bool)]
+        caught = {fr: float((d > t).mean()) if d.size else math.nan for fr, t in thresholds.items()}
+        return TypeDetection(name, int(d.size), auroc(lab, np.r_[good, d]), caught)
+
+    names = sorted({str(t) for t in ty[y]})
+    per_type = {n: one(n, y & (ty.astype(str) == n)) for n in names}
+    return DetectionReport(thresholds, "evaluated set" if validation is None else "validation", observed,
+                           int(good.size), one("all", y), per_type)

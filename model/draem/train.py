@@ -1,7 +1,9 @@
 """Training DRAEM detectors on in-memory or streamed prior tensors, with held-out evaluation and keep-best.
 
 Recipe as published: Adam (lr 1e-4), learning rate x0.2 at 80 % and 90 % of the steps, loss L2 + SSIM + focal
-(``loss.py``), synthetic anomalies on half the samples (``anomaly.py``). The ensemble (one DRAEM per prior) trains
+(``loss.py``), synthetic anomalies on half the samples (``anomaly.py``). Mixed supervision (ours, ``mixed.py``):
+with ``rendered_fraction`` > 0 that share of every batch is rendered defective parts with their true masks, the rest
+stays DRAEM's; at 0 (the default) the loop runs exactly as before. The ensemble (one DRAEM per prior) trains
 all members in one loop on the same batches and the same synthetic masks; members share no parameters, so one Adam
 over all of them is the same as one Adam each. Every ``eval_every`` steps the detector is evaluated on held-out
 data and checkpointed; the best image AUROC is kept (it swings over training, see NOTES), the last is kept for
@@ -39,6 +41,7 @@ from .config import ModelConfig
 from .detector import Detector
 from .errors import CheckpointError, ModelError
 from .loss import draem_loss
+from .mixed import DefectData, draw_batch, n_rendered
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
 
@@ -100,7 +103,10 @@ def synthetic_eval_data(good: TrainData, priors: tuple[str, ...], seed: int = 12
 class TrainConfig:
     """steps: optimiser steps; eval_every: steps between evaluation + checkpoint; precision: "fp32", "bf16"
     (autocast) or "auto" (fp32 on CPU: bf16 autocast was measured slower on this AVX2-only CPU, see docs/model.md;
-    bf16 on CUDA); channels_last: None = on. ``max_minutes`` stops early (after a final checkpoint)."""
+    bf16 on CUDA); channels_last: None = on. ``max_minutes`` stops early (after a final checkpoint).
+    ``rendered_fraction``: share of each batch replaced by rendered defective samples (``train(defects=...)``,
+    ``mixed.py``), rounded half up to a whole number of samples (``n_rendered``) that must leave at least one
+    synthetic sample; 0 = DRAEM's synthetic anomalies only, exactly as before."""
 
     steps: int = 2000
     batch_size: int = 8
@@ -115,12 +121,19 @@ class TrainConfig:
     channels_last: bool | None = None
     max_minutes: float | None = None
     anomaly: AnomalyConfig = field(default_factory=AnomalyConfig)
+    rendered_fraction: float = 0.0
 
     def __post_init__(self) -> None:
         if self.steps < 1 or self.batch_size < 1 or self.eval_every < 1:
             raise ModelError(f"train config: steps, batch_size and eval_every must be >= 1 ({self})")
         if self.precision not in ("auto", "fp32", "bf16"):
             raise ModelError(f"precision must be auto, fp32 or bf16, got {self.precision!r}")
+        n_rendered(self.rendered_fraction, self.batch_size)  # raises on a fraction the batch cannot hold
+
+    @property
+    def n_rendered(self) -> int:
+        """Rendered defective samples per batch (per process under torchrun)."""
+        return n_rendered(self.rendered_fraction, self.batch_size)
 
 
 def resolve_device(device: str) -> torch.device:
@@ -247,13 +260,15 @@ class _MemberForward(nn.Module):
 def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_config: TrainConfig = TrainConfig(),
           val: EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
           progress: bool = True, on_eval: Callable[[int, dict[str, float]], None] | None = None,
-          train_meta: dict[str, Any] | None = None) -> TrainResult:
+          train_meta: dict[str, Any] | None = None, defects: DefectData | None = None) -> TrainResult:
     """Train a detector; checkpoints ``out_dir/last`` (+ ``last.state.pt`` for resuming) and ``out_dir/best``.
 
     ``val``: held-out data for keep-best (image AUROC, then pixel AUROC); None uses a fixed synthetic-anomaly set
     built from the first training samples, which is weaker evidence: pass rendered defects when there are some.
     ``resume``: continue from ``out_dir/last`` when it exists (same model config required). ``train_meta``: extra
-    records for every checkpoint's ``train`` section (e.g. how the normal prior was made).
+    records for every checkpoint's ``train`` section (e.g. how the normal prior was made). ``defects``: rendered
+    defective training samples with their masks (``mixed.DefectData``), used when ``train_config.rendered_fraction``
+    > 0 (required then); their own index stream is seeded from ``seed + 13`` and checkpointed for resuming.
 
     Under ``torchrun`` (``WORLD_SIZE`` > 1) this runs data-parallel (module docstring): the process group is joined
     here unless the caller already did (``distributed.init``; it stays until the process exits); every rank passes
@@ -263,12 +278,13 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
     device = distributed.device_for(info, resolve_device(train_config.device))
     distributed.init(info, device)
     return _train(config, data, Path(out_dir), train_config, val, resume, data_manifest_sha256, progress, on_eval,
-                  info, device, train_meta or {})
+                  info, device, train_meta or {}, defects)
 
 
 def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val: EvalData | None, resume: bool,
            data_manifest_sha256: str | None, progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None,
-           info: distributed.DistInfo, device: torch.device, train_meta: dict[str, Any]) -> TrainResult:
+           info: distributed.DistInfo, device: torch.device, train_meta: dict[str, Any],
+           defects: DefectData | None = None) -> TrainResult:
     from tqdm import tqdm
 
     main = info.is_main
@@ -278,6 +294,11 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
     channels_last = True if tc.channels_last is None else tc.channels_last
     if len(data) == 0:
         raise ModelError("no training samples")
+    rendered = tc.n_rendered
+    if rendered and (defects is None or len(defects) == 0):
+        raise ModelError(f"rendered_fraction {tc.rendered_fraction}: no rendered defective samples given")
+    if defects is not None and not rendered and main:
+        log.warning("%d rendered defective samples given but rendered_fraction is 0: not used", len(defects))
     if val is None and main:
         val = synthetic_eval_data(data, config.priors, seed=tc.seed + 1)
 
@@ -326,6 +347,7 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
     scheduler = torch.optim.lr_scheduler.MultiStepLR(optimizer, milestones, gamma=tc.lr_gamma)
     index_gen = torch.Generator().manual_seed(distributed.rank_seed(tc.seed, info.rank))
     synth_gen = torch.Generator(device=device).manual_seed(distributed.rank_seed(tc.seed + 7, info.rank))
+    defect_gen = torch.Generator().manual_seed(distributed.rank_seed(tc.seed + 13, info.rank))
     if st is not None:
         optimizer.load_state_dict(st["optimizer"])
         scheduler.load_state_dict(st["scheduler"])
@@ -333,9 +355,13 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
         if gens is not None and len(gens) == info.world_size:
             index_gen.set_state(gens[info.rank][0])
             synth_gen.set_state(gens[info.rank][1])
+            if len(gens[info.rank]) > 2:  # saved before mixed supervision: (index, synth) only
+                defect_gen.set_state(gens[info.rank][2])
         elif info.rank == 0:
             index_gen.set_state(st["index_gen"])
             synth_gen.set_state(st["synth_gen"])
+            if "defect_gen" in st:
+                defect_gen.set_state(st["defect_gen"])
         if (len(gens) if gens is not None else 1) != info.world_size and main:
             log.warning("%s was saved by %d process(es), resuming with %d: ranks > 0 restart their random streams",
                         state_file, len(gens) if gens is not None else 1, info.world_size)
@@ -356,9 +382,9 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
         save_checkpoint(out / "last", detector, data_manifest_sha256=data_manifest_sha256, metrics=metrics,
                         train=train_info)
         state = {"optimizer": optimizer.state_dict(), "scheduler": scheduler.state_dict(),
-                 "index_gen": index_gen.get_state(), "synth_gen": synth_gen.get_state(), "step": step,
-                 "best": best, "history": history}
-        if generators is not None:  # distributed: (index, synth) generator states per rank
+                 "index_gen": index_gen.get_state(), "synth_gen": synth_gen.get_state(),
+                 "defect_gen": defect_gen.get_state(), "step": step, "best": best, "history": history}
+        if generators is not None:  # distributed: (index, synth, defect) generator states per rank
             state["rank_generators"] = generators
         torch.save(state, state_file)
 
@@ -366,7 +392,8 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
         """Every rank's generator states on rank 0 (a collective: all ranks call it); None for a single process."""
         if not info.enabled:
             return None
-        return distributed.all_gather_object(info, (index_gen.get_state(), synth_gen.get_state()))
+        return distributed.all_gather_object(info, (index_gen.get_state(), synth_gen.get_state(),
+                                                    defect_gen.get_state()))
 
     t0 = time.perf_counter()
     deadline = t0 + tc.max_minutes * 60 if tc.max_minutes else math.inf
@@ -374,11 +401,9 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
     step = start_step
     ema = None
     while step < tc.steps:
-        idx = torch.randint(len(data), (tc.batch_size,), generator=index_gen)
-        x, obj = data.get(idx)
-        x, obj = x.to(device, non_blocking=True), obj.to(device, non_blocking=True)
-        syn = synthesize(x, config.priors, synth_gen, tc.anomaly, obj)
-        clean, aug = detector.normalize(x), detector.normalize(syn.augmented)
+        batch = draw_batch(data, config.priors, tc.batch_size, index_gen, synth_gen, tc.anomaly, device, defects,
+                           rendered, defect_gen)
+        clean, aug = detector.normalize(batch.target), detector.normalize(batch.inputs)
         if channels_last:
             clean = clean.contiguous(memory_format=torch.channels_last)
             aug = aug.contiguous(memory_format=torch.channels_last)
@@ -387,7 +412,7 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
             terms = {}
             for name, o in forward(aug).items():
                 sl = detector.member_slice(name)
-                lt = draem_loss(clean[:, sl], o.reconstruction, o.logits, syn.mask)
+                lt = draem_loss(clean[:, sl], o.reconstruction, o.logits, batch.mask, batch.recon_weight)
                 total = total + lt.total
                 terms[name] = lt.as_floats()
         optimizer.zero_grad(set_to_none=True)

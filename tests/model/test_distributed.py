@@ -7,6 +7,7 @@ The two-process part runs this file as the worker script: ``torchrun ... test_di
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import signal
 import socket
@@ -20,6 +21,7 @@ import torch
 from model.draem import distributed
 from model.draem.config import ModelConfig
 from model.draem.errors import ModelError
+from model.draem.mixed import TensorDefectData
 from model.draem.train import TensorData, TrainConfig, train
 
 PRIORS = ("intensity", "dolp")  # an ensemble of two tiny networks: one DDP over both members
@@ -74,6 +76,15 @@ class _RecordingData(TensorData):
         return x, obj
 
 
+def _defects() -> TensorDefectData:
+    """Six 'rendered' defective samples: random priors with a square defect mask each."""
+    x, obj = _data().priors[:6] + 0.3, _data().object_mask[:6]
+    mask = torch.zeros(6, 32, 32, dtype=torch.bool)
+    for i in range(6):
+        mask[i, 8 + 2 * i:14 + 2 * i, 10:16] = True
+    return TensorDefectData(x.clamp(0, 1), obj, mask)
+
+
 def _cfg() -> ModelConfig:
     return ModelConfig.from_preset("tiny", PRIORS, "ensemble", input_size_px=32)
 
@@ -111,6 +122,15 @@ def _worker(root: Path) -> None:
         out["c"] = "no error"
     except ModelError as exc:
         out["c"] = str(exc)
+    # d: mixed supervision (half of each batch rendered defects), straight and stopped + resumed
+    mixed = TrainConfig(steps=3, **{**TC, "rendered_fraction": 0.5})
+    d = train(_cfg(), _data(), root / "d" / f"rank{rank}", mixed, progress=False, defects=_defects())
+    e = root / "e" / f"rank{rank}"
+    train(_cfg(), _data(), e, dataclasses.replace(mixed, max_minutes=1e-9), progress=False,
+          defects=_defects())
+    e_again = train(_cfg(), _data(), e, mixed, progress=False, defects=_defects())
+    out["d"] = {"losses": _losses(d.history), "resumed": _losses(e_again.history),
+                "params": {k: v.detach().clone() for k, v in d.detector.named_parameters()}}
     torch.save(out, root / f"worker{rank}.pt")
 
 
@@ -164,6 +184,13 @@ def test_two_process_ddp_matches_ranks_and_single_process(tmp_path):
 
     # divergence on one rank: both raise at the same step (without agreement rank 0 would wait forever)
     assert all("training diverged at step 2" in w[r]["c"] for r in (0, 1)), (w[0]["c"], w[1]["c"])
+
+    # mixed supervision under DDP: weights identical on both ranks, the defect streams checkpointed per rank
+    d0, d1 = w[0]["d"], w[1]["d"]
+    assert all(torch.equal(d0["params"][k], d1["params"][k]) for k in d0["params"])
+    assert d0["resumed"] == pytest.approx(d0["losses"], rel=1e-5)
+    gens = torch.load(tmp_path / "e" / "rank0" / "last.state.pt", weights_only=True)["rank_generators"]
+    assert len(gens) == 2 and all(len(g) == 3 for g in gens)  # (index, synth, defect) per rank
 
     # the single-process path: rank 0's streams are the single process's, with no process group and no extra state
     torch.set_num_threads(1)  # as each worker; two threads on two shared cores run this 5x slower (conftest restores)
