@@ -21,7 +21,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", required=True,
                    help="checkpoint path without suffix (e.g. runs/train/fast-ensemble/best); "
                    "with --ablation also several fused checkpoints, comma-separated, one per prior set")
-    p.add_argument("--data", required=True, help="rendered dataset folder")
+    p.add_argument("--data", required=True, help="dataset folder (rendered, or imported by station import)")
     p.add_argument("--split", default="test", choices=("train", "val", "test"))
     p.add_argument("--limit", type=int, default=None, help="at most N samples (smoke runs)")
     p.add_argument("--no-synthetic", action="store_true", help="skip the synthetic-anomaly evaluation")
@@ -35,10 +35,22 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+def pixel_metrics_scope(n_anomalous: int, n_with_mask: int) -> str:
+    """What the pixel metrics cover when defective parts lack masks (imported sets); "" when all have one."""
+    if n_with_mask == n_anomalous:
+        return ""
+    if n_with_mask == 0:
+        return (f"No defect masks in this split ({n_anomalous} defective parts): image-level metrics only; the pixel "
+                f"metrics (NaN) are not computed against all-zero masks.")
+    return (f"Pixel metrics on the {n_with_mask} of {n_anomalous} defective parts that have a mask (and all good "
+            f"parts); image metrics on all.")
+
+
 def _rows(name: str, m: dict, threshold: float | None, scores, labels) -> dict:
     import numpy as np
 
-    row = {"set": name, "n": m["n"], "anomalous": m["n_anomalous"]}
+    row = {"set": name, "n": m["n"], "anomalous": m["n_anomalous"],
+           "with_mask": m.get("n_anomalous_with_mask", m["n_anomalous"])}
     for k in ("image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max"):
         row[k] = m[k]
     if threshold is not None:
@@ -179,7 +191,7 @@ def _normal_prior(ck) -> dict | None:
 def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None):
     """``data``'s split as checkpoint ``ck`` (loaded from ``model``) sees it at the station: its roi, its input
     size, its learned normal prior. Returns ``station.commands.train.SplitTensors``."""
-    from station.commands.train import load_split
+    from station.datasets import load_split
 
     cfg = ck.detector.config
     normal_prior = _normal_prior(ck)
@@ -218,7 +230,7 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
 
     ck = load_checkpoint(model)
     sp = model_split(ck, model, data, split, limit)
-    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
+    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)
     net = inference_net(ck, model, precision)
     return ck, net, sp, tensors, evaluate(net, tensors)
 
@@ -260,7 +272,7 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import read_sidecar
     from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
     from station.benchmarks.report import markdown_table, write_report
-    from station.commands.train import manifest_sha256
+    from station.datasets import manifest_sha256
 
     models = args.model.split(",")
     if len(models) > 1 and not args.ablation:
@@ -281,7 +293,8 @@ def run(args: argparse.Namespace) -> int:
     good = sp.label == 0
     for t in sorted({t for t in sp.defect_type if t}):
         sel = np.array([(lab == 0) or (dt == t) for lab, dt in zip(sp.label.tolist(), sp.defect_type, strict=True)])
-        sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered")
+        sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered",
+                       sp.mask_known[sel])
         m = evaluate(net, sub)
         rows.append(_rows(f"rendered, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
         roc[t] = (sub.label.numpy(), m.scores)
@@ -305,9 +318,13 @@ def run(args: argparse.Namespace) -> int:
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": _normal_prior(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "channels": channels, "plots": files}
-    cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
+    cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
             "flagged_good", "detected"]
     table = markdown_table(rows, cols)
+    masks = pixel_metrics_scope(int(ev.metrics["n_anomalous"]), int(ev.metrics["n_anomalous_with_mask"]))
+    if masks:
+        table = masks + "\n\n" + table
+    payload["pixel_metrics_scope"] = masks or "all defective parts have masks"
     if ablation:
         table += "\n\nAblation (ensemble members averaged, rendered defects):\n\n" + markdown_table(
             ablation, ["priors", "members", "image_auroc", "pixel_auroc", "pixel_ap"])
