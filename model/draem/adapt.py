@@ -165,8 +165,9 @@ def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, st
         opt.zero_grad(set_to_none=True)
         total.backward()
         opt.step()
-        if not math.isfinite(float(total)):
-            raise ModelError(f"fine-tune diverged: loss {float(total)}")
+        loss = float(total.detach())
+        if not math.isfinite(loss):
+            raise ModelError(f"fine-tune diverged: loss {loss}")
     return d.eval()
 
 
