@@ -144,14 +144,16 @@ def image_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> n
 
 
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,
-              batch_size: int, seed: int, anomaly: AnomalyConfig) -> Detector:
+              batch_size: int, seed: int, anomaly: AnomalyConfig, progress: bool = True) -> Detector:
     """A copy of ``detector`` trained ``steps`` more steps on good parts ``x`` with synthetic anomalies (DRAEM's
     loss), at learning rate ``lr``; its normaliser is kept."""
+    from tqdm import tqdm
+
     d = copy.deepcopy(detector).train()
     opt = torch.optim.Adam(d.parameters(), lr=lr)
     g_idx = torch.Generator().manual_seed(seed)
     g_syn = torch.Generator().manual_seed(seed + 7)
-    for _ in range(steps):
+    for _ in tqdm(range(steps), desc="fine-tune", unit="step", disable=not progress, dynamic_ncols=True):
         idx = torch.randint(x.shape[0], (batch_size,), generator=g_idx)
         xb, ob = x[idx], object_mask[idx].bool()
         syn = synthesize(xb, d.config.priors, g_syn, anomaly, ob)
@@ -175,8 +177,8 @@ def _fit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Normalizer:
     return Normalizer.fit(x) if cfg.refit_normalizer else detector.normalizer
 
 
-def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: AdaptConfig = AdaptConfig()
-          ) -> tuple[Detector, AdaptResult]:
+def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: AdaptConfig = AdaptConfig(),
+          progress: bool = True) -> tuple[Detector, AdaptResult]:
     """Adapt ``detector`` to the good parts ``x`` (N, C, S, S) at its input size (module docstring); returns the
     adapted copy (threshold not set on it: see ``AdaptResult.threshold``) and what was done."""
     n = x.shape[0]
@@ -202,7 +204,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         held, fit = order[:n_held], order[n_held:]
         tuned = with_normalizer(detector, _fit(detector, x[fit], cfg))
         final = fine_tune(tuned, x[fit], object_mask[fit], cfg.fine_tune_steps, cfg.fine_tune_lr, cfg.batch_size,
-                          cfg.seed, cfg.anomaly)
+                          cfg.seed, cfg.anomaly, progress)
         heldout = image_scores(final, x[held])
         scheme = f"normalisation and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
         steps = cfg.fine_tune_steps
