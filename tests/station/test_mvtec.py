@@ -110,3 +110,15 @@ def test_a_folder_that_is_not_the_layout_is_refused(tmp_path: Path, capsys, bad:
     (tmp_path / "mv" / bad).mkdir(parents=True)
     assert main(["import", "--from", str(tmp_path / "mv"), "--out", str(tmp_path / "ds")]) == 2
     assert ("good parts only" if bad == "train/scratch" else "not an MVTec AD layout") in capsys.readouterr().err
+
+
+def test_train_reads_an_imported_set_and_records_its_frame_statistics(tmp_path: Path) -> None:
+    src = _write_mvtec(tmp_path / "mv", dtype=np.uint8, top=200)
+    assert main(["import", "--from", str(src), "--out", str(tmp_path / "ds")]) == 0
+    out = tmp_path / "train"
+    assert main(["train", "--data", str(tmp_path / "ds"), "--priors", "intensity,aolp", "--preset", "tiny",
+                 "--fusion", "fused", "--size", "32", "--steps", "2", "--batch-size", "2", "--eval-every", "2",
+                 "--device", "cpu", "--out", str(out)]) == 0
+    for name in ("best", "last"):
+        stats = json.loads((out / f"{name}.json").read_text())["train"]["frame_statistics"]
+        assert stats["n_frames"] == 11 and 0.0 < stats["median"]["median_level"] < 1.0
