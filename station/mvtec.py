@@ -207,8 +207,8 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
     if layout not in LAYOUTS:
         raise UserError(f"--layout {layout!r}: unknown; known: {', '.join(LAYOUTS)}")
     items = scan_mvtec(src)
-    if (out / "manifest.json").exists():
-        raise UserError(f"{out}: already a dataset; import into a new folder")
+    if out.exists() and (not out.is_dir() or any(out.iterdir())):
+        raise UserError(f"{out}: exists and is not an empty folder; import into a new folder")
     first = cv2.imread(str(items[0].path), cv2.IMREAD_UNCHANGED)
     if bit_depth is None:
         bit_depth = info.get("bit_depth")
@@ -270,6 +270,8 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
                                              "object_masks": report.n_object_masks}}
         (tmp / "manifest.json").write_text(json.dumps(manifest, indent=1))
         out.parent.mkdir(parents=True, exist_ok=True)
+        if out.is_dir():
+            out.rmdir()  # empty (checked above)
         os.rename(tmp, out)
     finally:
         if tmp.exists():

@@ -38,6 +38,8 @@ def test_export_then_import_gives_back_the_same_raw_masks_and_splits(tmp_path: P
         moved = orig.split(i) == "train" and a.label  # MVTec's train/ is good parts only
         assert (b.label, b.split) == (a.label, "test" if moved else orig.split(i))  # from the folders
     assert open_dataset(tmp_path / "back").indices("val") != orig.indices("val")  # renumbered, same parts
+    assert main(["import", "--from", str(tmp_path / "mv"), "--out", str(tmp_path / "back")]) == 2
+    assert "not an empty folder" in capsys.readouterr().err
 
 
 def _write_mvtec(root: Path, dtype=np.uint16, top: int = 4000, masks: bool = False) -> Path:
