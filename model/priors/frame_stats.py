@@ -77,36 +77,41 @@ def frame_statistics(priors: Mapping[str, np.ndarray], box: tuple[int, int, int,
 
 @dataclass(frozen=True)
 class StatisticsRange:
-    """What a model was trained on: per statistic the low and high percentile (``PERCENTILES``) and the median over
-    its frames, plus the number of frames. Stored in the model's sidecar (``to_dict``)."""
+    """What a model was trained on: per statistic the 2nd, 25th, 50th, 75th and 98th percentile over its frames
+    (``low``, ``q1``, ``median``, ``q3``, ``high``), and the number of frames. Stored in the model's sidecar
+    (``to_dict``). Single frames vary widely (part colour, light, pose); the median of a window of frames stays
+    near the middle quartiles, which is what a drift check compares with."""
 
     low: dict[str, float]
-    high: dict[str, float]
+    q1: dict[str, float]
     median: dict[str, float]
+    q3: dict[str, float]
+    high: dict[str, float]
     n_frames: int
 
-    PERCENTILES = (2.0, 98.0)
+    PERCENTILES = (2.0, 25.0, 50.0, 75.0, 98.0)
+    KEYS = ("low", "q1", "median", "q3", "high")
 
     @classmethod
     def from_frames(cls, stats: Iterable[FrameStatistics]) -> StatisticsRange:
         rows = [s.as_dict() for s in stats]
         if not rows:
             raise ValueError("a statistics range needs at least one frame")
-        lo, hi, med = {}, {}, {}
-        for k in STAT_NAMES:
-            v = np.array([r[k] for r in rows], dtype=np.float64)
-            lo[k], hi[k] = (float(x) for x in np.percentile(v, cls.PERCENTILES))
-            med[k] = float(np.median(v))
-        return cls(lo, hi, med, len(rows))
+        out: dict[str, dict[str, float]] = {k: {} for k in cls.KEYS}
+        for name in STAT_NAMES:
+            values = np.percentile(np.array([r[name] for r in rows], dtype=np.float64), cls.PERCENTILES)
+            for key, v in zip(cls.KEYS, values, strict=True):
+                out[key][name] = float(v)
+        return cls(**out, n_frames=len(rows))
 
     def to_dict(self) -> dict:
-        return {"low": self.low, "high": self.high, "median": self.median, "n_frames": self.n_frames,
+        return {**{k: getattr(self, k) for k in self.KEYS}, "n_frames": self.n_frames,
                 "percentiles": list(self.PERCENTILES), "region": "centre square"}
 
     @classmethod
     def from_dict(cls, d: Mapping) -> StatisticsRange:
-        return cls({k: float(v) for k, v in d["low"].items()}, {k: float(v) for k, v in d["high"].items()},
-                   {k: float(v) for k, v in d["median"].items()}, int(d.get("n_frames", 0)))
+        return cls(**{k: {n: float(v) for n, v in d[k].items()} for k in cls.KEYS}, n_frames=int(d.get("n_frames", 0)))
 
     def describe(self) -> str:
-        return ", ".join(f"{k} {self.low[k]:.3f}..{self.high[k]:.3f}" for k in STAT_NAMES if k in self.low)
+        return ", ".join(f"{k} {self.median[k]:.3f} (quartiles {self.q1[k]:.3f}..{self.q3[k]:.3f}, frames "
+                         f"{self.low[k]:.3f}..{self.high[k]:.3f})" for k in STAT_NAMES if k in self.median)
