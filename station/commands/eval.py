@@ -73,13 +73,14 @@ def ablation_rows(ev, data) -> list[dict]:
     from model.draem import metrics as M
 
     label = data.label.numpy().astype(bool)
-    gt, obj = data.defect_mask.numpy().astype(bool), data.object_mask.numpy().astype(bool)
+    known = np.ones(label.size, bool) if data.mask_known is None else data.mask_known.numpy().astype(bool)
+    gt, obj = data.defect_mask.numpy().astype(bool)[known], data.object_mask.numpy().astype(bool)[known]
     rows = []
     for name, members in ABLATION:
         if not all(m in ev.member_scores for m in members):
             continue
         score = np.mean([ev.member_scores[m] for m in members], axis=0)
-        amap = np.mean([ev.member_maps[m] for m in members], axis=0)
+        amap = np.mean([ev.member_maps[m] for m in members], axis=0)[known]
         rows.append({"priors": name, "members": "+".join(members), "image_auroc": M.auroc(label, score),
                      "pixel_auroc": M.pixel_auroc(gt, amap, obj), "pixel_ap": M.pixel_ap(gt, amap, obj)})
     return rows
@@ -271,6 +272,7 @@ def run(args: argparse.Namespace) -> int:
 
     from model.draem.checkpoint import read_sidecar
     from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
+    from sim.dataset import open_dataset
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256
 
@@ -288,7 +290,8 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     ck, net, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision)
     cfg, thr = ck.detector.config, ck.threshold
-    rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
+    source = "imported" if open_dataset(args.data).manifest.get("source") else "rendered"
+    rows = [_rows(f"{source}, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}
     good = sp.label == 0
     for t in sorted({t for t in sp.defect_type if t}):
@@ -296,7 +299,7 @@ def run(args: argparse.Namespace) -> int:
         sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered",
                        sp.mask_known[sel])
         m = evaluate(net, sub)
-        rows.append(_rows(f"rendered, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
+        rows.append(_rows(f"{source}, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
         roc[t] = (sub.label.numpy(), m.scores)
     if not args.no_synthetic and bool(good.any()):
         syn = synthetic_eval_data(TensorData(sp.priors[good], sp.object_mask[good]), cfg.priors, seed=4242)
@@ -304,7 +307,7 @@ def run(args: argparse.Namespace) -> int:
         rows.append(_rows("synthetic (DRAEM-style)", m.metrics, thr, m.scores, syn.label.numpy()))
         roc["synthetic"] = (syn.label.numpy(), m.scores)
     if not rows[0]["anomalous"]:
-        raise UserError(f"{args.data}: split {args.split!r} has no rendered defects; AUROC is undefined")
+        raise UserError(f"{args.data}: split {args.split!r} has no defective parts; AUROC is undefined")
     files = [] if args.no_plots else _plots(out, roc, data, ev.maps, ev.scores, thr)
     ablation = ablation_rows(ev, data) if args.ablation else []
     channels = channel_rows(ck.detector, sp.priors[good], sp.object_mask[good]) if bool(good.any()) else []
