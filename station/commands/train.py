@@ -1,7 +1,9 @@
-"""``station train``: train the DRAEM detector on a rendered dataset (sim's format) through the priors core.
+"""``station train``: train the DRAEM detector on a dataset (sim's format: rendered by ``station render`` or
+imported by ``station import``) through the priors core.
 
-Bridge: ``sim.dataset`` sample -> ``model.priors.compute_priors`` on the raw mosaic (what the camera would give)
--> stacked prior channels -> square crop around the part (object mask) -> network input size -> ``model.draem``.
+Bridge (``station.datasets.load_split``): ``sim.dataset`` sample -> ``model.priors.compute_priors`` on the raw
+mosaic (what the camera would give) -> stacked prior channels -> the region of interest -> network input size ->
+``model.draem``. The training frames' brightness statistics go into every checkpoint (``train.frame_statistics``).
 The normal prior comes from a learned normal estimator (``--normal-net``, ``model.normals.estimator``), copied
 beside the checkpoint so the station computes the same normals; without one, from the renderer's ground-truth
 normals (a research upper bound that a station cannot run; stated in every report).
