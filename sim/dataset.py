@@ -25,6 +25,11 @@ Split rule (``SPLIT_RULE``): by index, ``i % 10`` in {0, 1} -> test (20 %, as th
 probability ``defect_fraction`` in val and test samples only (DRAEM trains on good parts and makes its own
 anomalies) unless ``defects_in_train``; a placed defect that is not visible gives label 0.
 
+Imported sets (``station import``, ``station.datasets``): the same layout, but the split of each sample comes from
+the folder it was imported from, not from its index: the manifest's ``split_rule`` is ``FOLDER_SPLIT_RULE`` and
+its ``sample_splits`` maps every index (as a string) to its split. Such a set may lack object masks (the station's
+region of interest stands in) and defect masks (image-level metrics only); its manifest says which.
+
 Empty samples (``empty_rate`` > 0; ``is_empty``): the same randomised scene (camera, light, background) rendered
 without the part, for the station's presence check: ``params.json`` has ``"empty": true`` (the key is absent on
 samples that show the part), label 0, no defect, object and defect masks all False. Which indices are empty
@@ -60,6 +65,8 @@ FORMAT = "polar-ano-dataset"
 VERSION = 1
 SPLIT_RULE = ("index % 10 in {0, 1}: test; index % 10 == 2: val (slice of the 80 % train part, for thresholds); "
               "else train. Defects only in val/test unless defects_in_train.")
+FOLDER_SPLIT_RULE = "folders"
+"""``split_rule`` of an imported set: splits from the source folders, per sample in the manifest's ``sample_splits``."""
 GT_KEYS = ("s0", "s1", "s2", "normal", "object_mask", "defect_mask", "part_index", "depth")
 
 
@@ -443,6 +450,13 @@ class Dataset:
             raise SimError(f"{path}: rendered with convention version {self.manifest.get('convention_version')}, "
                            f"this code uses {CONVENTION_VERSION}: re-render")
         self._indices = sorted(int(p.name) for p in (self.root / "samples").glob("[0-9]" * 6) if p.is_dir())
+        self._splits: dict[int, str] | None = None
+        if self.manifest.get("split_rule") == FOLDER_SPLIT_RULE:
+            try:
+                self._splits = {int(k): str(v) for k, v in self.manifest["sample_splits"].items()}
+            except (KeyError, AttributeError, ValueError) as exc:
+                raise SimError(f"{path}: split rule {FOLDER_SPLIT_RULE!r} without a valid sample_splits map "
+                               f"({exc})") from None
         config = self.manifest.get("config") or {}
         self.empty_rate = float(config.get("empty_rate", 0.0))
         """Fraction of samples rendered without the part (0 for sets from before the key)."""
@@ -457,8 +471,14 @@ class Dataset:
         samples that show the part, True only the empty ones, None both."""
         if split not in (None, "train", "val", "test"):
             raise SimError(f"unknown split {split!r}; use train, val or test")
-        return [i for i in self._indices if (split is None or split_of(i) == split)
+        return [i for i in self._indices if (split is None or self.split(i) == split)
                 and (empty is None or (i in self._empty) == empty)]
+
+    def split(self, index: int) -> str:
+        """The split of sample ``index``: from the manifest for an imported set, else ``split_of``."""
+        if self._splits is not None:
+            return self._splits.get(index, "")
+        return split_of(index)
 
     def load(self, index: int, ground_truth: bool = True) -> Sample:
         d = sample_dir(self.root, index)

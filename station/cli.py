@@ -14,8 +14,10 @@ from station import __version__
 from station.errors import USER_ERRORS
 
 COMMANDS = ["run", "view", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train",
-            "ensemble", "threshold", "quantize", "eval", "normals"]
+            "ensemble", "threshold", "quantize", "eval", "normals", "import", "export", "capture", "adapt"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
+MODULE_OF = {"import": "import_set"}
+"""Commands whose module name differs from the command (``import`` is a Python keyword)."""
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -27,7 +29,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = parser.add_subparsers(dest="command", metavar="<command>", required=True)
     for name in COMMANDS:
-        importlib.import_module(f"station.commands.{name.replace('-', '_')}").add_parser(sub)
+        importlib.import_module(f"station.commands.{MODULE_OF.get(name, name.replace('-', '_'))}").add_parser(sub)
     return parser
 
 

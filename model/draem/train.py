@@ -80,13 +80,16 @@ class TensorData:
 @dataclass
 class EvalData:
     """Held-out samples: priors (N, C, S, S), object_mask and defect_mask (N, S, S) bool, label (N,) {0, 1};
-    ``kind`` says where the anomalies come from ("rendered" defects or "synthetic")."""
+    ``kind`` says where the anomalies come from ("rendered" defects or "synthetic"). ``mask_known`` (N,) bool:
+    whose defect mask is ground truth (None: all); pixel metrics use only those samples (a defective part without
+    a mask is never scored against an all-zero mask)."""
 
     priors: torch.Tensor
     object_mask: torch.Tensor
     defect_mask: torch.Tensor
     label: torch.Tensor
     kind: str = "rendered"
+    mask_known: torch.Tensor | None = None
 
 
 def synthetic_eval_data(good: TrainData, priors: tuple[str, ...], seed: int = 12345, max_samples: int = 256,
@@ -197,13 +200,16 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
     amap = torch.cat(maps).numpy()
     score = torch.cat(scores).numpy()
     label = data.label.numpy().astype(bool)
-    gt = data.defect_mask.numpy().astype(bool)
-    obj = data.object_mask.numpy().astype(bool)
+    known = np.ones(label.size, bool) if data.mask_known is None else data.mask_known.numpy().astype(bool)
+    gt = data.defect_mask.numpy().astype(bool)[known]
+    obj = data.object_mask.numpy().astype(bool)[known]
+    pmap = amap[known]
     f1, f1_t = M.f1_max(label, score)
     res = {
-        "image_auroc": M.auroc(label, score), "pixel_auroc": M.pixel_auroc(gt, amap, obj),
-        "pixel_ap": M.pixel_ap(gt, amap, obj), "aupro_0.3": M.aupro(gt, amap, 0.3, obj),
+        "image_auroc": M.auroc(label, score), "pixel_auroc": M.pixel_auroc(gt, pmap, obj),
+        "pixel_ap": M.pixel_ap(gt, pmap, obj), "aupro_0.3": M.aupro(gt, pmap, 0.3, obj),
         "image_f1_max": f1, "image_f1_threshold": f1_t, "n": int(label.size), "n_anomalous": int(label.sum()),
+        "n_anomalous_with_mask": int((label & known).sum()),
     }
     if len(member_scores) <= 1:
         return EvalResult(res, score, amap)

@@ -22,7 +22,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", required=True,
                    help="checkpoint path without suffix (e.g. runs/train/fast-ensemble/best); "
                    "with --ablation also several fused checkpoints, comma-separated, one per prior set")
-    p.add_argument("--data", required=True, help="rendered dataset folder")
+    p.add_argument("--data", required=True, help="dataset folder (rendered, or imported by station import)")
     p.add_argument("--split", default="test", choices=("train", "val", "test"))
     p.add_argument("--limit", type=int, default=None, help="at most N samples (smoke runs)")
     p.add_argument("--no-synthetic", action="store_true", help="skip the synthetic-anomaly evaluation")
@@ -36,10 +36,22 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+def pixel_metrics_scope(n_anomalous: int, n_with_mask: int) -> str:
+    """What the pixel metrics cover when defective parts lack masks (imported sets); "" when all have one."""
+    if n_with_mask == n_anomalous:
+        return ""
+    if n_with_mask == 0:
+        return (f"No defect masks in this split ({n_anomalous} defective parts): image-level metrics only; the pixel "
+                f"metrics (NaN) are not computed against all-zero masks.")
+    return (f"Pixel metrics on the {n_with_mask} of {n_anomalous} defective parts that have a mask (and all good "
+            f"parts); image metrics on all.")
+
+
 def _rows(name: str, m: dict, threshold: float | None, scores, labels) -> dict:
     import numpy as np
 
-    row = {"set": name, "n": m["n"], "anomalous": m["n_anomalous"]}
+    row = {"set": name, "n": m["n"], "anomalous": m["n_anomalous"],
+           "with_mask": m.get("n_anomalous_with_mask", m["n_anomalous"])}
     for k in ("image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max"):
         row[k] = m[k]
     if threshold is not None:
@@ -62,13 +74,14 @@ def ablation_rows(ev, data) -> list[dict]:
     from model.draem import metrics as M
 
     label = data.label.numpy().astype(bool)
-    gt, obj = data.defect_mask.numpy().astype(bool), data.object_mask.numpy().astype(bool)
+    known = np.ones(label.size, bool) if data.mask_known is None else data.mask_known.numpy().astype(bool)
+    gt, obj = data.defect_mask.numpy().astype(bool)[known], data.object_mask.numpy().astype(bool)[known]
     rows = []
     for name, members in ABLATION:
         if not all(m in ev.member_scores for m in members):
             continue
         score = np.mean([ev.member_scores[m] for m in members], axis=0)
-        amap = np.mean([ev.member_maps[m] for m in members], axis=0)
+        amap = np.mean([ev.member_maps[m] for m in members], axis=0)[known]
         rows.append({"priors": name, "members": "+".join(members), "image_auroc": M.auroc(label, score),
                      "pixel_auroc": M.pixel_auroc(gt, amap, obj), "pixel_ap": M.pixel_ap(gt, amap, obj)})
     return rows
@@ -180,7 +193,7 @@ def _normal_prior(ck) -> dict | None:
 def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None):
     """``data``'s split as checkpoint ``ck`` (loaded from ``model``) sees it at the station: its roi, its input
     size, its learned normal prior. Returns ``station.commands.train.SplitTensors``."""
-    from station.commands.train import load_split
+    from station.datasets import load_split
 
     cfg = ck.detector.config
     normal_prior = _normal_prior(ck)
@@ -219,7 +232,7 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
 
     ck = load_checkpoint(model)
     sp = model_split(ck, model, data, split, limit)
-    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered")
+    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)
     net = inference_net(ck, model, precision)
     return ck, net, sp, tensors, evaluate(net, tensors)
 
@@ -260,8 +273,9 @@ def run(args: argparse.Namespace) -> int:
 
     from model.draem.checkpoint import read_sidecar
     from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
+    from sim.dataset import open_dataset
     from station.benchmarks.report import markdown_table, write_report
-    from station.commands.train import manifest_sha256
+    from station.datasets import manifest_sha256
     from station.detectability import COLUMNS as DETECTABILITY_COLUMNS
     from station.detectability import detection_by_detectability, oracle_snr
 
@@ -279,14 +293,16 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     ck, net, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision)
     cfg, thr = ck.detector.config, ck.threshold
-    rows = [_rows("rendered, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
+    source = "imported" if open_dataset(args.data).manifest.get("source") else "rendered"
+    rows = [_rows(f"{source}, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}
     good = sp.label == 0
     for t in sorted({t for t in sp.defect_type if t}):
         sel = np.array([(lab == 0) or (dt == t) for lab, dt in zip(sp.label.tolist(), sp.defect_type, strict=True)])
-        sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered")
+        sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered",
+                       sp.mask_known[sel])
         m = evaluate(net, sub)
-        rows.append(_rows(f"rendered, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
+        rows.append(_rows(f"{source}, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
         roc[t] = (sub.label.numpy(), m.scores)
     if not args.no_synthetic and bool(good.any()):
         syn = synthetic_eval_data(TensorData(sp.priors[good], sp.object_mask[good]), cfg.priors, seed=4242)
@@ -294,7 +310,7 @@ def run(args: argparse.Namespace) -> int:
         rows.append(_rows("synthetic (DRAEM-style)", m.metrics, thr, m.scores, syn.label.numpy()))
         roc["synthetic"] = (syn.label.numpy(), m.scores)
     if not rows[0]["anomalous"]:
-        raise UserError(f"{args.data}: split {args.split!r} has no rendered defects; AUROC is undefined")
+        raise UserError(f"{args.data}: split {args.split!r} has no defective parts; AUROC is undefined")
     files = [] if args.no_plots else _plots(out, roc, data, ev.maps, ev.scores, thr)
     ablation = ablation_rows(ev, data) if args.ablation else []
     channels = channel_rows(ck.detector, sp.priors[good], sp.object_mask[good]) if bool(good.any()) else []
@@ -311,9 +327,13 @@ def run(args: argparse.Namespace) -> int:
                "normal_prior": _normal_prior(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "channels": channels, "by_detectability": by_snr,
                "plots": files}
-    cols = ["set", "n", "anomalous", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap", "image_f1_max",
-            "flagged_good", "detected"]
+    cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",
+            "image_f1_max", "flagged_good", "detected"]
     table = markdown_table(rows, cols)
+    masks = pixel_metrics_scope(int(ev.metrics["n_anomalous"]), int(ev.metrics["n_anomalous_with_mask"]))
+    if masks:
+        table = masks + "\n\n" + table
+    payload["pixel_metrics_scope"] = masks or "all defective parts have masks"
     if by_snr:
         table += ("\n\nDetection by detectability (the oracle's best-prior SNR, station/detectability.py; caught: "
                   "score >= threshold; image AUROC: these defects against all good parts):\n\n"

@@ -1,7 +1,9 @@
-"""``station train``: train the DRAEM detector on a rendered dataset (sim's format) through the priors core.
+"""``station train``: train the DRAEM detector on a dataset (sim's format: rendered by ``station render`` or
+imported by ``station import``) through the priors core.
 
-Bridge: ``sim.dataset`` sample -> ``model.priors.compute_priors`` on the raw mosaic (what the camera would give)
--> stacked prior channels -> square crop around the part (object mask) -> network input size -> ``model.draem``.
+Bridge (``station.datasets.load_split``): ``sim.dataset`` sample -> ``model.priors.compute_priors`` on the raw
+mosaic (what the camera would give) -> stacked prior channels -> the region of interest -> network input size ->
+``model.draem``. The training frames' brightness statistics go into every checkpoint (``train.frame_statistics``).
 The normal prior comes from a learned normal estimator (``--normal-net``, ``model.normals.estimator``), copied
 beside the checkpoint so the station computes the same normals; without one, from the renderer's ground-truth
 normals (a research upper bound that a station cannot run; stated in every report).
@@ -10,13 +12,12 @@ normals (a research upper bound that a station cannot run; stated in every repor
 from __future__ import annotations
 
 import argparse
-import hashlib
 import json
 import logging
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from station.datasets import SplitTensors, fov_of, load_split, manifest_sha256
 from station.errors import UserError
 
 if TYPE_CHECKING:
@@ -27,10 +28,12 @@ log = logging.getLogger(__name__)
 NORMAL_NET_FILE = "normal_net"
 """Stem of the normal estimator's copy beside the checkpoints (``<out>/normal_net.{pt,json}``)."""
 
+__all__ = ["SplitTensors", "check_trained_on", "load_split", "manifest_sha256", "run"]  # re-exported from datasets
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("train", help="train the DRAEM detector on a rendered dataset (checkpoints, keep-best)")
-    p.add_argument("--data", required=True, help="rendered dataset folder (station render --out)")
+    p = sub.add_parser("train", help="train the DRAEM detector on a rendered or imported set (checkpoints, keep-best)")
+    p.add_argument("--data", required=True, help="dataset folder (station render --out, or station import --out)")
     p.add_argument("--priors", default="intensity,dolp,aolp,normal", help="comma-separated: intensity,dolp,aolp,normal")
     p.add_argument("--preset", default="fast",
                    help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), lean (16/16 @ 128), tiny")
@@ -58,23 +61,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
-@dataclass
-class SplitTensors:
-    """Priors at the network input size: priors (N, C, S, S), object/defect masks (N, S, S), labels (N,),
-    defect type per sample ("" for good parts) and dataset indices."""
-
-    priors: object
-    object_mask: object
-    defect_mask: object
-    label: object
-    defect_type: list[str]
-    index: list[int]
-
-
-def manifest_sha256(root: str | Path) -> str:
-    return hashlib.sha256((Path(root) / "manifest.json").read_bytes()).hexdigest()
-
-
 def check_trained_on(model: str, data: str) -> str | None:
     """The checkpoint's training-set manifest sha256 (None if unrecorded); UserError if ``data`` is another set."""
     from model.draem.checkpoint import read_sidecar
@@ -91,76 +77,7 @@ def dataset_fov_x_deg(root: str | Path) -> float | None:
 
     ds = open_dataset(root)
     idx = ds.indices()
-    return _fov(ds.load(idx[0], ground_truth=False).params) if idx else None
-
-
-def _fov(params: dict) -> float | None:
-    return (params.get("scene", {}).get("camera") or {}).get("fov_x_deg")
-
-
-def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int, limit: int | None = None,
-               good_only: bool = False, progress: bool = True, roi: str = "center",
-               normals: NormalEstimator | None = None) -> SplitTensors:
-    """Read one split of a rendered set into tensors at the network input size, cropped to ``roi`` (see
-    ``model.draem.config.ModelConfig.roi``). Object and defect masks come along (for anomaly synthesis and the
-    pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field of view must be the
-    set's), or from the rendered ground truth when it is None."""
-    import numpy as np
-    import torch
-    from tqdm import tqdm
-
-    from model.draem.preprocess import crop_resize, stack_priors
-    from model.draem.roi import roi_box
-    from model.priors import compute_priors
-    from sim.dataset import open_dataset
-
-    ds = open_dataset(root)
-    idx = ds.indices(split)
-    if not idx:
-        raise UserError(f"{root}: no complete samples in split {split!r}")
-    wanted = [p for p in priors if p != "normal"]
-    names = [n for p in wanted for n in (("aolp_cos", "aolp_sin") if p == "aolp" else (p,))] or ["intensity"]
-    if "normal" in priors and normals is not None:
-        from model.normals.estimator import MAP_NAMES
-
-        names = list(dict.fromkeys(names + list(MAP_NAMES)))
-    xs, objs, defs, labels, types, used = [], [], [], [], [], []
-    for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
-        if limit is not None and len(used) >= limit:
-            break
-        s = ds.load(i)
-        if good_only and s.label:
-            continue
-        maps = dict(compute_priors(s.raw, ds.manifest.get("layout", "imx250mzr"), priors=names,
-                                   bit_depth=ds.manifest.get("bit_depth")))
-        if "normal" in priors and normals is not None:
-            fov = _fov(s.params)
-            if fov is not None and normals.fov_x_deg is not None and abs(fov - normals.fov_x_deg) > 1e-3:
-                raise UserError(f"{root}: sample {i} has a {fov:.4g} deg field of view, the normal estimator reads "
-                                f"{normals.fov_x_deg:.4g} deg frames; one set, one lens")
-            maps["normal"] = normals.predict_frame(maps)
-        elif "normal" in priors:
-            if s.normal is None:
-                raise UserError(f"{root}: sample {i} has no ground-truth normals (render without --no-ground-truth); "
-                                f"pass --normal-net to use the learned estimator")
-            maps["normal"] = s.normal
-        if s.object_mask is None:
-            raise UserError(f"{root}: sample {i} has no object mask (render with ground truth)")
-        x = stack_priors(maps, priors)
-        if x.shape[1:] != s.object_mask.shape:
-            raise UserError(f"{root}: sample {i}: priors {x.shape[1:]} and object mask {s.object_mask.shape} differ")
-        defect = s.defect_mask if s.defect_mask is not None else np.zeros_like(s.object_mask)
-        box = roi_box(roi, s.object_mask.shape, s.object_mask)
-        xt, (obj, dm) = crop_resize(x, box, size_px, priors, (s.object_mask, defect))
-        xs.append(xt)
-        objs.append(obj)
-        defs.append(dm)
-        labels.append(int(s.label))
-        types.append((s.params.get("defect") or {}).get("type", "") if s.label else "")
-        used.append(i)
-    if not xs:
-        raise UserError(f"{root}: split {split!r} has no usable samples")
-    return SplitTensors(torch.stack(xs), torch.stack(objs), torch.stack(defs), torch.tensor(labels), types, used)
+    return fov_of(ds.load(idx[0], ground_truth=False).params) if idx else None
 
 
 def normal_estimator(path: str | None, data: str | Path, out: Path) -> NormalEstimator | None:
@@ -191,6 +108,7 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.config import ModelConfig, check_priors
     from model.draem.metrics import choose_threshold
     from model.draem.train import EvalData, TensorData, TrainConfig, evaluate, synthetic_eval_data, train
+    from model.priors.frame_stats import StatisticsRange
 
     priors = check_priors(args.priors)
     config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size, args.roi)
@@ -203,7 +121,7 @@ def run(args: argparse.Namespace) -> int:
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
              len(tr.index), len(va.index), int(va.label.sum()), size, size,
              (normal_prior or {}).get("source", "not used"))
-    rendered = EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered")
+    rendered = EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known)
     has_both = 0 < int(va.label.sum()) < len(va.index)
     val = rendered if has_both else synthetic_eval_data(
         TensorData(va.priors[va.label == 0], va.object_mask[va.label == 0]), priors, seed=args.seed + 1)
@@ -212,15 +130,18 @@ def run(args: argparse.Namespace) -> int:
     tc = TrainConfig(steps=args.steps, batch_size=args.batch_size, seed=args.seed, eval_every=args.eval_every,
                      device=args.device, precision=args.precision, max_minutes=args.max_minutes)
     sha = manifest_sha256(args.data)
+    meta = {"frame_statistics": StatisticsRange.from_frames(tr.frame_stats).to_dict()}
+    if normal_prior:
+        meta["normal_prior"] = normal_prior
     res = train(config, TensorData(tr.priors, tr.object_mask), out, tc, val, resume=not args.no_resume,
-                data_manifest_sha256=sha, train_meta={"normal_prior": normal_prior} if normal_prior else None)
+                data_manifest_sha256=sha, train_meta=meta)
     if not res.is_main:  # torchrun: rank 0 alone evaluates, sets the threshold and writes the summary
         return 0
     ck = load_checkpoint(out / "best")
     ev = evaluate(ck.detector, rendered if has_both else val)
     choice = choose_threshold((rendered if has_both else val).label.numpy(), ev.scores)
     save_checkpoint(out / "best", ck.detector, choice.threshold, choice.rule, sha, ev.metrics,
-                    {**ck.meta.get("train", {}), "normal_prior": normal_prior})
+                    {**ck.meta.get("train", {}), **meta, "normal_prior": normal_prior})
     summary = {"best": str(res.best_path), "steps": res.steps_done, "seconds": round(res.seconds, 1),
                "val_kind": val.kind, "threshold": choice.threshold, "threshold_rule": choice.rule,
                "flagged_good_fraction": choice.flagged_good_fraction, "detected_fraction": choice.detected_fraction,

@@ -13,6 +13,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.metrics import choose_threshold
 from station.cli import main
 from station.commands.eval import load_and_evaluate
+from station.datasets import manifest_sha256
 
 
 def test_threshold_is_chosen_on_val_and_written_to_the_sidecar(tmp_path: Path, capsys) -> None:
@@ -32,12 +33,19 @@ def test_threshold_is_chosen_on_val_and_written_to_the_sidecar(tmp_path: Path, c
     assert "threshold" in capsys.readouterr().out
 
 
-def test_threshold_refuses_a_val_split_without_defects_or_another_training_set(tmp_path: Path, capsys) -> None:
+def test_threshold_takes_good_parts_only_and_other_sets_but_not_the_training_split(tmp_path: Path, capsys) -> None:
     data = make_dataset(tmp_path / "ds", n=20)  # val: 2, 12, both good
     model = make_model(tmp_path / "m" / "last", ("intensity",))
-    assert main(["threshold", "--model", str(model), "--data", str(data)]) == 2
-    assert "needs good and defective parts" in capsys.readouterr().err
     ck = load_checkpoint(model)
-    save_checkpoint(model, ck.detector, 0.5, "test", data_manifest_sha256="0" * 64)
-    assert main(["threshold", "--model", str(model), "--data", str(data)]) == 2
-    assert "trained on another set" in capsys.readouterr().err
+    save_checkpoint(model, ck.detector, 0.5, "test", data_manifest_sha256=manifest_sha256(data))  # trained on data
+    assert main(["threshold", "--model", str(model), "--data", str(data)]) == 0  # good parts bound false rejects
+    assert "no defective parts there" in capsys.readouterr().out
+    assert "threshold_set" not in load_checkpoint(model).meta["train"]  # its own training set: nothing to record
+    save_checkpoint(model, ck.detector, 0.5, "test", data_manifest_sha256="0" * 64)  # "trained on another set"
+    assert main(["threshold", "--model", str(model), "--data", str(data)]) == 0
+    assert "not its training set" in capsys.readouterr().out
+    meta = load_checkpoint(model).meta
+    assert meta["train"]["threshold_set"]["split"] == "val" and meta["data_manifest_sha256"] == "0" * 64
+    save_checkpoint(model, ck.detector, 0.5, "test", data_manifest_sha256=manifest_sha256(data))
+    assert main(["threshold", "--model", str(model), "--data", str(data), "--split", "train"]) == 2
+    assert "not held out" in capsys.readouterr().err

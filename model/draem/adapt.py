@@ -1,0 +1,215 @@
+"""Adapting a trained detector to a line from good parts only: what depends on the line is re-estimated, the
+decision threshold is set from good parts that the fitting never saw.
+
+What depends on the line, in this model:
+  - the input normalisation (``Normalizer``: per-channel mean and std over all pixels of the region of interest,
+    the same statistic training used): exposure, gain, light and belt move it;
+  - per-position statistics: none (the detector keeps no per-pixel reference of the part);
+  - optionally the weights: a brief fine-tune on the good parts with DRAEM's synthetic anomalies
+    (``AdaptConfig.fine_tune_steps``; off by default).
+
+Threshold rule (``false_reject_threshold``): reject at most ``false_reject`` of good parts. Held-out scores come
+from cross-fitting when only the normalisation is refitted (``folds`` folds: each part is scored by a normaliser
+fitted on the other folds, so every good part is held out once and N parts give N held-out scores); with
+fine-tuning a fixed share (``holdout_fraction``) is held out of both the normaliser and the fine-tune. The
+threshold is the larger of the empirical quantile (no more than the allowed number of held-out parts at or above
+it) and a logit-normal tail fit at 1 - ``false_reject``: with 50 parts a 1 % target lies beyond the largest
+score, which the tail fit extrapolates instead of trusting the maximum.
+
+Plain torch and numpy: this module reads no files (the caller loads the good parts' priors).
+"""
+
+from __future__ import annotations
+
+import copy
+import logging
+import math
+from dataclasses import asdict, dataclass, field
+from statistics import NormalDist
+from typing import Any
+
+import numpy as np
+import torch
+
+from .anomaly import AnomalyConfig, synthesize
+from .detector import Detector
+from .errors import ModelError
+from .loss import draem_loss
+from .networks import DraemTrainOutput
+from .preprocess import Normalizer
+
+log = logging.getLogger(__name__)
+
+MIN_GOOD = 10
+"""Fewer good parts than this cannot set a threshold worth the name."""
+PER_POSITION = "none (the detector keeps no per-position statistics of the part)"
+
+
+@dataclass(frozen=True)
+class AdaptConfig:
+    """false_reject: share of good parts the threshold may reject; folds: cross-fitting folds (normalisation
+    only); fine_tune_steps: 0 = no fine-tune; holdout_fraction: good parts kept out of a fine-tune for the
+    threshold; refit_normalizer: False keeps the trained normaliser (threshold only)."""
+
+    false_reject: float = 0.01
+    folds: int = 5
+    fine_tune_steps: int = 0
+    fine_tune_lr: float = 2e-5
+    batch_size: int = 8
+    holdout_fraction: float = 0.3
+    refit_normalizer: bool = True
+    seed: int = 0
+    anomaly: AnomalyConfig = field(default_factory=AnomalyConfig)
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.false_reject < 0.5:
+            raise ModelError(f"false_reject {self.false_reject}: a share in (0, 0.5)")
+        if self.folds < 2:
+            raise ModelError(f"folds {self.folds}: at least 2")
+        if not 0.0 < self.holdout_fraction < 1.0:
+            raise ModelError(f"holdout_fraction {self.holdout_fraction}: a share in (0, 1)")
+        if self.fine_tune_steps < 0:
+            raise ModelError(f"fine_tune_steps {self.fine_tune_steps}: >= 0")
+
+
+@dataclass(frozen=True)
+class ThresholdChoice:
+    """threshold and how: ``empirical`` (quantile of the held-out scores) and ``tail`` (logit-normal fit)."""
+
+    threshold: float
+    rule: str
+    empirical: float
+    tail: float
+
+
+@dataclass
+class AdaptResult:
+    """What adaptation changed and what the threshold does on the held-out good parts."""
+
+    normalizer_before: Normalizer
+    normalizer_after: Normalizer
+    threshold: ThresholdChoice
+    heldout_scores: np.ndarray
+    heldout_false_reject: float
+    n_good: int
+    n_heldout: int
+    scheme: str
+    fine_tune_steps: int = 0
+    per_position: str = PER_POSITION
+
+    def record(self) -> dict[str, Any]:
+        """JSON-able summary for the model's sidecar."""
+        s = self.heldout_scores
+        return {"n_good": self.n_good, "n_heldout": self.n_heldout, "scheme": self.scheme,
+                "threshold": self.threshold.threshold, "threshold_rule": self.threshold.rule,
+                "heldout_false_reject": self.heldout_false_reject,
+                "heldout_scores": {"median": float(np.median(s)), "p95": float(np.percentile(s, 95)),
+                                   "max": float(s.max())},
+                "normalization_before": asdict(self.normalizer_before),
+                "normalization_after": asdict(self.normalizer_after),
+                "fine_tune_steps": self.fine_tune_steps, "per_position": self.per_position}
+
+
+def false_reject_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoice:
+    """The threshold that rejects at most ``false_reject`` of good parts with these held-out ``scores`` (module
+    docstring): max of the empirical bound and the logit-normal tail quantile."""
+    s = np.sort(np.asarray(scores, dtype=np.float64).reshape(-1))
+    if s.size == 0 or not np.all(np.isfinite(s)):
+        raise ModelError("false_reject_threshold needs finite held-out scores")
+    allowed = math.floor(false_reject * s.size)
+    empirical = float(np.nextafter(s[s.size - allowed - 1], np.inf))
+    z = np.log(np.clip(s, 1e-6, 1 - 1e-6)) - np.log1p(-np.clip(s, 1e-6, 1 - 1e-6))
+    q = float(z.mean() + NormalDist().inv_cdf(1 - false_reject) * z.std(ddof=1)) if s.size > 1 else float(z[0])
+    tail = float(1.0 / (1.0 + math.exp(-q)))
+    t = max(empirical, tail)
+    which = "logit-normal tail" if tail > empirical else "empirical quantile"
+    rule = (f"adapt: at most {false_reject:.2%} of {s.size} held-out good parts rejected ({which}; empirical "
+            f"{empirical:.4g}, tail {tail:.4g})")
+    return ThresholdChoice(t, rule, empirical, tail)
+
+
+def with_normalizer(detector: Detector, normalizer: Normalizer) -> Detector:
+    """A copy of ``detector`` (eval mode) with another input normaliser."""
+    d = copy.deepcopy(detector)
+    d.normalizer = normalizer
+    return d.eval()
+
+
+@torch.no_grad()
+def image_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> np.ndarray:
+    """(N,) image scores of (N, C, S, S) priors (roi "center"/"frame": scored over the whole square)."""
+    detector.eval()
+    out = [detector.predict(x[i:i + batch_size]).score.float().cpu() for i in range(0, x.shape[0], batch_size)]
+    return torch.cat(out).numpy()
+
+
+def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,
+              batch_size: int, seed: int, anomaly: AnomalyConfig, progress: bool = True) -> Detector:
+    """A copy of ``detector`` trained ``steps`` more steps on good parts ``x`` with synthetic anomalies (DRAEM's
+    loss), at learning rate ``lr``; its normaliser is kept."""
+    from tqdm import tqdm
+
+    d = copy.deepcopy(detector).train()
+    opt = torch.optim.Adam(d.parameters(), lr=lr)
+    g_idx = torch.Generator().manual_seed(seed)
+    g_syn = torch.Generator().manual_seed(seed + 7)
+    for _ in tqdm(range(steps), desc="fine-tune", unit="step", disable=not progress, dynamic_ncols=True):
+        idx = torch.randint(x.shape[0], (batch_size,), generator=g_idx)
+        xb, ob = x[idx], object_mask[idx].bool()
+        syn = synthesize(xb, d.config.priors, g_syn, anomaly, ob)
+        clean, aug = d.normalize(xb), d.normalize(syn.augmented)
+        total = torch.zeros(())
+        for name, net in d.members.items():
+            sl = d.member_slice(name)
+            o = net(aug[:, sl])
+            assert isinstance(o, DraemTrainOutput)
+            total = total + draem_loss(clean[:, sl], o.reconstruction, o.logits, syn.mask).total
+        opt.zero_grad(set_to_none=True)
+        total.backward()
+        opt.step()
+        loss = float(total.detach())
+        if not math.isfinite(loss):
+            raise ModelError(f"fine-tune diverged: loss {loss}")
+    return d.eval()
+
+
+def _fit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Normalizer:
+    return Normalizer.fit(x) if cfg.refit_normalizer else detector.normalizer
+
+
+def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: AdaptConfig = AdaptConfig(),
+          progress: bool = True) -> tuple[Detector, AdaptResult]:
+    """Adapt ``detector`` to the good parts ``x`` (N, C, S, S) at its input size (module docstring); returns the
+    adapted copy (threshold not set on it: see ``AdaptResult.threshold``) and what was done."""
+    n = x.shape[0]
+    if n < MIN_GOOD:
+        raise ModelError(f"adapting needs at least {MIN_GOOD} good parts, got {n}")
+    if detector.config.roi == "object":
+        raise ModelError("a model with roi 'object' needs ground-truth object masks at inference: not adaptable "
+                         "to a line")
+    order = torch.from_numpy(np.random.default_rng(cfg.seed).permutation(n))
+    before = detector.normalizer
+    if cfg.fine_tune_steps == 0:
+        folds = min(cfg.folds, n)
+        scores = np.empty(n)
+        for k in range(folds):
+            held = order[k::folds]
+            rest = torch.from_numpy(np.setdiff1d(order.numpy(), held.numpy()))
+            scores[held.numpy()] = image_scores(with_normalizer(detector, _fit(detector, x[rest], cfg)), x[held])
+        final = with_normalizer(detector, _fit(detector, x, cfg))
+        heldout, scheme = scores, f"cross-fitted normalisation, {folds} folds"
+        n_held, steps = n, 0
+    else:
+        n_held = max(1, round(cfg.holdout_fraction * n))
+        held, fit = order[:n_held], order[n_held:]
+        tuned = with_normalizer(detector, _fit(detector, x[fit], cfg))
+        final = fine_tune(tuned, x[fit], object_mask[fit], cfg.fine_tune_steps, cfg.fine_tune_lr, cfg.batch_size,
+                          cfg.seed, cfg.anomaly, progress)
+        heldout = image_scores(final, x[held])
+        scheme = f"normalisation and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
+        steps = cfg.fine_tune_steps
+    choice = false_reject_threshold(heldout, cfg.false_reject)
+    fr = float((heldout >= choice.threshold).mean())
+    log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
+             choice.threshold, 100 * fr)
+    return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps)

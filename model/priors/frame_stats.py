@@ -1,0 +1,117 @@
+"""Brightness and polarization statistics of one frame, and the range a model was trained on (numpy only).
+
+A detector is trained on frames of one brightness: a camera whose exposure, gain or light differs gives inputs the
+model never saw, and its scores (and false rejects) move although no part changed. These statistics make that
+visible: the model records the range of its training (or adaptation) frames, ``station capture`` prints them per
+frame, and ``station.drift.DriftMonitor`` compares a rolling window of live frames with the recorded range.
+
+Statistics over the station's region of interest (the centre square of the frame, ``model.draem.roi.center_box``;
+no object mask is needed, so a station can compute them on every frame):
+
+    median_level      median unpolarized intensity (S0/2, full-scale units 0..1): the exposure knob
+    high_level        95th percentile of the intensity: where highlights sit, how close to clipping
+    clipped_fraction  share of mosaic pixels at full scale (``Priors.n_saturated``; whole frame when only the
+                      count is known), else of intensity pixels >= ``CLIP_LEVEL``
+    dolp_level        median degree of linear polarization: changes with light, belt and lens, not with exposure
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+CLIP_LEVEL = 0.99
+"""Intensity at or above which a pixel counts as clipped when the mosaic's saturation count is not known."""
+
+STAT_NAMES = ("median_level", "high_level", "clipped_fraction", "dolp_level")
+
+
+@dataclass(frozen=True)
+class FrameStatistics:
+    """See the module docstring; all values are fractions of full scale or shares in [0, 1]."""
+
+    median_level: float
+    high_level: float
+    clipped_fraction: float
+    dolp_level: float
+
+    def as_dict(self) -> dict[str, float]:
+        return asdict(self)
+
+    def describe(self) -> str:
+        return (f"level median {self.median_level:.3f} p95 {self.high_level:.3f}, clipped "
+                f"{100 * self.clipped_fraction:.2f} %, DoLP median {self.dolp_level:.3f}")
+
+
+def centre_square(height: int, width: int) -> tuple[int, int, int, int]:
+    """(top, left, side, side) of the centre square (the station's region; as ``model.draem.roi.center_box``)."""
+    side = min(height, width)
+    return ((height - side) // 2) & ~1, ((width - side) // 2) & ~1, side, side
+
+
+def frame_statistics(priors: Mapping[str, np.ndarray], box: tuple[int, int, int, int] | None = None,
+                     raw: np.ndarray | None = None, bit_depth: int | None = None) -> FrameStatistics:
+    """Statistics of one frame's priors (``model.priors.compute_priors`` output with "intensity" and "dolp", at
+    the mosaic's resolution) over ``box`` (top, left, height, width; default the centre square).
+
+    Clipped share, best source first: the ``raw`` mosaic's codes at full scale (``bit_depth``, default the dtype's)
+    in the box; a ``Priors`` result's saturation count over the whole frame; intensity >= ``CLIP_LEVEL``."""
+    inten = np.asarray(priors["intensity"], dtype=np.float32)
+    top, left, h, w = box if box is not None else centre_square(*inten.shape)
+    region = inten[top:top + h, left:left + w]
+    median, high = (float(v) for v in np.percentile(region, (50, 95)))
+    n_sat = getattr(priors, "n_saturated", None)
+    if raw is not None:
+        full = 2 ** (bit_depth or raw.dtype.itemsize * 8) - 1
+        patch = raw[top:top + h, left:left + w]
+        clipped = float(np.count_nonzero(patch >= full)) / max(patch.size, 1)
+    elif n_sat is not None:
+        clipped = float(n_sat) / inten.size  # mosaic and full-resolution priors have the same pixel count
+    else:
+        clipped = float(np.count_nonzero(region >= CLIP_LEVEL)) / max(region.size, 1)
+    dolp = float(np.median(np.asarray(priors["dolp"])[top:top + h, left:left + w])) if "dolp" in priors else 0.0
+    return FrameStatistics(median, high, min(clipped, 1.0), dolp)
+
+
+@dataclass(frozen=True)
+class StatisticsRange:
+    """What a model was trained on: per statistic the 2nd, 25th, 50th, 75th and 98th percentile over its frames
+    (``low``, ``q1``, ``median``, ``q3``, ``high``), and the number of frames. Stored in the model's sidecar
+    (``to_dict``). Single frames vary widely (part colour, light, pose); the median of a window of frames stays
+    near the middle quartiles, which is what a drift check compares with."""
+
+    low: dict[str, float]
+    q1: dict[str, float]
+    median: dict[str, float]
+    q3: dict[str, float]
+    high: dict[str, float]
+    n_frames: int
+
+    PERCENTILES = (2.0, 25.0, 50.0, 75.0, 98.0)
+    KEYS = ("low", "q1", "median", "q3", "high")
+
+    @classmethod
+    def from_frames(cls, stats: Iterable[FrameStatistics]) -> StatisticsRange:
+        rows = [s.as_dict() for s in stats]
+        if not rows:
+            raise ValueError("a statistics range needs at least one frame")
+        out: dict[str, dict[str, float]] = {k: {} for k in cls.KEYS}
+        for name in STAT_NAMES:
+            values = np.percentile(np.array([r[name] for r in rows], dtype=np.float64), cls.PERCENTILES)
+            for key, v in zip(cls.KEYS, values, strict=True):
+                out[key][name] = float(v)
+        return cls(**out, n_frames=len(rows))
+
+    def to_dict(self) -> dict:
+        return {**{k: getattr(self, k) for k in self.KEYS}, "n_frames": self.n_frames,
+                "percentiles": list(self.PERCENTILES), "region": "centre square"}
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> StatisticsRange:
+        return cls(**{k: {n: float(v) for n, v in d[k].items()} for k in cls.KEYS}, n_frames=int(d.get("n_frames", 0)))
+
+    def describe(self) -> str:
+        return ", ".join(f"{k} {self.median[k]:.3f} (quartiles {self.q1[k]:.3f}..{self.q3[k]:.3f}, frames "
+                         f"{self.low[k]:.3f}..{self.high[k]:.3f})" for k in STAT_NAMES if k in self.median)

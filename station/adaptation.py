@@ -1,0 +1,72 @@
+"""``station adapt`` behind the parser: load a model and the good parts of a line's set, run the model-side policy
+(``model.draem.adapt``), write the adapted checkpoint with a record of what it was adapted on."""
+
+from __future__ import annotations
+
+import hashlib
+import shutil
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from station.errors import UserError
+
+NORMAL_NET_FILES = ("normal_net.pt", "normal_net.json")
+
+
+@dataclass
+class AdaptSummary:
+    out: Path
+    record: dict[str, Any]
+
+    def describe(self) -> str:
+        r = self.record
+        return (f"{self.out}: adapted on {r['n_good']} good parts of {r['data']} ({r['scheme']}); threshold "
+                f"{r['threshold']:.4g}, {100 * r['heldout_false_reject']:.1f} % of held-out good parts rejected "
+                f"(target {100 * r['false_reject_target']:.1f} %); frames: {r['frame_statistics']}")
+
+
+def frames_sha256(root: str | Path, indices: list[int]) -> str:
+    """sha256 over the raw mosaic files of samples ``indices`` of set ``root``, in that order."""
+    from sim.dataset import sample_dir
+
+    h = hashlib.sha256()
+    for i in indices:
+        h.update((sample_dir(root, i) / "raw.png").read_bytes())
+    return h.hexdigest()
+
+
+def adapt_model(model: str, good: str, out: str, split: str = "train", limit: int | None = None,
+                false_reject: float = 0.01, fine_tune_steps: int = 0, seed: int = 0) -> AdaptSummary:
+    """Adapt checkpoint ``model`` to the good parts of ``good``'s ``split`` (at most ``limit``), write ``out``."""
+    from model.draem.adapt import AdaptConfig, adapt
+    from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
+    from model.priors.frame_stats import StatisticsRange
+    from station.commands.eval import model_split
+    from station.datasets import manifest_sha256
+
+    if paths(out)[1].resolve() == paths(model)[1].resolve():
+        raise UserError(f"--out {out}: the same checkpoint as --model; write the adapted model beside it")
+    cfg = AdaptConfig(false_reject=false_reject, fine_tune_steps=fine_tune_steps, seed=seed)
+    ck = load_checkpoint(model)
+    sp = model_split(ck, model, good, split, limit)
+    keep = (sp.label == 0).nonzero().flatten()
+    if len(keep) == 0:
+        raise UserError(f"{good}: split {split!r} has no good parts")
+    x, obj = sp.priors[keep], sp.object_mask[keep]
+    det, res = adapt(ck.detector, x, obj, cfg)
+    used = [sp.index[int(k)] for k in keep]
+    stats = StatisticsRange.from_frames([sp.frame_stats[int(k)] for k in keep])
+    record = {**res.record(), "data": str(good), "split": split, "manifest_sha256": manifest_sha256(good),
+              "frames_sha256": frames_sha256(good, used), "date": time.strftime("%Y-%m-%dT%H:%M:%S"),
+              "false_reject_target": false_reject, "base_model": str(model),
+              "base_weights_sha256": ck.meta.get("weights_sha256"), "frame_statistics": stats.describe()}
+    train = {**ck.meta.get("train", {}), "adapted": record, "frame_statistics": stats.to_dict()}
+    save_checkpoint(out, det, res.threshold.threshold, res.threshold.rule, ck.meta.get("data_manifest_sha256"),
+                    {}, train)
+    src_dir, dst_dir = paths(model)[1].parent, paths(out)[1].parent
+    for name in NORMAL_NET_FILES:  # a learned normal prior's estimator lives beside the checkpoint
+        if (src_dir / name).is_file() and src_dir.resolve() != dst_dir.resolve():
+            shutil.copy2(src_dir / name, dst_dir / name)
+    return AdaptSummary(Path(out), record)

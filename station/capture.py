@@ -1,0 +1,135 @@
+"""Recording raw mosaics from a camera into the MVTec AD layout (``station.mvtec``), with the camera's settings,
+timestamps and each frame's brightness statistics, so good parts collected at the line (and defective ones from
+the reject bin) import with ``station import`` without flags.
+
+Files under ``OUT``::
+
+    OUT/<split>/<label>/<NNNNNN>.png   raw mosaic as the camera gave it (8-bit, or 16-bit holding bit_depth bits)
+    OUT/capture.jsonl                  one line per frame: file, ids, timestamps, pixel format, bit depth,
+                                       camera settings, frame statistics
+    OUT/polar_ano.json                 bit depth and layout (station import reads them)
+
+Numbering continues after the files already in the label's folder: a second ``station capture`` into the same
+``OUT`` adds frames (same bit depth and layout required).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import cv2
+import numpy as np
+
+from drivers.camera import Camera
+from drivers.frame import Frame
+from model.priors import compute_priors
+from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
+from station.errors import UserError
+from station.mvtec import INFO_FILE
+
+
+@dataclass
+class CaptureReport:
+    out: Path
+    folder: Path
+    files: list[str] = field(default_factory=list)
+    stats: list[FrameStatistics] = field(default_factory=list)
+    seconds: float = 0.0
+    bit_depth: int = 8
+
+    def describe(self) -> str:
+        if not self.stats:
+            return f"no frames written to {self.folder}"
+        r = StatisticsRange.from_frames(self.stats)
+        med = r.median
+        return (f"wrote {len(self.files)} frames ({self.bit_depth}-bit) to {self.folder} in {self.seconds:.1f} s; "
+                f"medians: level {med['median_level']:.3f}, p95 level {med['high_level']:.3f}, clipped "
+                f"{100 * med['clipped_fraction']:.2f} %, DoLP {med['dolp_level']:.3f}")
+
+
+def label_folder(out: Path, label: str, split: str | None) -> Path:
+    """``train/good`` for good parts, ``test/<label>`` for defect types (``split`` overrides)."""
+    if not label or "/" in label or label in (".", ".."):
+        raise UserError(f"--label {label!r}: a folder name (good, or a defect type such as scratch)")
+    split = split or ("train" if label == "good" else "test")
+    if split == "train" and label != "good":
+        raise UserError("--split train takes good parts only (MVTec layout): use --label good or --split test")
+    return out / split / label
+
+
+def _next_number(folder: Path) -> int:
+    nums = [int(p.stem) for p in folder.glob("[0-9]" * 6 + ".png")]
+    return max(nums) + 1 if nums else 0
+
+
+def _check_info(out: Path, bit_depth: int, layout: str) -> None:
+    p = out / INFO_FILE
+    if p.is_file():
+        old = json.loads(p.read_text())
+        if old.get("bit_depth") != bit_depth or old.get("layout") != layout:
+            raise UserError(f"{p}: this folder holds {old.get('bit_depth')}-bit {old.get('layout')} frames, the camera "
+                            f"gives {bit_depth}-bit {layout}: capture into another folder")
+    else:
+        p.write_text(json.dumps({"bit_depth": bit_depth, "layout": layout, "note": "written by station capture"},
+                                indent=1))
+
+
+def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", split: str | None = None,
+            settings: dict[str, Any] | None = None, layout: str = "imx250mzr", software_trigger: bool = True,
+            timeout_ms: int | None = None, progress: bool = True,
+            on_frame: Callable[[int, FrameStatistics], None] | None = None) -> CaptureReport:
+    """Grab ``frames`` frames from the open ``camera`` (started and stopped here) into ``out`` (module docstring).
+    ``settings``: the camera settings to record with each frame; ``on_frame(n, stats)`` after each frame."""
+    from tqdm import tqdm
+
+    if frames < 1:
+        raise UserError(f"--frames must be >= 1, got {frames}")
+    out = Path(out)
+    folder = label_folder(out, label, split)
+    folder.mkdir(parents=True, exist_ok=True)
+    report = CaptureReport(out, folder)
+    number = _next_number(folder)
+    t0 = time.perf_counter()
+    camera.start()
+    try:
+        with open(out / "capture.jsonl", "a") as log, tqdm(total=frames, unit="frame", disable=not progress,
+                                                           dynamic_ncols=True) as bar:
+            for n in range(frames):
+                if software_trigger:
+                    camera.trigger()
+                frame: Frame = camera.grab(timeout_ms) if timeout_ms else camera.grab()
+                if n == 0:
+                    _check_info(out, frame.bit_depth, layout)
+                    report.bit_depth = frame.bit_depth
+                elif frame.bit_depth != report.bit_depth:
+                    raise UserError(f"frame {frame.frame_id}: {frame.bit_depth}-bit after {report.bit_depth}-bit "
+                                    f"frames; one capture, one pixel format")
+                name = f"{number:06d}.png"
+                if not cv2.imwrite(str(folder / name), np.ascontiguousarray(frame.raw)):
+                    raise UserError(f"could not write {folder / name}")
+                priors = compute_priors(frame.raw, layout, priors=("intensity", "dolp"), bit_depth=frame.bit_depth)
+                stats = frame_statistics(priors, raw=frame.raw, bit_depth=frame.bit_depth)
+                rel = str((folder / name).relative_to(out))
+                log.write(json.dumps({
+                    "file": rel, "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
+                    "timestamp_ns": frame.timestamp_ns, "host_timestamp_ns": frame.host_timestamp_ns,
+                    "pixel_format": frame.pixel_format, "bit_depth": frame.bit_depth, "label": label,
+                    "camera": settings or {}, "statistics": stats.as_dict()}) + "\n")
+                log.flush()
+                report.files.append(rel)
+                report.stats.append(stats)
+                bar.set_postfix(level=f"{stats.median_level:.3f}", clipped=f"{100 * stats.clipped_fraction:.2f}%",
+                                dolp=f"{stats.dolp_level:.3f}")
+                bar.update(1)
+                if on_frame:
+                    on_frame(n, stats)
+                number += 1
+    finally:
+        camera.stop()
+    report.seconds = time.perf_counter() - t0
+    return report

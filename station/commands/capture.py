@@ -1,0 +1,69 @@
+"""``station capture``: record raw mosaics from the camera of ``station.toml`` (or ``--camera``) into the MVTec AD
+layout, with the camera's settings, timestamps and brightness statistics (``station.capture``). With ``--model``
+the statistics are compared with the range the model was trained (or adapted) on."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("capture", help="record raw mosaics from the camera into the MVTec layout (for import/adapt)")
+    p.add_argument("--camera", choices=("sim", "aravis"), default=None,
+                   help="camera kind (default: [camera] kind in the config)")
+    p.add_argument("--config", default="station.toml", help="station configuration (default station.toml)")
+    p.add_argument("--frames", type=int, required=True, metavar="N", help="number of frames to record")
+    p.add_argument("--out", required=True, metavar="DIR", help="MVTec-layout folder (created; frames are added)")
+    p.add_argument("--label", default="good",
+                   help="good (-> train/good), or a defect type for parts from the reject bin (-> test/<label>); "
+                        "default good")
+    p.add_argument("--split", default=None, choices=("train", "val", "test"),
+                   help="override the split folder (default: train for good, test otherwise)")
+    p.add_argument("--model", default=None,
+                   help="checkpoint whose trained frame statistics to compare with (default: none)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    import dataclasses
+
+    from station.assembly import open_camera
+    from station.capture import capture
+    from station.config import load_config
+    from station.errors import UserError
+
+    cfg = load_config(args.config)
+    if args.camera:
+        cfg = dataclasses.replace(cfg, camera=dataclasses.replace(cfg.camera, kind=args.camera))
+    if cfg.priors.angles_deg is not None:
+        raise UserError(f"{cfg.source}: [priors] angles_deg (a custom layout) cannot be recorded for import yet; "
+                        f"use a named layout")
+    monitor = None
+    if args.model:
+        from model.draem.checkpoint import read_sidecar
+        from station.drift import DriftMonitor, trained_range
+
+        trained = trained_range(read_sidecar(args.model))
+        if trained is None:
+            print(f"{args.model}: no frame statistics recorded (trained before they were): nothing to compare")
+        else:
+            print(f"{args.model} was trained on: {trained.describe()}")
+            monitor = DriftMonitor(trained, window=min(50, args.frames), min_frames=min(10, args.frames))
+    settings = {k: getattr(cfg.camera, k) for k in ("kind", "device", "pixel_format", "exposure_us", "gain_db",
+                                                    "width", "height", "offset_x", "offset_y", "trigger")}
+    camera = open_camera(cfg)
+    try:
+        report = capture(camera, args.frames, args.out, args.label, args.split, settings, cfg.priors.layout,
+                         software_trigger=cfg.camera.trigger == "software",
+                         on_frame=(lambda _n, s: _warn(monitor.update(s))) if monitor else None)
+    finally:
+        camera.close()
+    print(report.describe())
+    if monitor is not None and monitor.warning:
+        print(f"warning: {monitor.warning}")
+    return 0
+
+
+def _warn(text: str | None) -> None:
+    if text:
+        print(f"\n{text}")

@@ -1,0 +1,137 @@
+"""Datasets as the model sees them: one split of a set on disk (rendered by ``station render`` or imported by
+``station import``) read through the priors core into tensors at the network input size.
+
+Bridge: ``sim.dataset`` sample -> ``model.priors.compute_priors`` on the raw mosaic (what the camera would give)
+-> stacked prior channels -> the model's region of interest -> network input size. Every frame's brightness
+statistics (``model.priors.frame_stats``) come along, so a model can record what it was trained on.
+
+Imported sets may lack object masks (the whole region of interest stands in: what a station sees) and defect masks
+(``SplitTensors.mask_known`` is False for those defective parts; pixel metrics leave them out). Torch and the
+renderer are imported inside the functions: the CLI imports this module to build its parser.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import logging
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from station.errors import UserError
+
+if TYPE_CHECKING:
+    from model.normals.estimator import NormalEstimator
+    from model.priors.frame_stats import FrameStatistics
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class SplitTensors:
+    """Priors at the network input size: priors (N, C, S, S), object/defect masks (N, S, S), labels (N,),
+    defect type per sample ("" for good parts) and dataset indices; ``mask_known`` (N,) bool: whose defect mask is
+    ground truth (good parts always; defective parts of an imported set only with a mask file);
+    ``frame_stats``: each frame's ``FrameStatistics``; ``object_masks_known``: whether the set had object masks."""
+
+    priors: Any
+    object_mask: Any
+    defect_mask: Any
+    label: Any
+    defect_type: list[str]
+    index: list[int]
+    mask_known: Any = None
+    frame_stats: list[FrameStatistics] = field(default_factory=list)
+    object_masks_known: bool = True
+
+
+def manifest_sha256(root: str | Path) -> str:
+    return hashlib.sha256((Path(root) / "manifest.json").read_bytes()).hexdigest()
+
+
+def fov_of(params: dict) -> float | None:
+    """A sample's horizontal field of view in degrees (rendered sets), None when unknown (imported sets)."""
+    return (params.get("scene", {}).get("camera") or {}).get("fov_x_deg")
+
+
+def defect_type_of(params: dict) -> str:
+    return (params.get("defect") or {}).get("type", "") if params.get("label") else ""
+
+
+def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int, limit: int | None = None,
+               good_only: bool = False, progress: bool = True, roi: str = "center",
+               normals: NormalEstimator | None = None) -> SplitTensors:
+    """Read one split of a set into tensors at the network input size, cropped to ``roi`` (see
+    ``model.draem.config.ModelConfig.roi``). Object and defect masks come along (for anomaly synthesis and the
+    pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field of view must be the
+    set's), or from the rendered ground truth when it is None."""
+    import numpy as np
+    import torch
+    from tqdm import tqdm
+
+    from model.draem.preprocess import crop_resize, stack_priors
+    from model.draem.roi import roi_box
+    from model.priors import compute_priors
+    from model.priors.frame_stats import frame_statistics
+    from sim.dataset import open_dataset
+
+    ds = open_dataset(root)
+    idx = ds.indices(split)
+    if not idx:
+        raise UserError(f"{root}: no complete samples in split {split!r}")
+    wanted = [p for p in priors if p != "normal"]
+    names = [n for p in wanted for n in (("aolp_cos", "aolp_sin") if p == "aolp" else (p,))] or ["intensity"]
+    names = list(dict.fromkeys([*names, "intensity", "dolp"]))  # the frame statistics need both
+    if "normal" in priors and normals is not None:
+        from model.normals.estimator import MAP_NAMES
+
+        names = list(dict.fromkeys(names + list(MAP_NAMES)))
+    layout, bit_depth = ds.manifest.get("layout", "imx250mzr"), ds.manifest.get("bit_depth")
+    xs, objs, defs, labels, types, used, known, stats = [], [], [], [], [], [], [], []
+    no_object = 0
+    for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
+        if limit is not None and len(used) >= limit:
+            break
+        s = ds.load(i)
+        if good_only and s.label:
+            continue
+        maps = dict(compute_priors(s.raw, layout, priors=names, bit_depth=bit_depth))
+        if "normal" in priors and normals is not None:
+            fov = fov_of(s.params)
+            if fov is not None and normals.fov_x_deg is not None and abs(fov - normals.fov_x_deg) > 1e-3:
+                raise UserError(f"{root}: sample {i} has a {fov:.4g} deg field of view, the normal estimator reads "
+                                f"{normals.fov_x_deg:.4g} deg frames; one set, one lens")
+            maps["normal"] = normals.predict_frame(maps)
+        elif "normal" in priors:
+            if s.normal is None:
+                raise UserError(f"{root}: sample {i} has no ground-truth normals (render without --no-ground-truth); "
+                                f"pass --normal-net to use the learned estimator")
+            maps["normal"] = s.normal
+        obj_mask = s.object_mask
+        if obj_mask is None:
+            if roi == "object":
+                raise UserError(f"{root}: sample {i} has no object mask, which roi 'object' needs (a research "
+                                f"setting); models with roi 'center' read sets without object masks")
+            obj_mask = np.ones(s.raw.shape, bool)  # the station's region of interest stands in
+            no_object += 1
+        x = stack_priors(maps, priors)
+        if x.shape[1:] != obj_mask.shape:
+            raise UserError(f"{root}: sample {i}: priors {x.shape[1:]} and object mask {obj_mask.shape} differ")
+        defect = s.defect_mask if s.defect_mask is not None else np.zeros_like(obj_mask)
+        box = roi_box(roi, obj_mask.shape, obj_mask)
+        xt, (obj, dm) = crop_resize(x, box, size_px, priors, (obj_mask, defect))
+        xs.append(xt)
+        objs.append(obj)
+        defs.append(dm)
+        labels.append(int(s.label))
+        types.append(defect_type_of(s.params))
+        used.append(i)
+        known.append(not s.label or s.defect_mask is not None)
+        stats.append(frame_statistics(maps, raw=s.raw, bit_depth=bit_depth))
+    if not xs:
+        raise UserError(f"{root}: split {split!r} has no usable samples")
+    if no_object:
+        log.info("%s: %d of %d samples without an object mask: the whole region of interest stands in",
+                 root, no_object, len(used))
+    return SplitTensors(torch.stack(xs), torch.stack(objs), torch.stack(defs), torch.tensor(labels), types, used,
+                        torch.tensor(known, dtype=torch.bool), stats, no_object == 0)

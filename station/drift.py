@@ -1,0 +1,89 @@
+"""Drift of the live frames away from what the model was trained on: a rolling window of
+``model.priors.frame_stats.FrameStatistics`` against the ``StatisticsRange`` recorded in the model's sidecar
+(``train.frame_statistics``, written by ``station train`` and ``station adapt``), with a warning that says which
+camera setting to turn. Not wired into the station loop yet: ``DriftMonitor.update`` per judged part, log the text
+it returns."""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from model.priors.frame_stats import STAT_NAMES, FrameStatistics, StatisticsRange
+
+TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction": 0.002, "dolp_level": 0.01}
+"""Smallest tolerance per statistic (full-scale units or shares): a model trained on near-identical frames must
+not warn at every noise flicker."""
+
+ADVICE = {
+    ("median_level", "low"): "frames darker than trained: raise [camera] exposure_us (or gain_db), check the light",
+    ("median_level", "high"): "frames brighter than trained: lower [camera] exposure_us (or gain_db)",
+    ("high_level", "low"): "highlights darker than trained: raise exposure_us, check the light",
+    ("high_level", "high"): "highlights brighter than trained: lower exposure_us (or gain_db)",
+    ("clipped_fraction", "high"): "more clipped pixels than trained: lower exposure_us or gain_db",
+    ("clipped_fraction", "low"): "fewer clipped pixels than trained",
+    ("dolp_level", "low"): "polarization lower than trained: light, belt or lens changed; re-adapt (station adapt)",
+    ("dolp_level", "high"): "polarization higher than trained: light, belt or lens changed; re-adapt (station adapt)",
+}
+
+
+def trained_range(meta: Mapping[str, Any]) -> StatisticsRange | None:
+    """The frame statistics a checkpoint's sidecar records (None for models from before they were recorded)."""
+    d = (meta.get("train") or {}).get("frame_statistics")
+    return StatisticsRange.from_dict(d) if d else None
+
+
+class DriftMonitor:
+    """Rolling ``window`` of frames; once ``min_frames`` are in, the window's median of each statistic is compared
+    with the trained frames' quartiles widened by ``margin`` times the interquartile range (at least
+    ``TOLERANCE_FLOOR``): the median of 20 frames like the trained ones leaves their quartiles in about 3 % of
+    windows, and leaves them widened by half the interquartile range far more rarely. ``update`` returns a warning
+    text when the window leaves the range (once per excursion) and a note when it is back; ``warning`` is the
+    current state's text (None in range)."""
+
+    def __init__(self, trained: StatisticsRange, window: int = 50, min_frames: int = 10, margin: float = 0.5):
+        if window < 1 or not 1 <= min_frames <= window:
+            raise ValueError(f"drift monitor: need 1 <= min_frames <= window, got {min_frames}, {window}")
+        self.trained = trained
+        self.window: deque[FrameStatistics] = deque(maxlen=window)
+        self.min_frames = min_frames
+        self.margin = margin
+        self.warning: str | None = None
+        self._last: list[tuple[str, str]] = []
+
+    def bounds(self, name: str) -> tuple[float, float]:
+        lo, hi = self.trained.q1[name], self.trained.q3[name]
+        tol = max(self.margin * (hi - lo), TOLERANCE_FLOOR.get(name, 0.0))
+        return lo - tol, hi + tol
+
+    def outside(self) -> list[tuple[str, str, float]]:
+        """(statistic, "low"|"high", window median) for every statistic outside its bounds."""
+        if len(self.window) < self.min_frames:
+            return []
+        out = []
+        for name in STAT_NAMES:
+            if name not in self.trained.median:
+                continue
+            med = float(np.median([getattr(s, name) for s in self.window]))
+            lo, hi = self.bounds(name)
+            if med < lo or med > hi:
+                out.append((name, "low" if med < lo else "high", med))
+        return out
+
+    def update(self, stats: FrameStatistics) -> str | None:
+        self.window.append(stats)
+        out = self.outside()
+        if out:
+            text = "; ".join(f"{name} {med:.3f} outside trained {self.trained.q1[name]:.3f}.."
+                             f"{self.trained.q3[name]:.3f} ({ADVICE[(name, side)]})" for name, side, med in out)
+            text = f"drift over the last {len(self.window)} frames: {text}"
+            new = self.warning is None or [o[:2] for o in out] != self._last
+            self.warning, self._last = text, [o[:2] for o in out]
+            return text if new else None
+        if self.warning is not None:
+            self.warning, self._last = None, []
+            return f"frames back in the trained range over the last {len(self.window)} frames"
+        return None

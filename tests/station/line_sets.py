@@ -1,0 +1,49 @@
+"""Small synthetic "line" sets for the import, adapt and capture tests: polarized mosaics of one detailed scene
+(``model.priors.testing.detailed_stokes``) with per-frame sensor noise, a brightness ``gain`` (exposure) and
+bright-patch defects, written in the renderer's dataset format (so the virtual camera and export read them)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from model.draem.checkpoint import save_checkpoint
+from model.draem.config import ModelConfig
+from model.draem.detector import Detector
+from model.priors.mosaic import stokes_to_mosaic
+from model.priors.testing import detailed_stokes
+from sim.dataset import DatasetSpec, Sample, init_dataset, split_of, write_sample
+from sim.sensor import SensorConfig
+
+W, H = 96, 64
+
+
+def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8, seed: int = 0,
+                  defective: Callable[[int], bool] = lambda i: i % 10 == 1, object_masks: bool = True) -> Path:
+    init_dataset(root, DatasetSpec(width=W, height=H, seed=seed, sensor=SensorConfig(bit_depth=bit_depth)), n)
+    s0, s1, s2 = detailed_stokes(H, W)
+    full = 2**bit_depth - 1
+    rng = np.random.default_rng(seed)
+    ideal = stokes_to_mosaic(s0, s1, s2) * 0.8 * gain
+    for i in range(n):
+        frame = ideal + rng.normal(0.0, 0.01, ideal.shape)
+        raw = np.clip(np.round(frame * full), 0, full).astype(np.uint8 if bit_depth <= 8 else np.uint16)
+        mask = np.zeros((H, W), bool)
+        if defective(i):
+            mask[20:30, 40:50] = True
+            raw[mask] = full
+        label = int(mask.any())
+        write_sample(root, Sample(i, raw, {"index": i, "split": split_of(i), "label": label,
+                                           "defect": {"type": "stain"} if label else None}, label, split_of(i),
+                                  defect_mask=mask, object_mask=np.ones((H, W), bool) if object_masks else None))
+    return root
+
+
+def make_model(path: Path, priors: tuple[str, ...] = ("intensity", "aolp"), seed: int = 0) -> Path:
+    det = Detector(ModelConfig.from_preset("tiny", priors, "fused", 32))
+    det.init_weights(torch.Generator().manual_seed(seed))
+    save_checkpoint(path, det, threshold=0.5, threshold_rule="test")
+    return path

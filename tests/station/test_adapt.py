@@ -1,0 +1,98 @@
+"""``station adapt``: a model trained on one line, shown a brighter (other exposure, 12-bit) line, rejects its good
+parts; adapted on good parts of that line it rejects far fewer, and its sidecar says what it was adapted on."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
+
+from model.draem.adapt import AdaptConfig, adapt, false_reject_threshold
+from model.draem.checkpoint import load_checkpoint
+from model.draem.config import ModelConfig
+from model.draem.errors import ModelError
+from model.draem.train import TensorData, TrainConfig, train
+from station.cli import main
+from station.commands.eval import load_and_evaluate
+from station.datasets import load_split
+
+PRIORS = ("intensity", "aolp")
+
+
+@pytest.fixture(scope="module")
+def line(tmp_path_factory) -> tuple[Path, Path, Path]:
+    """(trained model, its training set, a shifted set: 1.6x exposure, 12-bit sensor). A tiny DRAEM trained 60
+    steps (a few seconds) already scores the brighter frames above every good part of its own line."""
+    torch.set_num_threads(1)
+    tmp = tmp_path_factory.mktemp("adapt")
+    base = make_line_set(tmp / "base", 30, seed=0)
+    shifted = make_line_set(tmp / "shifted", 60, gain=1.6, bit_depth=12, seed=10)
+    tr = load_split(base, "train", PRIORS, 32, good_only=True, progress=False)
+    cfg = ModelConfig.from_preset("tiny", PRIORS, "fused", 32)
+    train(cfg, TensorData(tr.priors, tr.object_mask), tmp / "m", TrainConfig(steps=60, batch_size=4, eval_every=60,
+                                                                            device="cpu"), progress=False)
+    assert main(["threshold", "--model", str(tmp / "m" / "last"), "--data", str(base)]) == 0
+    return tmp / "m" / "last", base, shifted
+
+
+def _false_rejects(model: Path, data: Path) -> float:
+    ck, _, sp, _, ev = load_and_evaluate(str(model), data, "test")
+    good = sp.label.numpy() == 0
+    return float((ev.scores[good] >= ck.threshold).mean())
+
+
+def test_adapt_lowers_false_rejects_on_a_shifted_line(line, tmp_path: Path, capsys) -> None:
+    model, _, shifted = line
+    before = _false_rejects(model, shifted)
+    assert before > 0.5  # the line's exposure changed: most good parts rejected
+    out = tmp_path / "adapted"
+    assert main(["adapt", "--model", str(model), "--good", str(shifted), "--out", str(out),
+                 "--false-reject", "0.05"]) == 0
+    assert "adapted on 42 good parts" in capsys.readouterr().out
+    after = _false_rejects(out, shifted)  # test split: parts the adaptation never saw
+    assert after < before and after <= 0.2
+    side = json.loads(out.with_suffix(".json").read_text())
+    rec = side["train"]["adapted"]
+    assert rec["n_good"] == 42 and len(rec["frames_sha256"]) == 64 and len(rec["manifest_sha256"]) == 64
+    assert rec["date"][:2] == "20" and rec["base_model"] == str(model) and rec["false_reject_target"] == 0.05
+    assert side["threshold"] == pytest.approx(rec["threshold"])
+    assert side["train"]["frame_statistics"]["n_frames"] == 42
+    base_mean = load_checkpoint(model).detector.normalizer.mean[0]
+    assert side["normalization"]["mean"][0] > 1.3 * base_mean  # intensity normalisation refitted (brighter)
+
+
+def test_adapt_refuses_too_few_parts_and_writing_over_its_model(line, tmp_path: Path, capsys) -> None:
+    model, _, shifted = line
+    assert main(["adapt", "--model", str(model), "--good", str(shifted), "--out", str(tmp_path / "a"),
+                 "--limit", "5"]) == 2
+    assert "at least 10 good parts" in capsys.readouterr().err
+    assert main(["adapt", "--model", str(model), "--good", str(shifted), "--out", str(model)]) == 2
+    assert "same checkpoint" in capsys.readouterr().err
+
+
+def test_false_reject_threshold_extrapolates_beyond_the_largest_of_few_scores() -> None:
+    rng = np.random.default_rng(0)
+    s = 1 / (1 + np.exp(-rng.normal(-1.0, 0.3, 50)))
+    t = false_reject_threshold(s, 0.01)
+    assert t.threshold >= s.max() and "50 held-out" in t.rule
+    many = 1 / (1 + np.exp(-rng.normal(-1.0, 0.3, 100_000)))
+    assert 0.003 < float((many >= t.threshold).mean()) < 0.03  # about the 1 % asked for on the population
+    t20 = false_reject_threshold(s, 0.2)
+    assert float((s >= t20.threshold).mean()) <= 0.2
+
+
+def test_fine_tune_keeps_parts_out_for_the_threshold(line) -> None:
+    model, _, shifted = line
+    ck = load_checkpoint(model)
+    sp = load_split(shifted, "train", PRIORS, 32, good_only=True, progress=False)
+    det, res = adapt(ck.detector, sp.priors, sp.object_mask, AdaptConfig(fine_tune_steps=3, batch_size=2))
+    assert res.n_heldout == round(0.3 * 42) and res.fine_tune_steps == 3 and "fine-tune" in res.scheme
+    changed = any(not torch.equal(a, b) for a, b in zip(det.state_dict().values(), ck.detector.state_dict().values(),
+                                                         strict=True))
+    assert changed
+    with pytest.raises(ModelError, match="false_reject"):
+        AdaptConfig(false_reject=0.0)

@@ -1,0 +1,53 @@
+"""``station capture``: frames of the configured camera (here the virtual one) into the MVTec layout, with
+settings, timestamps and statistics; the folder imports without flags."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
+from test_run import make_model, write_config
+
+from sim.dataset import open_dataset
+from station.cli import main
+
+
+def test_capture_good_and_defective_parts_then_import(tmp_path: Path, capsys) -> None:
+    ds = make_line_set(tmp_path / "ds", 20, bit_depth=12)
+    model = make_model(tmp_path / "m" / "best")
+    cfg = write_config(tmp_path, model, ds)
+    out = tmp_path / "cap"
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "6", "--out", str(out)]) == 0
+    assert "wrote 6 frames (12-bit)" in capsys.readouterr().out
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "3", "--out", str(out),
+                 "--label", "stain"]) == 0
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "2", "--out", str(out)]) == 0
+    assert sorted(p.name for p in (out / "train" / "good").iterdir()) == [f"{i:06d}.png" for i in range(8)]
+    assert len(list((out / "test" / "stain").iterdir())) == 3
+    lines = [json.loads(x) for x in (out / "capture.jsonl").read_text().splitlines()]
+    assert len(lines) == 11 and lines[0]["bit_depth"] == 12 and lines[0]["camera"]["exposure_us"] == 10000.0
+    assert lines[0]["timestamp_ns"] >= 0 and lines[0]["host_timestamp_ns"] > 0
+    assert 0.0 < lines[0]["statistics"]["median_level"] < 1.0
+    assert json.loads((out / "polar_ano.json").read_text())["bit_depth"] == 12
+    assert main(["import", "--from", str(out), "--out", str(tmp_path / "imp"), "--val-fraction", "0"]) == 0
+    imp = open_dataset(tmp_path / "imp")
+    assert imp.manifest["bit_depth"] == 12 and len(imp.indices("train")) == 8 and len(imp.indices("test")) == 3
+    src = open_dataset(ds)
+    raws = [src.load(i).raw for i in src.indices(None)]
+    first = imp.load(imp.indices("train")[0]).raw
+    assert any(np.array_equal(first, r) for r in raws)  # the camera's mosaic, bit for bit
+
+
+def test_capture_compares_with_the_models_trained_range(tmp_path: Path, capsys) -> None:
+    base = make_line_set(tmp_path / "base", 20)
+    assert main(["adapt", "--model", str(make_model(tmp_path / "m" / "best")), "--good", str(base), "--out",
+                 str(tmp_path / "m" / "adapted")]) == 0
+    dark = make_line_set(tmp_path / "dark", 20, gain=0.5)
+    cfg = write_config(tmp_path, tmp_path / "m" / "adapted", dark)
+    capsys.readouterr()
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "12", "--out",
+                 str(tmp_path / "cap"), "--model", str(tmp_path / "m" / "adapted")]) == 0
+    out = capsys.readouterr().out
+    assert "was trained on: median_level" in out and "raise [camera] exposure_us" in out

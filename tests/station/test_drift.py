@@ -1,0 +1,63 @@
+"""Frame statistics of priors and the drift monitor: a brightness step (exposure changed) leaves the trained range
+and is reported once, with the camera setting to turn; back in range is reported too."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from model.priors import compute_priors
+from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
+from model.priors.mosaic import stokes_to_mosaic
+from model.priors.testing import detailed_stokes
+from station.drift import DriftMonitor, trained_range
+
+
+def _frame(gain: float, rng: np.random.Generator, bits: int = 8) -> tuple[np.ndarray, object]:
+    s0, s1, s2 = detailed_stokes(64, 96)
+    full = 2**bits - 1
+    ideal = stokes_to_mosaic(s0, s1, s2) * 0.8 * gain + rng.normal(0, 0.01, (64, 96))
+    raw = np.clip(np.round(ideal * full), 0, full).astype(np.uint8 if bits == 8 else np.uint16)
+    return raw, compute_priors(raw, priors=("intensity", "dolp"), bit_depth=bits)
+
+
+def test_frame_statistics_follow_exposure_not_polarization() -> None:
+    rng = np.random.default_rng(0)
+    raw, pri = _frame(1.0, rng)
+    a = frame_statistics(pri, raw=raw)
+    raw2, pri2 = _frame(1.5, rng, bits=12)  # brighter, other bit depth: levels are in full-scale units
+    b = frame_statistics(pri2, raw=raw2, bit_depth=12)
+    assert b.median_level == pytest.approx(1.5 * a.median_level, rel=0.05)
+    assert b.dolp_level == pytest.approx(a.dolp_level, abs=0.01)
+    raw3, pri3 = _frame(4.0, rng)
+    c = frame_statistics(pri3, raw=raw3)
+    assert a.clipped_fraction < 0.01 < c.clipped_fraction and c.high_level > 0.98
+    assert frame_statistics(dict(pri3)).clipped_fraction > 0  # without the mosaic: intensity at full scale
+    assert frame_statistics(pri, box=(0, 0, 8, 8)).median_level != a.median_level
+
+
+def test_drift_warning_on_a_brightness_step_then_back() -> None:
+    rng = np.random.default_rng(1)
+    train = [frame_statistics(p, raw=r) for r, p in (_frame(g, rng) for g in rng.uniform(0.95, 1.05, 40))]
+    trained = StatisticsRange.from_frames(train)
+    assert trained_range({"train": {"frame_statistics": trained.to_dict()}}) == trained
+    assert trained_range({"train": {}}) is None
+    mon = DriftMonitor(trained, window=20, min_frames=10)
+    texts = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(1.0, rng) for _ in range(30))]
+    assert texts == [None] * 30 and mon.warning is None
+    step = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(0.6, rng) for _ in range(30))]
+    warned = [t for t in step if t]
+    assert len(warned) == 1 and step.index(warned[0]) < 12  # once, as soon as half the window is darker
+    assert "median_level" in warned[0] and "raise [camera] exposure_us" in warned[0]
+    assert mon.warning is not None
+    back = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(1.0, rng) for _ in range(30))]
+    assert [t for t in back if t] == ["frames back in the trained range over the last 20 frames"]
+    assert mon.warning is None
+
+
+def test_drift_monitor_needs_a_window() -> None:
+    r = StatisticsRange.from_frames([FrameStatistics(0.3, 0.6, 0.0, 0.1)])
+    with pytest.raises(ValueError):
+        DriftMonitor(r, window=5, min_frames=6)
+    with pytest.raises(ValueError):
+        StatisticsRange.from_frames([])
