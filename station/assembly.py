@@ -14,6 +14,7 @@ from pathlib import Path
 from drivers.camera import Camera
 from drivers.camera import CameraConfig as DriverCameraConfig
 from station.config import ConfigError, StationConfig
+from station.drift import DriftMonitor, trained_range
 from station.inspection_log import InspectionLog
 from station.inspector import Inspector
 from station.loop import LineLink, NoLink, Station
@@ -156,10 +157,22 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
                   rejects: RejectStore | None = None) -> Station:
     """The inspection loop with the ``[priors]``, ``[presence]``, ``[acquisition]`` and ``[camera]`` settings;
     with a viewer, the priors it shows are computed too."""
+    drift = drift_monitor(detector)
     inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
                           display_priors=("intensity", "dolp", "aolp") if viewer else (),
-                          presence=presence_check(cfg))
+                          presence=presence_check(cfg), statistics=drift is not None)
     return Station(camera, inspector, link, inspection_log, threshold=detector.threshold,
                    cycle_time_ms=cfg.acquisition.cycle_time_ms, queue_size=cfg.acquisition.queue_size,
                    backpressure=cfg.acquisition.backpressure, grab_timeout_ms=cfg.camera.timeout_ms,
-                   viewer=viewer, rejects=rejects)
+                   viewer=viewer, rejects=rejects, drift=drift)
+
+
+def drift_monitor(detector: DraemDetector) -> DriftMonitor | None:
+    """A drift check against the frame statistics the model records (``station train``, ``station adapt``), or
+    None for a model that records none (said once in the log)."""
+    trained = trained_range(detector.meta)
+    if trained is None:
+        log.info("model %s records no frame statistics: no drift check (station adapt records them)",
+                 detector.model_id)
+        return None
+    return DriftMonitor(trained)

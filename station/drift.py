@@ -1,8 +1,8 @@
 """Drift of the live frames away from what the model was trained on: a rolling window of
 ``model.priors.frame_stats.FrameStatistics`` against the ``StatisticsRange`` recorded in the model's sidecar
 (``train.frame_statistics``, written by ``station train`` and ``station adapt``), with a warning that says which
-camera setting to turn. Not wired into the station loop yet: ``DriftMonitor.update`` per judged part, log the text
-it returns."""
+camera setting to turn. ``station run`` (``station.loop.Station``) updates it with every judged part in view, logs
+the text it returns, keeps the warning in force in each row's ``drift`` column and shows it in the viewer."""
 
 from __future__ import annotations
 

@@ -4,8 +4,10 @@ SQLite in WAL mode with ``synchronous=FULL``: a row whose ``append`` returned su
 WAL is checkpointed and truncated often (``WAL_CHECKPOINT_PAGES``) so that it stays small. A file that is not an
 inspection log (another program's tables, a newer schema) is refused before anything in it is changed.
 The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Version 2 added
-``ground_truth_present``: opening a version-1 log for writing adds the column (NULL in the old rows); a version-1
-log opened read-only reads it as NULL. Decisions:
+``ground_truth_present``, version 3 the frame statistics (``median_level``, ``high_level``, ``clipped_fraction``,
+``dolp_level``: ``model.priors.frame_stats``) and ``drift`` (the drift warning in force when the part was judged,
+``station.drift``). Opening an older log for writing adds the missing columns (NULL in the old rows); opened
+read-only, they read as NULL. Decisions:
 
 pass           judged good (score <= threshold)
 reject         judged bad (score > threshold), or could not be judged (fail closed; ``reason`` says why)
@@ -26,12 +28,15 @@ from typing import Any
 
 from station.errors import UserError
 
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 WAL_CHECKPOINT_PAGES = 64
 """Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
 WAL_SIZE_LIMIT_BYTES = 256 * 1024
 """... and truncate it back to this size afterwards: a small disk holds rows, not a stale WAL."""
-ADDED_IN_VERSION_2 = ("ground_truth_present",)
+ADDED_IN_VERSION = {2: ("ground_truth_present",),
+                    3: ("median_level", "high_level", "clipped_fraction", "dolp_level", "drift")}
+"""Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
+READABLE_VERSIONS = (1, 2, 3)
 DECISIONS = ("pass", "reject", "empty", "not_inspected")
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
 EXPORT_FORMATS = ("csv", "jsonl", "parquet")
@@ -71,6 +76,14 @@ class InspectionRecord:
     ground_truth_present: bool | None = None
     """Whether the simulated frame showed a part (scores the presence check); None without ground truth."""
     image_path: str | None = None
+    median_level: float | None = None
+    """Frame statistics over the station's region (``model.priors.frame_stats``): median and 95th percentile of the
+    intensity and median DoLP (full-scale units 0..1), share of clipped mosaic pixels; None when not computed."""
+    high_level: float | None = None
+    clipped_fraction: float | None = None
+    dolp_level: float | None = None
+    drift: str | None = None
+    """The drift warning in force when the part was judged (``station.drift.DriftMonitor``); None in range."""
 
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:
@@ -81,7 +94,7 @@ COLUMNS = tuple(f.name for f in fields(InspectionRecord))
 _SQL_TYPES = {"decision": "TEXT NOT NULL", "time_unix_s": "REAL NOT NULL", "part_id": "TEXT", "model_id": "TEXT",
               "reason": "TEXT", "image_path": "TEXT", "camera_frame_id": "INTEGER", "camera_timestamp_ns": "INTEGER",
               "io_delivered": "INTEGER", "ground_truth_label": "INTEGER",
-              "ground_truth_present": "INTEGER"}
+              "ground_truth_present": "INTEGER", "drift": "TEXT"}
 _BOOL_COLUMNS = ("io_delivered", "ground_truth_present")
 
 
@@ -124,10 +137,12 @@ class InspectionLog:
                 version = self._db.execute("PRAGMA user_version").fetchone()[0]
                 if version == 0:
                     self._db.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
-                elif version == 1:
-                    with self._db:  # one transaction: the column and the version change together
-                        for c in ADDED_IN_VERSION_2:
-                            self._db.execute(f"ALTER TABLE inspections ADD COLUMN {c} {_SQL_TYPES[c]}")
+                elif version < SCHEMA_VERSION:
+                    have = {r[1] for r in self._db.execute("PRAGMA table_info(inspections)")}
+                    with self._db:  # one transaction: the columns and the version change together
+                        for v in range(version + 1, SCHEMA_VERSION + 1):
+                            for c in (c for c in ADDED_IN_VERSION[v] if c not in have):
+                                self._db.execute(f"ALTER TABLE inspections ADD COLUMN {c} {_SQL_TYPES.get(c, 'REAL')}")
                         self._db.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
                 self._db.commit()
             version = self._db.execute("PRAGMA user_version").fetchone()[0]
@@ -136,9 +151,10 @@ class InspectionLog:
             raise LogError(f"inspection log {self.path}: cannot open: {exc}") from None
         except sqlite3.Error as exc:
             raise _db_error(self.path, "open", exc) from None
-        if version not in (1, SCHEMA_VERSION):
-            raise LogError(f"inspection log {self.path}: schema version {version}, this station reads 1 and "
-                           f"{SCHEMA_VERSION}; export it with the station version that wrote it")
+        if version not in READABLE_VERSIONS:
+            raise LogError(f"inspection log {self.path}: schema version {version}, this station reads "
+                           f"{READABLE_VERSIONS[0]} to {SCHEMA_VERSION}; export it with the station version that "
+                           f"wrote it")
         self._select = ", ".join(c if c in have else f"NULL AS {c}" for c in COLUMNS)
 
     def _refuse_foreign(self) -> None:
@@ -147,9 +163,10 @@ class InspectionLog:
         version = self._db.execute("PRAGMA user_version").fetchone()[0]
         tables = {n for (n,) in self._db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
         tables.discard("sqlite_sequence")
-        if version not in (0, 1, SCHEMA_VERSION):
-            raise LogError(f"inspection log {self.path}: schema version {version}, this station reads 1 and "
-                           f"{SCHEMA_VERSION}; export it with the station version that wrote it (file left as it was)")
+        if version not in (0, *READABLE_VERSIONS):
+            raise LogError(f"inspection log {self.path}: schema version {version}, this station reads "
+                           f"{READABLE_VERSIONS[0]} to {SCHEMA_VERSION}; export it with the station version that "
+                           f"wrote it (file left as it was)")
         foreign = sorted(tables - {"inspections"})
         if foreign or (version and "inspections" not in tables):
             raise LogError(f"inspection log {self.path}: another program's SQLite database (tables "
@@ -299,7 +316,7 @@ def _export_parquet(rows: Iterator[dict[str, Any]], path: Path, names: list[str]
     types = {"id": pa.int64(), "decision": pa.string(), "part_id": pa.string(), "model_id": pa.string(),
              "reason": pa.string(), "image_path": pa.string(), "camera_frame_id": pa.int64(),
              "camera_timestamp_ns": pa.int64(), "io_delivered": pa.bool_(), "ground_truth_label": pa.int64(),
-             "ground_truth_present": pa.bool_()}
+             "ground_truth_present": pa.bool_(), "drift": pa.string()}
     schema = pa.schema([(c, types.get(c, pa.float64())) for c in names])
     n = 0
     with pq.ParquetWriter(path, schema) as writer:

@@ -21,6 +21,7 @@ from drivers.frame import Frame
 from model.priors import MosaicLayout
 from model.priors.api import check_prior_names, needs_polarization, priors_from_stokes
 from model.priors.demosaic import mosaic_to_stokes
+from model.priors.frame_stats import FrameStatistics, frame_statistics
 from model.priors.mosaic import normalize_mosaic
 from station.presence import Presence, PresenceCheck
 
@@ -54,6 +55,8 @@ class Inspection:
     error: str | None = None
     presence: Presence | None = None
     """The presence check's answer; None when there is no check (or the priors failed before it)."""
+    frame_stats: FrameStatistics | None = None
+    """Brightness and polarization of the frame (``model.priors.frame_stats``) when the inspector computes them."""
     timings_ms: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -65,13 +68,18 @@ class Inspection:
 class Inspector:
     """Frames -> ``Inspection``s for one detector, layout and demosaic method."""
 
+    STATS_STRIDE = 4
+    """Frame statistics read every 4th pixel of every 4th row: ~0.5 ms instead of ~8 ms on a 640 x 480 frame."""
+
     def __init__(self, detector: Detector, layout: MosaicLayout, method: str = "bilinear",
-                 display_priors: tuple[str, ...] = (), presence: PresenceCheck | None = None) -> None:
+                 display_priors: tuple[str, ...] = (), presence: PresenceCheck | None = None,
+                 statistics: bool = False) -> None:
         self.detector = detector
         self.layout = layout
         self.method = method
         self.presence = presence
-        extra = presence.priors if presence is not None else ()
+        self.statistics = statistics
+        extra = (presence.priors if presence is not None else ()) + (("intensity", "dolp") if statistics else ())
         self.names = check_prior_names(tuple(dict.fromkeys(detector.priors + display_priors + extra)))
         self.polarization = needs_polarization(self.names)
 
@@ -86,6 +94,10 @@ class Inspector:
             result.priors = priors_from_stokes(self.names, s0, s1, s2)
             result.invalid_fraction = (norm.n_nonfinite + norm.n_out_of_range) / frame.raw.size
             result.n_saturated = norm.n_saturated
+            if self.statistics:
+                k = self.STATS_STRIDE
+                result.frame_stats = frame_statistics({n: result.priors[n][::k, ::k] for n in ("intensity", "dolp")},
+                                                      raw=frame.raw[::k, ::k], bit_depth=frame.bit_depth)
             t_priors = time.perf_counter()
             result.timings_ms["priors"] = 1e3 * (t_priors - t_demosaic)
         except Exception as exc:  # any failure here is a part we cannot judge

@@ -32,6 +32,10 @@ class LogSummary:
     confusion: dict[str, int] = field(default_factory=dict)
     first_unix_s: float | None = None
     last_unix_s: float | None = None
+    drift_parts: int = 0
+    """Parts judged while a drift warning was in force (``drift`` column, schema version 3)."""
+    last_drift: str | None = None
+    """The newest drift warning in the log."""
 
 
 def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
@@ -41,8 +45,11 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     scores: dict[str, list[float]] = {"pass": [], "reject": []}
     confusion: Counter[str] = Counter()
     times: list[float] = []
+    drift_parts, last_drift = 0, None
     for r in rows:
         counts[r["decision"]] += 1
+        if r.get("drift"):
+            drift_parts, last_drift = drift_parts + 1, r["drift"]
         times.append(r["time_unix_s"])
         if r["total_ms"] is not None:
             latencies.append(r["total_ms"])
@@ -65,6 +72,8 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
         confusion=dict(confusion),
         first_unix_s=min(times) if times else None,
         last_unix_s=max(times) if times else None,
+        drift_parts=drift_parts,
+        last_drift=last_drift,
     )
 
 
@@ -86,6 +95,9 @@ def format_summary(s: LogSummary) -> str:
         if judged_empty or c.get("none_empty"):
             lines.append(f"frames without a part: {c.get('none_empty', 0)} logged empty, {judged_empty} judged as a "
                          "part (presence check let them through)")
+    if s.drift_parts:
+        lines.append(f"DRIFT: {s.drift_parts} part(s) judged while the frames were outside the model's trained "
+                     f"range; last warning: {s.last_drift}")
     return "\n".join(lines) + "\n"
 
 

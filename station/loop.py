@@ -40,6 +40,7 @@ from drivers.errors import CameraError, CameraTimeout
 from drivers.frame import Frame
 from drivers.line_io import Trigger
 from station.decision import Decision, decide
+from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
 from station.inspection_log import InspectionLog, InspectionRecord, LogError
 from station.inspector import Inspection, Inspector
@@ -176,10 +177,14 @@ class Station:
     def __init__(self, camera: Camera, inspector: Inspector, link: LineLink, inspection_log: InspectionLog, *,
                  threshold: float, cycle_time_ms: float, queue_size: int = 4, backpressure: str = "drop_oldest",
                  grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
-                 rejects: RejectStore | None = None, settle_timeout_s: float = 2.0) -> None:
+                 rejects: RejectStore | None = None, settle_timeout_s: float = 2.0,
+                 drift: DriftMonitor | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold, self.cycle_time_ms, self.grab_timeout_ms = threshold, cycle_time_ms, grab_timeout_ms
         self.settle_timeout_s = settle_timeout_s
+        self.drift = drift
+        """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
+        logged when it starts and stops, kept in every row while it lasts, and shown in the viewer."""
         self.queue: FrameQueue[Part] = FrameQueue(queue_size, backpressure)
         self.viewer = viewer
         self.rejects = rejects
@@ -313,6 +318,10 @@ class Station:
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
                               invalid_fraction=inspection.invalid_fraction, empty=empty)
             inspection.timings_ms["decision"] = 1e3 * (time.perf_counter() - t)
+            if self.drift is not None and inspection.frame_stats is not None and inspection.present:
+                change = self.drift.update(inspection.frame_stats)
+                if change:
+                    log.warning("%s", change)
         elif part.error is None and (part.frame is not None or part.late_ms is not None):
             decision = Decision("reject", f"not judged in time: {late_ms:.0f} ms after the trigger before the "
                                           f"model could start (cycle time {self.cycle_time_ms:.0f} ms)")
@@ -350,7 +359,9 @@ class Station:
             demosaic_ms=timings.get("demosaic"), priors_ms=priors_ms, model_ms=timings.get("model"),
             decision_ms=timings.get("decision"), io_ms=None, total_ms=1e3 * (t_decided - part.t_trigger),
             io_delivered=False if tell_plc else None, ground_truth_label=truth,
-            ground_truth_present=gt.present if gt is not None else None, image_path=image_path)
+            ground_truth_present=gt.present if gt is not None else None, image_path=image_path,
+            **(inspection.frame_stats.as_dict() if inspection is not None and inspection.frame_stats else {}),
+            drift=self.drift.warning if self.drift is not None else None)
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
         if tell_plc and record.decision == "pass":
             late_ms = 1e3 * (time.perf_counter() - part.t_trigger)
@@ -366,7 +377,8 @@ class Station:
             p = inspection.priors
             self.viewer.put(ViewFrame(part.part_id, record.decision, inspection.score, self.threshold,
                                       p["intensity"], p.get("dolp"), p.get("aolp"), p.get("normal"),
-                                      inspection.heatmap, record.reason, self.stats.summary()))
+                                      inspection.heatmap, "\n".join(t for t in (record.reason, record.drift) if t),
+                                      self.stats.summary()))
 
     def _refused(self, trigger: Trigger) -> str:
         """A part announced while the station stops: recorded, then rejected (``LineLink.refuse_triggers``)."""

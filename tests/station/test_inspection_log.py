@@ -11,7 +11,15 @@ import textwrap
 
 import pytest
 
-from station.inspection_log import COLUMNS, InspectionLog, InspectionRecord, LogError, export_rows
+from station.inspection_log import (
+    ADDED_IN_VERSION,
+    COLUMNS,
+    SCHEMA_VERSION,
+    InspectionLog,
+    InspectionRecord,
+    LogError,
+    export_rows,
+)
 
 
 def rec(i: int, decision: str = "pass", **kw) -> InspectionRecord:
@@ -121,6 +129,18 @@ def test_report_counts_rates_latency_and_confusion(tmp_path):
     assert sum(s.score_hist["pass"]) == 7 and sum(s.score_hist["reject"]) == 3
 
 
+def test_report_tells_how_many_parts_were_judged_under_a_drift_warning(tmp_path):
+    from station.log_report import format_summary, summarize
+
+    warn = "drift over the last 50 frames: median_level 0.120 outside trained 0.400..0.500 (frames darker ...)"
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append([rec(i, median_level=0.45, drift=None) for i in range(5)]
+                   + [rec(i, median_level=0.12, drift=warn) for i in range(5, 8)])
+        s = summarize(log.rows())
+    assert s.drift_parts == 3 and s.last_drift == warn
+    assert "DRIFT: 3 part(s)" in format_summary(s)
+
+
 def test_report_cli_writes_json_and_png(tmp_path):
     db = tmp_path / "log.sqlite"
     with InspectionLog(db) as log:
@@ -133,7 +153,7 @@ def test_report_cli_writes_json_and_png(tmp_path):
     assert (tmp_path / "r" / "report.png").read_bytes()[:4] == b"\x89PNG"
 
 
-V1_COLUMNS = [c for c in COLUMNS if c != "ground_truth_present"]
+V1_COLUMNS = [c for c in COLUMNS if not any(c in cols for cols in ADDED_IN_VERSION.values())]
 
 
 def _v1_log(path) -> None:
@@ -170,7 +190,7 @@ def test_version_1_log_reads_and_is_migrated_on_write(tmp_path):
     assert rows[0]["ground_truth_label"] == 0
     import sqlite3
 
-    assert sqlite3.connect(db).execute("PRAGMA user_version").fetchone()[0] == 2
+    assert sqlite3.connect(db).execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION
 
 
 def test_newer_schema_is_refused_by_name(tmp_path):

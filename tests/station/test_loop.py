@@ -481,3 +481,23 @@ def test_a_pass_the_link_sent_late_as_a_reject_is_a_reject_in_its_row(tmp_path):
     rows = {r["part_id"]: r for r in log.rows()}
     assert rows["T0"]["decision"] == "pass"
     assert rows["T1"]["decision"] == "reject" and "went out as a REJECT" in rows["T1"]["reason"]
+
+
+def test_drift_from_the_trained_brightness_is_logged_per_part_and_warned_once(tmp_path, caplog):
+    from model.priors.frame_stats import FrameStatistics, StatisticsRange
+    from station.drift import DriftMonitor
+
+    trained = StatisticsRange.from_frames(FrameStatistics(0.78 + 0.01 * (i % 3), 0.785, 0.0, 0.0) for i in range(30))
+    camera = ScriptedCamera([1] * 30)  # every frame at code 200 of 255 (0.78 full scale) ...
+    for i in range(15, 30):
+        camera.script[i] = 0  # ... then the light dims: code 20 (0.08)
+    station = Station(camera, Inspector(BrightnessDetector(), IMX250MZR, statistics=True), NoLink(),
+                      InspectionLog(tmp_path / "log.sqlite"), threshold=0.99, cycle_time_ms=10_000.0, queue_size=32,
+                      backpressure="block", drift=DriftMonitor(trained, window=10, min_frames=5))
+    station.run(max_parts=30)
+    rows = list(station.log.rows())
+    assert rows[0]["median_level"] == pytest.approx(200 / 255, abs=1e-3) and rows[-1]["median_level"] < 0.1
+    assert all(r["drift"] is None for r in rows[:15])
+    assert rows[-1]["drift"].startswith("drift over the last 10 frames: median_level")
+    assert "raise [camera] exposure_us" in rows[-1]["drift"]
+    assert sum("drift over the last" in r.message for r in caplog.records) == 1  # warned once, kept in every row
