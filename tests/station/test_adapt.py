@@ -4,6 +4,7 @@ parts; adapted on good parts of that line it rejects far fewer, and its sidecar 
 from __future__ import annotations
 
 import json
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -24,10 +25,11 @@ PRIORS = ("intensity", "aolp")
 
 
 @pytest.fixture(scope="module")
-def line(tmp_path_factory) -> tuple[Path, Path, Path]:
+def line(tmp_path_factory) -> Iterator[tuple[Path, Path, Path]]:
     """(trained model, its training set, a shifted set: 1.6x exposure, 12-bit sensor). A tiny DRAEM trained 60
     steps (a few seconds) already scores the brighter frames above every good part of its own line."""
-    torch.set_num_threads(1)
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)  # the same training steps, hence the same model, whatever the machine
     tmp = tmp_path_factory.mktemp("adapt")
     base = make_line_set(tmp / "base", 30, seed=0)
     shifted = make_line_set(tmp / "shifted", 60, gain=1.6, bit_depth=12, seed=10)
@@ -36,7 +38,8 @@ def line(tmp_path_factory) -> tuple[Path, Path, Path]:
     train(cfg, TensorData(tr.priors, tr.object_mask), tmp / "m", TrainConfig(steps=60, batch_size=4, eval_every=60,
                                                                             device="cpu"), progress=False)
     assert main(["threshold", "--model", str(tmp / "m" / "last"), "--data", str(base)]) == 0
-    return tmp / "m" / "last", base, shifted
+    yield tmp / "m" / "last", base, shifted
+    torch.set_num_threads(threads)
 
 
 def _false_rejects(model: Path, data: Path) -> float:
