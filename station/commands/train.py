@@ -54,6 +54,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--device", default="auto", help="auto (CUDA if available), cpu, cuda, cuda:1, ...")
     p.add_argument("--precision", default="auto", choices=("auto", "fp32", "bf16"),
                    help="auto: fp32 on CPU (bf16 measured slower on AVX2 CPUs), bf16 autocast on CUDA")
+    p.add_argument("--rendered-fraction", type=float, default=0.0, metavar="F",
+                   help="share of each batch taken from the training split's rendered defective parts with their "
+                        "true masks (mixed supervision; the rest keeps DRAEM's synthetic anomalies); 0 = the paper's "
+                        "recipe; needs a set rendered with defects in its train split (default 0)")
+    p.add_argument("--holdout-type", default=None, metavar="TYPE",
+                   help="leave this defect type out of the rendered training defects, to evaluate the model on a "
+                        "kind of defect it never saw (station eval marks it); default: none left out")
     p.add_argument("--max-minutes", type=float, default=None, help="stop after this much training time")
     p.add_argument("--limit", type=int, default=None, help="use at most N samples per split (smoke runs)")
     p.add_argument("--out", default=None, help="output folder (default runs/train/<preset>-<fusion>)")
@@ -103,9 +110,50 @@ def normal_prior_record(normals: NormalEstimator | None) -> dict:
     return describe(normals, NORMAL_NET_FILE + ".json")
 
 
+def good_part_of(sp: SplitTensors) -> SplitTensors:
+    """The good samples of a split (label 0), every field alike."""
+    keep = [i for i, y in enumerate(sp.label.tolist()) if y == 0]
+    return subset(sp, keep)
+
+
+def subset(sp: SplitTensors, keep: list[int]) -> SplitTensors:
+    """The samples ``keep`` (positions) of a split: tensors indexed, per-sample lists picked."""
+    import dataclasses
+
+    import torch
+
+    ix = torch.as_tensor(keep, dtype=torch.long)
+    return dataclasses.replace(sp, **{
+        f.name: (v[ix] if isinstance(v, torch.Tensor) else [v[i] for i in keep] if isinstance(v, list) else v)
+        for f in dataclasses.fields(sp) for v in [getattr(sp, f.name)]})
+
+
+def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
+    """The defective samples of a training split (without ``holdout_type``) as ``model.draem.mixed.TensorDefectData``
+    for mixed supervision; UserError when there are none."""
+    from model.draem.holdout import indices_without_type
+    from model.draem.mixed import TensorDefectData
+
+    known = sp.mask_known.tolist() if sp.mask_known is not None else [True] * len(sp.index)
+    defective = [i for i, y in enumerate(sp.label.tolist()) if y == 1 and known[i]]  # supervision needs the mask
+    if holdout_type:
+        try:
+            allowed = set(indices_without_type(sp.defect_type, holdout_type).tolist())
+        except ValueError as exc:
+            raise UserError(f"--holdout-type {holdout_type}: {data} train split: {exc}") from None
+        defective = [i for i in defective if i in allowed]
+    if not defective:
+        raise UserError(f"--rendered-fraction: {data} has no rendered defective parts in its train split"
+                        + (f" besides {holdout_type}" if holdout_type else "")
+                        + " (render it with defects in training: station render --defects-in-train)")
+    d = subset(sp, defective)
+    return TensorDefectData(d.priors, d.object_mask, d.defect_mask)
+
+
 def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.config import ModelConfig, check_priors
+    from model.draem.errors import ModelError
     from model.draem.metrics import choose_threshold
     from model.draem.train import EvalData, TensorData, TrainConfig, evaluate, synthetic_eval_data, train
     from model.priors.frame_stats import StatisticsRange
@@ -116,7 +164,15 @@ def run(args: argparse.Namespace) -> int:
     size = config.input_size_px
     normals = normal_estimator(args.normal_net, args.data, out) if "normal" in priors else None
     normal_prior = normal_prior_record(normals) if "normal" in priors else None
-    tr = load_split(args.data, "train", priors, size, args.limit, good_only=True, roi=config.roi, normals=normals)
+    mixed = args.rendered_fraction > 0
+    if args.holdout_type and not mixed:
+        raise UserError("--holdout-type leaves a type out of the rendered training defects: it needs "
+                        "--rendered-fraction > 0")
+    tr = load_split(args.data, "train", priors, size, args.limit, good_only=not mixed, roi=config.roi,
+                    normals=normals)
+    defects = rendered_defects(tr, args.holdout_type, args.data) if mixed else None
+    if mixed:
+        tr = good_part_of(tr)
     va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals)
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
              len(tr.index), len(va.index), int(va.label.sum()), size, size,
@@ -127,14 +183,22 @@ def run(args: argparse.Namespace) -> int:
         TensorData(va.priors[va.label == 0], va.object_mask[va.label == 0]), priors, seed=args.seed + 1)
     if not has_both:
         log.warning("val split lacks rendered defects or good parts: keep-best uses synthetic anomalies")
-    tc = TrainConfig(steps=args.steps, batch_size=args.batch_size, seed=args.seed, eval_every=args.eval_every,
-                     device=args.device, precision=args.precision, max_minutes=args.max_minutes)
+    try:
+        tc = TrainConfig(steps=args.steps, batch_size=args.batch_size, seed=args.seed, eval_every=args.eval_every,
+                         device=args.device, precision=args.precision, max_minutes=args.max_minutes,
+                         rendered_fraction=args.rendered_fraction)
+    except ModelError as exc:
+        raise UserError(f"--rendered-fraction {args.rendered_fraction} with --batch-size {args.batch_size}: "
+                        f"{exc}") from None
     sha = manifest_sha256(args.data)
     meta = {"frame_statistics": StatisticsRange.from_frames(tr.frame_stats).to_dict()}
     if normal_prior:
         meta["normal_prior"] = normal_prior
+    if defects is not None:
+        meta["rendered_defects"] = {"fraction": args.rendered_fraction, "parts": len(defects),
+                                    "holdout_type": args.holdout_type}
     res = train(config, TensorData(tr.priors, tr.object_mask), out, tc, val, resume=not args.no_resume,
-                data_manifest_sha256=sha, train_meta=meta)
+                data_manifest_sha256=sha, train_meta=meta, defects=defects)
     if not res.is_main:  # torchrun: rank 0 alone evaluates, sets the threshold and writes the summary
         return 0
     ck = load_checkpoint(out / "best")

@@ -1,0 +1,40 @@
+"""``station train --rendered-fraction`` (mixed supervision from the set's rendered defective training parts) and
+``--holdout-type`` (a defect type left out of them)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from station.cli import main
+from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
+
+BASE = ["--priors", "intensity,aolp", "--preset", "tiny", "--fusion", "fused", "--size", "32", "--steps", "2",
+        "--batch-size", "4", "--eval-every", "2", "--device", "cpu"]
+
+
+def test_rendered_defects_of_the_train_split_join_every_batch_and_are_recorded(tmp_path: Path) -> None:
+    data = make_line_set(tmp_path / "ds", n=30, defective=lambda i: i % 3 == 1)
+    out = tmp_path / "train"
+    assert main(["train", "--data", str(data), *BASE, "--rendered-fraction", "0.25", "--out", str(out)]) == 0
+    meta = json.loads((out / "best.json").read_text())["train"]
+    assert meta["rendered_defects"]["fraction"] == 0.25 and meta["rendered_defects"]["parts"] > 0
+    assert meta["rendered_defects"]["holdout_type"] is None
+    assert meta["train_config"]["rendered_fraction"] == 0.25
+
+
+def test_holdout_and_fraction_errors_are_one_line(tmp_path: Path, capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=30, defective=lambda i: i % 3 == 1)
+    argv = ["train", "--data", str(data), *BASE, "--out", str(tmp_path / "t")]
+    assert main([*argv, "--holdout-type", "stain"]) == 2
+    assert "needs --rendered-fraction" in capsys.readouterr().err
+    assert main([*argv, "--rendered-fraction", "0.25", "--holdout-type", "stain"]) == 2
+    assert "besides stain" in capsys.readouterr().err  # the set's only type: nothing left to train on
+    assert main([*argv, "--rendered-fraction", "0.25", "--holdout-type", "dent"]) == 2
+    assert "no sample of type ['dent']" in capsys.readouterr().err
+    assert main([*argv, "--rendered-fraction", "1.0"]) == 2
+    assert "--rendered-fraction 1.0" in capsys.readouterr().err
+    clean = make_line_set(tmp_path / "clean", n=30, defective=lambda i: False)
+    assert main(["train", "--data", str(clean), *BASE, "--rendered-fraction", "0.25",
+                 "--out", str(tmp_path / "c")]) == 2
+    assert "no rendered defective parts in its train split" in capsys.readouterr().err
