@@ -6,8 +6,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from station.cli import main
 from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
+
+from station.cli import main
 
 BASE = ["--priors", "intensity,aolp", "--preset", "tiny", "--fusion", "fused", "--size", "32", "--steps", "2",
         "--batch-size", "4", "--eval-every", "2", "--device", "cpu"]
