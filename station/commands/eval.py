@@ -120,6 +120,25 @@ def early_exit_rows(ev, label, threshold: float, members: tuple[str, ...]) -> li
     return rows
 
 
+FALSE_REJECTS = (0.01, 0.05)
+"""The industrial pair's fixed shares of good parts rejected."""
+
+
+def industrial_rows(report, train_meta: dict) -> list[dict]:
+    """``model.draem.metrics.detection_by_type``'s report as table rows: per defect type (and all), parts, image
+    AUROC and the share caught at each of ``FALSE_REJECTS``, and whether the type was among the model's rendered
+    training defects ("trained on"), left out of them ("held out") or the model saw none ("synthetic only")."""
+    rd = train_meta.get("rendered_defects") or {}
+    rows = []
+    for det in [report.overall, *report.per_type.values()]:
+        seen = ("" if det.defect_type == "all" else "synthetic only" if not rd
+                else "held out" if det.defect_type == rd.get("holdout_type") else "trained on")
+        rows.append({"type": det.defect_type, "parts": det.n_defective, "in_training": seen,
+                     "image_auroc": det.image_auroc,
+                     **{f"caught_at_{100 * fr:g}%_false_rejects": det.caught[fr] for fr in FALSE_REJECTS}})
+    return rows
+
+
 def prior_set_name(priors: tuple[str, ...]) -> str:
     """The ablation's name for a set of priors ("R+AoLP", ...), or the priors joined by "+" outside it."""
     return next((name for name, members in ABLATION if set(members) == set(priors)), "+".join(priors))
@@ -272,6 +291,7 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from model.draem.checkpoint import read_sidecar
+    from model.draem.metrics import detection_by_type
     from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
     from sim.dataset import open_dataset
     from station.benchmarks.report import markdown_table, write_report
@@ -320,13 +340,27 @@ def run(args: argparse.Namespace) -> int:
         files.append(_ablation_plot(out, ablation))
     by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(args.data, sp.index),
                                         sp.defect_type)
+    industrial, industrial_note = [], ""
+    if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
+        _, _, vsp, _, vev = load_and_evaluate(args.model, args.data, "val", args.limit, args.precision)
+        try:
+            rep = detection_by_type(sp.label.numpy(), ev.scores, sp.defect_type, FALSE_REJECTS,
+                                    validation=(vsp.label.numpy(), vev.scores))
+        except ValueError as exc:
+            industrial_note = f"no industrial figures: {exc}"
+        else:
+            industrial = industrial_rows(rep, ck.meta.get("train") or {})
+            industrial_note = ("Defective parts caught at a fixed share of good parts rejected (thresholds set on the "
+                               "val split's good parts and held fixed: " + ", ".join(
+                                   f"{100 * fr:g} % -> {t:.4g}, observed here {100 * rep.false_reject_observed[fr]:.1f}"
+                                   " %" for fr, t in rep.thresholds.items()) + "):")
     manifest_ok = ck.meta.get("data_manifest_sha256")
     payload = {"model": str(args.model), "precision": args.precision, "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": _normal_prior(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "channels": channels, "by_detectability": by_snr,
-               "plots": files}
+               "industrial": industrial, "industrial_note": industrial_note, "plots": files}
     cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",
             "image_f1_max", "flagged_good", "detected"]
     table = markdown_table(rows, cols)
@@ -334,6 +368,10 @@ def run(args: argparse.Namespace) -> int:
     if masks:
         table = masks + "\n\n" + table
     payload["pixel_metrics_scope"] = masks or "all defective parts have masks"
+    if industrial_note:
+        table += "\n\n" + industrial_note
+    if industrial:
+        table += "\n\n" + markdown_table(industrial, list(industrial[0]))
     if by_snr:
         table += ("\n\nDetection by detectability (the oracle's best-prior SNR, station/detectability.py; caught: "
                   "score >= threshold; image AUROC: these defects against all good parts):\n\n"

@@ -39,3 +39,18 @@ def test_holdout_and_fraction_errors_are_one_line(tmp_path: Path, capsys) -> Non
     assert main(["train", "--data", str(clean), *BASE, "--rendered-fraction", "0.25",
                  "--out", str(tmp_path / "c")]) == 2
     assert "no rendered defective parts in its train split" in capsys.readouterr().err
+
+
+def test_eval_reports_parts_caught_at_fixed_false_rejects_per_type_with_training_status(tmp_path: Path,
+                                                                                     capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=40, defective=lambda i: i % 3 == 1)
+    for name, extra in (("mixed", ["--rendered-fraction", "0.25"]), ("plain", [])):
+        assert main(["train", "--data", str(data), *BASE, *extra, "--out", str(tmp_path / name)]) == 0
+        assert main(["eval", "--model", str(tmp_path / name / "best"), "--data", str(data), "--no-plots",
+                     "--no-synthetic", "--out", str(tmp_path / f"ev-{name}")]) == 0
+        rep = json.loads((tmp_path / f"ev-{name}" / "eval.json").read_text())
+        rows = {r["type"]: r for r in rep["industrial"]}
+        assert set(rows) == {"all", "stain"} and 0.0 <= rows["all"]["caught_at_1%_false_rejects"] <= 1.0
+        assert rows["stain"]["in_training"] == ("trained on" if name == "mixed" else "synthetic only")
+        assert "held fixed" in rep["industrial_note"]
+    assert "caught_at_5%_false_rejects" in capsys.readouterr().out
