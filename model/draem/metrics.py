@@ -1,10 +1,11 @@
 """Anomaly detection metrics: image AUROC, pixel AUROC, AUPRO (MVTec AD definition), pixel AP, F1-max, and
 the choice of the decision threshold.
 
-Conventions: a higher score means more anomalous. ``f1_max`` / ``choose_threshold`` count a part as flagged when
-``score >= threshold``; the industrial metrics (``caught_at_false_reject``, ``detection_by_type``) use the station's
-rule, rejected when ``score > threshold`` (``station.decision.decide``). The two differ only for a score exactly
-equal to the threshold. AUROC and AP are scikit-learn's; a metric that is undefined (only one class present) is
+Conventions: a higher score means more anomalous. ``f1_max`` reports scikit-learn's threshold, flagging when
+``score >= threshold``; every threshold this module hands to a station (``choose_threshold``) and the industrial
+metrics (``caught_at_false_reject``, ``detection_by_type``) use the station's rule, rejected when
+``score > threshold`` (``station.decision.decide``), so a defective part scoring exactly a validation score that
+set the threshold is rejected at the station as it was counted here. AUROC and AP are scikit-learn's; a metric that is undefined (only one class present) is
 NaN, never a made-up number.
 """
 
@@ -112,8 +113,8 @@ def f1_max(labels: np.ndarray, scores: np.ndarray) -> tuple[float, float]:
 
 @dataclass(frozen=True)
 class ThresholdChoice:
-    """threshold: flag a part when its score >= threshold; rule: how it was chosen; flagged_good_fraction and
-    detected_fraction: what it does on the validation data it was chosen on."""
+    """threshold: reject a part when its score > threshold (the station's rule); rule: how it was chosen;
+    flagged_good_fraction and detected_fraction: what it does on the validation data it was chosen on."""
 
     threshold: float
     rule: str
@@ -138,18 +139,19 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: f
         raise ValueError("choose_threshold: validation has no good parts; cannot bound false rejects")
     good = np.sort(s[~y])
     allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
-    # smallest t with #(good >= t) <= allowed: just above the (allowed+1)-th largest good score
-    t_cap = float(np.nextafter(good[good.size - allowed - 1], np.inf))
+    # smallest t with #(good > t) <= allowed: the (allowed+1)-th largest good score
+    t_cap = float(good[good.size - allowed - 1])
     bound = f"at most {max_good_flagged:.2%} of good parts flagged"
     if y.any():
-        _, t = f1_max(y, s)
+        _, t_ge = f1_max(y, s)
+        t = float(np.nextafter(t_ge, -np.inf))  # flagged at score >= t_ge is rejected at score > t
         rule = "f1_max on validation with anomalies"
         if t < t_cap:
             t, rule = t_cap, f"f1_max on validation raised to {bound}"
     else:
         t, rule = t_cap, f"no anomalies in validation: {bound}"
-    flagged = float((s[~y] >= t).mean()) if (~y).any() else math.nan
-    detected = float((s[y] >= t).mean()) if y.any() else math.nan
+    flagged = float((s[~y] > t).mean()) if (~y).any() else math.nan
+    detected = float((s[y] > t).mean()) if y.any() else math.nan
     return ThresholdChoice(float(t), rule, flagged, detected)
 
 

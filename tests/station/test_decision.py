@@ -29,3 +29,17 @@ def test_unjudgeable_parts_are_rejected_with_a_reason(kwargs, reason):
 
 def test_within_budget_and_few_invalid_pixels_still_passes():
     assert decide(0.1, 0.5, elapsed_ms=99.0, cycle_time_ms=100.0, invalid_fraction=0.001).decision == "pass"
+
+
+def test_a_threshold_chosen_on_validation_rejects_the_defective_part_that_set_it():
+    """choose_threshold counted a part as flagged at score >= t, the station rejects at score > t: the defective
+    validation part whose score became the threshold was counted as caught and passed at the station."""
+    import numpy as np
+
+    from model.draem.metrics import choose_threshold
+
+    labels, scores = np.array([0, 0, 0, 0, 1]), np.array([0.1, 0.2, 0.3, 0.35, 0.6])
+    choice = choose_threshold(labels, scores, max_good_flagged=0.25)
+    assert choice.detected_fraction == 1.0
+    assert decide(0.6, choice.threshold).decision == "reject"
+    assert decide(0.35, choice.threshold).decision == "pass" and choice.flagged_good_fraction == 0.0
