@@ -5,8 +5,8 @@ Conventions: a higher score means more anomalous. ``f1_max`` reports scikit-lear
 ``score >= threshold``; every threshold this module hands to a station (``choose_threshold``) and the industrial
 metrics (``caught_at_false_reject``, ``detection_by_type``) use the station's rule, rejected when
 ``score > threshold`` (``station.decision.decide``), so a defective part scoring exactly a validation score that
-set the threshold is rejected at the station as it was counted here. AUROC and AP are scikit-learn's; a metric that is undefined (only one class present) is
-NaN, never a made-up number.
+set the threshold is rejected at the station as it was counted here. AUROC and AP are scikit-learn's; a metric
+that is undefined (only one class present) is NaN, never a made-up number.
 """
 
 from __future__ import annotations
