@@ -2,7 +2,7 @@
 detectability oracle's best-prior SNR, ``sim.oracle``), so each accuracy figure reads "of what the camera can see".
 
 Rows per SNR bin (``sim.detectability.SNR_BINS``, by the best camera prior), for all defects and per defect type:
-the defects in the bin, the share caught (image score >= the threshold, as ``station eval``'s ``detected``) and the
+the defects in the bin, the share caught (image score > the threshold, as ``station eval``'s ``detected``) and the
 image AUROC of those defects against every good part of the split.
 """
 
@@ -49,7 +49,7 @@ def detection_by_detectability(labels: Sequence[int], scores: Sequence[float], t
             sel = has & (bins == name) & ((kinds == typ) if typ != "all" else True)
             if not sel.any():
                 continue
-            caught = float(np.mean(s[sel] >= threshold)) if threshold is not None else math.nan
+            caught = float(np.mean(s[sel] > threshold)) if threshold is not None else math.nan
             both = sel | ~y
             roc = auroc(y[both], s[both]) if (~y).any() else math.nan
             rows.append({"type": typ, "snr_bin": name, "defects": int(sel.sum()), "caught": caught,

@@ -56,8 +56,8 @@ def _rows(name: str, m: dict, threshold: float | None, scores, labels) -> dict:
         row[k] = m[k]
     if threshold is not None:
         y = np.asarray(labels, bool)
-        row["flagged_good"] = float((scores[~y] >= threshold).mean()) if (~y).any() else math.nan
-        row["detected"] = float((scores[y] >= threshold).mean()) if y.any() else math.nan
+        row["flagged_good"] = float((scores[~y] > threshold).mean()) if (~y).any() else math.nan
+        row["detected"] = float((scores[y] > threshold).mean()) if y.any() else math.nan
     return row
 
 
@@ -374,7 +374,7 @@ def run(args: argparse.Namespace) -> int:
         table += "\n\n" + markdown_table(industrial, list(industrial[0]))
     if by_snr:
         table += ("\n\nDetection by detectability (the oracle's best-prior SNR, station/detectability.py; caught: "
-                  "score >= threshold; image AUROC: these defects against all good parts):\n\n"
+                  "score > threshold, the station's rule; image AUROC: these defects against all good parts):\n\n"
                   + markdown_table(by_snr, DETECTABILITY_COLUMNS))
     if ablation:
         table += "\n\nAblation (ensemble members averaged, rendered defects):\n\n" + markdown_table(
