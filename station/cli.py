@@ -20,6 +20,36 @@ MODULE_OF = {"import": "import_set"}
 """Commands whose module name differs from the command (``import`` is a Python keyword)."""
 
 
+def _no_default(action: argparse.Action) -> bool:
+    """None, an off flag (False itself, not 0) or suppressed: nothing worth showing."""
+    return action.default is None or action.default is False or action.default == argparse.SUPPRESS
+
+
+class DefaultsHelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Every option's help ends with its default, unless it says its default already or has none to say (None,
+    a flag that is off); descriptions keep their line breaks."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        if "default" in text.lower() or _no_default(action) or not action.option_strings:
+            return text
+        return f"{text} (default: %(default)s)"
+
+
+def _use_formatter(parser: argparse.ArgumentParser) -> None:
+    """Defaults shown in every command's help, also for options that have no help text of their own; docstrings
+    used as descriptions lose their reStructuredText literal quotes."""
+    parser.formatter_class = DefaultsHelpFormatter
+    if parser.description:
+        parser.description = parser.description.replace("``", "")
+    for action in parser._actions:
+        if action.help is None and action.option_strings and not _no_default(action):
+            action.help = "(default: %(default)s)"
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                _use_formatter(sub)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="station",
@@ -30,6 +60,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="<command>", required=True)
     for name in COMMANDS:
         importlib.import_module(f"station.commands.{MODULE_OF.get(name, name.replace('-', '_'))}").add_parser(sub)
+    _use_formatter(parser)
     return parser
 
 

@@ -12,12 +12,19 @@ import importlib
 BENCHMARKS = ["priors", "render", "camera", "model", "pipeline", "soak", "defects", "faults", "visibility"]
 
 
+def first_sentence(doc: str) -> str:
+    """The first sentence of a docstring's first paragraph, on one line (a help text never cut mid-sentence)."""
+    paragraph = " ".join(doc.strip().split("\n\n")[0].split())
+    end = paragraph.find(". ")
+    return paragraph if end < 0 else paragraph[:end + 1]
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("bench", help="benchmarks of run time against error (JSON + Markdown table)")
     bench_sub = p.add_subparsers(dest="benchmark", metavar="<benchmark>", required=True)
     for name in BENCHMARKS:
         mod = importlib.import_module(f"station.benchmarks.{name}")
-        bp = bench_sub.add_parser(name, help=(mod.__doc__ or "").strip().splitlines()[0])
+        bp = bench_sub.add_parser(name, help=first_sentence(mod.__doc__ or ""))
         bp.add_argument("--out", default=f"runs/bench/{name}", help="folder for the JSON and Markdown reports")
         mod.add_arguments(bp)
         bp.set_defaults(func=mod.run)

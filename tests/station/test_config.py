@@ -72,3 +72,44 @@ def test_cli_prints_one_line_not_a_traceback(tmp_path):
     ok = subprocess.run([sys.executable, "-m", "station.cli", "config", "--config", str(ROOT / "station.toml")],
                         capture_output=True, text=True, cwd=ROOT)
     assert ok.returncode == 0 and "OK" in ok.stdout
+
+
+def test_station_config_prints_valid_toml_that_loads_back_to_the_same_settings(tmp_path, capsys):
+    import tomllib
+
+    from station.cli import main
+    from station.config import load_config, parse_config
+
+    assert main(["config", "--config", "station.toml"]) == 0
+    text = capsys.readouterr().out
+    assert "True" not in text and "(not set)" in text  # unset keys are commented out, not invalid TOML
+    tomllib.loads(text)
+    again = parse_config(text, "printed")
+    assert dataclasses.replace(again, source="x") == dataclasses.replace(load_config("station.toml"), source="x")
+
+
+def test_every_option_with_a_default_shows_it_in_help_and_bench_help_is_whole_sentences():
+    import argparse
+
+    from station.cli import build_parser
+
+    hidden = []
+
+    def walk(parser: argparse.ArgumentParser, name: str) -> None:
+        text = parser.format_help()
+        formatter = parser._get_formatter()
+        for a in parser._actions:
+            if isinstance(a, argparse._SubParsersAction):
+                for sub_name, sub in a.choices.items():
+                    walk(sub, f"{name} {sub_name}")
+            elif (a.option_strings and a.default is not None and a.default is not False
+                  and a.default != argparse.SUPPRESS and a.help != argparse.SUPPRESS):
+                if "default" not in formatter._get_help_string(a).lower():
+                    hidden.append(f"{name} {a.option_strings[-1]}")
+        assert "``" not in text, f"{name}: reStructuredText in help"
+
+    walk(build_parser(), "station")
+    assert not hidden, hidden
+    bench = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)).choices["bench"]
+    helps = [c.help for a in bench._actions if isinstance(a, argparse._SubParsersAction) for c in a._choices_actions]
+    assert helps and all(h.endswith((".", ")")) or "." not in h for h in helps), helps
