@@ -7,7 +7,7 @@ for ``mi.load_dict``: nothing random happens after sampling.
 
 Ground-truth normals are given in camera coordinates with the project's convention: x toward image right,
 y toward image up, z toward the camera (a surface facing the camera has normal (0, 0, 1)). Mitsuba's own camera
-frame has x toward image LEFT and z away from the camera (../shared/NOTES.md); ``camera_axes`` converts.
+frame has x toward image LEFT and z away from the camera (docs/platform-facts.md); ``camera_axes`` converts.
 """
 
 from __future__ import annotations

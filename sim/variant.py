@@ -3,7 +3,7 @@
 Order of preference: ``cuda_ad_mono_polarized`` when a CUDA device is present, ``llvm_ad_mono_polarized`` when
 Dr.Jit's LLVM backend is LLVM >= 19, else ``scalar_spectral_polarized`` (about 17x slower). The LLVM check must
 run before any render: with LLVM 15 (Debian's default) the first ``mi.render`` aborts the whole process with
-``LLVM ERROR: Cannot select ... fminimum`` (exit 134, not catchable), see ../shared/NOTES.md. Dr.Jit finds
+``LLVM ERROR: Cannot select ... fminimum`` (exit 134, not catchable), see docs/platform-facts.md. Dr.Jit finds
 ``libLLVM.so.19.1`` from the ``libllvm19`` package by itself; ``DRJIT_LIBLLVM_PATH`` overrides it.
 """
 

@@ -4,7 +4,7 @@ parameters, AoLP or a mosaic points here.
 Angles
     A polarizer (or AoLP) angle ``t`` is counted counter-clockwise from image right (+x, along a row)
     toward image up (row 0 is the top row), as the image is displayed. This is Mitsuba 3's ``stokes``
-    convention (measured, see ../shared/NOTES.md) and that of polanalyser. Angles are in radians in code;
+    convention (measured: docs/platform-facts.md) and that of polanalyser. Angles are in radians in code;
     config keys and layouts state degrees in their names (``angles_deg``).
 
 Stokes vector (linear part)
