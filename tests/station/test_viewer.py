@@ -92,7 +92,7 @@ def test_heatmap_is_transparent_at_zero_and_opaque_at_one():
 
 @pytest.mark.slow
 def test_viewer_soak_thousands_of_frames(app):
-    # PySide6 6.12.0 died after ~1,100 signal emits (docs/platform-facts.md): thousands of frames is the only way to see it.
+    # PySide6 6.12.0 died after ~1,100 signal emits (docs/platform-facts.md): thousands of frames show it.
     feed = ViewerFeed()
     window = create_window(feed)
     window.show()
