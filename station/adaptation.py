@@ -43,8 +43,8 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     from model.draem.adapt import AdaptConfig, adapt
     from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
     from model.priors.frame_stats import StatisticsRange
-    from station.commands.eval import model_split
     from station.datasets import manifest_sha256
+    from station.evaluation import model_split
 
     if paths(out)[1].resolve() == paths(model)[1].resolve():
         raise UserError(f"--out {out}: the same checkpoint as --model; write the adapted model beside it")

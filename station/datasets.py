@@ -135,3 +135,13 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
                  root, no_object, len(used))
     return SplitTensors(torch.stack(xs), torch.stack(objs), torch.stack(defs), torch.tensor(labels), types, used,
                         torch.tensor(known, dtype=torch.bool), stats, no_object == 0)
+
+
+def check_trained_on(model: str, data: str) -> str | None:
+    """The checkpoint's training-set manifest sha256 (None if unrecorded); UserError if ``data`` is another set."""
+    from model.draem.checkpoint import read_sidecar
+
+    sha = read_sidecar(model).get("data_manifest_sha256")
+    if sha and sha != manifest_sha256(data):
+        raise UserError(f"{model}: trained on another set than {data} (manifest sha256 {sha[:12]}...)")
+    return sha

@@ -196,8 +196,8 @@ def _members(cfg: dict, prior_set: str) -> tuple[str, ...] | bool | None:
     """``--prior-sets`` entry -> ``DraemDetector``'s members for a model with sidecar config ``cfg``: None for all
     its members (also every fused model's one configuration), False when the model does not run this set (lacks a
     member, or is fused)."""
-    from station.commands.eval import ABLATION
     from station.errors import UserError
+    from station.evaluation import ABLATION
 
     sets = dict(ABLATION)
     if prior_set not in sets:

@@ -33,8 +33,8 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.assemble import assemble_ensemble
     from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
     from model.draem.errors import ModelError
-    from station.commands.threshold import set_threshold
-    from station.commands.train import check_trained_on
+    from station.datasets import check_trained_on
+    from station.evaluation import set_threshold
 
     members = [m.strip() for m in args.members.split(",") if m.strip()]
     if len(members) < 2:

@@ -15,6 +15,7 @@ import math
 from pathlib import Path
 
 from station.errors import UserError
+from station.evaluation import ABLATION, load_and_evaluate, normal_prior_record
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -61,9 +62,6 @@ def _rows(name: str, m: dict, threshold: float | None, scores, labels) -> dict:
     return row
 
 
-ABLATION = (("R", ("intensity",)), ("R+AoLP", ("intensity", "aolp")), ("R+AoLP+DoLP", ("intensity", "aolp", "dolp")),
-            ("all", ("intensity", "aolp", "dolp", "normal")))
-"""The paper's ablation: members of a per-prior ensemble averaged, growing from unpolarized intensity (R)."""
 
 
 def ablation_rows(ev, data) -> list[dict]:
@@ -204,58 +202,6 @@ def _plots(out: Path, results: dict, data, maps, scores, threshold) -> list[str]
     return files
 
 
-def _normal_prior(ck) -> dict | None:
-    """The checkpoint's record of how its normal prior was made (None without a normal input)."""
-    return ck.meta.get("train", {}).get("normal_prior") if "normal" in ck.detector.config.priors else None
-
-
-def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None):
-    """``data``'s split as checkpoint ``ck`` (loaded from ``model``) sees it at the station: its roi, its input
-    size, its learned normal prior. Returns ``station.commands.train.SplitTensors``."""
-    from station.datasets import load_split
-
-    cfg = ck.detector.config
-    normal_prior = _normal_prior(ck)
-    if "normal" in cfg.priors and not normal_prior:
-        raise UserError(f"{model}: the model reads the normal prior but its sidecar does not record how that was made "
-                        f"(train.normal_prior; `last` checkpoints before 2026-11-23 lack it: copy it from `best`)")
-    normals = None
-    if normal_prior and normal_prior.get("source") == "learned":
-        from model.draem.checkpoint import paths
-        from model.normals.estimator import load_for_checkpoint
-
-        normals = load_for_checkpoint(paths(model)[1], normal_prior)
-    return load_split(data, split, cfg.priors, cfg.input_size_px, limit, roi=cfg.roi, normals=normals)
-
-
-def inference_net(ck, model: str, precision: str):
-    """What runs the checkpoint: its torch detector ("fp32") or its int8 networks (``station quantize``)."""
-    if precision == "fp32":
-        return ck.detector
-    import torch
-
-    from model.draem.errors import ModelError
-    from model.draem.quantize import int8_dir, load_int8
-
-    try:
-        return load_int8(ck.detector, int8_dir(model), ck.meta.get("weights_sha256", ""), torch.get_num_threads())
-    except ModelError as exc:
-        raise UserError(str(exc)) from None
-
-
-def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None, precision: str = "fp32"):
-    """Checkpoint ``model`` on ``data``'s split, as the station feeds it (``model_split``), run at ``precision``:
-    (checkpoint, the network that ran it (``inference_net``), split tensors, EvalData, evaluation)."""
-    from model.draem.checkpoint import load_checkpoint
-    from model.draem.train import EvalData, evaluate
-
-    ck = load_checkpoint(model)
-    sp = model_split(ck, model, data, split, limit)
-    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)
-    net = inference_net(ck, model, precision)
-    return ck, net, sp, tensors, evaluate(net, tensors)
-
-
 def fused_ablation(args: argparse.Namespace, models: list[str]) -> int:
     """The ablation over one fused model per prior set: each evaluated on the same split, rows in the paper's
     order (rendered defects only)."""
@@ -358,7 +304,7 @@ def run(args: argparse.Namespace) -> int:
     payload = {"model": str(args.model), "precision": args.precision, "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
-               "normal_prior": _normal_prior(ck), "rows": rows,
+               "normal_prior": normal_prior_record(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "channels": channels, "by_detectability": by_snr,
                "industrial": industrial, "industrial_note": industrial_note, "plots": files}
     cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",

@@ -27,8 +27,8 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.quantize import fit_for_auto, int8_dir, quantize_detector, record_check
     from model.draem.train import EvalData, evaluate
     from station.benchmarks.report import markdown_table
-    from station.commands.eval import inference_net, model_split
-    from station.commands.train import check_trained_on
+    from station.datasets import check_trained_on
+    from station.evaluation import inference_net, model_split
 
     if args.samples < 1:
         raise UserError(f"--samples {args.samples}: at least 1")

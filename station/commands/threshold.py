@@ -11,9 +11,6 @@ set the threshold (``train.threshold_set``). To adapt the input normalisation as
 from __future__ import annotations
 
 import argparse
-import time
-
-from station.errors import UserError
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -28,41 +25,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
-def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: str = "val") -> str:
-    """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
-    does there (one line)."""
-    from model.draem.checkpoint import read_sidecar, save_checkpoint
-    from model.draem.metrics import choose_threshold
-    from station.commands.eval import load_and_evaluate
-    from station.datasets import manifest_sha256
-
-    if not 0.0 <= max_good_flagged < 1.0:
-        raise UserError(f"--max-good-flagged {max_good_flagged}: a fraction in [0, 1)")
-    trained_sha = read_sidecar(model).get("data_manifest_sha256")
-    data_sha = manifest_sha256(data)
-    same_set = trained_sha == data_sha
-    if same_set and split == "train":
-        raise UserError(f"{data}: the model was trained on this set's train split; its scores there are not "
-                        f"held out: use --split val")
-    ck, _, sp, _, ev = load_and_evaluate(model, data, split)
-    labels = sp.label.numpy()
-    n_bad = int(labels.sum())
-    if n_bad == len(labels):
-        raise UserError(f"{data}: split {split!r} has no good parts ({n_bad} defective); a threshold needs good "
-                        f"parts to bound false rejects")
-    choice = choose_threshold(labels, ev.scores, max_good_flagged)
-    train = dict(ck.meta.get("train", {}))
-    if not same_set:
-        train["threshold_set"] = {"data": str(data), "manifest_sha256": data_sha, "split": split,
-                                  "n_good": len(labels) - n_bad, "n_defective": n_bad,
-                                  "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
-    save_checkpoint(model, ck.detector, choice.threshold, choice.rule, trained_sha, ev.metrics, train)
-    detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else " (no defective parts there)"
-    where = "" if same_set else " (not its training set: recorded in the sidecar)"
-    return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
-            f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}")
-
-
 def run(args: argparse.Namespace) -> int:
+    from station.evaluation import set_threshold
+
     print(set_threshold(args.model, args.data, args.max_good_flagged, args.split))
     return 0

@@ -17,7 +17,7 @@ import logging
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from station.datasets import SplitTensors, fov_of, load_split, manifest_sha256
+from station.datasets import SplitTensors, check_trained_on, fov_of, load_split, manifest_sha256
 from station.errors import UserError
 
 if TYPE_CHECKING:
@@ -66,16 +66,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", default=None, help="output folder (default runs/train/<preset>-<fusion>)")
     p.add_argument("--no-resume", action="store_true", help="start over even if the output folder has a checkpoint")
     p.set_defaults(func=run)
-
-
-def check_trained_on(model: str, data: str) -> str | None:
-    """The checkpoint's training-set manifest sha256 (None if unrecorded); UserError if ``data`` is another set."""
-    from model.draem.checkpoint import read_sidecar
-
-    sha = read_sidecar(model).get("data_manifest_sha256")
-    if sha and sha != manifest_sha256(data):
-        raise UserError(f"{model}: trained on another set than {data} (manifest sha256 {sha[:12]}...)")
-    return sha
 
 
 def dataset_fov_x_deg(root: str | Path) -> float | None:

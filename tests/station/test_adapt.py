@@ -18,8 +18,8 @@ from model.draem.config import ModelConfig
 from model.draem.errors import ModelError
 from model.draem.train import TensorData, TrainConfig, train
 from station.cli import main
-from station.commands.eval import load_and_evaluate
 from station.datasets import load_split
+from station.evaluation import load_and_evaluate
 
 PRIORS = ("intensity", "aolp")
 

@@ -12,8 +12,8 @@ from test_run import make_dataset, make_model  # same folder (pytest puts it on 
 from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.metrics import choose_threshold
 from station.cli import main
-from station.commands.eval import load_and_evaluate
 from station.datasets import manifest_sha256
+from station.evaluation import load_and_evaluate
 
 
 def test_threshold_is_chosen_on_val_and_written_to_the_sidecar(tmp_path: Path, capsys) -> None:

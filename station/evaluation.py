@@ -1,0 +1,101 @@
+"""Evaluating a checkpoint on a dataset split as the station feeds it: the split at the model's roi, input size and
+normal prior, the network that runs it (torch fp32, or the int8 networks of ``station quantize``), the evaluation.
+Shared by ``station eval``, ``threshold``, ``ensemble``, ``quantize``, ``adapt`` and the pipeline benchmark;
+``set_threshold`` is ``station threshold``'s rule."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from station.errors import UserError
+
+ABLATION = (("R", ("intensity",)), ("R+AoLP", ("intensity", "aolp")), ("R+AoLP+DoLP", ("intensity", "aolp", "dolp")),
+            ("all", ("intensity", "aolp", "dolp", "normal")))
+"""The paper's ablation: members of a per-prior ensemble averaged, growing from unpolarized intensity (R)."""
+
+
+def normal_prior_record(ck) -> dict | None:
+    """The checkpoint's record of how its normal prior was made (None without a normal input)."""
+    return ck.meta.get("train", {}).get("normal_prior") if "normal" in ck.detector.config.priors else None
+
+
+def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None):
+    """``data``'s split as checkpoint ``ck`` (loaded from ``model``) sees it at the station: its roi, its input
+    size, its learned normal prior. Returns ``station.datasets.SplitTensors``."""
+    from station.datasets import load_split
+
+    cfg = ck.detector.config
+    normal_prior = normal_prior_record(ck)
+    if "normal" in cfg.priors and not normal_prior:
+        raise UserError(f"{model}: the model reads the normal prior but its sidecar does not record how that was made "
+                        f"(train.normal_prior; `last` checkpoints before 2026-11-23 lack it: copy it from `best`)")
+    normals = None
+    if normal_prior and normal_prior.get("source") == "learned":
+        from model.draem.checkpoint import paths
+        from model.normals.estimator import load_for_checkpoint
+
+        normals = load_for_checkpoint(paths(model)[1], normal_prior)
+    return load_split(data, split, cfg.priors, cfg.input_size_px, limit, roi=cfg.roi, normals=normals)
+
+
+def inference_net(ck, model: str, precision: str):
+    """What runs the checkpoint: its torch detector ("fp32") or its int8 networks (``station quantize``)."""
+    if precision == "fp32":
+        return ck.detector
+    import torch
+
+    from model.draem.errors import ModelError
+    from model.draem.quantize import int8_dir, load_int8
+
+    try:
+        return load_int8(ck.detector, int8_dir(model), ck.meta.get("weights_sha256", ""), torch.get_num_threads())
+    except ModelError as exc:
+        raise UserError(str(exc)) from None
+
+
+def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None, precision: str = "fp32"):
+    """Checkpoint ``model`` on ``data``'s split, as the station feeds it (``model_split``), run at ``precision``:
+    (checkpoint, the network that ran it (``inference_net``), split tensors, EvalData, evaluation)."""
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.train import EvalData, evaluate
+
+    ck = load_checkpoint(model)
+    sp = model_split(ck, model, data, split, limit)
+    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)
+    net = inference_net(ck, model, precision)
+    return ck, net, sp, tensors, evaluate(net, tensors)
+
+
+def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: str = "val") -> str:
+    """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
+    does there (one line)."""
+    from model.draem.checkpoint import read_sidecar, save_checkpoint
+    from model.draem.metrics import choose_threshold
+    from station.datasets import manifest_sha256
+
+    if not 0.0 <= max_good_flagged < 1.0:
+        raise UserError(f"--max-good-flagged {max_good_flagged}: a fraction in [0, 1)")
+    trained_sha = read_sidecar(model).get("data_manifest_sha256")
+    data_sha = manifest_sha256(data)
+    same_set = trained_sha == data_sha
+    if same_set and split == "train":
+        raise UserError(f"{data}: the model was trained on this set's train split; its scores there are not "
+                        f"held out: use --split val")
+    ck, _, sp, _, ev = load_and_evaluate(model, data, split)
+    labels = sp.label.numpy()
+    n_bad = int(labels.sum())
+    if n_bad == len(labels):
+        raise UserError(f"{data}: split {split!r} has no good parts ({n_bad} defective); a threshold needs good "
+                        f"parts to bound false rejects")
+    choice = choose_threshold(labels, ev.scores, max_good_flagged)
+    train = dict(ck.meta.get("train", {}))
+    if not same_set:
+        train["threshold_set"] = {"data": str(data), "manifest_sha256": data_sha, "split": split,
+                                  "n_good": len(labels) - n_bad, "n_defective": n_bad,
+                                  "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
+    save_checkpoint(model, ck.detector, choice.threshold, choice.rule, trained_sha, ev.metrics, train)
+    detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else " (no defective parts there)"
+    where = "" if same_set else " (not its training set: recorded in the sidecar)"
+    return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
+            f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}")
