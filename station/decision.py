@@ -17,6 +17,13 @@ class Decision:
     """Why a part was rejected or skipped as empty; None for a pass."""
 
 
+def late(elapsed_ms: float, cycle_time_ms: float, when: str = "") -> Decision:
+    """Reject for time: ``elapsed_ms`` since the part's trigger reached the host is over ``cycle_time_ms``;
+    ``when`` says at which step the part ran out of time (the one wording of every late reject)."""
+    return Decision("reject", f"not judged in time: {elapsed_ms:.1f} ms > cycle time {cycle_time_ms:.1f} ms"
+                              + (f" ({when})" if when else ""))
+
+
 def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = None,
            cycle_time_ms: float | None = None, error: str | None = None,
            invalid_fraction: float = 0.0, max_invalid_fraction: float = 0.01, empty: str | None = None) -> Decision:
@@ -39,7 +46,7 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
     if threshold is None or not math.isfinite(threshold):
         return Decision("reject", f"not judged: threshold is {threshold}")
     if elapsed_ms is not None and cycle_time_ms is not None and elapsed_ms > cycle_time_ms:
-        return Decision("reject", f"not judged in time: {elapsed_ms:.1f} ms > cycle time {cycle_time_ms:.1f} ms")
+        return late(elapsed_ms, cycle_time_ms)
     if score > threshold:
         return Decision("reject", f"score {score:.4f} > threshold {threshold:.4f}")
     return Decision("pass")

@@ -39,7 +39,7 @@ from drivers.camera import Camera
 from drivers.errors import CameraError, CameraTimeout
 from drivers.frame import Frame
 from drivers.line_io import Trigger
-from station.decision import Decision, decide
+from station.decision import Decision, decide, late
 from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
 from station.inspection_log import InspectionLog, InspectionRecord, LogError
@@ -303,9 +303,8 @@ class Station:
         for trigger in self.link.expired(time.perf_counter() - self.cycle_time_ms / 1e3):
             self._count_part()
             age_ms = 1e3 * (time.perf_counter() - trigger.t_arrival)
-            self._finish(Part(trigger.part_id, trigger.t_arrival),
-                         None, Decision("reject", f"not judged in time: no frame taken within {age_ms:.0f} ms "
-                                                  f"of the trigger (cycle time {self.cycle_time_ms:.0f} ms)"))
+            self._finish(Part(trigger.part_id, trigger.t_arrival), None,
+                         late(age_ms, self.cycle_time_ms, "no frame taken: camera or acquisition busy"))
 
     def _process(self, part: Part) -> None:
         inspection = None
@@ -323,8 +322,7 @@ class Station:
                 if change:
                     log.warning("%s", change)
         elif part.error is None and (part.frame is not None or part.late_ms is not None):
-            decision = Decision("reject", f"not judged in time: {late_ms:.0f} ms after the trigger before the "
-                                          f"model could start (cycle time {self.cycle_time_ms:.0f} ms)")
+            decision = late(late_ms, self.cycle_time_ms, "before the model could start")
         else:
             decision = decide(None, self.threshold, error=part.error or "no frame")
         self._finish(part, inspection, decision)
@@ -366,8 +364,7 @@ class Station:
         if tell_plc and record.decision == "pass":
             late_ms = 1e3 * (time.perf_counter() - part.t_trigger)
             if late_ms > self.cycle_time_ms:  # writing the row took the rest of the cycle: a late PASS is no PASS
-                record = self._records.amend(record, "reject", f"not judged in time: {late_ms:.1f} ms with its "
-                                                               f"log row > cycle time {self.cycle_time_ms:.1f} ms")
+                record = self._records.amend(record, late(late_ms, self.cycle_time_ms, "with its log row"))
         if tell_plc:
             self.link.report(part.part_id, "pass" if record.decision == "pass" else "reject", record.reason,
                              deadline=part.t_trigger + self.cycle_time_ms / 1e3)
@@ -502,10 +499,11 @@ class RecordKeeper:
                 self._row_of[record.part_id] = (row_id, t_decided, record.decision)
             return record
 
-    def amend(self, record: InspectionRecord, decision: str, reason: str) -> InspectionRecord:
-        """``record`` (written or kept) with another decision and reason, in the log too; a row that cannot be
-        amended is kept for a retry like an unwritten one (the old row stays: reported in the process log)."""
-        new = dataclasses.replace(record, decision=decision, reason=reason)
+    def amend(self, record: InspectionRecord, decision: Decision) -> InspectionRecord:
+        """``record`` (written or kept) with another decision and its reason, in the log too; when the row cannot
+        be amended the error is logged (the old row stays) and the part is still answered with the new decision."""
+        new = dataclasses.replace(record, decision=decision.decision, reason=decision.reason)
+        reason = decision.reason or ""
         with self._lock:
             row = self._row_of.get(record.part_id or "")
             if row is None:  # kept in the backlog, not written yet
@@ -514,8 +512,8 @@ class RecordKeeper:
                         self._backlog[i] = (new, t, awaits)
                 return new
             try:
-                self.log.amend_decision(row[0], decision, reason)
-                self._row_of[record.part_id or ""] = (row[0], row[1], decision)
+                self.log.amend_decision(row[0], new.decision, reason)
+                self._row_of[record.part_id or ""] = (row[0], row[1], new.decision)
             except LogError as exc:
                 log.error("%s; row %d still says %s, part %s is rejected", exc, row[0], record.decision,
                           record.part_id)
