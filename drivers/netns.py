@@ -44,3 +44,18 @@ def netns_unavailable_reason() -> str | None:
 def netns_command(argv: list[str]) -> list[str]:
     """``argv`` wrapped to run in a new private network namespace with loopback up."""
     return [*_unshare_prefix(), "sh", "-c", "ip link set lo up && exec " + shlex.join(argv)]
+
+
+def start_fake_gv_camera(serial: str, loss_per_mille: int = 0) -> subprocess.Popen[bytes]:
+    """Aravis's fake GigE Vision camera (``arv-fake-gv-camera-0.8``) serving on 127.0.0.1, with ``loss_per_mille``
+    GVSP packets dropped; refused outside a private network namespace (the network rule). Given 0.3 s to bind."""
+    import time
+
+    if not in_private_netns():
+        raise RuntimeError("the fake GigE Vision camera runs only inside a private network namespace (netns_command)")
+    argv = ["arv-fake-gv-camera-0.8", "-i", "127.0.0.1", "-s", serial]
+    if loss_per_mille:
+        argv += ["-r", str(loss_per_mille)]
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    time.sleep(0.3)
+    return proc

@@ -52,13 +52,6 @@ def _configs(args: argparse.Namespace) -> list[dict[str, Any]]:
 
 
 # -- worker: inside the namespace ---------------------------------------------------------------------------------
-def _fake_camera() -> subprocess.Popen[bytes]:
-    proc = subprocess.Popen(["arv-fake-gv-camera-0.8", "-i", "127.0.0.1", "-s", "BENCH"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    time.sleep(0.3)
-    return proc
-
-
 def _measure_driver(c: dict[str, Any], seconds: float) -> dict[str, Any]:
     from drivers.aravis_camera import AravisCamera
     from drivers.camera import CameraConfig
@@ -109,11 +102,13 @@ def _measure_peer(c: dict[str, Any], seconds: float) -> dict[str, Any]:
 
 
 def _worker(argv: list[str]) -> int:
+    from drivers.netns import start_fake_gv_camera
+
     params = json.loads(argv[0])
     rows = []
     for c in params["configs"]:
         for measure in ([_measure_driver] if params["no_peer"] else [_measure_driver, _measure_peer]):
-            fake = _fake_camera()
+            fake = start_fake_gv_camera("BENCH")
             try:
                 row = measure(c, params["seconds"])
             except Exception as exc:  # a failed configuration is a row, not a lost benchmark

@@ -69,11 +69,9 @@ class CaseResult:
 # -- the parts (worker side, inside the namespaces) ----------------------------------------------------------------
 class FakeCamera:
     def __init__(self, loss_per_mille: int = 0) -> None:
-        argv = ["arv-fake-gv-camera-0.8", "-i", "127.0.0.1", "-s", "FAULTS"]
-        if loss_per_mille:
-            argv += ["-r", str(loss_per_mille)]
-        self.proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        time.sleep(0.3)
+        from drivers.netns import start_fake_gv_camera
+
+        self.proc = start_fake_gv_camera("FAULTS", loss_per_mille)
 
     def signal(self, sig: int) -> None:
         if self.proc.poll() is None:
