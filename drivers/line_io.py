@@ -25,7 +25,8 @@ it is sent again (at most ``max_resends`` times); while the link is down decisio
 in order, after the reconnect. A decision that still has no ACK after its resends, or is pending when the link is
 closed, is reported undelivered: an ERROR log line and ``on_undelivered(part_id, line)``, and it is listed by
 ``undelivered()``. With ``require_ack=False`` a decision counts as delivered once written. ``outcomes()`` hands
-out each settled decision once: (part id, True, when) acknowledged, (part id, False, when) given up.
+out each settled decision once: (part id, acknowledged or given up, when, the decision as sent). A PASS reported
+with a ``deadline`` that passes before it could be written goes out as ``REJECT <id> late_link``.
 
 Faults: the peer disappearing shows as ``SerialException``/``OSError`` on read or write; the link is closed,
 logged once, and reopened with back-off (``reconnect_backoff_s`` doubling to ``reconnect_backoff_max_s``).

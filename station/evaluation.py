@@ -58,13 +58,20 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
     """Checkpoint ``model`` on ``data``'s split, as the station feeds it (``model_split``), run at ``precision``:
     (checkpoint, the network that ran it (``inference_net``), split tensors, EvalData, evaluation)."""
     from model.draem.checkpoint import load_checkpoint
-    from model.draem.train import EvalData, evaluate
 
     ck = load_checkpoint(model)
+    net = inference_net(ck, model, precision)
+    return ck, net, *evaluate_split(ck, net, model, data, split, limit)
+
+
+def evaluate_split(ck, net, model: str, data: str | Path, split: str, limit: int | None = None):
+    """A loaded checkpoint ``ck`` (from ``model``) and the network that runs it on another split of ``data``:
+    (split tensors, EvalData, evaluation), without loading the model again."""
+    from model.draem.train import EvalData, evaluate
+
     sp = model_split(ck, model, data, split, limit)
     tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)
-    net = inference_net(ck, model, precision)
-    return ck, net, sp, tensors, evaluate(net, tensors)
+    return sp, tensors, evaluate(net, tensors)
 
 
 def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: str = "val") -> str:

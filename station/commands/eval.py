@@ -15,7 +15,7 @@ import math
 from pathlib import Path
 
 from station.errors import UserError
-from station.evaluation import ABLATION, load_and_evaluate, normal_prior_record
+from station.evaluation import ABLATION, evaluate_split, load_and_evaluate, normal_prior_record
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -288,7 +288,7 @@ def run(args: argparse.Namespace) -> int:
                                         sp.defect_type)
     industrial, industrial_note = [], ""
     if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
-        _, _, vsp, _, vev = load_and_evaluate(args.model, args.data, "val", args.limit, args.precision)
+        vsp, _, vev = evaluate_split(ck, net, args.model, args.data, "val", args.limit)
         try:
             rep = detection_by_type(sp.label.numpy(), ev.scores, sp.defect_type, FALSE_REJECTS,
                                     validation=(vsp.label.numpy(), vev.scores))
