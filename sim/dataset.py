@@ -23,7 +23,8 @@ refused, so one set never mixes two renderers.
 Split rule (``SPLIT_RULE``): by index, ``i % 10`` in {0, 1} -> test (20 %, as the paper's 80/20), 2 -> val
 (10 % of all, a slice of the paper's training 80 % kept for thresholds), else train. Defects are placed with
 probability ``defect_fraction`` in val and test samples only (DRAEM trains on good parts and makes its own
-anomalies) unless ``defects_in_train``; a placed defect that is not visible gives label 0.
+anomalies) unless ``defects_in_train``; a placed defect that is not visible gives label 0. A held-out set
+(``DatasetSpec.heldout``, ``HELDOUT_SPLIT_RULE``) puts every sample in test.
 
 Imported sets (``station import``, ``station.datasets``): the same layout, but the split of each sample comes from
 the folder it was imported from, not from its index: the manifest's ``split_rule`` is ``FOLDER_SPLIT_RULE`` and
@@ -60,11 +61,13 @@ from .oracle import DefectSNR, defect_snr
 from .render import RENDERER_VERSION, RenderSettings, render_sample
 from .scene import SceneConfig, material_keys_check, object_to_world, sample_scene, sampler_spp
 from .sensor import SensorConfig, simulate
+from .variation import LineVariation
 
 FORMAT = "polar-ano-dataset"
 VERSION = 1
 SPLIT_RULE = ("index % 10 in {0, 1}: test; index % 10 == 2: val (slice of the 80 % train part, for thresholds); "
               "else train. Defects only in val/test unless defects_in_train.")
+HELDOUT_SPLIT_RULE = "every sample: test (a held-out evaluation set: nothing in it trains or selects a model)"
 FOLDER_SPLIT_RULE = "folders"
 """``split_rule`` of an imported set: splits from the source folders, per sample in the manifest's ``sample_splits``."""
 GT_KEYS = ("s0", "s1", "s2", "normal", "object_mask", "defect_mask", "part_index", "depth")
@@ -92,6 +95,8 @@ class DatasetSpec:
     """Fraction of samples rendered without the part (see ``is_empty``); 0 = none."""
     visibility: bool = False
     """Measure every placed defect's detectability (``sim.oracle``) into ``params.json``'s ``defect``."""
+    heldout: bool = False
+    """Every sample in the test split (``HELDOUT_SPLIT_RULE``): an evaluation set, rendered with its own seed."""
     mesh: str = ""
     materials: dict[str, Any] = field(default_factory=dict)
     mesh_scale: float = 1.0
@@ -99,6 +104,7 @@ class DatasetSpec:
     scene: SceneConfig = field(default_factory=SceneConfig)
     defects: DefectConfig = field(default_factory=DefectConfig)
     sensor: SensorConfig = field(default_factory=SensorConfig)
+    variation: LineVariation = field(default_factory=LineVariation)
 
     def __post_init__(self) -> None:
         # the config states the spp that is rendered: the sampler rounds some counts up (32 -> 35)
@@ -128,8 +134,11 @@ class DatasetSpec:
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
-        if not d["visibility"]:
-            d.pop("visibility")  # likewise for sets without the detectability oracle
+        for key in ("visibility", "heldout"):
+            if not d[key]:
+                d.pop(key)  # likewise for sets without the detectability oracle or the held-out split
+        if not self.variation.active:
+            d.pop("variation")  # and for sets without line variation
         return json.loads(json.dumps(d))  # tuples -> lists, as read back from JSON
 
     @classmethod
@@ -137,13 +146,14 @@ class DatasetSpec:
         d = dict(d)
         scene = SceneConfig.from_dict(d.pop("scene", {}))
         defects = DefectConfig.from_dict(d.pop("defects", {}))
+        variation = LineVariation.from_dict(d.pop("variation", {}) or {})
         sensor_d = d.pop("sensor", {})
         try:
             sensor = SensorConfig(**sensor_d)
         except TypeError as exc:
             raise SimError(f"sensor: {exc}") from None
         try:
-            return cls(**d, scene=scene, defects=defects, sensor=sensor)
+            return cls(**d, scene=scene, defects=defects, sensor=sensor, variation=variation)
         except TypeError as exc:
             raise SimError(f"dataset config: {exc}") from None
 
@@ -168,13 +178,13 @@ class Sample:
     depth: np.ndarray | None = None
 
 
-OVERRIDE_SECTIONS = ("scene", "defects", "sensor")
+OVERRIDE_SECTIONS = ("scene", "defects", "sensor", "variation")
 
 
 def read_overrides(path: str | Path) -> dict[str, dict[str, Any]]:
-    """A JSON or TOML file of ``[scene]``, ``[defects]``, ``[sensor]`` overrides (``station render --config``,
-    ``sim/presets/*.toml``), for ``DatasetSpec.from_dict``; a missing, unparsable or unknown-section file is a
-    SimError naming it."""
+    """A JSON or TOML file of ``[scene]``, ``[defects]``, ``[sensor]``, ``[variation]`` overrides (``station render
+    --config``, ``sim/presets/*.toml``), for ``DatasetSpec.from_dict``; a missing, unparsable or unknown-section
+    file is a SimError naming it."""
     path = Path(path)
     if not path.is_file():
         raise SimError(f"--config {path}: no such file")
@@ -191,6 +201,15 @@ def read_overrides(path: str | Path) -> dict[str, dict[str, Any]]:
     if bad:
         raise SimError(f"--config {path}: unknown sections {bad}; use {', '.join(OVERRIDE_SECTIONS)}")
     return extra
+
+
+def merge_overrides(layers: list[dict[str, dict[str, Any]]]) -> dict[str, dict[str, Any]]:
+    """Override files layered in order: per section, a later file's keys replace an earlier one's."""
+    out: dict[str, dict[str, Any]] = {}
+    for layer in layers:
+        for section, values in layer.items():
+            out[section] = {**out.get(section, {}), **values}
+    return out
 
 
 def prepare(spec: DatasetSpec) -> ObjectModel:
@@ -221,7 +240,7 @@ def is_empty(seed: int, index: int, empty_rate: float) -> bool:
 @dataclass(frozen=True)
 class SampleDraw:
     """Everything random about sample ``index`` before rendering: scene parameters, the defect (or None), the
-    Mitsuba seed, split and whether the part is left out."""
+    Mitsuba seed, split, whether the part is left out, and the sensor (with the line's variation drawn)."""
 
     index: int
     split: str
@@ -229,12 +248,14 @@ class SampleDraw:
     defect: DefectResult | None
     mitsuba_seed: int
     empty: bool
+    sensor: SensorConfig
+    sensor_record: dict[str, float]
 
 
 def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw:
     """Draw sample ``index``'s scene and defect (deterministic in ``spec.seed`` and ``index``)."""
     rng = np.random.default_rng([spec.seed, index])
-    split = split_of(index)
+    split = "test" if spec.heldout else split_of(index)
     params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
     empty = is_empty(spec.seed, index, spec.empty_rate)
     defect = None
@@ -244,7 +265,8 @@ def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw
         to_world = object_to_world(params["pose"])
         cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
         defect = apply_defect(model, kind, rng, spec.defects, cam_obj, params["materials"])
-    return SampleDraw(index, split, params, defect, int(rng.integers(2**32)), empty)
+    sensor, sensor_record = spec.variation.draw(spec.sensor, spec.seed, index)
+    return SampleDraw(index, split, params, defect, int(rng.integers(2**32)), empty, sensor, sensor_record)
 
 
 def oracle_record(result: DefectSNR) -> dict[str, Any]:
@@ -261,17 +283,19 @@ def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample
     draw = draw_sample(spec, model, index)
     params, defect, mi_seed, split, empty = draw.params, draw.defect, draw.mitsuba_seed, draw.split, draw.empty
     out = render_sample(model, params, defect, spec.render_settings(), mi_seed, empty=empty)
-    frame = simulate(out.s0, out.s1, out.s2, spec.sensor, np.random.default_rng([spec.seed, index, 1]))
+    frame = simulate(out.s0, out.s1, out.s2, draw.sensor, np.random.default_rng([spec.seed, index, 1]))
     label = int(out.defect_mask is not None and bool(out.defect_mask.any()))
     record = {"index": index, "split": split, "label": label, "defect": defect.info if defect else None,
               "mitsuba_seed": mi_seed, "scene": params, "render_seconds": out.seconds,
               "n_saturated": frame.n_saturated}
+    if draw.sensor_record:
+        record["sensor"] = draw.sensor_record
     if empty:
         record["empty"] = True
     if defect is not None and out.defect_mask is not None:
         record["defect"]["visible_px"] = int(out.defect_mask.sum())
         if spec.visibility:
-            result, _ = defect_snr(model, params, defect, spec.oracle_settings(), mi_seed, spec.sensor,
+            result, _ = defect_snr(model, params, defect, spec.oracle_settings(), mi_seed, draw.sensor,
                                    out.defect_mask)
             record["defect"].update(oracle_record(result))
             record["render_seconds"] = {**out.seconds, "oracle_s": result.seconds}
@@ -327,7 +351,8 @@ def manifest_for(spec: DatasetSpec, count: int, spp_choice: dict[str, Any] | Non
     return {"format": FORMAT, "version": VERSION, "convention_version": CONVENTION_VERSION,
             "renderer_version": RENDERER_VERSION, "width": spec.width, "height": spec.height,
             "layout": spec.sensor.layout, "bit_depth": spec.sensor.bit_depth, "seed": spec.seed, "count": count,
-            "split_rule": SPLIT_RULE, "config": spec.to_dict(), "spp_choice": spp_choice}
+            "split_rule": HELDOUT_SPLIT_RULE if spec.heldout else SPLIT_RULE, "config": spec.to_dict(),
+            "spp_choice": spp_choice}
 
 
 def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: dict[str, Any] | None = None
@@ -478,7 +503,7 @@ class Dataset:
         """The split of sample ``index``: from the manifest for an imported set, else ``split_of``."""
         if self._splits is not None:
             return self._splits.get(index, "")
-        return split_of(index)
+        return "test" if self.manifest.get("split_rule") == HELDOUT_SPLIT_RULE else split_of(index)
 
     def load(self, index: int, ground_truth: bool = True) -> Sample:
         d = sample_dir(self.root, index)

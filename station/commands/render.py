@@ -27,6 +27,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--defects", type=float, default=0.5, metavar="FRACTION",
                    help="fraction of val/test samples given a defect (default 0.5)")
     p.add_argument("--defects-in-train", action="store_true", help="also put defects into train samples")
+    p.add_argument("--heldout", action="store_true",
+                   help="every sample in the test split: a held-out evaluation set (give it a seed no training set "
+                        "used)")
     p.add_argument("--empty-rate", type=float, default=0.0, metavar="FRACTION",
                    help="fraction of samples rendered without the part (same scene, no part in view: for the "
                         "station's presence check; any split; training and evaluation skip them); default 0")
@@ -52,7 +55,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="detectability oracle: render each defective sample's scene again without the defect (two "
                         "pairs at half the spp, around the defect only) and store the defect's SNR per prior in "
                         "params.json (defect.snr, defect.snr_best) and a summary in the manifest")
-    p.add_argument("--config", default="", help="JSON or TOML file with [scene], [defects], [sensor] overrides")
+    p.add_argument("--config", action="append", default=[],
+                   help="JSON or TOML file with [scene], [defects], [sensor], [variation] overrides; repeat it to "
+                        "layer files (a later file's keys win), e.g. a line preset and sim/presets/variation.toml")
     p.add_argument("--variant", default=None, help="Mitsuba variant (default: best available, logged)")
     p.set_defaults(func=run)
 
@@ -75,10 +80,10 @@ def choose_spp(args: argparse.Namespace):
 
 
 def build_spec(args: argparse.Namespace, spp: int = 16):
-    from sim.dataset import DatasetSpec, read_overrides
+    from sim.dataset import DatasetSpec, merge_overrides, read_overrides
     from sim.errors import SimError
 
-    extra = read_overrides(args.config) if args.config else {}
+    extra = merge_overrides([read_overrides(path) for path in args.config])
     materials = {}
     if args.materials:
         try:
@@ -92,10 +97,11 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "seed": args.seed, "width": args.width, "height": args.height, "spp": spp,
         "ground_truth": not args.no_ground_truth, "defect_fraction": args.defects,
         "defects_in_train": args.defects_in_train, "empty_rate": args.empty_rate, "mesh": args.mesh,
-        "visibility": getattr(args, "visibility", False),
+        "visibility": getattr(args, "visibility", False), "heldout": getattr(args, "heldout", False),
         "materials": materials,
         "mesh_scale": args.mesh_scale, "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
+        "variation": extra.get("variation", {}),
     })
 
 

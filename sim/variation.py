@@ -1,0 +1,68 @@
+"""Line variation: how a real line's frames differ from one another beyond the scene's draws (``[variation]``).
+
+A preset's ``[scene]`` ranges already draw the belt's colour and gloss (``background_colour``, the ground's
+material and roughness), stray light (``light_*``) and the part's pose. What a scene cannot draw is the camera's
+side of the line: the exposure drifts (lamp ageing, a changed exposure time, a dirty dome: +-30 % is what a line
+sees between services) and the sensor's noise level changes with the gain a user sets. ``LineVariation`` draws
+those per sample from its own random stream (``default_rng([seed, index, 3])``), so a set without variation
+renders exactly as before and the scene of sample ``i`` is the same with or without it.
+
+Units: ``exposure_scale`` multiplies ``SensorConfig.exposure_gain`` (full scale per unit of rendered radiance);
+``analog_gain`` is the sensor's (linear; 2 = +6 dB): fewer electrons per code, so more shot noise at the same
+brightness. A bright exposure clips highlights at the sensor's full well, as a real camera does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, fields, replace
+from typing import Any
+
+import numpy as np
+
+from .errors import SimError
+from .sensor import SensorConfig
+
+
+@dataclass(frozen=True)
+class LineVariation:
+    """Per-sample ranges ``(lo, hi)``, uniform draws; the defaults draw nothing (every sample as the sensor)."""
+
+    exposure_scale: tuple[float, float] = (1.0, 1.0)
+    """Multiplies the sensor's ``exposure_gain``: e.g. (0.7, 1.3) for +-30 % exposure."""
+    analog_gain: tuple[float, float] | None = None
+    """The sensor's analog gain (linear, >= 1); None = the sensor's own."""
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if v is None:
+                continue
+            if (not isinstance(v, tuple) or len(v) != 2 or not all(np.isfinite(x) for x in v)
+                    or not 0 < v[0] <= v[1]):
+                raise SimError(f"variation.{f.name}: need a range [lo, hi] with 0 < lo <= hi, got {v!r}")
+
+    @property
+    def active(self) -> bool:
+        return self != LineVariation()
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> LineVariation:
+        known = {f.name for f in fields(cls)}
+        bad = sorted(set(d) - known)
+        if bad:
+            raise SimError(f"variation: unknown keys {bad}; known: {', '.join(sorted(known))}")
+        return cls(**{k: tuple(v) if isinstance(v, list) else v for k, v in d.items()})
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+    def draw(self, sensor: SensorConfig, seed: int, index: int) -> tuple[SensorConfig, dict[str, float]]:
+        """The sensor of sample ``index``, and what was drawn (for ``params.json``'s ``sensor``); the sensor
+        unchanged and ``{}`` when nothing varies."""
+        if not self.active:
+            return sensor, {}
+        rng = np.random.default_rng([seed, index, 3])
+        scale = float(rng.uniform(*self.exposure_scale))
+        gain = float(rng.uniform(*self.analog_gain)) if self.analog_gain else sensor.analog_gain
+        drawn = replace(sensor, exposure_gain=sensor.exposure_gain * scale, analog_gain=gain)
+        return drawn, {"exposure_scale": scale, "exposure_gain": drawn.exposure_gain, "analog_gain": gain}

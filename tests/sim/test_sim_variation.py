@@ -1,0 +1,90 @@
+"""Line variation (exposure and gain drawn per sample), layered --config files, and held-out sets: a set without
+them renders and resumes exactly as before."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from sim import dataset as sd
+from sim.errors import SimError
+from sim.sensor import SensorConfig
+from sim.variation import LineVariation
+
+TINY = {"width": 64, "height": 48, "spp": 4}
+VARIED = LineVariation(exposure_scale=(0.7, 1.3), analog_gain=(1.0, 2.0))
+
+
+def test_draws_are_per_sample_within_range_and_reproducible() -> None:
+    sensor = SensorConfig(exposure_gain=2.0)
+    draws = [VARIED.draw(sensor, 5, i) for i in range(40)]
+    scales = [rec["exposure_scale"] for _, rec in draws]
+    assert 0.7 <= min(scales) < 0.8 and 1.2 < max(scales) <= 1.3  # spans the range
+    for drawn, rec in draws:
+        assert drawn.exposure_gain == pytest.approx(2.0 * rec["exposure_scale"])
+        assert 1.0 <= drawn.analog_gain <= 2.0 and drawn.bit_depth == sensor.bit_depth
+    assert VARIED.draw(sensor, 5, 7) == draws[7] and VARIED.draw(sensor, 6, 7) != draws[7]
+    assert LineVariation().draw(sensor, 5, 7) == (sensor, {})  # nothing varies by default
+
+
+def test_bad_ranges_are_refused_by_name() -> None:
+    with pytest.raises(SimError, match=r"variation\.exposure_scale"):
+        LineVariation(exposure_scale=(1.3, 0.7))
+    with pytest.raises(SimError, match=r"variation\.analog_gain"):
+        LineVariation.from_dict({"analog_gain": [0.0, 1.0]})
+    with pytest.raises(SimError, match="unknown keys"):
+        LineVariation.from_dict({"exposure": [0.7, 1.3]})
+
+
+def test_variation_changes_brightness_not_the_scene() -> None:
+    plain = sd.DatasetSpec(seed=3, defect_fraction=1.0, **TINY)
+    varied = sd.DatasetSpec(seed=3, defect_fraction=1.0, variation=VARIED, **TINY)
+    model = sd.prepare(plain)
+    a, b = sd.generate_sample(plain, model, 0), sd.generate_sample(varied, model, 0)
+    assert a.params["scene"] == b.params["scene"] and a.params["defect"] == b.params["defect"]
+    assert "sensor" not in a.params
+    scale = b.params["sensor"]["exposure_scale"]
+    np.testing.assert_allclose(b.s0, a.s0 * scale, rtol=1e-5)  # ground truth is the exposed scene
+    ratio = b.raw.astype(float).mean() / a.raw.astype(float).mean()
+    assert ratio == pytest.approx(scale, rel=0.1)
+
+
+def test_manifests_without_new_keys_are_unchanged(tmp_path) -> None:
+    d = sd.DatasetSpec().to_dict()
+    assert "variation" not in d and "heldout" not in d  # sets rendered before these keys resume
+    spec = sd.DatasetSpec.from_dict({**d, "variation": {"exposure_scale": [0.7, 1.3]}})
+    assert spec.variation.exposure_scale == (0.7, 1.3)
+    assert sd.DatasetSpec.from_dict(spec.to_dict()) == spec
+
+
+def test_a_heldout_set_is_all_test(tmp_path) -> None:
+    spec = sd.DatasetSpec(seed=9, heldout=True, width=8, height=8)
+    manifest = sd.init_dataset(tmp_path / "ds", spec, 10)
+    assert manifest["split_rule"] == sd.HELDOUT_SPLIT_RULE
+    for i in range(10):
+        sd.write_sample(tmp_path / "ds", sd.Sample(i, np.zeros((8, 8), np.uint8),
+                                                   {"index": i, "split": "test", "label": 0, "defect": None}, 0,
+                                                   "test"))
+    ds = sd.Dataset(tmp_path / "ds")
+    assert ds.indices("test") == list(range(10)) and ds.indices("train") == []
+    model = sd.prepare(sd.DatasetSpec(**TINY))
+    draw = sd.draw_sample(sd.DatasetSpec(heldout=True, **TINY), model, 5)  # index 5 would be train
+    assert draw.split == "test"
+
+
+def test_config_files_layer_in_order(tmp_path) -> None:
+    from station.cli import main
+
+    (tmp_path / "a.toml").write_text('[scene]\ncolour = [0.1, 0.2]\nyaw_deg = [0.0, 1.0]\n[sensor]\nbit_depth = 12\n')
+    (tmp_path / "b.toml").write_text('[scene]\ncolour = [0.3, 0.4]\n[variation]\nexposure_scale = [0.9, 1.1]\n')
+    merged = sd.merge_overrides([sd.read_overrides(tmp_path / "a.toml"), sd.read_overrides(tmp_path / "b.toml")])
+    assert merged == {"scene": {"colour": [0.3, 0.4], "yaw_deg": [0.0, 1.0]}, "sensor": {"bit_depth": 12},
+                      "variation": {"exposure_scale": [0.9, 1.1]}}
+    out = tmp_path / "set"
+    assert main(["render", "--out", str(out), "--count", "1", "--width", "32", "--height", "24", "--spp", "1",
+                 "--no-ground-truth", "--config", str(tmp_path / "a.toml"), "--config", str(tmp_path / "b.toml")]) == 0
+    config = json.loads((out / "manifest.json").read_text())["config"]
+    assert config["scene"]["colour"] == [0.3, 0.4] and config["sensor"]["bit_depth"] == 12
+    assert config["variation"]["exposure_scale"] == [0.9, 1.1]
