@@ -266,7 +266,8 @@ class _MemberForward(nn.Module):
 def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_config: TrainConfig = TrainConfig(),
           val: EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
           progress: bool = True, on_eval: Callable[[int, dict[str, float]], None] | None = None,
-          train_meta: dict[str, Any] | None = None, defects: DefectData | None = None) -> TrainResult:
+          train_meta: dict[str, Any] | None = None, defects: DefectData | None = None,
+          init: str | Path | None = None) -> TrainResult:
     """Train a detector; checkpoints ``out_dir/last`` (+ ``last.state.pt`` for resuming) and ``out_dir/best``.
 
     ``val``: held-out data for keep-best (image AUROC, then pixel AUROC); None uses a fixed synthetic-anomaly set
@@ -275,6 +276,9 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
     records for every checkpoint's ``train`` section (e.g. how the normal prior was made). ``defects``: rendered
     defective training samples with their masks (``mixed.DefectData``), used when ``train_config.rendered_fraction``
     > 0 (required then); their own index stream is seeded from ``seed + 13`` and checkpointed for resuming.
+    ``init``: start from this checkpoint's weights and input normalisation (same model config required; a fresh
+    optimiser and schedule), e.g. to fine-tune a model trained on good parts with rendered defects; a run that
+    resumes from ``out_dir/last`` ignores it.
 
     Under ``torchrun`` (``WORLD_SIZE`` > 1) this runs data-parallel (module docstring): the process group is joined
     here unless the caller already did (``distributed.init``; it stays until the process exits); every rank passes
@@ -284,13 +288,13 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
     device = distributed.device_for(info, resolve_device(train_config.device))
     distributed.init(info, device)
     return _train(config, data, Path(out_dir), train_config, val, resume, data_manifest_sha256, progress, on_eval,
-                  info, device, train_meta or {}, defects)
+                  info, device, train_meta or {}, defects, init)
 
 
 def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val: EvalData | None, resume: bool,
            data_manifest_sha256: str | None, progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None,
            info: distributed.DistInfo, device: torch.device, train_meta: dict[str, Any],
-           defects: DefectData | None = None) -> TrainResult:
+           defects: DefectData | None = None, init: str | Path | None = None) -> TrainResult:
     from tqdm import tqdm
 
     main = info.is_main
@@ -320,6 +324,18 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
             detector = ck.detector.to(device)
             st = torch.load(state_file, map_location="cpu", weights_only=True)
         except Exception as exc:  # distributed: every rank must learn it, or the others wait forever
+            if not info.enabled:
+                raise
+            failure = exc
+    if main and detector is None and failure is None and init is not None:
+        try:
+            ck = load_checkpoint(init, map_location=device)
+            if ck.detector.config != config:
+                raise CheckpointError(f"{paths(init)[1]}: init from a different model ({ck.meta['model']}); it "
+                                      f"must have the trained model's priors, fusion, preset and size")
+            detector = ck.detector.to(device)
+            log.info("starting from %s (step %s)", paths(init)[0], (ck.meta.get("train") or {}).get("step"))
+        except Exception as exc:
             if not info.enabled:
                 raise
             failure = exc

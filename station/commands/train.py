@@ -15,7 +15,7 @@ import argparse
 import json
 import logging
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from station.datasets import SplitTensors, check_trained_on, fov_of, load_split, manifest_sha256
 from station.errors import UserError
@@ -61,6 +61,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--holdout-type", default=None, metavar="TYPE",
                    help="leave this defect type out of the rendered training defects, to evaluate the model on a "
                         "kind of defect it never saw (station eval marks it); default: none left out")
+    p.add_argument("--init", default=None, metavar="MODEL",
+                   help="start from this checkpoint (path without suffix, same priors, fusion, preset and size) with "
+                        "a fresh optimiser: e.g. fine-tune a model trained on good parts with --rendered-fraction")
     p.add_argument("--max-minutes", type=float, default=None, help="stop after this much training time")
     p.add_argument("--limit", type=int, default=None, help="use at most N samples per split (smoke runs)")
     p.add_argument("--out", default=None, help="output folder (default runs/train/<preset>-<fusion>)")
@@ -140,6 +143,32 @@ def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
     return TensorDefectData(d.priors, d.object_mask, d.defect_mask)
 
 
+def init_record(path: str) -> dict[str, Any]:
+    """What ``--init`` started from, for the sidecar's ``train.init``: its path, weights hash and what it was
+    trained with (so a held-out type can be checked to be absent from the whole history)."""
+    from model.draem.checkpoint import CheckpointError, load_checkpoint
+
+    try:
+        meta = load_checkpoint(path).meta
+    except (CheckpointError, OSError) as exc:
+        raise UserError(f"--init {path}: {exc}") from None
+    train_meta = meta.get("train") or {}
+    return {"path": str(path), "weights_sha256": meta.get("weights_sha256"), "step": train_meta.get("step"),
+            "rendered_defects": train_meta.get("rendered_defects"), "init": train_meta.get("init")}
+
+
+def check_init_holds_out(record: dict[str, Any] | None, holdout_type: str | None) -> None:
+    """UserError when a model in ``--init``'s history trained on rendered defects of ``holdout_type`` (it would
+    not be held out)."""
+    while holdout_type and record:
+        rd = record.get("rendered_defects") or {}
+        if rd.get("fraction") and rd.get("holdout_type") != holdout_type:
+            raise UserError(f"--init {record['path']}: trained on rendered defects with "
+                            f"{rd.get('holdout_type') or 'no type'} held out, so {holdout_type} would not be held "
+                            f"out; start from a model trained without rendered {holdout_type} defects")
+        record = record.get("init")
+
+
 def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.config import ModelConfig, check_priors
@@ -164,6 +193,8 @@ def run(args: argparse.Namespace) -> int:
     if mixed:
         tr = good_part_of(tr)
     va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals)
+    if args.holdout_type:  # keep-best and the threshold must not see the type held out either
+        va = subset(va, [i for i, t in enumerate(va.defect_type) if t != args.holdout_type])
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
              len(tr.index), len(va.index), int(va.label.sum()), size, size,
              (normal_prior or {}).get("source", "not used"))
@@ -187,8 +218,11 @@ def run(args: argparse.Namespace) -> int:
     if defects is not None:
         meta["rendered_defects"] = {"fraction": args.rendered_fraction, "parts": len(defects),
                                     "holdout_type": args.holdout_type}
+    if args.init:
+        meta["init"] = init_record(args.init)
+        check_init_holds_out(meta["init"], args.holdout_type)
     res = train(config, TensorData(tr.priors, tr.object_mask), out, tc, val, resume=not args.no_resume,
-                data_manifest_sha256=sha, train_meta=meta, defects=defects)
+                data_manifest_sha256=sha, train_meta=meta, defects=defects, init=args.init)
     if not res.is_main:  # torchrun: rank 0 alone evaluates, sets the threshold and writes the summary
         return 0
     ck = load_checkpoint(out / "best")
@@ -197,7 +231,8 @@ def run(args: argparse.Namespace) -> int:
     save_checkpoint(out / "best", ck.detector, choice.threshold, choice.rule, sha, ev.metrics,
                     {**ck.meta.get("train", {}), **meta, "normal_prior": normal_prior})
     summary = {"best": str(res.best_path), "steps": res.steps_done, "seconds": round(res.seconds, 1),
-               "val_kind": val.kind, "threshold": choice.threshold, "threshold_rule": choice.rule,
+               "val_kind": val.kind, "val_parts": len(va.index), "val_defective": int(va.label.sum()),
+               "threshold": choice.threshold, "threshold_rule": choice.rule,
                "flagged_good_fraction": choice.flagged_good_fraction, "detected_fraction": choice.detected_fraction,
                **{k: v for k, v in ev.metrics.items() if isinstance(v, float)}}
     (out / "train_summary.json").write_text(json.dumps(summary, indent=1))

@@ -22,7 +22,8 @@ W, H = 96, 64
 
 
 def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8, seed: int = 0,
-                  defective: Callable[[int], bool] = lambda i: i % 10 == 1, object_masks: bool = True) -> Path:
+                  defective: Callable[[int], bool] = lambda i: i % 10 == 1, object_masks: bool = True,
+                  kind: Callable[[int], str] = lambda i: "stain") -> Path:
     init_dataset(root, DatasetSpec(width=W, height=H, seed=seed, sensor=SensorConfig(bit_depth=bit_depth)), n)
     s0, s1, s2 = detailed_stokes(H, W)
     full = 2**bit_depth - 1
@@ -37,7 +38,7 @@ def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8
             raw[mask] = full
         label = int(mask.any())
         write_sample(root, Sample(i, raw, {"index": i, "split": split_of(i), "label": label,
-                                           "defect": {"type": "stain"} if label else None}, label, split_of(i),
+                                           "defect": {"type": kind(i)} if label else None}, label, split_of(i),
                                   defect_mask=mask, object_mask=np.ones((H, W), bool) if object_masks else None))
     return root
 

@@ -54,3 +54,43 @@ def test_eval_reports_parts_caught_at_fixed_false_rejects_per_type_with_training
         assert rows["stain"]["in_training"] == ("trained on" if name == "mixed" else "synthetic only")
         assert "held fixed" in rep["industrial_note"]
     assert "caught_at_5%_false_rejects" in capsys.readouterr().out
+
+
+def test_a_held_out_type_is_left_out_of_validation_too(tmp_path: Path) -> None:
+    """Keep-best and the threshold read the val split: a held-out type there would select the model on it."""
+    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1,
+                         kind=lambda i: "dent" if (i // 10) % 2 else "stain")
+    val_types = ["dent" if (i // 10) % 2 else "stain" for i in range(60) if i % 10 == 2 and i % 3 == 1]
+    assert "dent" in val_types and "stain" in val_types
+    for name, extra in (("all", []), ("no-dent", ["--holdout-type", "dent"])):
+        out = tmp_path / name
+        assert main(["train", "--data", str(data), *BASE, "--rendered-fraction", "0.25", *extra,
+                     "--out", str(out)]) == 0
+        summary = json.loads((out / "train_summary.json").read_text())
+        kept = [t for t in val_types if not extra or t != "dent"]
+        assert summary["val_defective"] == len(kept)
+        assert summary["val_parts"] == 6 - (len(val_types) - len(kept))
+
+
+def test_init_fine_tunes_a_model_and_keeps_a_held_out_type_out_of_its_history(tmp_path: Path, capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1,
+                         kind=lambda i: "dent" if (i // 10) % 2 else "stain")
+    plain = tmp_path / "plain"
+    assert main(["train", "--data", str(data), *BASE, "--out", str(plain)]) == 0
+    tuned = tmp_path / "tuned"
+    argv = ["train", "--data", str(data), *BASE, "--rendered-fraction", "0.25"]
+    assert main([*argv, "--holdout-type", "dent", "--init", str(plain / "last"), "--out", str(tuned)]) == 0
+    meta = json.loads((tuned / "best.json").read_text())["train"]
+    start = json.loads((plain / "last.json").read_text())
+    assert meta["init"]["weights_sha256"] == start["weights_sha256"] and meta["init"]["step"] == 2
+    assert json.loads((tuned / "last.json").read_text())["weights_sha256"] != start["weights_sha256"]
+    # a model that trained on rendered dents cannot seed a run that holds dents out
+    assert main([*argv, "--init", str(tmp_path / "tuned" / "last"), "--holdout-type", "stain",
+                 "--out", str(tmp_path / "x")]) == 2
+    assert "so stain would not be held out" in capsys.readouterr().err
+    assert main([*argv, "--init", str(tmp_path / "nothing"), "--out", str(tmp_path / "y")]) == 2
+    assert "--init" in capsys.readouterr().err
+    other = ["train", "--data", str(data), BASE[0], "intensity", *BASE[2:], "--init", str(plain / "last"),
+             "--out", str(tmp_path / "z")]
+    assert main(other) == 2
+    assert "init from a different model" in capsys.readouterr().err
