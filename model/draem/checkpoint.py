@@ -82,6 +82,32 @@ def write_checkpoint_files(path: str | Path, module: torch.nn.Module, meta: dict
     return pt, js
 
 
+def copy_checkpoint(src: str | Path, dst: str | Path) -> tuple[Path, Path]:
+    """Copy checkpoint ``src`` (stem) to ``dst`` (stem): weights, sidecar (``weights_file`` renamed; the weights'
+    hash is unchanged) and its int8 networks (``<stem>.int8/``, which name the weights by hash) when present;
+    each file written under a temporary name then renamed. Returns ``dst``'s (weights, sidecar)."""
+    import shutil
+
+    spt, sjs = paths(src)
+    dpt, djs = paths(dst)
+    meta = read_json_sidecar(sjs)
+    if not spt.is_file():
+        raise CheckpointError(f"{spt}: weights missing")
+    dpt.parent.mkdir(parents=True, exist_ok=True)
+    tmp = dpt.with_name(dpt.name + ".tmp")
+    shutil.copyfile(spt, tmp)
+    tmp.replace(dpt)
+    tmp = djs.with_name(djs.name + ".tmp")
+    tmp.write_text(json.dumps({**meta, "weights_file": dpt.name}, indent=1, allow_nan=True))
+    tmp.replace(djs)
+    sint8, dint8 = spt.with_suffix(".int8"), dpt.with_suffix(".int8")
+    if dint8.exists():
+        shutil.rmtree(dint8)  # int8 networks of the replaced weights would be refused by hash anyway
+    if sint8.is_dir():
+        shutil.copytree(sint8, dint8)
+    return dpt, djs
+
+
 def read_json_sidecar(js: Path, error: type[CheckpointError] = CheckpointError, what: str = "checkpoint"
                       ) -> dict[str, Any]:
     """The parsed sidecar ``js`` of a ``what`` checkpoint; ``error`` naming it when missing or unreadable."""

@@ -32,6 +32,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "several fused models (--model A,B,...) side by side")
     p.add_argument("--precision", default="fp32", choices=("fp32", "int8"),
                    help="int8: the model's int8 networks from `station quantize` (ONNX Runtime, CPU)")
+    p.add_argument("--val-data", default=None, metavar="DATA",
+                   help="set whose val split fixes the industrial thresholds (default: --data; a held-out set, "
+                        "rendered with --heldout, has none: give the set the model was trained and selected on)")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
     p.set_defaults(func=run)
@@ -288,8 +291,12 @@ def run(args: argparse.Namespace) -> int:
                                         sp.defect_type)
     industrial, industrial_note = [], ""
     if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
-        vsp, _, vev = evaluate_split(ck, net, args.model, args.data, "val", args.limit)
+        val_data = args.val_data or args.data
         try:
+            if not args.val_data and not open_dataset(args.data).indices("val"):
+                raise ValueError(f"{args.data} has no val split (a held-out set): give the set the model was "
+                                 f"selected on with --val-data")
+            vsp, _, vev = evaluate_split(ck, net, args.model, val_data, "val", args.limit)
             rep = detection_by_type(sp.label.numpy(), ev.scores, sp.defect_type, FALSE_REJECTS,
                                     validation=(vsp.label.numpy(), vev.scores))
         except ValueError as exc:
@@ -299,14 +306,16 @@ def run(args: argparse.Namespace) -> int:
             industrial_note = ("Defective parts caught at a fixed share of good parts rejected (thresholds set on the "
                                "val split's good parts and held fixed: " + ", ".join(
                                    f"{100 * fr:g} % -> {t:.4g}, observed here {100 * rep.false_reject_observed[fr]:.1f}"
-                                   " %" for fr, t in rep.thresholds.items()) + "):")
+                                   " %" for fr, t in rep.thresholds.items())
+                               + f"; val split of {val_data}, {int((vsp.label == 0).sum())} good parts):")
     manifest_ok = ck.meta.get("data_manifest_sha256")
     payload = {"model": str(args.model), "precision": args.precision, "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": normal_prior_record(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "channels": channels, "by_detectability": by_snr,
-               "industrial": industrial, "industrial_note": industrial_note, "plots": files}
+               "industrial": industrial, "industrial_note": industrial_note,
+               "industrial_val_data": str(args.val_data or args.data), "plots": files}
     cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",
             "image_f1_max", "flagged_good", "detected"]
     table = markdown_table(rows, cols)

@@ -94,3 +94,39 @@ def test_init_fine_tunes_a_model_and_keeps_a_held_out_type_out_of_its_history(tm
              "--out", str(tmp_path / "z")]
     assert main(other) == 2
     assert "init from a different model" in capsys.readouterr().err
+
+
+def test_the_held_out_report_compares_trained_on_held_out_and_synthetic_only(tmp_path: Path, capsys) -> None:
+    """A held-out set (every part test, its own seed) has no val split: --val-data fixes the thresholds from the
+    training set's; station compare lines the reports up per type; the shipped copy keeps weights and int8."""
+    from model.draem.checkpoint import copy_checkpoint, load_checkpoint
+
+    kind = {"kind": lambda i: "dent" if (i // 10) % 2 else "stain", "defective": lambda i: i % 3 == 1}
+    data = make_line_set(tmp_path / "ds", n=60, **kind)
+    heldout = make_line_set(tmp_path / "ho", n=30, seed=5, heldout=True, **kind)
+    runs = {"plain": [], "mixed": ["--rendered-fraction", "0.25"],
+            "no-dent": ["--rendered-fraction", "0.25", "--holdout-type", "dent"]}
+    for name, extra in runs.items():
+        assert main(["train", "--data", str(data), *BASE, *extra, "--out", str(tmp_path / name)]) == 0
+        argv = ["eval", "--model", str(tmp_path / name / "best"), "--data", str(heldout), "--no-plots",
+                "--no-synthetic", "--out", str(tmp_path / f"ev-{name}")]
+        assert main(argv) == 0  # without --val-data: evaluated, but no industrial rows (no val split)
+        assert "has no val split (a held-out set)" in json.loads(
+            (tmp_path / f"ev-{name}" / "eval.json").read_text())["industrial_note"]
+        assert main([*argv, "--val-data", str(data)]) == 0
+    capsys.readouterr()
+    assert main(["compare", *(str(tmp_path / f"ev-{n}") for n in runs), "--out", str(tmp_path / "cmp")]) == 0
+    rows = json.loads((tmp_path / "cmp" / "compare.json").read_text())["rows"]
+    status = {(r["type"], r["in_training"]): r["model"].rsplit("-", 1)[-1] for r in rows}
+    assert status == {("dent", "synthetic only"): "plain", ("dent", "held out"): "dent",
+                      ("dent", "trained on"): "mixed", ("stain", "synthetic only"): "plain",
+                      ("stain", "trained on"): "mixed"}
+    assert (tmp_path / "cmp" / "compare.png").is_file() and "held out" in capsys.readouterr().out
+    assert main(["compare", str(tmp_path / "nothing"), "--out", str(tmp_path / "c2")]) == 2
+    assert "not a station eval report" in capsys.readouterr().err
+    (tmp_path / "mixed" / "best.int8").mkdir()
+    (tmp_path / "mixed" / "best.int8" / "int8.json").write_text("{}")
+    copy_checkpoint(tmp_path / "mixed" / "best", tmp_path / "ship" / "default")
+    shipped = load_checkpoint(tmp_path / "ship" / "default")
+    assert shipped.meta["weights_file"] == "default.pt" and (tmp_path / "ship" / "default.int8" / "int8.json").is_file()
+    assert shipped.meta["weights_sha256"] == load_checkpoint(tmp_path / "mixed" / "best").meta["weights_sha256"]

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# The shipped model, from nothing to model/weights/default, in one command: `make model` (or this script).
+# Every step resumes: rerun it after an interruption and finished work is kept (renders per sample, training per
+# checkpoint). Sizes and steps are environment variables; the defaults are the shipped recipe on 2 CPU cores
+# (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
+#
+#   1. render the training set: line-polar preset + line variation, defects in all splits (for mixed supervision)
+#   2. render a held-out set with its own seed (every sample test, with the detectability oracle)
+#   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
+#   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
+#   5. held-out types: the base fine-tuned the same way without one defect type, per type (HOLDOUT_TYPES)
+#   6. thresholds on validation, evaluation on the held-out set, int8 copy, copy to model/weights/default
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BIN=${BIN:-.venv/bin}
+DATA=${DATA:-data/line-polar-train}
+HELDOUT=${HELDOUT:-data/line-polar-heldout}
+RUNS=${RUNS:-runs/make-model}
+TRAIN_COUNT=${TRAIN_COUNT:-900}
+HELDOUT_COUNT=${HELDOUT_COUNT:-500}
+BASE_STEPS=${BASE_STEPS:-700}
+MIXED_STEPS=${MIXED_STEPS:-400}
+HOLDOUT_STEPS=${HOLDOUT_STEPS:-120}
+HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
+JOBS=${JOBS:-2}
+SHIP=${SHIP:-1}
+PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml)
+MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
+
+render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
+    local out=$1; shift
+    local pids=()
+    for ((k = 0; k < JOBS; k++)); do
+        "$BIN/station" render --out "$out" "${PRESET[@]}" --shard "$k/$JOBS" "$@" & pids+=($!)
+    done
+    for p in "${pids[@]}"; do wait "$p"; done
+}
+
+render "$DATA" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
+render "$HELDOUT" --count "$HELDOUT_COUNT" --seed 202 --defects 0.6 --heldout --visibility
+
+"$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" --eval-every 100 --out "$RUNS/base"
+"$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
+    --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
+for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
+    "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$HOLDOUT_STEPS" --eval-every "$HOLDOUT_STEPS" \
+        --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" --out "$RUNS/holdout-$t"
+done
+
+"$BIN/station" threshold --model "$RUNS/base/last" --data "$DATA"
+for m in base/last mixed/best $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/best"; done); do
+    "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$DATA" --out "$RUNS/eval-${m%%/*}"
+done
+"$BIN/station" compare "$RUNS"/eval-* --out "$RUNS/compare"
+"$BIN/station" quantize --model "$RUNS/mixed/best" --data "$DATA"
+
+if [ "$SHIP" = 1 ]; then
+    "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
+        "$RUNS/mixed/best" model/weights/default
+    "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$DATA" --precision int8 \
+        --out model/weights/default-eval
+    cp "$RUNS"/compare/compare.* model/weights/default-eval/
+fi

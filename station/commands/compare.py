@@ -1,0 +1,23 @@
+"""``station compare``: several ``station eval`` reports side by side per defect type (``station.eval_compare``):
+the held-out report of a model trained on rendered defects, the same recipe without one type, and the
+synthetic-only model."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("compare", help="station eval reports side by side per defect type (trained on, held out, "
+                                       "synthetic only)")
+    p.add_argument("reports", nargs="+", metavar="EVAL_DIR", help="station eval --out folders")
+    p.add_argument("--out", required=True, help="folder for compare.md, compare.json and compare.png")
+    p.add_argument("--no-plots", action="store_true")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from station.eval_compare import compare
+
+    print(compare(args.reports, args.out, not args.no_plots)[1])
+    return 0

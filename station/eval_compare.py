@@ -1,0 +1,98 @@
+"""Several ``station eval`` reports side by side, per defect type (``station compare``).
+
+The standard held-out report: per defect type, the industrial pair (defective parts caught at 1 % and 5 % of good
+parts rejected, thresholds from validation) and image AUROC of the model that trained on rendered defects of that
+type ("trained on"), of the one that never saw it ("held out", ``station train --holdout-type``) and of the one that
+saw no rendered defect at all ("synthetic only", DRAEM's recipe). Each report's rows say which of those it is
+(``station eval``'s ``in_training`` column), so the reports can be given in any order.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from station.errors import UserError
+
+STATUSES = ("synthetic only", "held out", "trained on")
+"""``in_training`` values, in the order the comparison shows them."""
+CAUGHT = ("caught_at_1%_false_rejects", "caught_at_5%_false_rejects")
+
+
+def read_report(folder: str | Path) -> dict[str, Any]:
+    """``eval.json`` of a ``station eval --out`` folder; UserError naming it when missing or without industrial
+    rows."""
+    path = Path(folder) / "eval.json"
+    try:
+        report = json.loads(path.read_text())
+    except (OSError, json.JSONDecodeError) as exc:
+        raise UserError(f"{path}: not a station eval report ({exc})") from None
+    if not isinstance(report, dict) or not report.get("industrial"):
+        raise UserError(f"{path}: no industrial rows ({(report or {}).get('industrial_note') or 'none'}); "
+                        f"evaluate on a split other than val, with --val-data for a held-out set")
+    return report
+
+
+def by_type(reports: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
+    """One row per defect type and status: the figures of the report where the type has that status (the first
+    given wins when several have it). ``reports``: name -> eval.json."""
+    found: dict[tuple[str, str], dict[str, Any]] = {}
+    for name, rep in reports.items():
+        for row in rep["industrial"]:
+            if row["type"] == "all":
+                continue
+            found.setdefault((row["type"], row["in_training"]), {"model": name, **row})
+    rows = []
+    for t in sorted({t for t, _ in found}):
+        for status in STATUSES:
+            row = found.get((t, status))
+            if row:
+                rows.append({"type": t, "in_training": status, "model": row["model"], "parts": row["parts"],
+                             "image_auroc": row["image_auroc"], **{k: row[k] for k in CAUGHT}})
+    return rows
+
+
+def plot(rows: list[dict[str, Any]], path: Path) -> None:
+    """Grouped bars: per type, parts caught at 5 % false rejects per status."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    types = sorted({r["type"] for r in rows})
+    fig, ax = plt.subplots(figsize=(1.2 + 1.3 * len(types), 3.2))
+    x = np.arange(len(types))
+    width = 0.8 / len(STATUSES)
+    for k, status in enumerate(STATUSES):
+        vals = [next((r[CAUGHT[1]] for r in rows if r["type"] == t and r["in_training"] == status), np.nan)
+                for t in types]
+        ax.bar(x + (k - (len(STATUSES) - 1) / 2) * width, vals, width, label=status)
+    ax.set_xticks(x, types)
+    ax.set(ylim=(0, 1), ylabel="caught at 5 % of good rejected", title="per defect type, held-out set")
+    ax.legend(fontsize=7)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
+    plt.close(fig)
+
+
+def compare(folders: list[str], out: str | Path, plots: bool = True) -> tuple[list[dict[str, Any]], str]:
+    """Read the reports, write ``compare.json``, ``compare.md`` (and ``compare.png``) into ``out``; returns the
+    rows and the Markdown table."""
+    from station.benchmarks.report import markdown_table
+
+    reports = {str(f): read_report(f) for f in folders}
+    rows = by_type(reports)
+    if not rows:
+        raise UserError(f"{', '.join(folders)}: no per-type rows to compare")
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    sets = sorted({str(r.get("data")) for r in reports.values()})
+    table = (f"Per defect type on {', '.join(sets)}: parts caught at a fixed share of good parts rejected "
+             f"(thresholds from validation, held fixed) and image AUROC, by whether the model trained on rendered "
+             f"defects of that type:\n\n" + markdown_table(rows, list(rows[0])))
+    (out / "compare.json").write_text(json.dumps({"reports": list(reports), "data": sets, "rows": rows}, indent=1))
+    (out / "compare.md").write_text(table + "\n")
+    if plots:
+        plot(rows, out / "compare.png")
+    return rows, table
