@@ -40,16 +40,13 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
 
 
 def inference_net(ck, model: str, precision: str):
-    """What runs the checkpoint: its torch detector ("fp32") or its int8 networks (``station quantize``)."""
-    if precision == "fp32":
-        return ck.detector
-    import torch
-
+    """What runs the checkpoint (``model.draem.predictor.inference_network``: its torch detector, "fp32", or its
+    int8 networks from ``station quantize``, "int8"), the model's error as the station's one-line ``UserError``."""
     from model.draem.errors import ModelError
-    from model.draem.quantize import int8_dir, load_int8
+    from model.draem.predictor import inference_network
 
     try:
-        return load_int8(ck.detector, int8_dir(model), ck.meta.get("weights_sha256", ""), torch.get_num_threads())
+        return inference_network(ck, model, precision)
     except ModelError as exc:
         raise UserError(str(exc)) from None
 

@@ -14,13 +14,14 @@ import torch
 from test_run import make_dataset, write_config
 
 from drivers.frame import Frame
+from model.draem.predictor import PRIOR_MAPS
 from model.normals.estimator import MAP_NAMES
 from model.normals.net import NormalNetConfig, NormalUNet, save_normal_net
 from model.priors.conventions import IMX250MZR
 from station.cli import main
 from station.commands.train import load_split
 from station.inspector import Inspector
-from station.model_detector import STATION_PRIORS, DraemDetector, ModelLoadError
+from station.model_detector import DraemDetector, ModelLoadError
 
 
 @pytest.fixture(scope="module")
@@ -46,7 +47,7 @@ def test_checkpoint_names_its_estimator_and_carries_a_copy(trained) -> None:
     original = json.loads(net_stem.with_suffix(".json").read_text())
     assert record["source"] == "learned" and record["file"] == "normal_net.json"
     assert record["weights_sha256"] == original["weights_sha256"]  # the copy holds the same weights
-    assert (out / "normal_net.pt").is_file() and STATION_PRIORS["normal"] == MAP_NAMES
+    assert (out / "normal_net.pt").is_file() and PRIOR_MAPS["normal"] == MAP_NAMES
     assert json.loads((out / "last.json").read_text())["train"]["normal_prior"] == record  # the final step too
 
 

@@ -60,7 +60,7 @@ def test_int8_without_quantize_names_the_missing_file(tmp_path: Path) -> None:
 
 
 def test_the_shipped_model_passes_its_int8_check_so_auto_runs_int8() -> None:
-    from station.model_detector import auto_precision
+    from model.draem.predictor import auto_precision
 
     shipped = Path(__file__).resolve().parents[2] / "model" / "weights" / "default"
     assert auto_precision(shipped, torch.device("cpu")) == "int8"

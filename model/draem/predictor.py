@@ -1,0 +1,303 @@
+"""A checkpoint run on one frame's prior maps: which network runs it (device, precision, int8 networks, members),
+the learned normal prior it reads, early exit, warm-up. ``load_predictor`` is the one loader; the station wraps
+it in its ``Detector`` (``station.model_detector``), evaluation uses ``inference_network``.
+
+The frame's priors are stacked, cropped to the model's region of interest and resized exactly as in training
+(``model.draem.preprocess``), so the network sees at inference what it saw in training. Conventions: maps are
+float32 (H, W) frames keyed by ``model.priors`` names; scores and heatmap values are in [0, 1]; the heatmap is
+frame-sized, zero outside the region of interest. Torch is imported inside functions, as in the rest of
+``model`` where a module is read without it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import logging
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .errors import ModelError
+
+if TYPE_CHECKING:
+    import torch
+
+    from model.normals.estimator import NormalEstimator
+
+    from .checkpoint import Checkpoint
+    from .config import ModelConfig
+    from .detector import Detector, DetectorOutput
+    from .onnx_export import OnnxDetector
+
+log = logging.getLogger(__name__)
+
+PRIOR_MAPS: dict[str, tuple[str, ...]] = {
+    "intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin"),
+    "normal": ("intensity", "dolp", "aolp_cos", "aolp_sin")}
+"""Model prior -> the ``model.priors`` maps it is built from ("normal": the inputs of the learned normal
+estimator, ``model.normals.estimator.MAP_NAMES``; a test keeps the two equal)."""
+
+PRECISIONS = ("auto", "fp32", "bf16", "onnx", "int8")
+"""``[model] precision`` values ``load_predictor`` takes."""
+
+
+class PredictorError(ModelError):
+    """The checkpoint cannot be run as asked: a setting (``[model] path/device/precision``, members, early exit
+    margin), a model unfit for inference on frames, its int8 networks or its normal estimator. The message is one
+    line naming the file or the key. (A checkpoint that cannot be read raises ``CheckpointError`` instead.)"""
+
+
+def auto_precision(path: str | Path, device: torch.device) -> str:
+    """``[model] precision = "auto"``: int8 on a CPU where ``station quantize`` made the model's int8 networks,
+    found them changing at most ``AUTO_MAX_CHANGED`` of the validation decisions, and ONNX Runtime is installed
+    (the fastest measured there at -0.3 to -1.2 points of image AUROC); fp32 otherwise, saying why."""
+    import importlib.util
+
+    from .quantize import fit_for_auto, int8_dir
+
+    folder = int8_dir(path)
+    if device.type != "cpu" or not (folder / "int8.json").is_file() or importlib.util.find_spec("onnxruntime") is None:
+        return "fp32"
+    fit, why = fit_for_auto(folder)
+    if not fit:
+        log.warning("%s: precision auto runs fp32, not its int8 networks: %s", path, why)
+    return "int8" if fit else "fp32"
+
+
+def inference_network(ck: Checkpoint, path: str | Path, precision: str) -> Detector | OnnxDetector:
+    """What runs checkpoint ``ck`` (loaded from ``path``) for evaluation: its torch detector ("fp32") or its int8
+    networks on ONNX Runtime ("int8", made by ``station quantize``, sha256 checked). ``ModelError`` naming the
+    file when the int8 networks cannot be used."""
+    if precision == "fp32":
+        return ck.detector
+    if precision != "int8":
+        raise ModelError(f"precision {precision!r}: evaluation runs fp32 or int8")
+    import torch
+
+    from .quantize import int8_dir, load_int8
+
+    return load_int8(ck.detector, int8_dir(path), ck.meta.get("weights_sha256", ""), torch.get_num_threads())
+
+
+@dataclass(eq=False)
+class Predictor:
+    """A loaded checkpoint ready for frames (``load_predictor`` builds it). ``predict`` scores one frame;
+    ``members_run`` counts the members run over all calls (with early exit, fewer than calls x members)."""
+
+    config: ModelConfig
+    net: Detector | OnnxDetector
+    """The torch detector (fp32, bf16) or its ONNX Runtime networks (onnx, int8)."""
+    device: torch.device
+    precision: str
+    """The precision that runs ("auto" resolved: fp32, bf16, onnx or int8)."""
+    threshold: float
+    """Decision threshold: reject when score > threshold (the caller's, else the checkpoint's)."""
+    members: tuple[str, ...]
+    """The members of a per-prior ensemble that run (all networks of the model unless chosen)."""
+    used_priors: tuple[str, ...]
+    """The model's priors its members read (all of them unless ``members`` leaves some out)."""
+    normals: NormalEstimator | None
+    """The learned normal estimator when a member reads the normal prior (fp32 torch on ``device``)."""
+    early_exit_margin: float | None
+    """None: every member runs; 0: stop once the rest cannot change the decision; m > 0: also once the running
+    mean is more than m from the threshold (``model.draem.early_exit``). Always None for a single network."""
+    model_id: str
+    """``<name>-<preset>-<fusion>-<first 8 hex of the weights' sha256>``."""
+    meta: dict[str, Any]
+    """The checkpoint's sidecar."""
+    members_run: int = 0
+    priors: tuple[str, ...] = field(init=False)
+    """Names of the ``model.priors`` maps ``predict`` reads (from ``PRIOR_MAPS``; nothing else is needed)."""
+
+    def __post_init__(self) -> None:
+        self.priors = tuple(dict.fromkeys(n for p in self.used_priors for n in PRIOR_MAPS[p]))
+
+    def predict(self, maps: Mapping[str, np.ndarray]) -> tuple[float, np.ndarray]:
+        """Score one frame's prior maps (``priors`` of them, each (H, W)): (image score, (H, W) float32 heatmap,
+        zero outside the region of interest)."""
+        import cv2
+        import torch
+
+        from .preprocess import crop_resize, stack_priors
+        from .roi import roi_box
+        from .train import autocast
+
+        shape = next(iter(maps.values())).shape[:2]
+        top, left, h, w = roi_box(self.config.roi, shape)
+        # stack only the square the network sees, not whole frames (the same values crop_resize would cut out)
+        cut = {k: v[top:top + h, left:left + w] for k, v in maps.items()}
+        if self.normals is not None:  # same square as the DRAEM's: both read roi "center" ("frame" has no normal)
+            cut["normal"] = self.normals.predict_box(cut, shape, (top, left, h, w))
+        x = stack_priors(cut, self.used_priors)
+        xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.used_priors)
+        xt = self._all_channels(xt).unsqueeze(0).to(self.device)
+        if self.device.type == "cpu" and self.precision not in ("onnx", "int8"):
+            xt = xt.contiguous(memory_format=torch.channels_last)
+        with autocast(self.device, self.precision):
+            if self.early_exit_margin is None:
+                out = self.net.predict(xt, members=self.members)
+                self.members_run += len(self.members)
+            else:
+                out = self._predict_early(xt)
+        amap = out.anomaly_map[0].float().cpu().numpy()
+        heat = np.zeros(shape, np.float32)
+        heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
+        return float(out.score[0]), heat
+
+    def _all_channels(self, xt: torch.Tensor) -> torch.Tensor:
+        """(C, S, S) of the priors used -> the model's full channel stack; members left out (``members``) get
+        zeros they never read."""
+        import torch
+
+        from .config import PRIOR_CHANNELS, channel_slices
+
+        if self.used_priors == self.config.priors:
+            return xt
+        full = torch.zeros((self.config.in_channels, *xt.shape[1:]), dtype=xt.dtype)
+        start = 0
+        for p, sl in channel_slices(self.config.priors).items():
+            if p in self.used_priors:
+                full[sl] = xt[start:start + PRIOR_CHANNELS[p]]
+                start += PRIOR_CHANNELS[p]
+        return full
+
+    def _predict_early(self, xt: torch.Tensor) -> DetectorOutput:
+        """Members one by one in the model's prior order until ``model.draem.early_exit.decided``; the output
+        averages the members run."""
+        import torch
+
+        from .detector import DetectorOutput
+        from .early_exit import decided
+
+        assert self.early_exit_margin is not None
+        outs = []
+        for name in self.members:
+            outs.append(self.net.predict(xt, members=(name,)))
+            self.members_run += 1
+            if decided([float(o.score[0]) for o in outs], len(self.members), self.threshold, self.early_exit_margin):
+                break
+        return DetectorOutput(torch.stack([o.anomaly_map for o in outs]).mean(0),
+                              torch.stack([o.score for o in outs]).mean(0), {}, {})
+
+    def warm_up(self, runs: int = 2) -> float:
+        """Run inference on flat frames (first calls allocate memory and pick kernels, which would put the first
+        parts over the cycle time); returns the last run's milliseconds."""
+        import time
+
+        side = 2 * self.config.input_size_px  # the network sees input_size_px whatever the frame size
+        flat = {n: np.full((side, side), 1.0 if n in ("aolp_cos", "intensity") else 0.0, np.float32)
+                for n in self.priors}
+        ms = 0.0
+        for _ in range(runs):
+            t = time.perf_counter()
+            self.predict(flat)
+            ms = 1e3 * (time.perf_counter() - t)
+        return ms
+
+
+def load_predictor(path: str | Path, device: str = "auto", precision: str = "auto", threshold: float | None = None,
+                   early_exit_margin: float | None = None, fov_x_deg: float | None = None,
+                   members: Sequence[str] | None = None) -> Predictor:
+    """The checkpoint at folder stem ``path`` (``<path>.pt`` + ``<path>.json``) ready for frames.
+
+    device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32", "bf16" (autocast), "onnx" (ONNX Runtime,
+    exported at load), "int8" (ONNX Runtime on the quantized networks ``station quantize`` wrote beside it) or
+    "auto" (``auto_precision``: int8 on a CPU where the model has them, they passed ``station quantize``'s
+    validation check and ONNX Runtime is installed, else fp32).
+    ``threshold`` overrides the checkpoint's threshold (``[decision] threshold``). ``early_exit_margin``: None
+    runs every member of a per-prior ensemble; 0 stops once the rest cannot change the decision (exact); m > 0
+    also once the running mean is more than m from the threshold (``model.draem.early_exit``). ``fov_x_deg``:
+    the lens's horizontal field of view in degrees for the normal prior's viewing directions (default: the
+    training set's). ``members``: run only these members of a per-prior ensemble, and compute only their priors
+    (the pipeline benchmark's prior sets; the threshold stays the whole ensemble's, so only scores and their AUROC
+    are meant).
+
+    Raises ``PredictorError`` (one line naming the file or the ``[model]`` key) for a setting or model it cannot
+    run, ``CheckpointError`` for a checkpoint it cannot read.
+    """
+    import torch
+
+    from .checkpoint import load_checkpoint, paths
+    from .train import resolve_device
+
+    if precision not in PRECISIONS:
+        raise PredictorError(f"[model] precision = {precision!r}: choose auto, fp32, bf16, onnx or int8")
+    if Path(path).name in ("", ".", ".."):
+        raise PredictorError(f"[model] path = {str(path)!r}: names no model (give the checkpoint's path without "
+                             f"suffix, e.g. model/weights/default)")
+    pt, js = paths(path)
+    if not js.is_file():
+        raise PredictorError(f"{js}: model not found ([model] path = {str(path)!r}); train one with "
+                             f"`station train` or restore model/weights/ from git")
+    try:
+        dev = resolve_device(device)
+    except ModelError as exc:
+        raise PredictorError(f"[model] device = {device!r}: {exc}") from None
+    if precision == "auto":
+        precision = auto_precision(path, dev)
+    ck = load_checkpoint(path, map_location=dev)  # CheckpointError names the file
+    cfg = ck.detector.config
+    if cfg.roi == "object":
+        raise PredictorError(f"{js}: model crops to roi {cfg.roi!r}, which needs ground truth at inference; "
+                             f"retrain with --roi center")
+    chosen = threshold if threshold is not None else ck.threshold
+    if chosen is None:
+        raise PredictorError(f"{js}: the model has no threshold; set [decision] threshold in station.toml")
+    every = tuple(cfg.networks())
+    if members is not None and cfg.fusion != "ensemble":
+        raise PredictorError(f"{js}: a fused model has no members to choose")
+    if members is not None and (not members or not set(members) <= set(every)):
+        raise PredictorError(f"{js}: members {list(members)}: name some of the ensemble's {list(every)}")
+    chosen_members = tuple(members) if members is not None else every
+    used_priors = tuple(p for p in cfg.priors if cfg.fusion == "fused" or p in chosen_members)
+    normals = _normal_estimator(js, ck.meta, dev) if "normal" in used_priors else None
+    if normals is not None and fov_x_deg is not None:
+        normals.fov_x_deg = float(fov_x_deg)
+    net: Detector | OnnxDetector = ck.detector.to(dev)
+    if precision == "onnx":  # ONNX Runtime on CPU, checked against torch at load
+        import tempfile
+
+        from .onnx_export import OnnxDetector
+
+        dev = torch.device("cpu")
+        with tempfile.TemporaryDirectory() as tmp:
+            net = OnnxDetector.from_detector(ck.detector.cpu(), tmp, torch.get_num_threads())
+    elif precision == "int8":  # ONNX Runtime on CPU, networks made and checked by `station quantize`
+        from .quantize import int8_dir, load_int8
+
+        dev = torch.device("cpu")
+        try:
+            net = load_int8(ck.detector.cpu(), int8_dir(path), ck.meta.get("weights_sha256", ""),
+                            torch.get_num_threads())
+        except ModelError as exc:
+            raise PredictorError(str(exc)) from None
+    elif dev.type == "cpu":
+        net = ck.detector.to(memory_format=torch.channels_last)  # the same module, moved above
+    if early_exit_margin is not None and not 0 <= early_exit_margin <= 1:
+        raise PredictorError(f"early exit margin {early_exit_margin} must be in [0, 1]")
+    sha = ck.meta.get("weights_sha256") or hashlib.sha256(pt.read_bytes()).hexdigest()
+    predictor = Predictor(config=cfg, net=net, device=dev, precision=precision, threshold=float(chosen),
+                          members=chosen_members, used_priors=used_priors, normals=normals,
+                          early_exit_margin=early_exit_margin if len(chosen_members) > 1 else None,
+                          model_id=f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}", meta=ck.meta)
+    log.info("model %s: priors %s, %s %dpx, roi %s, threshold %.4g, %s %s", predictor.model_id, list(cfg.priors),
+             cfg.fusion, cfg.input_size_px, cfg.roi, predictor.threshold, dev, precision)
+    return predictor
+
+
+def _normal_estimator(js: Path, meta: Mapping[str, Any], device: torch.device) -> NormalEstimator:
+    """The learned normal estimator the model (sidecar ``js``) was trained with (fp32 torch on ``device``, the
+    model's, also when the DRAEM runs in ONNX Runtime)."""
+    from model.normals.estimator import load_for_checkpoint
+
+    try:
+        est = load_for_checkpoint(js, (meta.get("train") or {}).get("normal_prior"), device)
+    except ModelError as exc:
+        raise PredictorError(str(exc)) from None
+    if est.net.config.roi != "center":
+        raise PredictorError(f"{est.path}: normal estimator reads roi {est.net.config.roi!r}; a station needs "
+                             f"'center'")
+    return est

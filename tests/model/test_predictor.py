@@ -1,0 +1,66 @@
+"""``model.draem.predictor.load_predictor``: the model-side loader the station's ``DraemDetector`` wraps."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+
+from model.draem.checkpoint import save_checkpoint
+from model.draem.config import ModelConfig
+from model.draem.detector import Detector
+from model.draem.errors import ModelError
+from model.draem.predictor import PRIOR_MAPS, load_predictor
+from model.normals.estimator import MAP_NAMES
+
+
+def save(path: Path, priors: tuple[str, ...], fusion: str) -> Path:
+    det = Detector(ModelConfig.from_preset("tiny", priors, fusion, 32))
+    det.init_weights(torch.Generator().manual_seed(0))
+    save_checkpoint(path, det, threshold=0.5, threshold_rule="test")
+    return path
+
+
+def maps(seed: int, shape: tuple[int, int] = (48, 64)) -> dict[str, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    a = rng.uniform(0, np.pi, shape)
+    return {"intensity": rng.uniform(0, 1, shape).astype(np.float32),
+            "dolp": rng.uniform(0, 0.3, shape).astype(np.float32),
+            "aolp_cos": np.cos(2 * a).astype(np.float32), "aolp_sin": np.sin(2 * a).astype(np.float32)}
+
+
+@pytest.mark.parametrize(("fusion", "early_exit"), [("fused", None), ("ensemble", None), ("ensemble", 0.0)])
+def test_the_predictor_scores_as_the_station_detector(tmp_path: Path, fusion: str, early_exit: float | None) -> None:
+    from station.model_detector import DraemDetector
+
+    path = save(tmp_path / "m", ("intensity", "dolp", "aolp"), fusion)
+    pred = load_predictor(path, "cpu", "fp32", early_exit_margin=early_exit)
+    det = DraemDetector(path, "cpu", "fp32", early_exit_margin=early_exit)
+    assert pred.priors == det.priors == ("intensity", "dolp", "aolp_cos", "aolp_sin")
+    assert (pred.model_id, pred.threshold, pred.precision) == (det.model_id, det.threshold, det.precision)
+    for seed in range(3):
+        score, heat = pred.predict(maps(seed))
+        ref = det.infer(maps(seed))
+        assert heat.dtype == np.float32 and heat.shape == (48, 64)
+        assert score == ref.score and np.array_equal(heat, ref.heatmap)
+        assert not heat[:, :8].any() and not heat[:, 56:].any()  # roi "center": the 48 x 48 centre square
+    assert pred.members_run == det.members_run > 0
+    assert pred.warm_up(1) > 0
+
+
+@pytest.mark.parametrize(("kwargs", "key"), [({"precision": "fp16"}, "[model] precision"),
+                                              ({"device": "tpu"}, "[model] device"),
+                                              ({"device": "cuda"}, "[model] device")])
+def test_a_bad_setting_is_a_model_error_naming_its_key(tmp_path: Path, kwargs: dict, key: str) -> None:
+    if kwargs.get("device") == "cuda" and torch.cuda.is_available():
+        pytest.skip("this machine has CUDA")
+    path = save(tmp_path / "m", ("intensity",), "fused")
+    with pytest.raises(ModelError) as excinfo:
+        load_predictor(path, **kwargs)
+    assert key in str(excinfo.value) and "\n" not in str(excinfo.value)
+
+
+def test_the_normal_prior_reads_the_estimator_inputs() -> None:
+    assert PRIOR_MAPS["normal"] == MAP_NAMES
