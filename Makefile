@@ -3,7 +3,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml scripts/system-deps.sh | sha1sum | cut -c1-12)
 
-.PHONY: demo test setup lint clean
+.PHONY: demo test setup lint clean model
 
 demo: setup
 	$(BIN)/station run --camera sim --frames 200
@@ -28,3 +28,7 @@ $(STAMP): pyproject.toml scripts/system-deps.sh
 
 clean:
 	rm -rf $(VENV)
+
+# The shipped model from nothing (render, train, held-out evaluation, int8, copy to model/weights/default); hours.
+model: setup
+	scripts/make-model.sh
