@@ -12,8 +12,6 @@ from typing import Any
 
 from station.errors import UserError
 
-NORMAL_NET_FILES = ("normal_net.pt", "normal_net.json")
-
 
 @dataclass
 class AdaptSummary:
@@ -66,7 +64,9 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     save_checkpoint(out, det, res.threshold.threshold, res.threshold.rule, ck.meta.get("data_manifest_sha256"),
                     {}, train)
     src_dir, dst_dir = paths(model)[1].parent, paths(out)[1].parent
-    for name in NORMAL_NET_FILES:  # a learned normal prior's estimator lives beside the checkpoint
+    from model.normals.estimator import BESIDE_CHECKPOINT
+
+    for name in (BESIDE_CHECKPOINT + ".pt", BESIDE_CHECKPOINT + ".json"):  # a learned normal prior's estimator
         if (src_dir / name).is_file() and src_dir.resolve() != dst_dir.resolve():
             shutil.copy2(src_dir / name, dst_dir / name)
     return AdaptSummary(Path(out), record)

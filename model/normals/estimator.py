@@ -30,6 +30,8 @@ from .sfp import view_directions
 
 MAP_NAMES = INPUT_CHANNELS[:4]
 """The prior maps (``model.priors`` names) the estimator reads: intensity, dolp, aolp_cos, aolp_sin."""
+BESIDE_CHECKPOINT = "normal_net"
+"""Stem (``.pt`` + ``.json``) of the estimator a DRAEM checkpoint reading the normal prior carries beside it."""
 
 
 @dataclass
@@ -89,7 +91,7 @@ class NormalEstimator:
         return out
 
 
-def describe(estimator: NormalEstimator | None, file: str = "normal_net.json") -> dict[str, Any]:
+def describe(estimator: NormalEstimator | None, file: str = BESIDE_CHECKPOINT + ".json") -> dict[str, Any]:
     """What a DRAEM checkpoint records about its normal prior (``train.normal_prior`` in its sidecar): the
     learned estimator's sidecar ``file`` (beside the checkpoint), weights hash and field of view, or the
     rendered ground truth (``estimator`` None: a research upper bound a station cannot run)."""

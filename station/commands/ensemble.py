@@ -62,8 +62,8 @@ def run(args: argparse.Namespace) -> int:
 def _copy_normal_prior(member: str, ck: Checkpoint, out: Path) -> dict:
     """The normal member's ``normal_prior`` record, its learned estimator copied beside ``out`` (as train does)."""
     from model.draem.checkpoint import paths
+    from model.normals.estimator import BESIDE_CHECKPOINT as NORMAL_NET_FILE
     from model.normals.net import copy_normal_net
-    from station.commands.train import NORMAL_NET_FILE
 
     rec = (ck.meta.get("train") or {}).get("normal_prior")
     if not rec:

@@ -25,9 +25,6 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-NORMAL_NET_FILE = "normal_net"
-"""Stem of the normal estimator's copy beside the checkpoints (``<out>/normal_net.{pt,json}``)."""
-
 __all__ = ["SplitTensors", "check_trained_on", "load_split", "manifest_sha256", "run"]  # re-exported from datasets
 
 
@@ -88,19 +85,19 @@ def normal_estimator(path: str | None, data: str | Path, out: Path) -> NormalEst
                     "station refuses such a model")
         return None
     from model.draem.distributed import from_env
-    from model.normals.estimator import NormalEstimator
+    from model.normals.estimator import BESIDE_CHECKPOINT, NormalEstimator
     from model.normals.net import copy_normal_net
 
     if not from_env().is_main:  # torchrun: rank 0 alone writes the copy, the other ranks read the source
         return NormalEstimator.load(path, dataset_fov_x_deg(data))
-    copy_normal_net(path, out / NORMAL_NET_FILE)
-    return NormalEstimator.load(out / NORMAL_NET_FILE, dataset_fov_x_deg(data))
+    copy_normal_net(path, out / BESIDE_CHECKPOINT)
+    return NormalEstimator.load(out / BESIDE_CHECKPOINT, dataset_fov_x_deg(data))
 
 
 def normal_prior_record(normals: NormalEstimator | None) -> dict:
     from model.normals.estimator import describe
 
-    return describe(normals, NORMAL_NET_FILE + ".json")
+    return describe(normals)
 
 
 def good_part_of(sp: SplitTensors) -> SplitTensors:
