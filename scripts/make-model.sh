@@ -25,6 +25,7 @@ HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
 JOBS=${JOBS:-2}
 SHIP=${SHIP:-1}
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml)
+export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
 render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
