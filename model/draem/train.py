@@ -107,6 +107,8 @@ class TrainConfig:
     """steps: optimiser steps; eval_every: steps between evaluation + checkpoint; precision: "fp32", "bf16"
     (autocast) or "auto" (fp32 on CPU: bf16 autocast was measured slower on this AVX2-only CPU, see docs/model.md;
     bf16 on CUDA); channels_last: None = on. ``max_minutes`` stops early (after a final checkpoint).
+    ``stop_at_step``: stop after this step of the ``steps``-step schedule (after a checkpoint); a rerun with a later
+    one, or none, resumes the same schedule (a long run split over sessions, or a base to fine-tune from).
     ``rendered_fraction``: share of each batch replaced by rendered defective samples (``train(defects=...)``,
     ``mixed.py``), rounded half up to a whole number of samples (``n_rendered``) that must leave at least one
     synthetic sample; 0 = DRAEM's synthetic anomalies only, exactly as before."""
@@ -123,12 +125,15 @@ class TrainConfig:
     precision: str = "auto"
     channels_last: bool | None = None
     max_minutes: float | None = None
+    stop_at_step: int | None = None
     anomaly: AnomalyConfig = field(default_factory=AnomalyConfig)
     rendered_fraction: float = 0.0
 
     def __post_init__(self) -> None:
         if self.steps < 1 or self.batch_size < 1 or self.eval_every < 1:
             raise ModelError(f"train config: steps, batch_size and eval_every must be >= 1 ({self})")
+        if self.stop_at_step is not None and not 1 <= self.stop_at_step <= self.steps:
+            raise ModelError(f"stop_at_step must be in [1, steps = {self.steps}], got {self.stop_at_step}")
         if self.precision not in ("auto", "fp32", "bf16"):
             raise ModelError(f"precision must be auto, fp32 or bf16, got {self.precision!r}")
         n_rendered(self.rendered_fraction, self.batch_size)  # raises on a fraction the batch cannot hold
@@ -422,7 +427,8 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
     bar = tqdm(total=tc.steps, initial=start_step, disable=not (progress and main), unit="step", dynamic_ncols=True)
     step = start_step
     ema = None
-    while step < tc.steps:
+    end = tc.stop_at_step or tc.steps
+    while step < end:
         batch = draw_batch(data, config.priors, tc.batch_size, index_gen, synth_gen, tc.anomaly, device, defects,
                            rendered, defect_gen)
         clean, aug = detector.normalize(batch.target), detector.normalize(batch.inputs)
@@ -455,7 +461,7 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
         bar.set_postfix(loss=f"{ema:.4f}", samples_s=f"{rate:.1f}", lr=f"{scheduler.get_last_lr()[0]:.1e}")
         bar.update(1)
         history.append({"step": step, "loss": loss, **{f"{k}_{t}": v for k, d in terms.items() for t, v in d.items()}})
-        if step % tc.eval_every == 0 or step == tc.steps or stop:
+        if step % tc.eval_every == 0 or step == end or stop:
             gens = generators()
             if main:
                 assert val is not None

@@ -61,6 +61,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--init", default=None, metavar="MODEL",
                    help="start from this checkpoint (path without suffix, same priors, fusion, preset and size) with "
                         "a fresh optimiser: e.g. fine-tune a model trained on good parts with --rendered-fraction")
+    p.add_argument("--stop-at-step", type=int, default=None, metavar="N",
+                   help="stop after step N of the --steps schedule (a checkpoint is written); rerun with a later N, "
+                        "or without, to go on with the same schedule")
     p.add_argument("--max-minutes", type=float, default=None, help="stop after this much training time")
     p.add_argument("--limit", type=int, default=None, help="use at most N samples per split (smoke runs)")
     p.add_argument("--out", default=None, help="output folder (default runs/train/<preset>-<fusion>)")
@@ -204,8 +207,11 @@ def run(args: argparse.Namespace) -> int:
     try:
         tc = TrainConfig(steps=args.steps, batch_size=args.batch_size, seed=args.seed, eval_every=args.eval_every,
                          device=args.device, precision=args.precision, max_minutes=args.max_minutes,
+                         stop_at_step=args.stop_at_step,
                          rendered_fraction=args.rendered_fraction)
     except ModelError as exc:
+        if "stop_at_step" in str(exc):
+            raise UserError(f"--stop-at-step {args.stop_at_step}: {exc}") from None
         raise UserError(f"--rendered-fraction {args.rendered_fraction} with --batch-size {args.batch_size}: "
                         f"{exc}") from None
     sha = manifest_sha256(args.data)

@@ -130,3 +130,18 @@ def test_the_held_out_report_compares_trained_on_held_out_and_synthetic_only(tmp
     shipped = load_checkpoint(tmp_path / "ship" / "default")
     assert shipped.meta["weights_file"] == "default.pt" and (tmp_path / "ship" / "default.int8" / "int8.json").is_file()
     assert shipped.meta["weights_sha256"] == load_checkpoint(tmp_path / "mixed" / "best").meta["weights_sha256"]
+
+
+def test_a_schedule_stopped_at_a_step_and_resumed_equals_the_straight_run(tmp_path: Path, capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=30)
+    argv = ["train", "--data", str(data), *BASE[:8], "--steps", "4", "--batch-size", "2", "--eval-every", "2",
+            "--device", "cpu"]
+    assert main([*argv, "--out", str(tmp_path / "straight")]) == 0
+    assert main([*argv, "--stop-at-step", "2", "--out", str(tmp_path / "split")]) == 0
+    assert json.loads((tmp_path / "split" / "last.json").read_text())["train"]["step"] == 2
+    assert main([*argv, "--out", str(tmp_path / "split")]) == 0
+    done = [json.loads((tmp_path / d / "last.json").read_text()) for d in ("straight", "split")]
+    assert [d["train"]["step"] for d in done] == [4, 4]
+    assert done[0]["weights_sha256"] == done[1]["weights_sha256"]
+    assert main([*argv, "--stop-at-step", "5", "--out", str(tmp_path / "bad")]) == 2
+    assert "--stop-at-step 5" in capsys.readouterr().err
