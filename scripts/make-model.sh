@@ -19,6 +19,7 @@ RUNS=${RUNS:-runs/make-model}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
 HELDOUT_COUNT=${HELDOUT_COUNT:-500}
 BASE_STEPS=${BASE_STEPS:-1000}
+BASE_STOP=${BASE_STOP:-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
 MIXED_STEPS=${MIXED_STEPS:-400}
 HOLDOUT_STEPS=${HOLDOUT_STEPS:-150}
 HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
@@ -40,7 +41,8 @@ render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
 render "$DATA" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed 202 --defects 0.6 --heldout --visibility
 
-"$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" --eval-every 100 --out "$RUNS/base"
+"$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
+    --eval-every 100 --out "$RUNS/base"
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
     --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
 for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
