@@ -99,6 +99,24 @@ def aupro(masks: np.ndarray, maps: np.ndarray, fpr_limit: float = 0.3, region: n
     return float(np.trapezoid(pro, fpr) / fpr_limit)
 
 
+def summary(labels: np.ndarray, scores: np.ndarray, maps: np.ndarray, masks: np.ndarray, region: np.ndarray,
+            mask_known: np.ndarray | None = None) -> dict[str, float]:
+    """Image and pixel metrics of one evaluation: labels (N,) 0/1, scores (N,), maps (N, H, W) anomaly maps, masks
+    (N, H, W) true defect masks, region (N, H, W) where pixels count (the object), mask_known (N,) bool: parts whose
+    mask is known (pixel metrics read only those; None = all). Pure: any subset of parts of an evaluation gives
+    that subset's metrics without running the network again."""
+    label = np.asarray(labels).astype(bool)
+    known = np.ones(label.size, bool) if mask_known is None else np.asarray(mask_known).astype(bool)
+    gt, obj, pmap = np.asarray(masks).astype(bool)[known], np.asarray(region).astype(bool)[known], maps[known]
+    f1, f1_t = f1_max(label, scores)
+    return {
+        "image_auroc": auroc(label, scores), "pixel_auroc": pixel_auroc(gt, pmap, obj),
+        "pixel_ap": pixel_ap(gt, pmap, obj), "aupro_0.3": aupro(gt, pmap, 0.3, obj),
+        "image_f1_max": f1, "image_f1_threshold": f1_t, "n": int(label.size), "n_anomalous": int(label.sum()),
+        "n_anomalous_with_mask": int((label & known).sum()),
+    }
+
+
 def f1_max(labels: np.ndarray, scores: np.ndarray) -> tuple[float, float]:
     """(best F1, the threshold that reaches it) over all thresholds; (NaN, NaN) without both classes."""
     y = np.asarray(labels).reshape(-1).astype(bool)

@@ -205,17 +205,8 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
     amap = torch.cat(maps).numpy()
     score = torch.cat(scores).numpy()
     label = data.label.numpy().astype(bool)
-    known = np.ones(label.size, bool) if data.mask_known is None else data.mask_known.numpy().astype(bool)
-    gt = data.defect_mask.numpy().astype(bool)[known]
-    obj = data.object_mask.numpy().astype(bool)[known]
-    pmap = amap[known]
-    f1, f1_t = M.f1_max(label, score)
-    res = {
-        "image_auroc": M.auroc(label, score), "pixel_auroc": M.pixel_auroc(gt, pmap, obj),
-        "pixel_ap": M.pixel_ap(gt, pmap, obj), "aupro_0.3": M.aupro(gt, pmap, 0.3, obj),
-        "image_f1_max": f1, "image_f1_threshold": f1_t, "n": int(label.size), "n_anomalous": int(label.sum()),
-        "n_anomalous_with_mask": int((label & known).sum()),
-    }
+    known = None if data.mask_known is None else data.mask_known.numpy().astype(bool)
+    res = M.summary(label, score, amap, data.defect_mask.numpy(), data.object_mask.numpy(), known)
     if len(member_scores) <= 1:
         return EvalResult(res, score, amap)
     ms = {k: torch.cat(v).numpy() for k, v in member_scores.items()}

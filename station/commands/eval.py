@@ -240,8 +240,8 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from model.draem.checkpoint import read_sidecar
-    from model.draem.metrics import detection_by_type
-    from model.draem.train import EvalData, TensorData, evaluate, synthetic_eval_data
+    from model.draem.metrics import detection_by_type, summary
+    from model.draem.train import TensorData, evaluate, synthetic_eval_data
     from sim.dataset import open_dataset
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256
@@ -268,11 +268,11 @@ def run(args: argparse.Namespace) -> int:
     good = sp.label == 0
     for t in sorted({t for t in sp.defect_type if t}):
         sel = np.array([(lab == 0) or (dt == t) for lab, dt in zip(sp.label.tolist(), sp.defect_type, strict=True)])
-        sub = EvalData(sp.priors[sel], sp.object_mask[sel], sp.defect_mask[sel], sp.label[sel], "rendered",
-                       sp.mask_known[sel])
-        m = evaluate(net, sub)
-        rows.append(_rows(f"{source}, {t}", m.metrics, thr, m.scores, sub.label.numpy()))
-        roc[t] = (sub.label.numpy(), m.scores)
+        label = sp.label.numpy()[sel]  # the full pass's scores and maps: the network runs once per part
+        m = summary(label, ev.scores[sel], ev.maps[sel], sp.defect_mask.numpy()[sel], sp.object_mask.numpy()[sel],
+                    sp.mask_known.numpy()[sel])
+        rows.append(_rows(f"{source}, {t}", m, thr, ev.scores[sel], label))
+        roc[t] = (label, ev.scores[sel])
     if not args.no_synthetic and bool(good.any()):
         syn = synthetic_eval_data(TensorData(sp.priors[good], sp.object_mask[good]), cfg.priors, seed=4242)
         m = evaluate(net, syn)
