@@ -25,14 +25,17 @@ from station.viewer import ViewerFeed
 
 log = logging.getLogger(__name__)
 
-DEMO_DATASET = "data/sim-demo-line"
+DEMO_DATASET = "data/sim-demo-line-polar"
 """Where ``[sim] dataset = ""`` renders its parts on first use (``DEMO_PARTS`` of them, once)."""
-DEMO_SCENE = Path(__file__).resolve().parents[1] / "sim" / "presets" / "line.toml"
-"""The demo's scene: the fixed station the shipped model was trained on (``model/weights/README.md``)."""
+DEMO_SCENE = tuple(Path(__file__).resolve().parents[1] / "sim" / "presets" / name
+                   for name in ("line-polar.toml", "variation.toml"))
+"""The demo's scene: the line the shipped model was trained for, with its variation (``model/weights/README.md``)."""
 DEMO_PARTS = 40
 DEMO_SEED = 7
-"""Not the seed of the shipped model's training set (0), so the demo shows parts the model never saw."""
-DEMO_EMPTY_DATASET = "data/sim-demo-line-empty"
+DEMO_SPP = 16
+"""Seed and samples per pixel: the training set's spp; not a seed of its training (101) or held-out (202) sets,
+so the demo shows parts the model never saw."""
+DEMO_EMPTY_DATASET = "data/sim-demo-line-polar-empty"
 """The demo set with empty views, rendered instead (once) when ``[sim] empty_rate`` > 0 and ``dataset = ""``."""
 DEMO_EMPTY_RATE = 0.25
 
@@ -50,7 +53,7 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
             raise ConfigError(f"{cfg.source}: [sim] dataset = {cfg.sim.dataset!r} is not a rendered set "
                               f"(no manifest.json; make one with `station render --out {cfg.sim.dataset}`)")
         return cfg.sim.dataset
-    from sim.dataset import DatasetSpec, open_dataset, read_overrides, render_set
+    from sim.dataset import DatasetSpec, merge_overrides, open_dataset, read_overrides, render_set
 
     # the plain demo set stays as it was (make demo's first run); empty views only when asked for
     empty_rate = DEMO_EMPTY_RATE if cfg.sim.empty_rate > 0 else 0.0
@@ -58,10 +61,10 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
     if (root / "manifest.json").is_file() and len(open_dataset(root).indices(empty=None)) >= DEMO_PARTS:
         return str(root)
     print(f"[sim] dataset is empty: rendering {DEMO_PARTS} demo samples into {root} with Mitsuba (once; "
-          f"about 1.5 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
-    spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": 8,
+          f"about 2 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
+    spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": DEMO_SPP,
                                   "defect_fraction": 0.5, "defects_in_train": True, "empty_rate": empty_rate,
-                                  **read_overrides(DEMO_SCENE)})
+                                  **merge_overrides([read_overrides(p) for p in DEMO_SCENE])})
     if empty_rate:
         _link_demo_parts(Path(DEMO_DATASET), root)
     render_set(root, spec, DEMO_PARTS)
