@@ -3,7 +3,8 @@ on this machine.
 
 Latency is per part (one image through every member: 4 priors = 4 networks for the ensemble, 1 for the fused
 network), warm, batch 1, median of ``--repeats``; the published DRAEM size (``paper`` preset, one network,
-256 px, fp32) is the baseline ratio. The int8 rows quantize the random-weight networks as ``station quantize``
+256 px, fp32) is the baseline ratio. The ONNX rows run the networks exported as the station exports them
+(``model.draem.onnx_export.export_network``). The int8 rows quantize the random-weight networks as ``station quantize``
 does, calibrated on random inputs: their time is a trained model's, their error against fp32 is not. A model with
 the normal prior also runs the learned normal estimator once per part (row "normal-net", ``model.normals``, fp32
 torch at the station): add its time to the model's. Accuracy per configuration needs trained checkpoints: see
@@ -70,7 +71,7 @@ def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
     if precision in ("onnx", "int8"):
         import onnxruntime as ort
 
-        from model.draem.onnx_export import MapOnly, session_options
+        from model.draem.onnx_export import export_network, session_options
         from model.draem.quantize import quantize_detector
 
         sessions, max_err = {}, 0.0
@@ -79,12 +80,10 @@ def _measure(preset: str, size: int, precision: str, fusion: str, args) -> dict:
                 quantize_detector(det, torch.randn(8, cfg.in_channels, size, size), d, "random weights")
             for k, n in nets.items():
                 f = Path(d) / f"{k}.onnx"
-                if precision == "onnx":
-                    torch.onnx.export(MapOnly(n), (inputs[k],), str(f), input_names=["x"], output_names=["map"],
-                                      dynamo=False)
+                if precision == "onnx":  # the station's export (model.draem.onnx_export), as int8's above
+                    export_network(n, f)
                 sessions[k] = ort.InferenceSession(str(f), session_options(args.threads),
                                                    providers=["CPUExecutionProvider"])
-                n.eval()  # the exporter may leave the module in train mode
                 with torch.no_grad():
                     ref = n(inputs[k]).anomaly_map.numpy()
                 got = sessions[k].run(None, {"x": inputs[k].numpy()})

@@ -1,4 +1,5 @@
-"""ONNX export: every member exported, ONNX Runtime agrees with torch (maps and scores), batches work."""
+"""ONNX export: every member exported, ONNX Runtime agrees with torch (maps and scores), batches work, one file per
+network with the batch as its only dynamic axis, quietly."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import torch
 
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
-from model.draem.onnx_export import MAX_ABS_ERROR, OnnxDetector, export_onnx
+from model.draem.onnx_export import BATCH_AXIS, MAX_ABS_ERROR, OnnxDetector, export_network, export_onnx
 
 pytest.importorskip("onnxruntime")
 
@@ -25,3 +26,18 @@ def test_onnx_detector_matches_torch_for_an_ensemble(tmp_path) -> None:
     assert float((a.anomaly_map - b.anomaly_map).abs().max()) <= MAX_ABS_ERROR
     assert float((a.score - b.score).abs().max()) <= MAX_ABS_ERROR
     assert set(a.member_scores) == {"intensity", "aolp"}
+
+
+def test_export_network_writes_one_file_with_a_dynamic_batch_only_and_says_nothing(tmp_path, capsys) -> None:
+    onnx = pytest.importorskip("onnx")
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "aolp"), "fused", 64))
+    net = det.members["fused"].train()
+    f = export_network(net, tmp_path / "a" / "fused.onnx")
+    assert not net.training  # exported and left in eval mode
+    assert [p.name for p in (tmp_path / "a").iterdir()] == ["fused.onnx"]  # weights inside: no external data file
+    graph = onnx.load(str(f)).graph
+    dims = {v.name: [d.dim_param or d.dim_value for d in v.type.tensor_type.shape.dim]
+            for v in (*graph.input, *graph.output)}
+    assert dims == {"x": [BATCH_AXIS, 3, 64, 64], "map": [BATCH_AXIS, 64, 64]}
+    out = capsys.readouterr()
+    assert out.out == "" and out.err == ""
