@@ -9,7 +9,8 @@
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. held-out types: the base fine-tuned the same way without one defect type, per type (HOLDOUT_TYPES)
-#   6. thresholds on validation, evaluation on the held-out set, int8 copy, copy to model/weights/default
+#   6. thresholds on validation, evaluation on the held-out set, copy to model/weights/default (fp32 only: the
+#      int8 networks of this model scored a hostile frame across the threshold, see model/weights/README.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
@@ -55,12 +56,11 @@ for m in base/last mixed/best $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/bes
     "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$DATA" --out "$RUNS/eval-${m%%/*}"
 done
 "$BIN/station" compare "$RUNS"/eval-* --out "$RUNS/compare"
-"$BIN/station" quantize --model "$RUNS/mixed/best" --data "$DATA"
 
 if [ "$SHIP" = 1 ]; then
     "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
         "$RUNS/mixed/best" model/weights/default
-    "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$DATA" --precision int8 \
+    "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$DATA" \
         --out model/weights/default-eval
     cp "$RUNS"/compare/compare.* model/weights/default-eval/
 fi

@@ -107,22 +107,11 @@ def test_onnx_runtime_scores_like_torch_on_the_shipped_model() -> None:
         assert abs(a.score - b.score) <= 1e-4 and float(np.abs(a.heatmap - b.heatmap).max()) <= 1e-3
 
 
-INT8_SCORE_BOUND = 0.05
-"""Largest |score(int8) - score(fp32)| accepted for the shipped model's int8 networks on the hostile frames above,
-inputs far outside the good parts they were calibrated on (measured 0.017; at most 0.039 on the 40 validation
-parts, which `station quantize` reports)."""
-
-
-def test_int8_scores_like_fp32_within_the_bound_on_the_shipped_model() -> None:
-    pytest.importorskip("onnxruntime")
+def test_the_shipped_model_runs_fp32_under_auto() -> None:
+    """Its int8 networks (`station quantize`, 2026-11-24) changed none of 90 validation decisions, but on the
+    hostile frames above they scored the one-hot frame 0.18 where fp32 scored 0.51, across the threshold (0.26): a
+    pass where fp32 rejects, on a frame unlike any part. So the shipped model comes without int8 networks and
+    ``precision = "auto"`` runs fp32 (model/weights/README.md)."""
     shipped = Path(__file__).parents[2] / "model" / "weights" / "default"
-    fp32 = Inspector(DraemDetector(shipped, "cpu", "fp32"), IMX250MZR)
-    int8 = Inspector(DraemDetector(shipped, "cpu", "int8"), IMX250MZR)
-    diffs = []
-    for seed, kind in enumerate(KINDS):
-        frame = Frame(hostile_frame(kind, 12, seed), "Mono16", 12, seed + 1, 0, time.time_ns())
-        a, b = fp32.inspect(frame), int8.inspect(frame)
-        assert b.error is None and 0.0 <= b.score <= 1.0 and np.isfinite(b.heatmap).all()
-        diffs.append(abs(a.score - b.score))
-    print(f"int8 vs fp32 max |score difference| {max(diffs):.4f}")
-    assert max(diffs) <= INT8_SCORE_BOUND, diffs
+    assert not shipped.with_name("default.int8").exists()
+    assert DraemDetector(shipped, "cpu", "auto").precision == "fp32"
