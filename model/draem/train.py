@@ -20,7 +20,6 @@ default and runs exactly as before (same seeds, same results, same files).
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import math
 import time
@@ -29,13 +28,12 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
 
-import numpy as np
 import torch
 from torch import nn
 
-from . import distributed
-from . import metrics as M
-from .anomaly import AnomalyConfig, synthesize
+from . import distributed, runtime
+from . import evaluate as evaluation
+from .anomaly import AnomalyConfig
 from .checkpoint import load_checkpoint, paths, save_checkpoint
 from .config import ModelConfig
 from .detector import Detector
@@ -77,31 +75,6 @@ class TensorData:
         return self.priors[indices], self.object_mask[indices].bool()
 
 
-@dataclass
-class EvalData:
-    """Held-out samples: priors (N, C, S, S), object_mask and defect_mask (N, S, S) bool, label (N,) {0, 1};
-    ``kind`` says where the anomalies come from ("rendered" defects or "synthetic"). ``mask_known`` (N,) bool:
-    whose defect mask is ground truth (None: all); pixel metrics use only those samples (a defective part without
-    a mask is never scored against an all-zero mask)."""
-
-    priors: torch.Tensor
-    object_mask: torch.Tensor
-    defect_mask: torch.Tensor
-    label: torch.Tensor
-    kind: str = "rendered"
-    mask_known: torch.Tensor | None = None
-
-
-def synthetic_eval_data(good: TrainData, priors: tuple[str, ...], seed: int = 12345, max_samples: int = 256,
-                        anomaly: AnomalyConfig | None = None) -> EvalData:
-    """A fixed held-out set of DRAEM-style synthetic anomalies on good samples (half of them anomalous)."""
-    n = min(len(good), max_samples)
-    x, obj = good.get(torch.arange(n))
-    g = torch.Generator().manual_seed(seed)
-    syn = synthesize(x, priors, g, anomaly or AnomalyConfig(), obj)
-    return EvalData(syn.augmented, obj, syn.mask.bool(), syn.label.long(), "synthetic")
-
-
 @dataclass(frozen=True)
 class TrainConfig:
     """steps: optimiser steps; eval_every: steps between evaluation + checkpoint; precision: "fp32", "bf16"
@@ -129,7 +102,7 @@ class TrainConfig:
     def __post_init__(self) -> None:
         if self.steps < 1 or self.batch_size < 1 or self.eval_every < 1:
             raise ModelError(f"train config: steps, batch_size and eval_every must be >= 1 ({self})")
-        if self.precision not in ("auto", "fp32", "bf16"):
+        if self.precision not in runtime.TRAIN_PRECISIONS:
             raise ModelError(f"precision must be auto, fp32 or bf16, got {self.precision!r}")
         n_rendered(self.rendered_fraction, self.batch_size)  # raises on a fraction the batch cannot hold
 
@@ -137,86 +110,6 @@ class TrainConfig:
     def n_rendered(self) -> int:
         """Rendered defective samples per batch (per process under torchrun)."""
         return n_rendered(self.rendered_fraction, self.batch_size)
-
-
-def resolve_device(device: str) -> torch.device:
-    if device == "auto":
-        return torch.device("cuda" if torch.cuda.is_available() else "cpu")
-    try:
-        dev = torch.device(device)
-    except RuntimeError as exc:
-        raise ModelError(f"device {device!r}: {exc}") from None
-    if dev.type == "cuda" and not torch.cuda.is_available():
-        raise ModelError(f"device {device!r}: CUDA is not available on this machine (use \"cpu\" or \"auto\")")
-    return dev
-
-
-def resolve_precision(precision: str, device: torch.device) -> str:
-    if precision != "auto":
-        return precision
-    return "bf16" if device.type == "cuda" and torch.cuda.is_bf16_supported() else "fp32"
-
-
-def autocast(device: torch.device, precision: str) -> contextlib.AbstractContextManager:
-    if precision == "bf16":
-        return torch.autocast(device.type, dtype=torch.bfloat16)
-    return contextlib.nullcontext()
-
-
-@dataclass
-class EvalResult:
-    """metrics: image/pixel AUROC, pixel AP, AUPRO (FPR <= 0.3), image F1-max and its threshold, per-member image
-    AUROC; scores: (N,) image scores; maps: (N, S, S) anomaly maps (CPU float32); member_scores / member_maps: the
-    same per ensemble member (empty for a single network), for ablations over subsets of members."""
-
-    metrics: dict[str, float]
-    scores: np.ndarray
-    maps: np.ndarray
-    member_scores: dict[str, np.ndarray] = field(default_factory=dict)
-    member_maps: dict[str, np.ndarray] = field(default_factory=dict)
-
-
-@torch.no_grad()
-def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: torch.device | None = None,
-             precision: str = "fp32", channels_last: bool = False) -> EvalResult:
-    """Run ``detector`` over ``data`` and compute the metrics (pixel metrics on the object region only)."""
-    device = device or next(detector.parameters()).device
-    was_training = detector.training
-    detector.eval()
-    maps, scores, member_scores, member_maps = [], [], {}, {}
-    for i in range(0, data.priors.shape[0], batch_size):
-        x = data.priors[i:i + batch_size].to(device)
-        obj = data.object_mask[i:i + batch_size].to(device)
-        if channels_last:
-            x = x.contiguous(memory_format=torch.channels_last)
-        with autocast(device, precision):  # roi "center": scored over the whole square, as at a station
-            out = detector.predict(x, obj if detector.config.roi == "object" else None)
-        maps.append(out.anomaly_map.float().cpu())
-        scores.append(out.score.float().cpu())
-        for k, v in out.member_scores.items():
-            member_scores.setdefault(k, []).append(v.float().cpu())
-            member_maps.setdefault(k, []).append(out.member_maps[k].float().cpu())
-    detector.train(was_training)
-    amap = torch.cat(maps).numpy()
-    score = torch.cat(scores).numpy()
-    label = data.label.numpy().astype(bool)
-    known = np.ones(label.size, bool) if data.mask_known is None else data.mask_known.numpy().astype(bool)
-    gt = data.defect_mask.numpy().astype(bool)[known]
-    obj = data.object_mask.numpy().astype(bool)[known]
-    pmap = amap[known]
-    f1, f1_t = M.f1_max(label, score)
-    res = {
-        "image_auroc": M.auroc(label, score), "pixel_auroc": M.pixel_auroc(gt, pmap, obj),
-        "pixel_ap": M.pixel_ap(gt, pmap, obj), "aupro_0.3": M.aupro(gt, pmap, 0.3, obj),
-        "image_f1_max": f1, "image_f1_threshold": f1_t, "n": int(label.size), "n_anomalous": int(label.sum()),
-        "n_anomalous_with_mask": int((label & known).sum()),
-    }
-    if len(member_scores) <= 1:
-        return EvalResult(res, score, amap)
-    ms = {k: torch.cat(v).numpy() for k, v in member_scores.items()}
-    for k, v in ms.items():
-        res[f"image_auroc_{k}"] = M.auroc(label, v)
-    return EvalResult(res, score, amap, ms, {k: torch.cat(v).numpy() for k, v in member_maps.items()})
 
 
 @dataclass
@@ -264,7 +157,7 @@ class _MemberForward(nn.Module):
 
 
 def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_config: TrainConfig = TrainConfig(),
-          val: EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
+          val: evaluation.EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
           progress: bool = True, on_eval: Callable[[int, dict[str, float]], None] | None = None,
           train_meta: dict[str, Any] | None = None, defects: DefectData | None = None,
           init: str | Path | None = None) -> TrainResult:
@@ -285,13 +178,14 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
     the same ``data``; ``val``, ``out_dir``, ``progress`` and ``on_eval`` matter on rank 0 only, which reads and
     writes ``out_dir`` (the others need no access to it). Check ``TrainResult.is_main`` before using the files."""
     info = distributed.current()
-    device = distributed.device_for(info, resolve_device(train_config.device))
+    device = distributed.device_for(info, runtime.resolve_device(train_config.device))
     distributed.init(info, device)
     return _train(config, data, Path(out_dir), train_config, val, resume, data_manifest_sha256, progress, on_eval,
                   info, device, train_meta or {}, defects, init)
 
 
-def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val: EvalData | None, resume: bool,
+def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val: evaluation.EvalData | None,
+           resume: bool,
            data_manifest_sha256: str | None, progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None,
            info: distributed.DistInfo, device: torch.device, train_meta: dict[str, Any],
            defects: DefectData | None = None, init: str | Path | None = None) -> TrainResult:
@@ -300,7 +194,7 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
     main = info.is_main
     if main:
         out.mkdir(parents=True, exist_ok=True)
-    precision = resolve_precision(tc.precision, device)
+    precision = runtime.resolve_precision(tc.precision, device)
     channels_last = True if tc.channels_last is None else tc.channels_last
     if len(data) == 0:
         raise ModelError("no training samples")
@@ -310,7 +204,7 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
     if defects is not None and not rendered and main:
         log.warning("%d rendered defective samples given but rendered_fraction is 0: not used", len(defects))
     if val is None and main:
-        val = synthetic_eval_data(data, config.priors, seed=tc.seed + 1)
+        val = evaluation.synthetic_eval_data(data, config.priors, seed=tc.seed + 1)
 
     state_file = out / "last.state.pt"
     start_step, best, history = 0, None, []
@@ -429,7 +323,7 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
         if channels_last:
             clean = clean.contiguous(memory_format=torch.channels_last)
             aug = aug.contiguous(memory_format=torch.channels_last)
-        with autocast(device, precision):
+        with runtime.autocast(device, precision):
             total = torch.zeros((), device=device)
             terms = {}
             for name, o in forward(aug).items():
@@ -459,7 +353,8 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
             gens = generators()
             if main:
                 assert val is not None
-                metrics = evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics
+                metrics = evaluation.evaluate(detector, val, tc.eval_batch_size, device, precision,
+                                              channels_last).metrics
                 history.append({"step": step, "eval": metrics})
                 bar.write(f"step {step}: image AUROC {metrics['image_auroc']:.4f}, pixel AUROC "
                           f"{metrics['pixel_auroc']:.4f}, AUPRO {metrics['aupro_0.3']:.4f} ({val.kind} anomalies)")
@@ -476,8 +371,8 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
         gens = generators()
         if main and not (out / "best.json").exists():
             assert val is not None
-            checkpoint(step, evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics,
-                       gens)
+            checkpoint(step, evaluation.evaluate(detector, val, tc.eval_batch_size, device, precision,
+                                             channels_last).metrics, gens)
         distributed.barrier(info)
     if info.enabled:
         best = distributed.broadcast_object(info, best)

@@ -8,7 +8,8 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector, image_scores
 from model.draem.errors import CheckpointError
-from model.draem.train import TensorData, TrainConfig, evaluate, synthetic_eval_data, train
+from model.draem.evaluate import evaluate, synthetic_eval_data
+from model.draem.train import TensorData, TrainConfig, train
 
 PRIORS = ("intensity", "dolp", "aolp")
 
