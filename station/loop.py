@@ -172,15 +172,20 @@ class LiveStats:
 
 class Station:
     """Runs the loop over one camera, inspector, PLC link and log (opened by the caller; ``run`` closes the link
-    at its end, after the last announced part was answered)."""
+    at its end, after the last announced part was answered). ``threshold``: reject when score > threshold; None
+    (the station's own callers) takes the detector's, ``inspector.detector.threshold``: the model's, or
+    ``[decision] threshold`` over it (chosen in one place, ``model.draem.predictor.load_predictor``), the same the
+    model's early exit stops on. A test's fake detector may be given another."""
 
     def __init__(self, camera: Camera, inspector: Inspector, link: LineLink, inspection_log: InspectionLog, *,
-                 threshold: float, cycle_time_ms: float, queue_size: int = 4, backpressure: str = "drop_oldest",
+                 cycle_time_ms: float, threshold: float | None = None, queue_size: int = 4,
+                 backpressure: str = "drop_oldest",
                  grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
                  rejects: RejectStore | None = None, settle_timeout_s: float = 2.0,
                  drift: DriftMonitor | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
-        self.threshold, self.cycle_time_ms, self.grab_timeout_ms = threshold, cycle_time_ms, grab_timeout_ms
+        self.threshold = inspector.detector.threshold if threshold is None else threshold
+        self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         self.settle_timeout_s = settle_timeout_s
         self.drift = drift
         """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
