@@ -289,6 +289,12 @@ def export_rows(rows: Iterator[dict[str, Any]], out: str | Path, fmt: str, batch
     if fmt not in EXPORT_FORMATS:
         raise LogError(f"export format {fmt!r} is not one of {', '.join(EXPORT_FORMATS)}")
     out = Path(out)
+    if fmt == "parquet":
+        try:
+            import pyarrow  # noqa: F401
+        except ImportError:
+            raise LogError(f"export to {out}: parquet needs pyarrow, the extra [parquet] "
+                           f"(pip install 'polar-ano-station[parquet]'); csv and jsonl need nothing") from None
     tmp = out.with_name(out.name + ".partial")
     names = ["id", *COLUMNS]
     n = 0
