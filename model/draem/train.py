@@ -6,8 +6,10 @@ with ``rendered_fraction`` > 0 that share of every batch is rendered defective p
 stays DRAEM's; at 0 (the default) the loop runs exactly as before. The ensemble (one DRAEM per prior) trains
 all members in one loop on the same batches and the same synthetic masks; members share no parameters, so one Adam
 over all of them is the same as one Adam each. Every ``eval_every`` steps the detector is evaluated on held-out
-data and checkpointed; the best image AUROC is kept (it swings over training: docs/platform-facts.md), the last
-is kept for resuming. Data loading is the caller's: this module never reads files of the renderer.
+data (``evaluate.py``) and checkpointed; the best image AUROC is kept (it swings over training:
+docs/platform-facts.md), the last is kept for resuming. Data loading is the caller's: this module never reads files
+of the renderer. The step loop is ``_run_steps``; ``_restore_or_init``, ``_Streams`` (the random streams),
+``_Checkpointer`` and ``_Learner`` (one optimiser step) are its parts.
 
 Scale-out: launched by ``torchrun`` (``distributed.py``), every process runs this loop on its own device with its own
 batches (``batch_size`` is per process: the global batch is ``batch_size x world size``, the learning rate is not

@@ -116,3 +116,11 @@ def test_ablation_averages_ensemble_members_in_the_papers_order(toy):
     assert rows[-1]["image_auroc"] == pytest.approx(res.metrics["image_auroc"])
     np.testing.assert_allclose(np.mean([res.member_maps[m] for m in PRIORS], 0), res.maps, atol=1e-6)
     assert evaluate(Detector(_cfg("fused")), val).member_maps == {}
+
+
+def test_the_training_module_re_exports_neither_evaluation_nor_runtime():
+    import model.draem.train as T
+
+    moved = ("EvalData", "EvalResult", "evaluate", "synthetic_eval_data", "resolve_device", "resolve_precision",
+             "autocast")
+    assert [n for n in moved if hasattr(T, n)] == []
