@@ -33,7 +33,8 @@ logged once, and reopened with back-off (``reconnect_backoff_s`` doubling to ``r
 Garbage, over-long lines, unknown commands and duplicate trigger ids are logged, counted and answered with ERR.
 Silence longer than ``3 * heartbeat_s`` (with a heartbeat configured) is logged as a stale link.
 
-``LineIO`` implements ``station.loop.LineLink``.
+``LineIO`` implements ``station.loop.LineLink``. The words of the protocol are ``Command``; a part's decision is a
+``Verdict`` (defined here, see there why).
 """
 
 from __future__ import annotations
@@ -46,6 +47,7 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from enum import StrEnum
 from typing import Any
 
 from drivers.camera import backoff_delays_s
@@ -59,6 +61,38 @@ POLL_MS = 5
 half a 100 ms cycle). Incoming lines wake it at once either way."""
 PART_ID = re.compile(r"[A-Za-z0-9_.:-]{1,32}")
 REASON_CHARS = re.compile(r"[^a-z0-9_]+")
+
+
+class Verdict(StrEnum):
+    """What became of a part: the station's one set of decision values (``station.decision`` re-exports it; the
+    inspection log stores them, ``station.inspection_log.DECISIONS``).
+
+    It is defined here, in the PLC protocol's module, because the line and the station both need it and only
+    ``drivers`` lies below both: ``drivers`` may not import ``station``, the station imports ``drivers``. The
+    protocol carries two of the values (``decision_line``: ``PASS`` for PASS, ``REJECT`` for anything else, failing
+    closed); EMPTY and NOT_INSPECTED are the station's own (what it logs for a view without a part and for a frame
+    dropped before judgement). Members are ``str``: they compare equal to their values and are stored, exported and
+    formatted as them, so the SQLite log, JSON, CSV and the PLC's lines are the same bytes as with plain strings."""
+
+    PASS = "pass"
+    """Judged good (score <= threshold)."""
+    REJECT = "reject"
+    """Judged bad (score > threshold), or could not be judged (fail closed; a reason says why)."""
+    EMPTY = "empty"
+    """No part in view: not judged (an announced part not in view is answered REJECT)."""
+    NOT_INSPECTED = "not_inspected"
+    """Frame dropped before judgement (queue full, grab failure; an announced part is answered REJECT)."""
+
+
+class Command(StrEnum):
+    """The first word of a protocol line (module docstring), as it goes over the wire."""
+
+    TRIG = "TRIG"
+    ACK = "ACK"
+    HB = "HB"
+    ERR = "ERR"
+    PASS = "PASS"
+    REJECT = "REJECT"
 
 
 @dataclass(frozen=True)
@@ -116,9 +150,9 @@ class _Pending:
     deadline: float | None = None  # perf_counter time after which a PASS never sent goes out as REJECT
 
     @property
-    def decision(self) -> str:
-        """"pass" or "reject": what the line says."""
-        return "pass" if self.line.startswith(b"PASS ") else "reject"
+    def decision(self) -> Verdict:
+        """PASS or REJECT: what the line says."""
+        return Verdict.PASS if self.line.startswith(f"{Command.PASS} ".encode()) else Verdict.REJECT
 
 
 def reason_token(reason: str | None) -> str:
@@ -127,11 +161,12 @@ def reason_token(reason: str | None) -> str:
     return token or "rejected"
 
 
-def decision_line(part_id: str, decision: str, reason: str | None) -> bytes:
-    """``PASS <id>`` for decision "pass", else ``REJECT <id> <reason>`` (fail closed: anything but pass rejects)."""
+def decision_line(part_id: str, decision: Verdict | str, reason: str | None) -> bytes:
+    """``PASS <id>`` for decision PASS, else ``REJECT <id> <reason>`` (fail closed: anything but a pass rejects)."""
     if not PART_ID.fullmatch(part_id):
         raise LineIOError(f"part id {part_id!r}: not 1-32 characters of [A-Za-z0-9_.:-]")
-    text = f"PASS {part_id}" if decision == "pass" else f"REJECT {part_id} {reason_token(reason)}"
+    text = (f"{Command.PASS} {part_id}" if decision == Verdict.PASS
+            else f"{Command.REJECT} {part_id} {reason_token(reason)}")
     return (text + "\n").encode("ascii")
 
 
@@ -147,7 +182,7 @@ class LineIO:
         self._triggers: collections.deque[Trigger] = collections.deque()
         self._trigger_cond = threading.Condition()
         self._refusing: Callable[[Trigger], str] | None = None
-        self._outcomes: list[tuple[str, bool, float, str]] = []
+        self._outcomes: list[tuple[str, bool, float, Verdict]] = []
         self._outbox: collections.deque[_Pending] = collections.deque()  # not yet written
         self._inflight: dict[str, _Pending] = {}  # written, waiting for ACK
         self._undelivered: list[tuple[str, str]] = []
@@ -202,9 +237,10 @@ class LineIO:
             waiting = list(self._triggers)
             self._triggers.clear()
         for t in waiting:
-            self.report(t.part_id, "reject", handler(t))
+            self.report(t.part_id, Verdict.REJECT, handler(t))
 
-    def report(self, part_id: str, decision: str, reason: str | None, deadline: float | None = None) -> bool | None:
+    def report(self, part_id: str, decision: Verdict | str, reason: str | None,
+               deadline: float | None = None) -> bool | None:
         """Queue PASS/REJECT for ``part_id``; False: sent once the link is up, acknowledged later (``outcomes``).
         ``deadline`` (``time.perf_counter()`` s): a PASS still unsent then (the link was down) goes out as
         ``REJECT <id> late_link`` instead, since the part has moved on. Never blocks and never drops."""
@@ -214,10 +250,10 @@ class LineIO:
             self._outbox.append(_Pending(part_id, line, deadline=deadline))
         return False
 
-    def outcomes(self) -> list[tuple[str, bool, float, str]]:
+    def outcomes(self) -> list[tuple[str, bool, float, Verdict]]:
         """Decisions settled since the last call: (part id, True, when, sent) acknowledged by the PLC (or written,
         without ACKs), (part id, False, when, sent) given up undelivered; ``when`` in ``time.perf_counter()`` s,
-        ``sent`` the decision as it went out ("pass" or "reject": a late PASS goes out as a reject)."""
+        ``sent`` the decision as it went out (PASS or REJECT: a late PASS goes out as a reject)."""
         with self._lock:
             out, self._outcomes = self._outcomes, []
         return out
@@ -279,7 +315,7 @@ class LineIO:
                 now = time.monotonic()
                 hb = self.config.heartbeat_s
                 if hb and now - last_hb >= hb:
-                    self._write(b"HB\n")
+                    self._write(f"{Command.HB}\n".encode())
                     last_hb = now
                 self._send_due(now)
                 chunk = self._port.read(max(1, self._port.in_waiting))
@@ -324,15 +360,15 @@ class LineIO:
             self._refuse("garbage", "empty or control characters", line[:24])
             return
         cmd, _, arg = text.partition(" ")
-        if cmd == "HB" and not arg:
+        if cmd == Command.HB and not arg:
             self.stats.heartbeats_in += 1
-        elif cmd == "TRIG":
+        elif cmd == Command.TRIG:
             if not PART_ID.fullmatch(arg):
                 self._refuse("garbage", "bad part id", line)
             elif arg in self._seen:
                 self.stats.duplicates += 1
                 log.warning("PLC link %s: duplicate trigger id %r ignored", self.config.port, arg)
-                self._write(f"ERR duplicate id {arg}\n".encode())
+                self._write(f"{Command.ERR} duplicate id {arg}\n".encode())
             else:
                 self._seen[arg] = None
                 if len(self._seen) > self.config.duplicate_window:
@@ -346,10 +382,10 @@ class LineIO:
                             self._triggers.append(trigger)
                             self._trigger_cond.notify_all()
                     if refuse is not None:
-                        self.report(arg, "reject", refuse(trigger))
+                        self.report(arg, Verdict.REJECT, refuse(trigger))
                 else:
                     log.debug("trigger-free mode: TRIG %s ignored", arg)
-        elif cmd == "ACK" and PART_ID.fullmatch(arg):
+        elif cmd == Command.ACK and PART_ID.fullmatch(arg):
             with self._lock:
                 p = self._inflight.pop(arg, None)
                 if p is not None:
@@ -358,7 +394,7 @@ class LineIO:
                 log.info("PLC link %s: ACK for %r, which is not pending (late or repeated)", self.config.port, arg)
             else:
                 self.stats.acked += 1
-        elif cmd == "ERR":
+        elif cmd == Command.ERR:
             self.stats.plc_errors += 1
             log.error("PLC reports: %s", arg)
         else:
@@ -368,7 +404,7 @@ class LineIO:
         setattr(self.stats, counter, getattr(self.stats, counter) + 1)
         log.warning("PLC link %s: %s: %r", self.config.port, why, bytes(sample))
         try:
-            self._write(f"ERR {why}"[: self.config.max_line_bytes - 1].encode("ascii", "replace") + b"\n")
+            self._write(f"{Command.ERR} {why}"[: self.config.max_line_bytes - 1].encode("ascii", "replace") + b"\n")
         except (OSError, ValueError):
             pass  # the read path will notice a dead link
 
@@ -391,9 +427,9 @@ class LineIO:
                 if not self._outbox:
                     return
                 p = self._outbox[0]
-                if p.sends == 0 and p.deadline is not None and p.decision == "pass" \
+                if p.sends == 0 and p.deadline is not None and p.decision == Verdict.PASS \
                         and time.perf_counter() > p.deadline:  # never sent in time: the part has moved on
-                    p.line = decision_line(p.part_id, "reject", "late link")  # link down or I/O thread behind
+                    p.line = decision_line(p.part_id, Verdict.REJECT, "late link")  # link down or I/O thread behind
                     log.warning("PLC link %s: PASS %s could not be sent before its deadline: sent as REJECT",
                                 self.config.port, p.part_id)
             self._write(p.line)  # raises on a dead link: p stays queued

@@ -18,6 +18,8 @@ import tty
 from dataclasses import dataclass, field
 from typing import Any
 
+from drivers.line_io import Command
+
 log = logging.getLogger(__name__)
 
 
@@ -68,7 +70,7 @@ class PLCRecord:
 
     triggers_sent: list[str] = field(default_factory=list)
     trigger_times: dict[str, float] = field(default_factory=dict)
-    decisions: dict[str, str] = field(default_factory=dict)  # part id -> "PASS" or "REJECT <reason>"
+    decisions: dict[str, str] = field(default_factory=dict)  # part id -> "PASS" or "REJECT <reason>" (``Command``)
     decision_times: dict[str, float] = field(default_factory=dict)  # part id -> first decision received
     acked: set[str] = field(default_factory=set)  # part ids the PLC acknowledged
     duplicate_decisions: int = 0
@@ -107,7 +109,7 @@ class SimulatedPLC:
                 self._next += 1
             self.record.triggers_sent.append(part_id)
             self.record.trigger_times[part_id] = time.monotonic()
-        self.send(f"TRIG {part_id}\n".encode())
+        self.send(f"{Command.TRIG} {part_id}\n".encode())
         return part_id
 
     def send(self, data: bytes) -> None:
@@ -148,7 +150,7 @@ class SimulatedPLC:
                     self.trigger()
                     next_trig += self.trigger_period_s
                 if self.heartbeat_s and now >= next_hb:
-                    self.send(b"HB\n")
+                    self.send(f"{Command.HB}\n".encode())
                     next_hb = now + self.heartbeat_s
                 wait = min(t for t in (next_trig if self.trigger_period_s else now + 0.05, next_hb if
                                        self.heartbeat_s else now + 0.05, now + 0.05)) - now
@@ -164,21 +166,21 @@ class SimulatedPLC:
     def _handle(self, line: bytes) -> None:
         text = line.decode("ascii", "replace")
         cmd, _, rest = text.partition(" ")
-        if cmd in ("PASS", "REJECT"):
+        if cmd in (Command.PASS, Command.REJECT):
             part_id, _, reason = rest.partition(" ")
             with self._lock:
                 if part_id in self.record.decisions:
                     self.record.duplicate_decisions += 1
                 else:
                     self.record.decision_times[part_id] = time.monotonic()
-                self.record.decisions[part_id] = cmd if cmd == "PASS" else f"REJECT {reason}"
+                self.record.decisions[part_id] = cmd if cmd == Command.PASS else f"{Command.REJECT} {reason}"
                 if self.ack:
                     self.record.acked.add(part_id)
             if self.ack:
-                self.send(f"ACK {part_id}\n".encode())
-        elif cmd == "HB":
+                self.send(f"{Command.ACK} {part_id}\n".encode())
+        elif cmd == Command.HB:
             self.record.heartbeats += 1
-        elif cmd == "ERR":
+        elif cmd == Command.ERR:
             self.record.errors.append(rest)
         else:
             self.record.other.append(line)

@@ -13,12 +13,14 @@ Types (sizes in millimetres, drawn uniformly from ``DefectConfig`` ranges):
   stain         a disc (radius) of darker, rougher material (contamination)
   chip          a sharp edge or corner cut off by a plane (size = cut depth along the edge's bisector)
   missing_stud  one stud of the brick removed (objects with studs only)
+Each type is one function (``_dent``, ``_scratch``, ...; the table ``_DEFECTS``) that ``apply_defect`` dispatches to.
 Deformations are functions of position applied to all body vertices, so the duplicated vertices along sharp
 edges move together and the surface never cracks.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields
 from typing import Any
 
@@ -148,124 +150,163 @@ def _split_body(model: ObjectModel, body: Part, new_vertices: np.ndarray, region
 def apply_defect(model: ObjectModel, kind: str, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray,
                  materials: dict[str, dict]) -> DefectResult:
     """Put one defect of ``kind`` on ``model``'s body. ``cam_obj``: camera position in object coordinates;
-    ``materials``: the sampled material params (``sim.scene.sample_material``) of the good object."""
+    ``materials``: the sampled material params (``sim.scene.sample_material``) of the good object. Each type is
+    one function of ``_DEFECTS``; they draw from ``rng`` in a fixed order, so a seed gives the same defect."""
     if kind not in cfg.usable_types(model):
         raise SimError(f"defect type {kind!r} is not possible on object {model.name!r} "
                        f"(possible: {', '.join(cfg.usable_types(model))})")
-    body = model.part(model.body)
-    parent_mat = dict(materials[body.material])
-    v = body.vertices.astype(np.float64)
-    centroids = v[body.faces].mean(1)
-    fn = face_normals(v, body.faces)
-    info: dict[str, Any] = {"type": kind, "part": body.name}
+    if kind not in _DEFECTS:
+        raise SimError(f"unknown defect type {kind!r}")
+    return _DEFECTS[kind](_Body.of(model, kind, materials), rng, cfg, cam_obj)
 
-    if kind == "missing_stud":
-        studs = model.part("studs")
-        top = studs.vertices[:, 2].max()
-        centres = []
-        for k in range(int(studs.tags.max()) + 1):
-            sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
-            centres.append([sv[:, 0].mean(), sv[:, 1].mean(), top])
-        centres = np.asarray(centres)
-        ok = (cam_obj - centres)[:, 2] > 0 if cfg.facing_camera else np.ones(len(centres), bool)
-        choices = np.flatnonzero(ok) if ok.any() else np.arange(len(centres))
-        k = int(rng.choice(choices))
+
+@dataclass(frozen=True)
+class _Body:
+    """The body part a defect goes on and what the defect types read of it: vertices (float64), face centroids
+    and normals, the parent material's sampled params, and the record's first entries (type, part)."""
+
+    model: ObjectModel
+    part: Part
+    v: np.ndarray
+    centroids: np.ndarray
+    fn: np.ndarray
+    material: dict
+    info: dict[str, Any]
+
+    @classmethod
+    def of(cls, model: ObjectModel, kind: str, materials: dict[str, dict]) -> _Body:
+        body = model.part(model.body)
+        v = body.vertices.astype(np.float64)
+        return cls(model, body, v, v[body.faces].mean(1), face_normals(v, body.faces), dict(materials[body.material]),
+                   {"type": kind, "part": body.name})
+
+
+def _missing_stud(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """One stud removed (preferably one the camera sees from above), with its footprint on the body's top."""
+    model, body = b.model, b.part
+    studs = model.part("studs")
+    top = studs.vertices[:, 2].max()
+    centres = []
+    for k in range(int(studs.tags.max()) + 1):
         sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
-        radius = float(np.max(np.linalg.norm(sv[:, :2] - centres[k, :2], axis=1)))
-        body_top = float(v[:, 2].max())
-        region = (np.linalg.norm(centroids[:, :2] - centres[k, :2], axis=1) < radius) & (fn[:, 2] > 0.9) & (
-            centroids[:, 2] > body_top - 1e-6)
-        kept = _subpart(studs, studs.tags != k, studs.name, studs.material)
-        removed = _subpart(studs, studs.tags == k, DEFECT_PART, body.material)
-        footprint = _subpart(body, region, DEFECT_PART, body.material)
-        rest = _subpart(body, ~region, body.name, body.material)
-        parts = [rest if p.name == body.name else kept if p.name == studs.name else p for p in model.parts]
-        good = Part(DEFECT_PART, np.concatenate([removed.vertices, footprint.vertices]),
-                    np.concatenate([removed.faces, footprint.faces + len(removed.vertices)]),
-                    np.concatenate([removed.normals, footprint.normals]), body.material)
-        info.update(stud=k, centre_m=centres[k].tolist(), radius_mm=radius * 1000)
-        return DefectResult(model.with_parts([*parts, footprint]), good, body.name, parent_mat, info)
+        centres.append([sv[:, 0].mean(), sv[:, 1].mean(), top])
+    centres = np.asarray(centres)
+    ok = (cam_obj - centres)[:, 2] > 0 if cfg.facing_camera else np.ones(len(centres), bool)
+    choices = np.flatnonzero(ok) if ok.any() else np.arange(len(centres))
+    k = int(rng.choice(choices))
+    sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
+    radius = float(np.max(np.linalg.norm(sv[:, :2] - centres[k, :2], axis=1)))
+    body_top = float(b.v[:, 2].max())
+    region = (np.linalg.norm(b.centroids[:, :2] - centres[k, :2], axis=1) < radius) & (b.fn[:, 2] > 0.9) & (
+        b.centroids[:, 2] > body_top - 1e-6)
+    kept = _subpart(studs, studs.tags != k, studs.name, studs.material)
+    removed = _subpart(studs, studs.tags == k, DEFECT_PART, body.material)
+    footprint = _subpart(body, region, DEFECT_PART, body.material)
+    rest = _subpart(body, ~region, body.name, body.material)
+    parts = [rest if p.name == body.name else kept if p.name == studs.name else p for p in model.parts]
+    good = Part(DEFECT_PART, np.concatenate([removed.vertices, footprint.vertices]),
+                np.concatenate([removed.faces, footprint.faces + len(removed.vertices)]),
+                np.concatenate([removed.normals, footprint.normals]), body.material)
+    info = {**b.info, "stud": k, "centre_m": centres[k].tolist(), "radius_mm": radius * 1000}
+    return DefectResult(model.with_parts([*parts, footprint]), good, body.name, b.material, info)
 
-    if kind == "chip":
-        key = np.round(v / 1e-7).astype(np.int64)
-        _, group = np.unique(key, axis=0, return_inverse=True)
-        group = group.ravel()
-        nrm = body.normals.astype(np.float64)
-        # a vertex is on a sharp edge when vertices at its position carry different normals
-        gsum = np.zeros((group.max() + 1, 3))
-        np.add.at(gsum, group, nrm)
-        gcount = np.bincount(group)
-        spread = np.linalg.norm(gsum[group] / gcount[group, None], axis=1)
-        edge = spread < 0.95
-        dirs = gsum[group] / np.maximum(np.linalg.norm(gsum[group], axis=1, keepdims=True), 1e-12)
-        if cfg.facing_camera:
-            facing = np.einsum("ij,ij->i", dirs, cam_obj - v) > 0
-            if np.any(edge & facing):
-                edge &= facing
-        # not on the resting bottom edges only: any sharp edge of the body
-        cand = np.flatnonzero(edge)
-        if not len(cand):
-            raise SimError(f"object {model.name!r}: body has no sharp edge to chip")
-        i = int(rng.choice(cand))
-        c, n = v[i], dirs[i]
-        size = _mm(rng, cfg.chip_size_mm)
-        reach = 3.0 * size
-        h = (v - c) @ n + size  # > 0: beyond the cutting plane
-        r = np.linalg.norm(v - c, axis=1)
-        w = np.clip((reach - r) / (0.4 * reach), 0, 1)
-        shift = w * np.maximum(h, 0)
-        new_v = v - shift[:, None] * n
-        region = (shift[body.faces] > 1e-9).any(1)
-        if not region.any():
-            raise SimError("chip removed nothing (chip_size_mm too small for the mesh)")
-        new_model, good = _split_body(model, body, new_v, region, body.material)
-        info.update(centre_m=c.tolist(), normal=n.tolist(), size_mm=size * 1000)
-        return DefectResult(new_model, good, body.name, parent_mat, info)
 
-    f, c, n = _pick_face(rng, body, cam_obj, cfg.facing_camera)
-    same_face = fn @ n > 0.9
+def _chip(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A sharp edge or corner of the body cut off by a plane (preferably an edge facing the camera)."""
+    v, body = b.v, b.part
+    key = np.round(v / 1e-7).astype(np.int64)
+    _, group = np.unique(key, axis=0, return_inverse=True)
+    group = group.ravel()
+    nrm = body.normals.astype(np.float64)
+    # a vertex is on a sharp edge when vertices at its position carry different normals
+    gsum = np.zeros((group.max() + 1, 3))
+    np.add.at(gsum, group, nrm)
+    gcount = np.bincount(group)
+    spread = np.linalg.norm(gsum[group] / gcount[group, None], axis=1)
+    edge = spread < 0.95
+    dirs = gsum[group] / np.maximum(np.linalg.norm(gsum[group], axis=1, keepdims=True), 1e-12)
+    if cfg.facing_camera:
+        facing = np.einsum("ij,ij->i", dirs, cam_obj - v) > 0
+        if np.any(edge & facing):
+            edge &= facing
+    # not on the resting bottom edges only: any sharp edge of the body
+    cand = np.flatnonzero(edge)
+    if not len(cand):
+        raise SimError(f"object {b.model.name!r}: body has no sharp edge to chip")
+    i = int(rng.choice(cand))
+    c, n = v[i], dirs[i]
+    size = _mm(rng, cfg.chip_size_mm)
+    reach = 3.0 * size
+    h = (v - c) @ n + size  # > 0: beyond the cutting plane
+    r = np.linalg.norm(v - c, axis=1)
+    w = np.clip((reach - r) / (0.4 * reach), 0, 1)
+    shift = w * np.maximum(h, 0)
+    new_v = v - shift[:, None] * n
+    region = (shift[body.faces] > 1e-9).any(1)
+    if not region.any():
+        raise SimError("chip removed nothing (chip_size_mm too small for the mesh)")
+    new_model, good = _split_body(b.model, body, new_v, region, body.material)
+    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "size_mm": size * 1000}
+    return DefectResult(new_model, good, body.name, b.material, info)
 
-    if kind == "dent":
-        radius, depth = _mm(rng, cfg.dent_radius_mm), _mm(rng, cfg.dent_depth_mm)
-        r = np.linalg.norm(v - c, axis=1)
-        w = np.where(r < radius, 0.5 * (1 + np.cos(np.pi * np.minimum(r / radius, 1))), 0.0)
-        new_v = v - (depth * w)[:, None] * n
-        region = (r[body.faces] < radius).any(1)
-        new_model, good = _split_body(model, body, new_v, region, body.material)
-        info.update(centre_m=c.tolist(), normal=n.tolist(), radius_mm=radius * 1000, depth_mm=depth * 1000)
-        return DefectResult(new_model, good, body.name, parent_mat, info)
 
-    if kind == "scratch":
-        length, width = _mm(rng, cfg.scratch_length_mm), _mm(rng, cfg.scratch_width_mm)
-        depth = _mm(rng, cfg.scratch_depth_mm)
-        t = np.cross(n, rng.normal(size=3))
-        t /= np.linalg.norm(t)
-        a, b = c - 0.5 * length * t, c + 0.5 * length * t
-        edge_len = float(np.median(np.linalg.norm(v[body.faces[:, 1]] - v[body.faces[:, 0]], axis=1)))
-        half = max(0.5 * width, 0.6 * edge_len)  # at least one row of faces
-        region = same_face & (_segment_distance(centroids, a, b) < half)
-        if not region.any():
-            region[f] = True
-        d = _segment_distance(v, a, b)
-        w = np.clip(1 - (d / half) ** 2, 0, 1) if depth > 0 else np.zeros(len(v))
-        region |= (w[body.faces] > 0).any(1)  # a groove that reaches over an edge moves faces there too
-        new_v = v - (depth * w)[:, None] * n
-        mat = dict(parent_mat, alpha=float(rng.uniform(*cfg.scratch_alpha)))
-        new_model, good = _split_body(model, body, new_v, region, DEFECT_PART)
-        info.update(start_m=a.tolist(), end_m=b.tolist(), length_mm=length * 1000, width_mm=width * 1000,
-                    depth_mm=depth * 1000, alpha=mat["alpha"])
-        return DefectResult(new_model, good if depth > 0 else None, body.name, mat, info)
+def _dent(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A smooth cosine-profile depression pushed in along the face normal."""
+    v, body = b.v, b.part
+    _, c, n = _pick_face(rng, b.part, cam_obj, cfg.facing_camera)
+    radius, depth = _mm(rng, cfg.dent_radius_mm), _mm(rng, cfg.dent_depth_mm)
+    r = np.linalg.norm(v - c, axis=1)
+    w = np.where(r < radius, 0.5 * (1 + np.cos(np.pi * np.minimum(r / radius, 1))), 0.0)
+    new_v = v - (depth * w)[:, None] * n
+    region = (r[body.faces] < radius).any(1)
+    new_model, good = _split_body(b.model, body, new_v, region, body.material)
+    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "radius_mm": radius * 1000,
+            "depth_mm": depth * 1000}
+    return DefectResult(new_model, good, body.name, b.material, info)
 
-    if kind == "stain":
-        radius = _mm(rng, cfg.stain_radius_mm)
-        region = same_face & (np.linalg.norm(centroids - c, axis=1) < radius)
-        if not region.any():
-            region[f] = True
-        k = float(rng.uniform(*cfg.stain_darken))
-        mat = dict(parent_mat, colour=[k * x for x in parent_mat.get("colour", [0.5, 0.5, 0.5])],
-                   alpha=float(rng.uniform(*cfg.stain_alpha)))
-        new_model, _ = _split_body(model, body, v, region, DEFECT_PART)
-        info.update(centre_m=c.tolist(), radius_mm=radius * 1000, darken=k, alpha=mat["alpha"])
-        return DefectResult(new_model, None, body.name, mat, info)
 
-    raise SimError(f"unknown defect type {kind!r}")
+def _scratch(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A line of rougher material on one face, optionally a shallow groove (which may reach over an edge)."""
+    v, body = b.v, b.part
+    f, c, n = _pick_face(rng, b.part, cam_obj, cfg.facing_camera)
+    same_face = b.fn @ n > 0.9
+    length, width = _mm(rng, cfg.scratch_length_mm), _mm(rng, cfg.scratch_width_mm)
+    depth = _mm(rng, cfg.scratch_depth_mm)
+    t = np.cross(n, rng.normal(size=3))
+    t /= np.linalg.norm(t)
+    a, e = c - 0.5 * length * t, c + 0.5 * length * t
+    edge_len = float(np.median(np.linalg.norm(v[body.faces[:, 1]] - v[body.faces[:, 0]], axis=1)))
+    half = max(0.5 * width, 0.6 * edge_len)  # at least one row of faces
+    region = same_face & (_segment_distance(b.centroids, a, e) < half)
+    if not region.any():
+        region[f] = True
+    d = _segment_distance(v, a, e)
+    w = np.clip(1 - (d / half) ** 2, 0, 1) if depth > 0 else np.zeros(len(v))
+    region |= (w[body.faces] > 0).any(1)  # a groove that reaches over an edge moves faces there too
+    new_v = v - (depth * w)[:, None] * n
+    mat = dict(b.material, alpha=float(rng.uniform(*cfg.scratch_alpha)))
+    new_model, good = _split_body(b.model, body, new_v, region, DEFECT_PART)
+    info = {**b.info, "start_m": a.tolist(), "end_m": e.tolist(), "length_mm": length * 1000,
+            "width_mm": width * 1000, "depth_mm": depth * 1000, "alpha": mat["alpha"]}
+    return DefectResult(new_model, good if depth > 0 else None, body.name, mat, info)
+
+
+def _stain(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A disc of darker, rougher material (contamination) on one face; the geometry is unchanged."""
+    f, c, n = _pick_face(rng, b.part, cam_obj, cfg.facing_camera)
+    same_face = b.fn @ n > 0.9
+    radius = _mm(rng, cfg.stain_radius_mm)
+    region = same_face & (np.linalg.norm(b.centroids - c, axis=1) < radius)
+    if not region.any():
+        region[f] = True
+    k = float(rng.uniform(*cfg.stain_darken))
+    mat = dict(b.material, colour=[k * x for x in b.material.get("colour", [0.5, 0.5, 0.5])],
+               alpha=float(rng.uniform(*cfg.stain_alpha)))
+    new_model, _ = _split_body(b.model, b.part, b.v, region, DEFECT_PART)
+    info = {**b.info, "centre_m": c.tolist(), "radius_mm": radius * 1000, "darken": k, "alpha": mat["alpha"]}
+    return DefectResult(new_model, None, b.part.name, mat, info)
+
+
+_DEFECTS: dict[str, Callable[[_Body, np.random.Generator, DefectConfig, np.ndarray], DefectResult]] = {
+    "dent": _dent, "scratch": _scratch, "stain": _stain, "chip": _chip, "missing_stud": _missing_stud}
+"""Defect type -> the function that puts it on a body (one per name of ``DEFECT_TYPES``)."""

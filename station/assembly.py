@@ -164,9 +164,9 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
     inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
                           display_priors=("intensity", "dolp", "aolp") if viewer else (),
                           presence=presence_check(cfg), statistics=drift is not None)
-    return Station(camera, inspector, link, inspection_log, threshold=detector.threshold,
-                   cycle_time_ms=cfg.acquisition.cycle_time_ms, queue_size=cfg.acquisition.queue_size,
-                   backpressure=cfg.acquisition.backpressure, grab_timeout_ms=cfg.camera.timeout_ms,
+    return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
+                   queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
+                   grab_timeout_ms=cfg.camera.timeout_ms,
                    viewer=viewer, rejects=rejects, drift=drift)
 
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from model.draem.runtime import PRECISIONS
 from model.priors import LAYOUTS, METHODS, MosaicLayout, get_layout
 from station.errors import UserError
 
@@ -76,7 +77,7 @@ class PriorsConfig:
 class ModelConfig:
     path: str = "model/weights/default"
     device: str = _opt("auto", choices=("auto", "cpu", "cuda"))
-    precision: str = _opt("auto", choices=("auto", "fp32", "bf16", "onnx", "int8"))
+    precision: str = _opt("auto", choices=PRECISIONS)
     early_exit_margin: float | None = _opt(None, range=(0.0, 1.0))
     fov_x_deg: float | None = _opt(None, range=(1.0, 179.0))
 

@@ -1,18 +1,25 @@
 """Pass, reject or empty, failing closed: a part that cannot be judged is rejected, and the reason says why.
 
 "empty" (no part in view, from ``station.presence``) is not a judgement of a part: what the PLC is told about it
-is the loop's business (``station.loop``: REJECT when a part was announced, nothing in free run)."""
+is the loop's business (``station.loop``: REJECT when a part was announced, nothing in free run).
+
+The decision values are ``Verdict`` (re-exported from ``drivers.line_io``, where the PLC protocol and the station
+can both import it); the station imports it from here."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
+from drivers.line_io import Verdict
+
+__all__ = ["Decision", "Verdict", "decide", "late"]
+
 
 @dataclass(frozen=True)
 class Decision:
-    decision: str
-    """"pass", "reject" or "empty" (see ``station.inspection_log.DECISIONS``)."""
+    decision: Verdict
+    """PASS, REJECT or EMPTY (NOT_INSPECTED is the loop's, for a frame it dropped)."""
     reason: str | None = None
     """Why a part was rejected or skipped as empty; None for a pass."""
 
@@ -20,8 +27,8 @@ class Decision:
 def late(elapsed_ms: float, cycle_time_ms: float, when: str = "") -> Decision:
     """Reject for time: ``elapsed_ms`` since the part's trigger reached the host is over ``cycle_time_ms``;
     ``when`` says at which step the part ran out of time (the one wording of every late reject)."""
-    return Decision("reject", f"not judged in time: {elapsed_ms:.1f} ms > cycle time {cycle_time_ms:.1f} ms"
-                              + (f" ({when})" if when else ""))
+    return Decision(Verdict.REJECT, f"not judged in time: {elapsed_ms:.1f} ms > cycle time {cycle_time_ms:.1f} ms"
+                                    + (f" ({when})" if when else ""))
 
 
 def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = None,
@@ -29,24 +36,24 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
            invalid_fraction: float = 0.0, max_invalid_fraction: float = 0.01, empty: str | None = None) -> Decision:
     """Decide one part. In order, each of these rejects with its reason: an ``error`` in an earlier stage;
     more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range). Then ``empty`` (the
-    presence check's reason, when it found no part) gives "empty" with that reason. Then each of these rejects:
+    presence check's reason, when it found no part) gives EMPTY with that reason. Then each of these rejects:
     a missing, non-finite or negative score (scores are probabilities) or a non-finite threshold; judgement later
     than the cycle time budget; ``score > threshold``. Otherwise pass. A frame whose pixels are unusable is
     rejected rather than called empty: its emptiness is not known. (A NaN threshold would pass every part:
     ``score > NaN`` is False.)"""
     if error:
-        return Decision("reject", f"not judged: {error}")
+        return Decision(Verdict.REJECT, f"not judged: {error}")
     if invalid_fraction > max_invalid_fraction:
-        return Decision("reject", f"not judged: {100 * invalid_fraction:.2f} % of input pixels invalid "
-                                  f"(limit {100 * max_invalid_fraction:.2f} %)")
+        return Decision(Verdict.REJECT, f"not judged: {100 * invalid_fraction:.2f} % of input pixels invalid "
+                                        f"(limit {100 * max_invalid_fraction:.2f} %)")
     if empty is not None:
-        return Decision("empty", empty)
+        return Decision(Verdict.EMPTY, empty)
     if score is None or not math.isfinite(score) or score < 0.0:
-        return Decision("reject", f"not judged: model score is {score}")
+        return Decision(Verdict.REJECT, f"not judged: model score is {score}")
     if threshold is None or not math.isfinite(threshold):
-        return Decision("reject", f"not judged: threshold is {threshold}")
+        return Decision(Verdict.REJECT, f"not judged: threshold is {threshold}")
     if elapsed_ms is not None and cycle_time_ms is not None and elapsed_ms > cycle_time_ms:
         return late(elapsed_ms, cycle_time_ms)
     if score > threshold:
-        return Decision("reject", f"score {score:.4f} > threshold {threshold:.4f}")
-    return Decision("pass")
+        return Decision(Verdict.REJECT, f"score {score:.4f} > threshold {threshold:.4f}")
+    return Decision(Verdict.PASS)

@@ -64,7 +64,7 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
 def evaluate_split(ck, net, model: str, data: str | Path, split: str, limit: int | None = None):
     """A loaded checkpoint ``ck`` (from ``model``) and the network that runs it on another split of ``data``:
     (split tensors, EvalData, evaluation), without loading the model again."""
-    from model.draem.train import EvalData, evaluate
+    from model.draem.evaluate import EvalData, evaluate
 
     sp = model_split(ck, model, data, split, limit)
     tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)

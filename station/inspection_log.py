@@ -7,7 +7,7 @@ The schema version is ``PRAGMA user_version``; columns carry their unit in the n
 ``ground_truth_present``, version 3 the frame statistics (``median_level``, ``high_level``, ``clipped_fraction``,
 ``dolp_level``: ``model.priors.frame_stats``) and ``drift`` (the drift warning in force when the part was judged,
 ``station.drift``). Opening an older log for writing adds the missing columns (NULL in the old rows); opened
-read-only, they read as NULL. Decisions:
+read-only, they read as NULL. Decisions (``station.decision.Verdict``, stored as its values):
 
 pass           judged good (score <= threshold)
 reject         judged bad (score > threshold), or could not be judged (fail closed; ``reason`` says why)
@@ -26,6 +26,7 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
 
+from station.decision import Verdict
 from station.errors import UserError
 
 SCHEMA_VERSION = 3
@@ -37,7 +38,8 @@ ADDED_IN_VERSION = {2: ("ground_truth_present",),
                     3: ("median_level", "high_level", "clipped_fraction", "dolp_level", "drift")}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
 READABLE_VERSIONS = (1, 2, 3)
-DECISIONS = ("pass", "reject", "empty", "not_inspected")
+DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
+"""The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
 EXPORT_FORMATS = ("csv", "jsonl", "parquet")
 
@@ -54,7 +56,8 @@ class InspectionRecord:
     it, then True with ``io_ms`` the time from decision to acknowledgement (False for good if it never does);
     both None when there is no PLC to tell."""
 
-    decision: str
+    decision: Verdict
+    """Given as a ``Verdict`` or its value (a value is turned into its ``Verdict``)."""
     time_unix_s: float
     part_id: str | None = None
     camera_frame_id: int | None = None
@@ -88,6 +91,7 @@ class InspectionRecord:
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:
             raise ValueError(f"decision must be one of {DECISIONS}, got {self.decision!r}")
+        object.__setattr__(self, "decision", Verdict(self.decision))
 
 
 COLUMNS = tuple(f.name for f in fields(InspectionRecord))
@@ -190,7 +194,7 @@ class InspectionLog:
         except sqlite3.Error as exc:
             raise _db_error(self.path, f"write {len(rows)} record(s)", exc) from None
 
-    def amend_decision(self, row_id: int, decision: str, reason: str) -> None:
+    def amend_decision(self, row_id: int, decision: Verdict | str, reason: str) -> None:
         """Change one row's decision and reason (a pass found late after its row was written becomes a reject
         before the PLC hears of it); LogError when it cannot be written."""
         if decision not in DECISIONS:
@@ -285,6 +289,12 @@ def export_rows(rows: Iterator[dict[str, Any]], out: str | Path, fmt: str, batch
     if fmt not in EXPORT_FORMATS:
         raise LogError(f"export format {fmt!r} is not one of {', '.join(EXPORT_FORMATS)}")
     out = Path(out)
+    if fmt == "parquet":
+        try:
+            import pyarrow  # noqa: F401
+        except ImportError:
+            raise LogError(f"export to {out}: parquet needs pyarrow, the extra [parquet] "
+                           f"(pip install 'polar-ano-station[parquet]'); csv and jsonl need nothing") from None
     tmp = out.with_name(out.name + ".partial")
     names = ["id", *COLUMNS]
     n = 0

@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from station.decision import Verdict
 from station.inspection_log import InspectionLog
 from station.viewer import ViewerFeed, ViewFrame
 
@@ -52,10 +53,11 @@ class LogFollower:
     def stats(self) -> dict[str, float]:
         parts = sum(self.counts.values())
         lat = np.array(self.latencies) if self.latencies else np.zeros(1)
-        return {"parts": parts, "rejects": self.counts["reject"], "empty": self.counts["empty"],
-                "not_inspected": self.counts["not_inspected"],
+        c = self.counts
+        return {"parts": parts, "rejects": c[Verdict.REJECT], "empty": c[Verdict.EMPTY],
+                "not_inspected": c[Verdict.NOT_INSPECTED],
                 # of judged parts, as station report: empty frames (free run, between parts) would dilute it
-                "reject_rate": self.counts["reject"] / max(self.counts["pass"] + self.counts["reject"], 1),
+                "reject_rate": c[Verdict.REJECT] / max(c[Verdict.PASS] + c[Verdict.REJECT], 1),
                 "p50_ms": float(np.percentile(lat, 50)),
                 "p99_ms": float(np.percentile(lat, 99))}
 
@@ -69,7 +71,7 @@ class LogFollower:
                 self.shown_images += 1
             except (OSError, ValueError, KeyError) as exc:  # deleted by retention, or unreadable
                 reason = f"{reason or ''} (image {row['image_path']} unreadable: {exc})"
-        elif row["decision"] == "pass":
+        elif row["decision"] == Verdict.PASS:
             reason = "passed parts keep no image"
         return ViewFrame(str(row["part_id"]), row["decision"], row["score"], row["threshold"], maps["intensity"],
                          maps.get("dolp"), maps.get("aolp"), None, heatmap, reason, self.stats())

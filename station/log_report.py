@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from station.decision import Verdict
 from station.inspection_log import DECISIONS
 
 PERCENTILES = (50, 90, 99)
@@ -42,7 +43,7 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     """One pass over log rows (as ``InspectionLog.rows`` yields them)."""
     counts: Counter[str] = Counter()
     latencies: list[float] = []
-    scores: dict[str, list[float]] = {"pass": [], "reject": []}
+    scores: dict[str, list[float]] = {Verdict.PASS: [], Verdict.REJECT: []}
     confusion: Counter[str] = Counter()
     times: list[float] = []
     drift_parts, last_drift = 0, None
@@ -55,17 +56,17 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
             latencies.append(r["total_ms"])
         if r["score"] is not None and r["decision"] in scores:
             scores[r["decision"]].append(r["score"])
-        if r["decision"] in ("pass", "reject", "empty"):
+        if r["decision"] in (Verdict.PASS, Verdict.REJECT, Verdict.EMPTY):
             if r["ground_truth_present"] is False:
                 confusion[f"none_{r['decision']}"] += 1
             elif r["ground_truth_label"] is not None:
                 truth = "bad" if r["ground_truth_label"] else "good"
                 confusion[f"{truth}_{r['decision']}"] += 1
-    judged = counts["pass"] + counts["reject"]
+    judged = counts[Verdict.PASS] + counts[Verdict.REJECT]
     edges = np.linspace(0.0, 1.0, bins + 1)
     return LogSummary(
         counts={d: counts[d] for d in DECISIONS},
-        reject_rate=counts["reject"] / judged if judged else 0.0,
+        reject_rate=counts[Verdict.REJECT] / judged if judged else 0.0,
         latency_ms={f"p{q}": float(np.percentile(latencies, q)) for q in PERCENTILES} if latencies else {},
         score_bins=edges.tolist(),
         score_hist={d: np.histogram(np.clip(s, 0, 1), edges)[0].tolist() for d, s in scores.items()},
@@ -111,9 +112,9 @@ def plot_summary(s: LogSummary, threshold: float | None, path: str | Path) -> Pa
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8), gridspec_kw={"width_ratios": [2, 1]})
     centers = (np.array(s.score_bins[:-1]) + np.array(s.score_bins[1:])) / 2
     width = s.score_bins[1] - s.score_bins[0]
-    ax1.bar(centers, s.score_hist["pass"], width=width, color="tab:green", alpha=0.7, label="pass")
-    ax1.bar(centers, s.score_hist["reject"], width=width, color="tab:red", alpha=0.7, label="reject",
-            bottom=s.score_hist["pass"])
+    ax1.bar(centers, s.score_hist[Verdict.PASS], width=width, color="tab:green", alpha=0.7, label="pass")
+    ax1.bar(centers, s.score_hist[Verdict.REJECT], width=width, color="tab:red", alpha=0.7, label="reject",
+            bottom=s.score_hist[Verdict.PASS])
     if threshold is not None:
         ax1.axvline(threshold, color="k", ls="--", label=f"threshold {threshold:.3g}")
     ax1.set(xlabel="anomaly score", ylabel="parts", title="score histogram", xlim=(0, 1))

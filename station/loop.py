@@ -39,7 +39,7 @@ from drivers.camera import Camera
 from drivers.errors import CameraError, CameraTimeout
 from drivers.frame import Frame
 from drivers.line_io import Trigger
-from station.decision import Decision, decide, late
+from station.decision import Decision, Verdict, decide, late
 from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
 from station.inspection_log import InspectionLog, InspectionRecord, LogError
@@ -74,14 +74,14 @@ class LineLink(Protocol):
         """Answer every trigger from now on REJECT with the reason ``handler`` returns (shutdown)."""
         ...
 
-    def report(self, part_id: str, decision: str, reason: str | None, deadline: float | None = None) -> bool | None:
+    def report(self, part_id: str, decision: Verdict, reason: str | None, deadline: float | None = None) -> bool | None:
         """Send PASS/REJECT for ``part_id`` (never blocks, never drops); a PASS that cannot go out before
         ``deadline`` (``time.perf_counter()`` s) goes out as a REJECT."""
         ...
 
-    def outcomes(self) -> list[tuple[str, bool, float, str]]:
+    def outcomes(self) -> list[tuple[str, bool, float, Verdict]]:
         """Decisions settled since the last call: (part id, acknowledged by the PLC, ``time.perf_counter()``, the
-        decision as sent: "pass" or "reject")."""
+        decision as sent: PASS or REJECT)."""
         ...
 
     def flush(self, timeout_s: float) -> bool:
@@ -108,10 +108,10 @@ class NoLink:
     def refuse_triggers(self, handler: Callable[[Trigger], str]) -> None:
         pass
 
-    def report(self, part_id: str, decision: str, reason: str | None, deadline: float | None = None) -> bool | None:
+    def report(self, part_id: str, decision: Verdict, reason: str | None, deadline: float | None = None) -> bool | None:
         return None
 
-    def outcomes(self) -> list[tuple[str, bool, float, str]]:
+    def outcomes(self) -> list[tuple[str, bool, float, Verdict]]:
         return []
 
     def flush(self, timeout_s: float) -> bool:
@@ -151,36 +151,41 @@ class LiveStats:
     latencies_ms: deque[float] = field(default_factory=lambda: deque(maxlen=1000))
     started: float = field(default_factory=time.perf_counter)
 
-    def add(self, decision: str, total_ms: float | None, truth: int | None, present: bool = True) -> None:
+    def add(self, decision: Verdict, total_ms: float | None, truth: int | None, present: bool = True) -> None:
         """One part; ``truth``: its label where known (None: no ground truth), ``present``: whether the ground
         truth has a part in view."""
         self.counts[decision] += 1
         if total_ms is not None:
             self.latencies_ms.append(total_ms)
-        if truth is not None and decision in ("pass", "reject", "empty"):
+        if truth is not None and decision in (Verdict.PASS, Verdict.REJECT, Verdict.EMPTY):
             kind = "none" if not present else "bad" if truth else "good"
             self.confusion[f"{kind}_{decision}"] += 1
 
     def summary(self) -> dict[str, float]:
         n = sum(self.counts.values())
         lat = np.array(self.latencies_ms) if self.latencies_ms else np.zeros(1)
-        return {"parts": n, "rejects": self.counts["reject"], "empty": self.counts["empty"],
-                "not_inspected": self.counts["not_inspected"],
+        return {"parts": n, "rejects": self.counts[Verdict.REJECT], "empty": self.counts[Verdict.EMPTY],
+                "not_inspected": self.counts[Verdict.NOT_INSPECTED],
                 "parts_per_s": n / max(time.perf_counter() - self.started, 1e-9),
                 "p50_ms": float(np.percentile(lat, 50)), "p99_ms": float(np.percentile(lat, 99))}
 
 
 class Station:
     """Runs the loop over one camera, inspector, PLC link and log (opened by the caller; ``run`` closes the link
-    at its end, after the last announced part was answered)."""
+    at its end, after the last announced part was answered). ``threshold``: reject when score > threshold; None
+    (the station's own callers) takes the detector's, ``inspector.detector.threshold``: the model's, or
+    ``[decision] threshold`` over it (chosen in one place, ``model.draem.predictor.load_predictor``), the same the
+    model's early exit stops on. A test's fake detector may be given another."""
 
     def __init__(self, camera: Camera, inspector: Inspector, link: LineLink, inspection_log: InspectionLog, *,
-                 threshold: float, cycle_time_ms: float, queue_size: int = 4, backpressure: str = "drop_oldest",
+                 cycle_time_ms: float, threshold: float | None = None, queue_size: int = 4,
+                 backpressure: str = "drop_oldest",
                  grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
                  rejects: RejectStore | None = None, settle_timeout_s: float = 2.0,
                  drift: DriftMonitor | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
-        self.threshold, self.cycle_time_ms, self.grab_timeout_ms = threshold, cycle_time_ms, grab_timeout_ms
+        self.threshold = inspector.detector.threshold if threshold is None else threshold
+        self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         self.settle_timeout_s = settle_timeout_s
         self.drift = drift
         """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
@@ -295,7 +300,7 @@ class Station:
         while self._dropped:
             part = self._dropped.popleft()
             reason = part.error or f"dropped: processing queue full ({self.queue.policy})"
-            self._finish(part, None, Decision("reject", reason), not_inspected=True)
+            self._finish(part, None, Decision(Verdict.REJECT, reason), not_inspected=True)
 
     def _answer_expired(self) -> None:
         """Parts announced more than a cycle ago that acquisition has not taken (camera stalled or reconnecting,
@@ -332,7 +337,7 @@ class Station:
         """Record the part (write-ahead: durable before the PLC hears of it), then tell the PLC, update statistics
         and the viewer. A row that cannot be written turns the decision into a reject (fail closed)."""
         t_decided = time.perf_counter()
-        empty = decision.decision == "empty"
+        empty = decision.decision == Verdict.EMPTY
         # an announced part that is not in view fails closed (REJECT); trigger-free, an empty frame is no part
         tell_plc = part.announced and self.link.has_plc and (self.link.triggered or not empty)
         frame = part.frame
@@ -344,12 +349,12 @@ class Station:
         if priors_ms is not None and "presence" in timings:
             priors_ms += timings["presence"]  # the log has no column of its own for the check (~0.1 ms)
         image_path = None
-        if (self.rejects is not None and frame is not None and decision.decision != "pass"
+        if (self.rejects is not None and frame is not None and decision.decision != Verdict.PASS
                 and (not empty or tell_plc)):
             image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
                                            inspection.heatmap if inspection else None)
         record = InspectionRecord(
-            decision="not_inspected" if not_inspected else decision.decision, time_unix_s=time.time(),
+            decision=Verdict.NOT_INSPECTED if not_inspected else decision.decision, time_unix_s=time.time(),
             part_id=part.part_id, camera_frame_id=frame.frame_id if frame else None,
             camera_timestamp_ns=frame.timestamp_ns if frame else None,
             score=inspection.score if inspection else None, threshold=self.threshold,
@@ -361,12 +366,13 @@ class Station:
             **(inspection.frame_stats.as_dict() if inspection is not None and inspection.frame_stats else {}),
             drift=self.drift.warning if self.drift is not None else None)
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
-        if tell_plc and record.decision == "pass":
+        if tell_plc and record.decision == Verdict.PASS:
             late_ms = 1e3 * (time.perf_counter() - part.t_trigger)
             if late_ms > self.cycle_time_ms:  # writing the row took the rest of the cycle: a late PASS is no PASS
                 record = self._records.amend(record, late(late_ms, self.cycle_time_ms, "with its log row"))
         if tell_plc:
-            self.link.report(part.part_id, "pass" if record.decision == "pass" else "reject", record.reason,
+            self.link.report(part.part_id, Verdict.PASS if record.decision == Verdict.PASS else Verdict.REJECT,
+                             record.reason,
                              deadline=part.t_trigger + self.cycle_time_ms / 1e3)
         self.stats.add(record.decision, record.total_ms, gt.label if gt is not None else None,
                        gt.present if gt is not None else True)
@@ -380,7 +386,7 @@ class Station:
     def _refused(self, trigger: Trigger) -> str:
         """A part announced while the station stops: recorded, then rejected (``LineLink.refuse_triggers``)."""
         reason = f"not judged: station stopping ({self.fatal})" if self.fatal else "not judged: station stopping"
-        record = InspectionRecord("reject", time.time(), part_id=trigger.part_id, threshold=self.threshold,
+        record = InspectionRecord(Verdict.REJECT, time.time(), part_id=trigger.part_id, threshold=self.threshold,
                                   model_id=self.inspector.detector.model_id, reason=reason,
                                   total_ms=1e3 * (time.perf_counter() - trigger.t_arrival), io_delivered=False)
         record = self._records.write(record, awaits_plc=True, t_decided=time.perf_counter())
@@ -472,8 +478,8 @@ class RecordKeeper:
         self.log = inspection_log
         self._lock = threading.RLock()
         self._backlog: deque[tuple[InspectionRecord, float, bool]] = deque()  # (record, decided at, awaits PLC)
-        self._row_of: dict[str, tuple[int, float, str]] = {}  # part id -> (row id, decided at, decision)
-        self._unsettled: dict[str, tuple[bool, float, str]] = {}  # (acknowledged, when, sent) not yet in the log
+        self._row_of: dict[str, tuple[int, float, Verdict]] = {}  # part id -> (row id, decided at, decision)
+        self._unsettled: dict[str, tuple[bool, float, Verdict]] = {}  # (acknowledged, when, sent) not yet in the log
         self.lost_rows = 0
 
     @property
@@ -490,8 +496,8 @@ class RecordKeeper:
                 row_id = self.log.append(record)[0]
             except LogError as exc:
                 log.error("%s; part %s is rejected (fail closed)", exc, record.part_id)
-                if record.decision == "pass":
-                    record = dataclasses.replace(record, decision="reject",
+                if record.decision == Verdict.PASS:
+                    record = dataclasses.replace(record, decision=Verdict.REJECT,
                                                  reason=f"not recorded: {exc}; judged {record.decision}")
                 self._keep((record, t_decided, awaits_plc))
                 return record
@@ -519,7 +525,7 @@ class RecordKeeper:
                           record.part_id)
         return new
 
-    def settle(self, outcomes: list[tuple[str, bool, float, str]]) -> None:
+    def settle(self, outcomes: list[tuple[str, bool, float, Verdict]]) -> None:
         """Record the PLC's answers: ``io_delivered`` True and ``io_ms`` from decision to acknowledgement for an
         acknowledged decision (an unacknowledged one keeps False); a pass the link had to send as a reject (too
         late) becomes a reject in its row."""
@@ -530,11 +536,11 @@ class RecordKeeper:
                 written = [p for p in self._unsettled if p in self._row_of]
                 for p in written:
                     row_id, _, decided = self._row_of[p]
-                    if decided == "pass" and self._unsettled[p][2] != "pass":
-                        self.log.amend_decision(row_id, "reject", "not answered in time: the PASS could not go "
+                    if decided == Verdict.PASS and self._unsettled[p][2] != Verdict.PASS:
+                        self.log.amend_decision(row_id, Verdict.REJECT, "not answered in time: the PASS could not go "
                                                                   "out before the part's deadline (PLC link down or "
                                                                   "behind) and went out as a REJECT")
-                        self._row_of[p] = (row_id, self._row_of[p][1], "reject")
+                        self._row_of[p] = (row_id, self._row_of[p][1], Verdict.REJECT)
                 self.log.set_delivered({self._row_of[p][0]: (True, 1e3 * (self._unsettled[p][1] - self._row_of[p][1]))
                                         for p in written if self._unsettled[p][0]})
             except LogError as exc:

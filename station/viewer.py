@@ -14,6 +14,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from station.decision import Verdict
+
 DISPLAY_HZ = 30.0
 
 
@@ -23,7 +25,8 @@ class ViewFrame:
     ``normal`` (H, W, 3) unit vectors, ``heatmap`` anomaly probability in [0, 1]."""
 
     part_id: str
-    decision: str
+    decision: Verdict | str
+    """A ``Verdict`` (the live station) or its value (a row of the log, ``station.log_follower``)."""
     score: float | None
     threshold: float | None
     intensity: np.ndarray
@@ -123,8 +126,8 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
             self.timer.timeout.connect(self.refresh)
             self.timer.start(int(1000 / DISPLAY_HZ))
 
-        def _style_badge(self, decision: str) -> None:
-            color = {"pass": "#1b8a2f", "reject": "#c0161c"}.get(decision, "#666666")
+        def _style_badge(self, decision: Verdict | str) -> None:
+            color = {Verdict.PASS: "#1b8a2f", Verdict.REJECT: "#c0161c"}.get(decision, "#666666")
             self.badge.setStyleSheet(f"background:{color}; color:white; font-size:28px; font-weight:bold;"
                                      "padding:8px; border-radius:6px;")
 

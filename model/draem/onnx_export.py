@@ -104,7 +104,7 @@ class OnnxDetector:
     """``Detector.predict`` with the member networks run by ONNX Runtime (CPU). Built by ``from_detector``
     (exports, loads and checks every member against torch on a seeded random input) or ``from_files`` (networks
     already on disk, e.g. int8 ones from ``model.draem.quantize``). Quacks like a ``Detector`` for
-    ``model.draem.train.evaluate`` (``eval``, ``train``, ``parameters`` are the torch detector's)."""
+    ``model.draem.evaluate.evaluate`` (``eval``, ``train``, ``parameters`` are the torch detector's)."""
 
     def __init__(self, detector: Detector, sessions: dict[str, object]) -> None:
         self.detector, self.sessions, self.config = detector, sessions, detector.config

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .errors import ModelError
+from .runtime import PRECISIONS, Precision
 
 if TYPE_CHECKING:
     import torch
@@ -40,17 +41,13 @@ PRIOR_MAPS: dict[str, tuple[str, ...]] = {
 """Model prior -> the ``model.priors`` maps it is built from ("normal": the inputs of the learned normal
 estimator, ``model.normals.estimator.MAP_NAMES``; a test keeps the two equal)."""
 
-PRECISIONS = ("auto", "fp32", "bf16", "onnx", "int8")
-"""``[model] precision`` values ``load_predictor`` takes."""
-
-
 class PredictorError(ModelError):
     """The checkpoint cannot be run as asked: a setting (``[model] path/device/precision``, members, early exit
     margin), a model unfit for inference on frames, its int8 networks or its normal estimator. The message is one
     line naming the file or the key. (A checkpoint that cannot be read raises ``CheckpointError`` instead.)"""
 
 
-def auto_precision(path: str | Path, device: torch.device) -> str:
+def auto_precision(path: str | Path, device: torch.device) -> Precision:
     """``[model] precision = "auto"``: int8 on a CPU where ``station quantize`` made the model's int8 networks,
     found them changing at most ``AUTO_MAX_CHANGED`` of the validation decisions, and ONNX Runtime is installed
     (the fastest measured there at -0.3 to -1.2 points of image AUROC); fp32 otherwise, saying why."""
@@ -60,20 +57,20 @@ def auto_precision(path: str | Path, device: torch.device) -> str:
 
     folder = int8_dir(path)
     if device.type != "cpu" or not (folder / "int8.json").is_file() or importlib.util.find_spec("onnxruntime") is None:
-        return "fp32"
+        return Precision.FP32
     fit, why = fit_for_auto(folder)
     if not fit:
         log.warning("%s: precision auto runs fp32, not its int8 networks: %s", path, why)
-    return "int8" if fit else "fp32"
+    return Precision.INT8 if fit else Precision.FP32
 
 
 def inference_network(ck: Checkpoint, path: str | Path, precision: str) -> Detector | OnnxDetector:
     """What runs checkpoint ``ck`` (loaded from ``path``) for evaluation: its torch detector ("fp32") or its int8
     networks on ONNX Runtime ("int8", made by ``station quantize``, sha256 checked). ``ModelError`` naming the
     file when the int8 networks cannot be used."""
-    if precision == "fp32":
+    if precision == Precision.FP32:
         return ck.detector
-    if precision != "int8":
+    if precision != Precision.INT8:
         raise ModelError(f"precision {precision!r}: evaluation runs fp32 or int8")
     import torch
 
@@ -91,7 +88,7 @@ class Predictor:
     net: Detector | OnnxDetector
     """The torch detector (fp32, bf16) or its ONNX Runtime networks (onnx, int8)."""
     device: torch.device
-    precision: str
+    precision: Precision
     """The precision that runs ("auto" resolved: fp32, bf16, onnx or int8)."""
     threshold: float
     """Decision threshold: reject when score > threshold (the caller's, else the checkpoint's)."""
@@ -123,7 +120,7 @@ class Predictor:
 
         from .preprocess import crop_resize, stack_priors
         from .roi import roi_box
-        from .train import autocast
+        from .runtime import autocast
 
         shape = next(iter(maps.values())).shape[:2]
         top, left, h, w = roi_box(self.config.roi, shape)
@@ -134,7 +131,7 @@ class Predictor:
         x = stack_priors(cut, self.used_priors)
         xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.used_priors)
         xt = self._all_channels(xt).unsqueeze(0).to(self.device)
-        if self.device.type == "cpu" and self.precision not in ("onnx", "int8"):
+        if self.device.type == "cpu" and self.precision not in (Precision.ONNX, Precision.INT8):
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
             if self.early_exit_margin is None:
@@ -221,7 +218,7 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
     import torch
 
     from .checkpoint import load_checkpoint, paths
-    from .train import resolve_device
+    from .runtime import resolve_device
 
     if precision not in PRECISIONS:
         raise PredictorError(f"[model] precision = {precision!r}: choose auto, fp32, bf16, onnx or int8")
@@ -236,8 +233,7 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
         dev = resolve_device(device)
     except ModelError as exc:
         raise PredictorError(f"[model] device = {device!r}: {exc}") from None
-    if precision == "auto":
-        precision = auto_precision(path, dev)
+    precision = auto_precision(path, dev) if precision == Precision.AUTO else Precision(precision)
     ck = load_checkpoint(path, map_location=dev)  # CheckpointError names the file
     cfg = ck.detector.config
     if cfg.roi == "object":
@@ -257,7 +253,7 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
     if normals is not None and fov_x_deg is not None:
         normals.fov_x_deg = float(fov_x_deg)
     net: Detector | OnnxDetector = ck.detector.to(dev)
-    if precision == "onnx":  # ONNX Runtime on CPU, checked against torch at load
+    if precision == Precision.ONNX:  # ONNX Runtime on CPU, checked against torch at load
         import tempfile
 
         from .onnx_export import OnnxDetector
@@ -265,7 +261,7 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
         dev = torch.device("cpu")
         with tempfile.TemporaryDirectory() as tmp:
             net = OnnxDetector.from_detector(ck.detector.cpu(), tmp, torch.get_num_threads())
-    elif precision == "int8":  # ONNX Runtime on CPU, networks made and checked by `station quantize`
+    elif precision == Precision.INT8:  # ONNX Runtime on CPU, networks made and checked by `station quantize`
         from .quantize import int8_dir, load_int8
 
         dev = torch.device("cpu")

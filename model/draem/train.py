@@ -6,8 +6,10 @@ with ``rendered_fraction`` > 0 that share of every batch is rendered defective p
 stays DRAEM's; at 0 (the default) the loop runs exactly as before. The ensemble (one DRAEM per prior) trains
 all members in one loop on the same batches and the same synthetic masks; members share no parameters, so one Adam
 over all of them is the same as one Adam each. Every ``eval_every`` steps the detector is evaluated on held-out
-data and checkpointed; the best image AUROC is kept (it swings over training: docs/platform-facts.md), the last
-is kept for resuming. Data loading is the caller's: this module never reads files of the renderer.
+data (``evaluate.py``) and checkpointed; the best image AUROC is kept (it swings over training:
+docs/platform-facts.md), the last is kept for resuming. Data loading is the caller's: this module never reads files
+of the renderer. The step loop is ``_run_steps``; ``_restore_or_init``, ``_Streams`` (the random streams),
+``_Checkpointer`` and ``_Learner`` (one optimiser step) are its parts.
 
 Scale-out: launched by ``torchrun`` (``distributed.py``), every process runs this loop on its own device with its own
 batches (``batch_size`` is per process: the global batch is ``batch_size x world size``, the learning rate is not
@@ -20,7 +22,6 @@ default and runs exactly as before (same seeds, same results, same files).
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import math
 import time
@@ -29,19 +30,18 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
 
-import numpy as np
 import torch
 from torch import nn
 
-from . import distributed
-from . import metrics as M
-from .anomaly import AnomalyConfig, synthesize
+from . import distributed, runtime
+from . import evaluate as evaluation
+from .anomaly import AnomalyConfig
 from .checkpoint import load_checkpoint, paths, save_checkpoint
 from .config import ModelConfig
 from .detector import Detector
 from .errors import CheckpointError, ModelError
 from .loss import draem_loss
-from .mixed import DefectData, draw_batch, n_rendered
+from .mixed import DefectData, TrainBatch, draw_batch, n_rendered
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
 
@@ -77,31 +77,6 @@ class TensorData:
         return self.priors[indices], self.object_mask[indices].bool()
 
 
-@dataclass
-class EvalData:
-    """Held-out samples: priors (N, C, S, S), object_mask and defect_mask (N, S, S) bool, label (N,) {0, 1};
-    ``kind`` says where the anomalies come from ("rendered" defects or "synthetic"). ``mask_known`` (N,) bool:
-    whose defect mask is ground truth (None: all); pixel metrics use only those samples (a defective part without
-    a mask is never scored against an all-zero mask)."""
-
-    priors: torch.Tensor
-    object_mask: torch.Tensor
-    defect_mask: torch.Tensor
-    label: torch.Tensor
-    kind: str = "rendered"
-    mask_known: torch.Tensor | None = None
-
-
-def synthetic_eval_data(good: TrainData, priors: tuple[str, ...], seed: int = 12345, max_samples: int = 256,
-                        anomaly: AnomalyConfig | None = None) -> EvalData:
-    """A fixed held-out set of DRAEM-style synthetic anomalies on good samples (half of them anomalous)."""
-    n = min(len(good), max_samples)
-    x, obj = good.get(torch.arange(n))
-    g = torch.Generator().manual_seed(seed)
-    syn = synthesize(x, priors, g, anomaly or AnomalyConfig(), obj)
-    return EvalData(syn.augmented, obj, syn.mask.bool(), syn.label.long(), "synthetic")
-
-
 @dataclass(frozen=True)
 class TrainConfig:
     """steps: optimiser steps; eval_every: steps between evaluation + checkpoint; precision: "fp32", "bf16"
@@ -134,7 +109,7 @@ class TrainConfig:
             raise ModelError(f"train config: steps, batch_size and eval_every must be >= 1 ({self})")
         if self.stop_at_step is not None and not 1 <= self.stop_at_step <= self.steps:
             raise ModelError(f"stop_at_step must be in [1, steps = {self.steps}], got {self.stop_at_step}")
-        if self.precision not in ("auto", "fp32", "bf16"):
+        if self.precision not in runtime.TRAIN_PRECISIONS:
             raise ModelError(f"precision must be auto, fp32 or bf16, got {self.precision!r}")
         n_rendered(self.rendered_fraction, self.batch_size)  # raises on a fraction the batch cannot hold
 
@@ -142,77 +117,6 @@ class TrainConfig:
     def n_rendered(self) -> int:
         """Rendered defective samples per batch (per process under torchrun)."""
         return n_rendered(self.rendered_fraction, self.batch_size)
-
-
-def resolve_device(device: str) -> torch.device:
-    if device == "auto":
-        return torch.device("cuda" if torch.cuda.is_available() else "cpu")
-    try:
-        dev = torch.device(device)
-    except RuntimeError as exc:
-        raise ModelError(f"device {device!r}: {exc}") from None
-    if dev.type == "cuda" and not torch.cuda.is_available():
-        raise ModelError(f"device {device!r}: CUDA is not available on this machine (use \"cpu\" or \"auto\")")
-    return dev
-
-
-def resolve_precision(precision: str, device: torch.device) -> str:
-    if precision != "auto":
-        return precision
-    return "bf16" if device.type == "cuda" and torch.cuda.is_bf16_supported() else "fp32"
-
-
-def autocast(device: torch.device, precision: str) -> contextlib.AbstractContextManager:
-    if precision == "bf16":
-        return torch.autocast(device.type, dtype=torch.bfloat16)
-    return contextlib.nullcontext()
-
-
-@dataclass
-class EvalResult:
-    """metrics: image/pixel AUROC, pixel AP, AUPRO (FPR <= 0.3), image F1-max and its threshold, per-member image
-    AUROC; scores: (N,) image scores; maps: (N, S, S) anomaly maps (CPU float32); member_scores / member_maps: the
-    same per ensemble member (empty for a single network), for ablations over subsets of members."""
-
-    metrics: dict[str, float]
-    scores: np.ndarray
-    maps: np.ndarray
-    member_scores: dict[str, np.ndarray] = field(default_factory=dict)
-    member_maps: dict[str, np.ndarray] = field(default_factory=dict)
-
-
-@torch.no_grad()
-def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: torch.device | None = None,
-             precision: str = "fp32", channels_last: bool = False) -> EvalResult:
-    """Run ``detector`` over ``data`` and compute the metrics (pixel metrics on the object region only)."""
-    device = device or next(detector.parameters()).device
-    was_training = detector.training
-    detector.eval()
-    maps, scores, member_scores, member_maps = [], [], {}, {}
-    for i in range(0, data.priors.shape[0], batch_size):
-        x = data.priors[i:i + batch_size].to(device)
-        obj = data.object_mask[i:i + batch_size].to(device)
-        if channels_last:
-            x = x.contiguous(memory_format=torch.channels_last)
-        with autocast(device, precision):  # roi "center": scored over the whole square, as at a station
-            out = detector.predict(x, obj if detector.config.roi == "object" else None)
-        maps.append(out.anomaly_map.float().cpu())
-        scores.append(out.score.float().cpu())
-        for k, v in out.member_scores.items():
-            member_scores.setdefault(k, []).append(v.float().cpu())
-            member_maps.setdefault(k, []).append(out.member_maps[k].float().cpu())
-    detector.train(was_training)
-    amap = torch.cat(maps).numpy()
-    score = torch.cat(scores).numpy()
-    label = data.label.numpy().astype(bool)
-    known = None if data.mask_known is None else data.mask_known.numpy().astype(bool)
-    res = M.summary(label, score, amap, data.defect_mask.numpy(), data.object_mask.numpy(), known)
-    if len(member_scores) <= 1:
-        return EvalResult(res, score, amap)
-    ms = {k: torch.cat(v).numpy() for k, v in member_scores.items()}
-    for k, v in ms.items():
-        res[f"image_auroc_{k}"] = M.auroc(label, v)
-    return EvalResult(res, score, amap, ms, {k: torch.cat(v).numpy() for k, v in member_maps.items()})
 
 
 @dataclass
@@ -260,7 +164,7 @@ class _MemberForward(nn.Module):
 
 
 def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_config: TrainConfig = TrainConfig(),
-          val: EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
+          val: evaluation.EvalData | None = None, resume: bool = True, data_manifest_sha256: str | None = None,
           progress: bool = True, on_eval: Callable[[int, dict[str, float]], None] | None = None,
           train_meta: dict[str, Any] | None = None, defects: DefectData | None = None,
           init: str | Path | None = None) -> TrainResult:
@@ -281,77 +185,25 @@ def train(config: ModelConfig, data: TrainData, out_dir: str | Path, train_confi
     the same ``data``; ``val``, ``out_dir``, ``progress`` and ``on_eval`` matter on rank 0 only, which reads and
     writes ``out_dir`` (the others need no access to it). Check ``TrainResult.is_main`` before using the files."""
     info = distributed.current()
-    device = distributed.device_for(info, resolve_device(train_config.device))
+    device = distributed.device_for(info, runtime.resolve_device(train_config.device))
     distributed.init(info, device)
-    return _train(config, data, Path(out_dir), train_config, val, resume, data_manifest_sha256, progress, on_eval,
-                  info, device, train_meta or {}, defects, init)
+    return _train(config, data, Path(out_dir), train_config, info, device, val=val, resume=resume,
+                  data_manifest_sha256=data_manifest_sha256, progress=progress, on_eval=on_eval,
+                  train_meta=train_meta or {}, defects=defects, init=init)
 
 
-def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val: EvalData | None, resume: bool,
-           data_manifest_sha256: str | None, progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None,
-           info: distributed.DistInfo, device: torch.device, train_meta: dict[str, Any],
-           defects: DefectData | None = None, init: str | Path | None = None) -> TrainResult:
-    from tqdm import tqdm
-
+def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, info: distributed.DistInfo,
+           device: torch.device, *, val: evaluation.EvalData | None, resume: bool, data_manifest_sha256: str | None,
+           progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None, train_meta: dict[str, Any],
+           defects: DefectData | None, init: str | Path | None) -> TrainResult:
+    """``train`` on this rank's ``device``: check the data, restore or initialise the detector, run the steps."""
     main = info.is_main
     if main:
         out.mkdir(parents=True, exist_ok=True)
-    precision = resolve_precision(tc.precision, device)
+    precision = runtime.resolve_precision(tc.precision, device)
     channels_last = True if tc.channels_last is None else tc.channels_last
-    if len(data) == 0:
-        raise ModelError("no training samples")
-    rendered = tc.n_rendered
-    if rendered and (defects is None or len(defects) == 0):
-        raise ModelError(f"rendered_fraction {tc.rendered_fraction}: no rendered defective samples given")
-    if defects is not None and not rendered and main:
-        log.warning("%d rendered defective samples given but rendered_fraction is 0: not used", len(defects))
-    if val is None and main:
-        val = synthetic_eval_data(data, config.priors, seed=tc.seed + 1)
-
-    state_file = out / "last.state.pt"
-    start_step, best, history = 0, None, []
-    detector, st, normalizer, failure = None, None, None, None
-    if main and resume and state_file.is_file():
-        try:
-            ck = load_checkpoint(out / "last", map_location=device)
-            if ck.detector.config != config:
-                raise CheckpointError(f"{paths(out / 'last')[1]}: resuming a different model ({ck.meta['model']}); "
-                                      f"use another output folder or resume=False")
-            detector = ck.detector.to(device)
-            st = torch.load(state_file, map_location="cpu", weights_only=True)
-        except Exception as exc:  # distributed: every rank must learn it, or the others wait forever
-            if not info.enabled:
-                raise
-            failure = exc
-    if main and detector is None and failure is None and init is not None:
-        try:
-            ck = load_checkpoint(init, map_location=device)
-            if ck.detector.config != config:
-                raise CheckpointError(f"{paths(init)[1]}: init from a different model ({ck.meta['model']}); it "
-                                      f"must have the trained model's priors, fusion, preset and size")
-            detector = ck.detector.to(device)
-            log.info("starting from %s (step %s)", paths(init)[0], (ck.meta.get("train") or {}).get("step"))
-        except Exception as exc:
-            if not info.enabled:
-                raise
-            failure = exc
-    if main and detector is None and failure is None:
-        n_fit = min(len(data), 256)
-        x_fit, _ = data.get(torch.arange(n_fit))
-        normalizer = Normalizer.fit(x_fit)  # all pixels: background is input too
-    if info.enabled:  # rank 0's resume state and normalizer on every rank; its weights come with DDP below
-        shared = distributed.broadcast_object(info, {
-            "error": None if failure is None else f"{type(failure).__name__}: {failure}",
-            "normalizer": normalizer if detector is None else detector.normalizer, "state": st} if main else None)
-        if failure is not None:
-            raise failure
-        if shared["error"]:
-            raise ModelError(f"rank 0 could not resume from {out}: {shared['error']}")
-        normalizer, st = shared["normalizer"], shared["state"]
-    if detector is None:
-        detector = Detector(config, normalizer)
-        detector.init_weights(torch.Generator().manual_seed(tc.seed))
-        detector.to(device)
+    val = _check_data(config, data, tc, val, defects, main)
+    detector, state = _restore_or_init(config, data, out, resume, init, tc.seed, info, device)
     if channels_last:
         detector.to(memory_format=torch.channels_last)
     detector.train()
@@ -363,104 +215,274 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
     optimizer = torch.optim.Adam(detector.parameters(), lr=tc.lr)
     milestones = [int(tc.steps * f) for f in tc.lr_milestones]
     scheduler = torch.optim.lr_scheduler.MultiStepLR(optimizer, milestones, gamma=tc.lr_gamma)
-    index_gen = torch.Generator().manual_seed(distributed.rank_seed(tc.seed, info.rank))
-    synth_gen = torch.Generator(device=device).manual_seed(distributed.rank_seed(tc.seed + 7, info.rank))
-    defect_gen = torch.Generator().manual_seed(distributed.rank_seed(tc.seed + 13, info.rank))
-    if st is not None:
-        optimizer.load_state_dict(st["optimizer"])
-        scheduler.load_state_dict(st["scheduler"])
-        gens = st.get("rank_generators")
-        if gens is not None and len(gens) == info.world_size:
-            index_gen.set_state(gens[info.rank][0])
-            synth_gen.set_state(gens[info.rank][1])
-            if len(gens[info.rank]) > 2:  # saved before mixed supervision: (index, synth) only
-                defect_gen.set_state(gens[info.rank][2])
-        elif info.rank == 0:
-            index_gen.set_state(st["index_gen"])
-            synth_gen.set_state(st["synth_gen"])
-            if "defect_gen" in st:
-                defect_gen.set_state(st["defect_gen"])
-        if (len(gens) if gens is not None else 1) != info.world_size and main:
-            log.warning("%s was saved by %d process(es), resuming with %d: ranks > 0 restart their random streams",
-                        state_file, len(gens) if gens is not None else 1, info.world_size)
-        start_step = int(st["step"])
-        best = st.get("best") or None
-        history = list(st.get("history", []))
+    saver = _Checkpointer(out, detector, optimizer, scheduler, _Streams.seeded(tc.seed, info.rank, device), info,
+                          data_manifest_sha256, train_meta,
+                          {"train_config": _jsonable(asdict(tc)), "precision": precision, "device": str(device)})
+    start_step = 0
+    if state is not None:
+        start_step = saver.resume(state)
         if main:
             log.info("resuming %s at step %d of %d", out, start_step, tc.steps)
+    t0 = time.perf_counter()
+    learner = _Learner(detector, forward, optimizer, scheduler, device, precision, channels_last)
+    steps_done = _run_steps(learner, saver, data, config.priors, tc, defects=defects, val=val, start_step=start_step,
+                            t0=t0, progress=progress, on_eval=on_eval)
+    best = distributed.broadcast_object(info, saver.best) if info.enabled else saver.best
+    return TrainResult(paths(out / "best")[0], paths(out / "last")[0], best or {}, saver.history, steps_done,
+                       time.perf_counter() - t0, main, info.world_size, detector)
 
-    def checkpoint(step: int, metrics: dict[str, float], generators: list[Any] | None) -> None:
-        nonlocal best
-        train_info = {**train_meta, "step": step, "train_config": _jsonable(asdict(tc)), "precision": precision,
-                      "device": str(device)}
-        if _better(metrics, best):
-            best = dict(metrics)
-            save_checkpoint(out / "best", detector, data_manifest_sha256=data_manifest_sha256, metrics=metrics,
-                            train=train_info)
-        save_checkpoint(out / "last", detector, data_manifest_sha256=data_manifest_sha256, metrics=metrics,
-                        train=train_info)
-        state = {"optimizer": optimizer.state_dict(), "scheduler": scheduler.state_dict(),
-                 "index_gen": index_gen.get_state(), "synth_gen": synth_gen.get_state(),
-                 "defect_gen": defect_gen.get_state(), "step": step, "best": best, "history": history}
-        if generators is not None:  # distributed: (index, synth, defect) generator states per rank
-            state["rank_generators"] = generators
-        torch.save(state, state_file)
 
-    def generators() -> list[Any] | None:
-        """Every rank's generator states on rank 0 (a collective: all ranks call it); None for a single process."""
+def _check_data(config: ModelConfig, data: TrainData, tc: TrainConfig, val: evaluation.EvalData | None,
+                defects: DefectData | None, main: bool) -> evaluation.EvalData | None:
+    """ModelError without training samples, or without the rendered defects ``rendered_fraction`` asks for; the
+    held-out data (on rank 0 a synthetic-anomaly set when none is given; the other ranks evaluate nothing)."""
+    if len(data) == 0:
+        raise ModelError("no training samples")
+    rendered = tc.n_rendered
+    if rendered and (defects is None or len(defects) == 0):
+        raise ModelError(f"rendered_fraction {tc.rendered_fraction}: no rendered defective samples given")
+    if defects is not None and not rendered and main:
+        log.warning("%d rendered defective samples given but rendered_fraction is 0: not used", len(defects))
+    if val is None and main:
+        val = evaluation.synthetic_eval_data(data, config.priors, seed=tc.seed + 1)
+    return val
+
+
+def _attempt(info: distributed.DistInfo, load: Callable[[], Any]) -> tuple[Any, Exception | None]:
+    """(``load()``, None); under torchrun an exception is returned instead of raised, so rank 0 can tell every rank
+    (or the others would wait forever at the broadcast)."""
+    try:
+        return load(), None
+    except Exception as exc:
+        if not info.enabled:
+            raise
+        return None, exc
+
+
+def _load_last(out: Path, config: ModelConfig, device: torch.device) -> tuple[Detector, dict[str, Any]]:
+    """The detector of ``out/last`` and the loop state of ``out/last.state.pt`` (same model config required)."""
+    ck = load_checkpoint(out / "last", map_location=device)
+    if ck.detector.config != config:
+        raise CheckpointError(f"{paths(out / 'last')[1]}: resuming a different model ({ck.meta['model']}); "
+                              f"use another output folder or resume=False")
+    return ck.detector.to(device), torch.load(out / "last.state.pt", map_location="cpu", weights_only=True)
+
+
+def _load_init(init: str | Path, config: ModelConfig, device: torch.device) -> Detector:
+    """The weights and normalisation of checkpoint ``init`` to start from (same model config required)."""
+    ck = load_checkpoint(init, map_location=device)
+    if ck.detector.config != config:
+        raise CheckpointError(f"{paths(init)[1]}: init from a different model ({ck.meta['model']}); it "
+                              f"must have the trained model's priors, fusion, preset and size")
+    log.info("starting from %s (step %s)", paths(init)[0], (ck.meta.get("train") or {}).get("step"))
+    return ck.detector.to(device)
+
+
+def _restore_or_init(config: ModelConfig, data: TrainData, out: Path, resume: bool, init: str | Path | None,
+                     seed: int, info: distributed.DistInfo, device: torch.device
+                     ) -> tuple[Detector, dict[str, Any] | None]:
+    """The detector to train on ``device`` and the loop state to resume (None: a fresh start). Rank 0 resumes from
+    ``out/last`` (``resume`` and its state file exists), else starts from ``init``, else fits the input
+    normalisation on up to 256 training samples and initialises the weights from ``seed``. Under torchrun rank 0's
+    outcome (state, normalisation, or its error) reaches every rank; its weights follow with DDP."""
+    detector, state, normalizer, failure = None, None, None, None
+    if info.is_main and resume and (out / "last.state.pt").is_file():
+        loaded, failure = _attempt(info, lambda: _load_last(out, config, device))
+        detector, state = loaded if loaded is not None else (None, None)
+    if info.is_main and detector is None and failure is None and init is not None:
+        detector, failure = _attempt(info, lambda: _load_init(init, config, device))
+    if info.is_main and detector is None and failure is None:
+        x_fit, _ = data.get(torch.arange(min(len(data), 256)))
+        normalizer = Normalizer.fit(x_fit)  # all pixels: background is input too
+    if info.enabled:  # rank 0's resume state and normalizer on every rank; its weights come with DDP
+        shared = distributed.broadcast_object(info, {
+            "error": None if failure is None else f"{type(failure).__name__}: {failure}",
+            "normalizer": normalizer if detector is None else detector.normalizer,
+            "state": state} if info.is_main else None)
+        if failure is not None:
+            raise failure
+        if shared["error"]:
+            raise ModelError(f"rank 0 could not resume from {out}: {shared['error']}")
+        normalizer, state = shared["normalizer"], shared["state"]
+    if detector is None:
+        detector = Detector(config, normalizer)
+        detector.init_weights(torch.Generator().manual_seed(seed))
+        detector.to(device)
+    return detector, state
+
+
+@dataclass
+class _Streams:
+    """This rank's random streams: batch indices, DRAEM's synthetic anomalies (on the training device), rendered
+    defects. Seeded from ``seed``, ``seed + 7``, ``seed + 13`` shifted per rank (``distributed.rank_seed``)."""
+
+    index: torch.Generator
+    synth: torch.Generator
+    defect: torch.Generator
+
+    @classmethod
+    def seeded(cls, seed: int, rank: int, device: torch.device) -> _Streams:
+        return cls(torch.Generator().manual_seed(distributed.rank_seed(seed, rank)),
+                   torch.Generator(device=device).manual_seed(distributed.rank_seed(seed + 7, rank)),
+                   torch.Generator().manual_seed(distributed.rank_seed(seed + 13, rank)))
+
+    def states(self) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        return self.index.get_state(), self.synth.get_state(), self.defect.get_state()
+
+    def restore(self, state: dict[str, Any], info: distributed.DistInfo, state_file: Path) -> None:
+        """Continue the streams saved in ``state``: per rank when it was saved by as many processes; else rank 0
+        takes the single-process streams and the other ranks keep their fresh seeds (said once)."""
+        gens = state.get("rank_generators")
+        if gens is not None and len(gens) == info.world_size:
+            self.index.set_state(gens[info.rank][0])
+            self.synth.set_state(gens[info.rank][1])
+            if len(gens[info.rank]) > 2:  # saved before mixed supervision: (index, synth) only
+                self.defect.set_state(gens[info.rank][2])
+        elif info.rank == 0:
+            self.index.set_state(state["index_gen"])
+            self.synth.set_state(state["synth_gen"])
+            if "defect_gen" in state:
+                self.defect.set_state(state["defect_gen"])
+        if (len(gens) if gens is not None else 1) != info.world_size and info.is_main:
+            log.warning("%s was saved by %d process(es), resuming with %d: ranks > 0 restart their random streams",
+                        state_file, len(gens) if gens is not None else 1, info.world_size)
+
+    def gather(self, info: distributed.DistInfo) -> list[Any] | None:
+        """Every rank's stream states on rank 0 (a collective: all ranks call it); None for a single process."""
         if not info.enabled:
             return None
-        return distributed.all_gather_object(info, (index_gen.get_state(), synth_gen.get_state(),
-                                                    defect_gen.get_state()))
+        return distributed.all_gather_object(info, self.states())
 
-    t0 = time.perf_counter()
+
+@dataclass
+class _Checkpointer:
+    """Rank 0's files under ``out``: ``best`` (when ``_better`` than the best so far), ``last`` and
+    ``last.state.pt`` (optimiser, schedule, random streams, step, best metrics, history) to resume from.
+    Checkpoints record ``train_meta``, the step and ``run_info`` (train config, precision, device) as ``train``."""
+
+    out: Path
+    detector: Detector
+    optimizer: torch.optim.Optimizer
+    scheduler: torch.optim.lr_scheduler.LRScheduler
+    streams: _Streams
+    info: distributed.DistInfo
+    data_manifest_sha256: str | None
+    train_meta: dict[str, Any]
+    run_info: dict[str, Any]
+    best: dict[str, float] | None = None
+    history: list[dict[str, Any]] = field(default_factory=list)
+
+    @property
+    def state_file(self) -> Path:
+        return self.out / "last.state.pt"
+
+    def resume(self, state: dict[str, Any]) -> int:
+        """Take up ``state`` (from ``last.state.pt``): optimiser, schedule, streams, best, history; its step."""
+        self.optimizer.load_state_dict(state["optimizer"])
+        self.scheduler.load_state_dict(state["scheduler"])
+        self.streams.restore(state, self.info, self.state_file)
+        self.best = state.get("best") or None
+        self.history = list(state.get("history", []))
+        return int(state["step"])
+
+    def save(self, step: int, metrics: dict[str, float], generators: list[Any] | None) -> None:
+        """Write ``last`` (and ``best`` when better) with ``metrics`` and the loop state at ``step``;
+        ``generators``: every rank's stream states under torchrun (``_Streams.gather``), None for one process."""
+        train_info = {**self.train_meta, "step": step, **self.run_info}
+        if _better(metrics, self.best):
+            self.best = dict(metrics)
+            save_checkpoint(self.out / "best", self.detector, data_manifest_sha256=self.data_manifest_sha256,
+                            metrics=metrics, train=train_info)
+        save_checkpoint(self.out / "last", self.detector, data_manifest_sha256=self.data_manifest_sha256,
+                        metrics=metrics, train=train_info)
+        index, synth, defect = self.streams.states()
+        state = {"optimizer": self.optimizer.state_dict(), "scheduler": self.scheduler.state_dict(),
+                 "index_gen": index, "synth_gen": synth, "defect_gen": defect, "step": step, "best": self.best,
+                 "history": self.history}
+        if generators is not None:  # distributed: (index, synth, defect) generator states per rank
+            state["rank_generators"] = generators
+        torch.save(state, self.state_file)
+
+
+@dataclass
+class _Learner:
+    """What one optimiser step and an evaluation need: the detector, its member forward (DDP-wrapped under
+    torchrun), optimiser, schedule, device, precision and memory format."""
+
+    detector: Detector
+    forward: nn.Module
+    optimizer: torch.optim.Optimizer
+    scheduler: torch.optim.lr_scheduler.LRScheduler
+    device: torch.device
+    precision: runtime.Precision
+    channels_last: bool
+
+    def step(self, batch: TrainBatch) -> tuple[float, dict[str, dict[str, float]]]:
+        """One optimiser step on ``batch``: (total loss over the members, each member's loss terms)."""
+        clean, aug = self.detector.normalize(batch.target), self.detector.normalize(batch.inputs)
+        if self.channels_last:
+            clean = clean.contiguous(memory_format=torch.channels_last)
+            aug = aug.contiguous(memory_format=torch.channels_last)
+        with runtime.autocast(self.device, self.precision):
+            total = torch.zeros((), device=self.device)
+            terms = {}
+            for name, o in self.forward(aug).items():
+                sl = self.detector.member_slice(name)
+                lt = draem_loss(clean[:, sl], o.reconstruction, o.logits, batch.mask, batch.recon_weight)
+                total = total + lt.total
+                terms[name] = lt.as_floats()
+        self.optimizer.zero_grad(set_to_none=True)
+        total.backward()
+        self.optimizer.step()
+        self.scheduler.step()
+        return float(total.detach()), terms
+
+    def evaluate(self, val: evaluation.EvalData, batch_size: int) -> dict[str, float]:
+        return evaluation.evaluate(self.detector, val, batch_size, self.device, self.precision,
+                                   self.channels_last).metrics
+
+
+def _run_steps(learner: _Learner, saver: _Checkpointer, data: TrainData, priors: tuple[str, ...], tc: TrainConfig, *,
+               defects: DefectData | None, val: evaluation.EvalData | None, start_step: int, t0: float,
+               progress: bool, on_eval: Callable[[int, dict[str, float]], None] | None) -> int:
+    """The step loop from ``start_step`` (``t0``: its start, ``time.perf_counter()``) to ``tc.steps`` or
+    ``tc.max_minutes``: draw, step, agree across ranks, and every ``eval_every`` steps (and at the end) evaluate
+    and checkpoint on rank 0. Returns the steps done."""
+    from tqdm import tqdm
+
+    info, main, streams = saver.info, saver.info.is_main, saver.streams
     deadline = t0 + tc.max_minutes * 60 if tc.max_minutes else math.inf
     bar = tqdm(total=tc.steps, initial=start_step, disable=not (progress and main), unit="step", dynamic_ncols=True)
     step = start_step
     ema = None
     end = tc.stop_at_step or tc.steps
     while step < end:
-        batch = draw_batch(data, config.priors, tc.batch_size, index_gen, synth_gen, tc.anomaly, device, defects,
-                           rendered, defect_gen)
-        clean, aug = detector.normalize(batch.target), detector.normalize(batch.inputs)
-        if channels_last:
-            clean = clean.contiguous(memory_format=torch.channels_last)
-            aug = aug.contiguous(memory_format=torch.channels_last)
-        with autocast(device, precision):
-            total = torch.zeros((), device=device)
-            terms = {}
-            for name, o in forward(aug).items():
-                sl = detector.member_slice(name)
-                lt = draem_loss(clean[:, sl], o.reconstruction, o.logits, batch.mask, batch.recon_weight)
-                total = total + lt.total
-                terms[name] = lt.as_floats()
-        optimizer.zero_grad(set_to_none=True)
-        total.backward()
-        optimizer.step()
-        scheduler.step()
+        batch = draw_batch(data, priors, tc.batch_size, streams.index, streams.synth, tc.anomaly, learner.device,
+                           defects, tc.n_rendered, streams.defect)
+        loss, terms = learner.step(batch)
         step += 1
-        loss = float(total.detach())
         stop = time.perf_counter() > deadline
         diverged = not math.isfinite(loss)
         if info.enabled:  # all ranks decide alike, or one waits forever for the others
-            loss, terms, diverged, stop = _agree(info, device, loss, terms, stop)
+            loss, terms, diverged, stop = _agree(info, learner.device, loss, terms, stop)
         if diverged:
             raise ModelError(f"training diverged at step {step}: loss {loss}"
                              + (f" (mean over {info.world_size} ranks)" if info.enabled else ""))
         ema = loss if ema is None else 0.95 * ema + 0.05 * loss
         rate = (step - start_step) * tc.batch_size * info.world_size / max(time.perf_counter() - t0, 1e-9)
-        bar.set_postfix(loss=f"{ema:.4f}", samples_s=f"{rate:.1f}", lr=f"{scheduler.get_last_lr()[0]:.1e}")
+        bar.set_postfix(loss=f"{ema:.4f}", samples_s=f"{rate:.1f}", lr=f"{learner.scheduler.get_last_lr()[0]:.1e}")
         bar.update(1)
-        history.append({"step": step, "loss": loss, **{f"{k}_{t}": v for k, d in terms.items() for t, v in d.items()}})
+        saver.history.append({"step": step, "loss": loss,
+                              **{f"{k}_{t}": v for k, d in terms.items() for t, v in d.items()}})
         if step % tc.eval_every == 0 or step == end or stop:
-            gens = generators()
+            gens = streams.gather(info)
             if main:
                 assert val is not None
-                metrics = evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics
-                history.append({"step": step, "eval": metrics})
+                metrics = learner.evaluate(val, tc.eval_batch_size)
+                saver.history.append({"step": step, "eval": metrics})
                 bar.write(f"step {step}: image AUROC {metrics['image_auroc']:.4f}, pixel AUROC "
                           f"{metrics['pixel_auroc']:.4f}, AUPRO {metrics['aupro_0.3']:.4f} ({val.kind} anomalies)")
-                checkpoint(step, metrics, gens)
+                saver.save(step, metrics, gens)
                 if on_eval:
                     on_eval(step, metrics)
             distributed.barrier(info)
@@ -470,16 +492,12 @@ def _train(config: ModelConfig, data: TrainData, out: Path, tc: TrainConfig, val
             break
     bar.close()
     if step == start_step:  # nothing to do, but maybe nothing saved yet
-        gens = generators()
-        if main and not (out / "best.json").exists():
+        gens = streams.gather(info)
+        if main and not (saver.out / "best.json").exists():
             assert val is not None
-            checkpoint(step, evaluate(detector, val, tc.eval_batch_size, device, precision, channels_last).metrics,
-                       gens)
+            saver.save(step, learner.evaluate(val, tc.eval_batch_size), gens)
         distributed.barrier(info)
-    if info.enabled:
-        best = distributed.broadcast_object(info, best)
-    return TrainResult(paths(out / "best")[0], paths(out / "last")[0], best or {}, history, step,
-                       time.perf_counter() - t0, main, info.world_size, detector)
+    return step
 
 
 def _agree(info: distributed.DistInfo, device: torch.device, loss: float, terms: dict[str, dict[str, float]],

@@ -24,7 +24,7 @@ import torch
 
 from model.draem.preprocess import crop_resize
 from model.draem.roi import roi_box
-from model.draem.train import resolve_device
+from model.draem.runtime import resolve_device
 
 from .errors import NormalsError
 from .net import NormalNetConfig, NormalUNet, stack_maps

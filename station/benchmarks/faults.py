@@ -32,7 +32,9 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from drivers.line_io import Command
 from station.benchmarks.report import markdown_table, write_report
+from station.decision import Verdict
 
 CASES = ("baseline", "hostile_files", "camera_stall", "packet_loss", "plc_silent", "full_disk", "sigterm",
          "serial_reconnect", "camera_killed")
@@ -182,15 +184,15 @@ def score(case: str, plcs: list[Any], rows: list[dict[str, Any]], summary: dict[
         by_part.setdefault(row["part_id"], []).append(row)
     fail_open = 0
     for part, d in decisions.items():
-        if d != "PASS":
+        if d != Command.PASS:
             continue
         mine = by_part.get(part, [])
         late_ms = 1e3 * (t_dec.get(part, 0.0) - t_trig.get(part, 0.0))
-        if len(mine) != 1 or mine[0]["decision"] != "pass" or late_ms > cycle_time_ms + SLACK_MS:
+        if len(mine) != 1 or mine[0]["decision"] != Verdict.PASS or late_ms > cycle_time_ms + SLACK_MS:
             fail_open += 1
     io_right = sum(1 for row in rows if bool(row["io_delivered"]) == (row["part_id"] in acked))
     return CaseResult(case, announced=received, decisions=len(decisions),
-                      passes=sum(d == "PASS" for d in decisions.values()), acks=len(acked), rows=len(rows),
+                      passes=sum(d == Command.PASS for d in decisions.values()), acks=len(acked), rows=len(rows),
                       io_right=io_right, unanswered=max(0, received - len(decisions)), fail_open=fail_open,
                       extra={"plc_sent": sent, "duplicate_rows": sum(len(v) - 1 for v in by_part.values()),
                              "summary": summary})

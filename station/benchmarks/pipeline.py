@@ -101,8 +101,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
         camera.open()
         try:
             inspector = Inspector(detector, layout, method, presence=check)
-            station = Station(camera, inspector, NoLink(), log, threshold=detector.threshold, cycle_time_ms=1e6,
-                              queue_size=1, backpressure="block", grab_timeout_ms=10000)
+            station = Station(camera, inspector, NoLink(), log, cycle_time_ms=1e6, queue_size=1, backpressure="block",
+                              grab_timeout_ms=10000)
             t = time.perf_counter()
             stats = station.run(parts, progress_every_s=1e9)
             seconds = time.perf_counter() - t

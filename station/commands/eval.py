@@ -14,6 +14,7 @@ import json
 import math
 from pathlib import Path
 
+from model.draem.runtime import EVAL_PRECISIONS
 from station.errors import UserError
 from station.evaluation import ABLATION, evaluate_split, load_and_evaluate, normal_prior_record
 
@@ -30,7 +31,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--ablation", action="store_true",
                    help="the paper's ablation (R, R+AoLP, R+AoLP+DoLP, all): an ensemble's members averaged, or "
                         "several fused models (--model A,B,...) side by side")
-    p.add_argument("--precision", default="fp32", choices=("fp32", "int8"),
+    p.add_argument("--precision", default="fp32", choices=EVAL_PRECISIONS,
                    help="int8: the model's int8 networks from `station quantize` (ONNX Runtime, CPU)")
     p.add_argument("--val-data", default=None, metavar="DATA",
                    help="set whose val split fixes the industrial thresholds (default: --data; a held-out set, "
@@ -240,8 +241,9 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from model.draem.checkpoint import read_sidecar
+    from model.draem.evaluate import evaluate, synthetic_eval_data
     from model.draem.metrics import detection_by_type, summary
-    from model.draem.train import TensorData, evaluate, synthetic_eval_data
+    from model.draem.train import TensorData
     from sim.dataset import open_dataset
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256

@@ -24,8 +24,8 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from model.draem.checkpoint import load_checkpoint
+    from model.draem.evaluate import EvalData, evaluate
     from model.draem.quantize import fit_for_auto, int8_dir, quantize_detector, record_check
-    from model.draem.train import EvalData, evaluate
     from station.benchmarks.report import markdown_table
     from station.datasets import check_trained_on
     from station.evaluation import inference_net, model_split

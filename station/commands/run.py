@@ -31,12 +31,14 @@ def confusion_table(confusion: dict[str, int]) -> str:
     """The decisions against the virtual camera's ground truth as a text table (``LiveStats.confusion`` keys):
     good and defective parts x pass and reject, plus a column "empty" and a row "no part" when there were
     frames skipped as empty or frames without a part."""
+    from station.decision import Verdict
+
     g = lambda k: confusion.get(k, 0)  # noqa: E731
     truths = [("good part", "good"), ("defective part", "bad")]
-    decisions = ["pass", "reject"]
+    decisions = [Verdict.PASS, Verdict.REJECT]
     if any(k.startswith("none_") or k.endswith("_empty") for k in confusion):
         truths.append(("no part", "none"))
-        decisions.append("empty")
+        decisions.append(Verdict.EMPTY)
     rows = [("", *decisions)] + [(name, *(g(f"{t}_{d}") for d in decisions)) for name, t in truths]
     return "\n".join(f"{r[0]:>16}" + "".join(f" {v!s:>8}" for v in r[1:]) for r in rows)
 

@@ -17,6 +17,7 @@ import logging
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from model.draem.runtime import TRAIN_PRECISIONS
 from station.datasets import SplitTensors, check_trained_on, fov_of, load_split, manifest_sha256
 from station.errors import UserError
 
@@ -49,7 +50,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--eval-every", type=int, default=250, help="steps between held-out evaluation + checkpoint")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--device", default="auto", help="auto (CUDA if available), cpu, cuda, cuda:1, ...")
-    p.add_argument("--precision", default="auto", choices=("auto", "fp32", "bf16"),
+    p.add_argument("--precision", default="auto", choices=TRAIN_PRECISIONS,
                    help="auto: fp32 on CPU (bf16 measured slower on AVX2 CPUs), bf16 autocast on CUDA")
     p.add_argument("--rendered-fraction", type=float, default=0.0, metavar="F",
                    help="share of each batch taken from the training split's rendered defective parts with their "
@@ -173,8 +174,9 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.config import ModelConfig, check_priors
     from model.draem.errors import ModelError
+    from model.draem.evaluate import EvalData, evaluate, synthetic_eval_data
     from model.draem.metrics import choose_threshold
-    from model.draem.train import EvalData, TensorData, TrainConfig, evaluate, synthetic_eval_data, train
+    from model.draem.train import TensorData, TrainConfig, train
     from model.priors.frame_stats import StatisticsRange
 
     priors = check_priors(args.priors)

@@ -13,10 +13,11 @@ from model.draem.anomaly import AnomalyConfig, synthesize
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import ModelError
+from model.draem.evaluate import EvalData, evaluate
 from model.draem.loss import draem_loss
 from model.draem.mixed import TensorDefectData, draw_batch
 from model.draem.preprocess import Normalizer
-from model.draem.train import EvalData, TensorData, TrainConfig, evaluate, train
+from model.draem.train import TensorData, TrainConfig, train
 from tests.model.conftest import toy_priors
 
 PRIORS = ("intensity", "dolp", "aolp")

@@ -8,7 +8,8 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector, image_scores
 from model.draem.errors import CheckpointError
-from model.draem.train import TensorData, TrainConfig, evaluate, synthetic_eval_data, train
+from model.draem.evaluate import evaluate, synthetic_eval_data
+from model.draem.train import TensorData, TrainConfig, train
 
 PRIORS = ("intensity", "dolp", "aolp")
 
@@ -115,3 +116,11 @@ def test_ablation_averages_ensemble_members_in_the_papers_order(toy):
     assert rows[-1]["image_auroc"] == pytest.approx(res.metrics["image_auroc"])
     np.testing.assert_allclose(np.mean([res.member_maps[m] for m in PRIORS], 0), res.maps, atol=1e-6)
     assert evaluate(Detector(_cfg("fused")), val).member_maps == {}
+
+
+def test_the_training_module_re_exports_neither_evaluation_nor_runtime():
+    import model.draem.train as T
+
+    moved = ("EvalData", "EvalResult", "evaluate", "synthetic_eval_data", "resolve_device", "resolve_precision",
+             "autocast")
+    assert [n for n in moved if hasattr(T, n)] == []

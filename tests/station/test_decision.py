@@ -43,3 +43,18 @@ def test_a_threshold_chosen_on_validation_rejects_the_defective_part_that_set_it
     assert choice.detected_fraction == 1.0
     assert decide(0.6, choice.threshold).decision == "reject"
     assert decide(0.35, choice.threshold).decision == "pass" and choice.flagged_good_fraction == 0.0
+
+
+def test_verdicts_are_their_strings_on_the_wire_and_in_json():
+    import json
+
+    from drivers.line_io import Command, Verdict, decision_line
+
+    assert [v.value for v in Verdict] == ["pass", "reject", "empty", "not_inspected"]
+    assert decide(0.2, 0.5).decision is Verdict.PASS and decide(0.9, 0.5).decision is Verdict.REJECT
+    for verdict, text in ((Verdict.PASS, "pass"), (Verdict.REJECT, "reject")):
+        assert verdict == text and f"{verdict}" == text and json.dumps({"d": verdict}) == json.dumps({"d": text})
+        assert decision_line("P7", verdict, "score high") == decision_line("P7", text, "score high")
+    assert decision_line("P7", Verdict.PASS, None) == b"PASS P7\n"
+    assert decision_line("P7", Verdict.NOT_INSPECTED, "queue full") == b"REJECT P7 queue_full\n"  # fail closed
+    assert [c.value for c in Command] == ["TRIG", "ACK", "HB", "ERR", "PASS", "REJECT"]

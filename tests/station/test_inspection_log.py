@@ -256,3 +256,24 @@ def test_the_write_ahead_log_stays_small(tmp_path):
             log.append(rec(i, reason="x" * 200))
         wal = tmp_path / "log.sqlite-wal"
         assert wal.stat().st_size < 600 * 1024  # SQLite's default lets it grow to ~4 MB
+
+
+@pytest.mark.parametrize("fmt", ["csv", "jsonl"])
+def test_verdicts_are_stored_and_exported_as_the_plain_strings(tmp_path, fmt):
+    import sqlite3
+
+    from station.decision import Verdict
+
+    files = []
+    for kind, decisions in (("str", ("pass", "reject", "empty", "not_inspected")), ("enum", tuple(Verdict))):
+        with InspectionLog(tmp_path / f"{kind}.sqlite") as log:
+            log.append([rec(i, d) for i, d in enumerate(decisions)])
+            assert all(r.decision is v for r, v in zip([rec(0, d) for d in decisions], Verdict, strict=True))
+            export_rows(log.rows(), tmp_path / f"{kind}.{fmt}", fmt)
+        con = sqlite3.connect(tmp_path / f"{kind}.sqlite")
+        assert con.execute("SELECT decision, typeof(decision) FROM inspections ORDER BY id").fetchall() == [
+            ("pass", "text"), ("reject", "text"), ("empty", "text"), ("not_inspected", "text")]
+        con.close()
+        files.append((tmp_path / f"{kind}.{fmt}").read_bytes())
+    assert files[0] == files[1]
+

@@ -150,6 +150,17 @@ def make_station(tmp_path, camera, detector, link=None, **kw):
                    threshold=detector.threshold, **kw), log
 
 
+def test_the_station_decides_on_its_detectors_threshold_unless_given_another(tmp_path):
+    detector = BrightnessDetector()
+    detector.threshold = 0.3  # the model's, or [decision] threshold over it: chosen in load_predictor
+    log = InspectionLog(tmp_path / "log.sqlite")
+    station = Station(ScriptedCamera([0]), Inspector(detector, IMX250MZR), NoLink(), log, cycle_time_ms=10_000.0)
+    assert station.threshold == 0.3
+    assert Station(ScriptedCamera([0]), Inspector(detector, IMX250MZR), NoLink(), log, cycle_time_ms=10_000.0,
+                   threshold=0.7).threshold == 0.7
+    log.close()
+
+
 def test_every_part_is_judged_logged_and_scored_against_truth(tmp_path):
     labels = [0, 1, 0, 0, 1, 1, 0, 0]
     station, log = make_station(tmp_path, ScriptedCamera(labels), BrightnessDetector(), queue_size=16,

@@ -1,0 +1,40 @@
+"""Defect draws: each type is one function of a table, and a seed gives the same defect as before the split."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sim.defects import _DEFECTS, DEFECT_TYPES, DefectConfig, apply_defect
+from sim.meshes import usb_brick
+
+# Drawn by apply_defect before it became one function per type (seed 7, camera at (0.05, -0.08, 0.25)):
+# (record entries drawn, faces of the defect part, faces of the good region or None).
+PINNED = {
+    "dent": ({"centre_m": [0.004137528, -0.0079, 0.007307671], "radius_mm": 1.4504143799811837,
+              "depth_mm": 0.22006651396449017}, 78, 78),
+    "scratch": ({"start_m": [0.000922799, -0.0079, 0.006914857], "end_m": [0.007352257, -0.0079, 0.007700484],
+                 "length_mm": 6.477279089896511, "width_mm": 0.6500831424556127, "depth_mm": 0.043677672269813096,
+                 "alpha": 0.41377723349530227}, 73, 73),
+    "stain": ({"centre_m": [0.004137528, -0.0079, 0.007307671], "radius_mm": 1.5630179749764797,
+               "darken": 0.2850748282100514, "alpha": 0.4557437058886916}, 65, None),
+    "chip": ({"centre_m": [0.015900001, -0.00444375, 0.0096], "size_mm": 1.1280496606787027}, 222, 222),
+    "missing_stud": ({"stud": 7, "centre_m": [0.012, 0.004, 0.0113], "radius_mm": 2.4000005796551704}, 148, 436),
+}
+
+
+def test_every_defect_type_has_its_function() -> None:
+    assert set(_DEFECTS) == set(DEFECT_TYPES) == set(PINNED)
+
+
+@pytest.mark.parametrize("kind", DEFECT_TYPES)
+def test_a_seed_draws_the_same_defect_as_before(kind: str) -> None:
+    model = usb_brick()
+    materials = {p.material: {"colour": [0.3, 0.4, 0.5], "alpha": 0.2} for p in model.parts}
+    r = apply_defect(model, kind, np.random.default_rng(7), DefectConfig(), np.array([0.05, -0.08, 0.25]), materials)
+    drawn, defect_faces, good_faces = PINNED[kind]
+    assert list(r.info)[:2] == ["type", "part"] and r.info["type"] == kind and r.info["part"] == "body"
+    for key, value in drawn.items():
+        np.testing.assert_allclose(r.info[key], value, rtol=1e-9, atol=1e-9, err_msg=key)
+    assert r.model.part("defect").faces.shape[0] == defect_faces
+    assert (None if r.good_region is None else r.good_region.faces.shape[0]) == good_faces
