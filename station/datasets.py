@@ -145,3 +145,43 @@ def check_trained_on(model: str, data: str) -> str | None:
     if sha and sha != manifest_sha256(data):
         raise UserError(f"{model}: trained on another set than {data} (manifest sha256 {sha[:12]}...)")
     return sha
+
+
+def good_part_of(sp: SplitTensors) -> SplitTensors:
+    """The good samples of a split (label 0), every field alike."""
+    keep = [i for i, y in enumerate(sp.label.tolist()) if y == 0]
+    return subset(sp, keep)
+
+
+def subset(sp: SplitTensors, keep: list[int]) -> SplitTensors:
+    """The samples ``keep`` (positions) of a split: tensors indexed, per-sample lists picked."""
+    import dataclasses
+
+    import torch
+
+    ix = torch.as_tensor(keep, dtype=torch.long)
+    return dataclasses.replace(sp, **{
+        f.name: (v[ix] if isinstance(v, torch.Tensor) else [v[i] for i in keep] if isinstance(v, list) else v)
+        for f in dataclasses.fields(sp) for v in [getattr(sp, f.name)]})
+
+
+def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
+    """The defective samples of a training split (without ``holdout_type``) as ``model.draem.mixed.TensorDefectData``
+    for mixed supervision; UserError when there are none."""
+    from model.draem.holdout import indices_without_type
+    from model.draem.mixed import TensorDefectData
+
+    known = sp.mask_known.tolist() if sp.mask_known is not None else [True] * len(sp.index)
+    defective = [i for i, y in enumerate(sp.label.tolist()) if y == 1 and known[i]]  # supervision needs the mask
+    if holdout_type:
+        try:
+            allowed = set(indices_without_type(sp.defect_type, holdout_type).tolist())
+        except ValueError as exc:
+            raise UserError(f"--holdout-type {holdout_type}: {data} train split: {exc}") from None
+        defective = [i for i in defective if i in allowed]
+    if not defective:
+        raise UserError(f"--rendered-fraction: {data} has no rendered defective parts in its train split"
+                        + (f" besides {holdout_type}" if holdout_type else "")
+                        + " (render it with defects in training: station render --defects-in-train)")
+    d = subset(sp, defective)
+    return TensorDefectData(d.priors, d.object_mask, d.defect_mask)

@@ -18,7 +18,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from model.draem.runtime import TRAIN_PRECISIONS
-from station.datasets import SplitTensors, check_trained_on, fov_of, load_split, manifest_sha256
+from station.datasets import (
+    fov_of,
+    good_part_of,
+    load_split,
+    manifest_sha256,
+    rendered_defects,
+    subset,
+)
 from station.errors import UserError
 
 if TYPE_CHECKING:
@@ -26,7 +33,6 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-__all__ = ["SplitTensors", "check_trained_on", "load_split", "manifest_sha256", "run"]  # re-exported from datasets
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -102,46 +108,6 @@ def normal_prior_record(normals: NormalEstimator | None) -> dict:
     from model.normals.estimator import describe
 
     return describe(normals)
-
-
-def good_part_of(sp: SplitTensors) -> SplitTensors:
-    """The good samples of a split (label 0), every field alike."""
-    keep = [i for i, y in enumerate(sp.label.tolist()) if y == 0]
-    return subset(sp, keep)
-
-
-def subset(sp: SplitTensors, keep: list[int]) -> SplitTensors:
-    """The samples ``keep`` (positions) of a split: tensors indexed, per-sample lists picked."""
-    import dataclasses
-
-    import torch
-
-    ix = torch.as_tensor(keep, dtype=torch.long)
-    return dataclasses.replace(sp, **{
-        f.name: (v[ix] if isinstance(v, torch.Tensor) else [v[i] for i in keep] if isinstance(v, list) else v)
-        for f in dataclasses.fields(sp) for v in [getattr(sp, f.name)]})
-
-
-def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
-    """The defective samples of a training split (without ``holdout_type``) as ``model.draem.mixed.TensorDefectData``
-    for mixed supervision; UserError when there are none."""
-    from model.draem.holdout import indices_without_type
-    from model.draem.mixed import TensorDefectData
-
-    known = sp.mask_known.tolist() if sp.mask_known is not None else [True] * len(sp.index)
-    defective = [i for i, y in enumerate(sp.label.tolist()) if y == 1 and known[i]]  # supervision needs the mask
-    if holdout_type:
-        try:
-            allowed = set(indices_without_type(sp.defect_type, holdout_type).tolist())
-        except ValueError as exc:
-            raise UserError(f"--holdout-type {holdout_type}: {data} train split: {exc}") from None
-        defective = [i for i in defective if i in allowed]
-    if not defective:
-        raise UserError(f"--rendered-fraction: {data} has no rendered defective parts in its train split"
-                        + (f" besides {holdout_type}" if holdout_type else "")
-                        + " (render it with defects in training: station render --defects-in-train)")
-    d = subset(sp, defective)
-    return TensorDefectData(d.priors, d.object_mask, d.defect_mask)
 
 
 def init_record(path: str) -> dict[str, Any]:

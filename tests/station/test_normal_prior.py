@@ -19,7 +19,7 @@ from model.normals.estimator import MAP_NAMES
 from model.normals.net import NormalNetConfig, NormalUNet, save_normal_net
 from model.priors.conventions import IMX250MZR
 from station.cli import main
-from station.commands.train import load_split
+from station.datasets import load_split
 from station.inspector import Inspector
 from station.model_detector import DraemDetector, ModelLoadError
 
