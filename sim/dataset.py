@@ -45,6 +45,7 @@ import json
 import os
 import shutil
 import zipfile
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -73,8 +74,11 @@ FOLDER_SPLIT_RULE = "folders"
 GT_KEYS = ("s0", "s1", "s2", "normal", "object_mask", "defect_mask", "part_index", "depth")
 
 
-def split_of(index: int) -> str:
-    """The split of sample ``index`` (see ``SPLIT_RULE``)."""
+def split_of(index: int, heldout: bool = False) -> str:
+    """The split of sample ``index`` (see ``SPLIT_RULE``); every sample is test in a held-out set
+    (``HELDOUT_SPLIT_RULE``)."""
+    if heldout:
+        return "test"
     r = index % 10
     return "test" if r in (0, 1) else "val" if r == 2 else "train"
 
@@ -203,6 +207,12 @@ def read_overrides(path: str | Path) -> dict[str, dict[str, Any]]:
     return extra
 
 
+def read_layers(paths: Sequence[str | Path]) -> dict[str, dict[str, Any]]:
+    """Override files read and layered in order (``station render --config A --config B``): ``merge_overrides`` of
+    ``read_overrides`` of each; {} for none."""
+    return merge_overrides([read_overrides(path) for path in paths])
+
+
 def merge_overrides(layers: list[dict[str, dict[str, Any]]]) -> dict[str, dict[str, Any]]:
     """Override files layered in order: per section, a later file's keys replace an earlier one's."""
     out: dict[str, dict[str, Any]] = {}
@@ -255,7 +265,7 @@ class SampleDraw:
 def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw:
     """Draw sample ``index``'s scene and defect (deterministic in ``spec.seed`` and ``index``)."""
     rng = np.random.default_rng([spec.seed, index])
-    split = "test" if spec.heldout else split_of(index)
+    split = split_of(index, spec.heldout)
     params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
     empty = is_empty(spec.seed, index, spec.empty_rate)
     defect = None
@@ -503,7 +513,7 @@ class Dataset:
         """The split of sample ``index``: from the manifest for an imported set, else ``split_of``."""
         if self._splits is not None:
             return self._splits.get(index, "")
-        return "test" if self.manifest.get("split_rule") == HELDOUT_SPLIT_RULE else split_of(index)
+        return split_of(index, self.manifest.get("split_rule") == HELDOUT_SPLIT_RULE)
 
     def load(self, index: int, ground_truth: bool = True) -> Sample:
         d = sample_dir(self.root, index)

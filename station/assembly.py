@@ -53,7 +53,7 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
             raise ConfigError(f"{cfg.source}: [sim] dataset = {cfg.sim.dataset!r} is not a rendered set "
                               f"(no manifest.json; make one with `station render --out {cfg.sim.dataset}`)")
         return cfg.sim.dataset
-    from sim.dataset import DatasetSpec, merge_overrides, open_dataset, read_overrides, render_set
+    from sim.dataset import DatasetSpec, open_dataset, read_layers, render_set
 
     # the plain demo set stays as it was (make demo's first run); empty views only when asked for
     empty_rate = DEMO_EMPTY_RATE if cfg.sim.empty_rate > 0 else 0.0
@@ -64,7 +64,7 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
           f"about 2 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
     spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": DEMO_SPP,
                                   "defect_fraction": 0.5, "defects_in_train": True, "empty_rate": empty_rate,
-                                  **merge_overrides([read_overrides(p) for p in DEMO_SCENE])})
+                                  **read_layers(DEMO_SCENE)})
     if empty_rate:
         _link_demo_parts(Path(DEMO_DATASET), root)
     render_set(root, spec, DEMO_PARTS)

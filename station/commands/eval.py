@@ -264,7 +264,8 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     ck, net, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision)
     cfg, thr = ck.detector.config, ck.threshold
-    source = "imported" if open_dataset(args.data).manifest.get("source") else "rendered"
+    evaluated = open_dataset(args.data)
+    source = "imported" if evaluated.manifest.get("source") else "rendered"
     rows = [_rows(f"{source}, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}
     good = sp.label == 0
@@ -295,7 +296,7 @@ def run(args: argparse.Namespace) -> int:
     if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
         val_data = args.val_data or args.data
         try:
-            if not args.val_data and not open_dataset(args.data).indices("val"):
+            if not args.val_data and not evaluated.indices("val"):
                 raise ValueError(f"{args.data} has no val split (a held-out set): give the set the model was "
                                  f"selected on with --val-data")
             vsp, _, vev = evaluate_split(ck, net, args.model, val_data, "val", args.limit)

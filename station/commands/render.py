@@ -80,10 +80,10 @@ def choose_spp(args: argparse.Namespace):
 
 
 def build_spec(args: argparse.Namespace, spp: int = 16):
-    from sim.dataset import DatasetSpec, merge_overrides, read_overrides
+    from sim.dataset import DatasetSpec, read_layers
     from sim.errors import SimError
 
-    extra = merge_overrides([read_overrides(path) for path in args.config])
+    extra = read_layers(args.config)
     materials = {}
     if args.materials:
         try:

@@ -113,10 +113,10 @@ def normal_prior_record(normals: NormalEstimator | None) -> dict:
 def init_record(path: str) -> dict[str, Any]:
     """What ``--init`` started from, for the sidecar's ``train.init``: its path, weights hash and what it was
     trained with (so a held-out type can be checked to be absent from the whole history)."""
-    from model.draem.checkpoint import CheckpointError, load_checkpoint
+    from model.draem.checkpoint import CheckpointError, read_sidecar
 
-    try:
-        meta = load_checkpoint(path).meta
+    try:  # the sidecar only: train() loads the weights, and checks the model config, once
+        meta = read_sidecar(path)
     except (CheckpointError, OSError) as exc:
         raise UserError(f"--init {path}: {exc}") from None
     train_meta = meta.get("train") or {}

@@ -79,7 +79,7 @@ def test_config_files_layer_in_order(tmp_path) -> None:
 
     (tmp_path / "a.toml").write_text('[scene]\ncolour = [0.1, 0.2]\nyaw_deg = [0.0, 1.0]\n[sensor]\nbit_depth = 12\n')
     (tmp_path / "b.toml").write_text('[scene]\ncolour = [0.3, 0.4]\n[variation]\nexposure_scale = [0.9, 1.1]\n')
-    merged = sd.merge_overrides([sd.read_overrides(tmp_path / "a.toml"), sd.read_overrides(tmp_path / "b.toml")])
+    merged = sd.read_layers([tmp_path / "a.toml", tmp_path / "b.toml"])
     assert merged == {"scene": {"colour": [0.3, 0.4], "yaw_deg": [0.0, 1.0]}, "sensor": {"bit_depth": 12},
                       "variation": {"exposure_scale": [0.9, 1.1]}}
     out = tmp_path / "set"
