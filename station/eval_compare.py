@@ -28,8 +28,10 @@ def read_report(folder: str | Path) -> dict[str, Any]:
         report = json.loads(path.read_text())
     except (OSError, json.JSONDecodeError) as exc:
         raise UserError(f"{path}: not a station eval report ({exc})") from None
-    if not isinstance(report, dict) or not report.get("industrial"):
-        raise UserError(f"{path}: no industrial rows ({(report or {}).get('industrial_note') or 'none'}); "
+    if not isinstance(report, dict):
+        raise UserError(f"{path}: not a station eval report (a JSON {type(report).__name__})")
+    if not report.get("industrial"):
+        raise UserError(f"{path}: no industrial rows ({report.get('industrial_note') or 'none'}); "
                         f"evaluate on a split other than val, with --val-data for a held-out set")
     return report
 
