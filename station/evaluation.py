@@ -36,7 +36,7 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
         from model.normals.estimator import load_for_checkpoint
 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
-    return load_split(data, split, cfg.priors, cfg.input_size_px, limit, roi=cfg.roi, normals=normals)
+    return load_split(data, split, cfg.priors, cfg.input_shape, limit, roi=cfg.roi, normals=normals)
 
 
 def inference_net(ck, model: str, precision: str):

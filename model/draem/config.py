@@ -17,7 +17,7 @@ from .errors import ModelError
 PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3}
 """Input channels per prior, in the order the station stacks them for the fused network."""
 
-ROIS = ("center", "frame", "object")
+ROIS = ("center", "band", "frame", "object")
 """Regions a network can see: see ``ModelConfig.roi``."""
 
 UNIT_VECTOR_PRIORS = ("aolp", "normal")
@@ -44,20 +44,28 @@ def channel_slices(priors: tuple[str, ...]) -> dict[str, slice]:
 
 @dataclass(frozen=True)
 class NetworkConfig:
-    """One DRAEM network: widths of the two sub-networks, input channels and square input size in pixels.
+    """One DRAEM network: widths of the two sub-networks, input channels and input size in pixels (height
+    ``input_size_px``; width ``input_width_px``, 0 = square).
 
-    ``input_size_px`` must be a multiple of 32 (the discriminative U-Net pools five times)."""
+    Both must be multiples of 32 (the discriminative U-Net pools five times)."""
 
     in_channels: int = 1
     reconstructive_width: int = 128
     discriminative_width: int = 64
     input_size_px: int = 256
+    input_width_px: int = 0
 
     def __post_init__(self) -> None:
         if self.in_channels < 1 or self.reconstructive_width < 1 or self.discriminative_width < 1:
             raise ModelError(f"network config {self}: channels and widths must be >= 1")
-        if self.input_size_px < 32 or self.input_size_px % 32:
-            raise ModelError(f"input_size_px must be a positive multiple of 32, got {self.input_size_px}")
+        for side in (self.input_size_px, self.input_width_px or self.input_size_px):
+            if side < 32 or side % 32:
+                raise ModelError(f"each input side must be a positive multiple of 32, got {self.input_shape}")
+
+    @property
+    def input_shape(self) -> tuple[int, int]:
+        """(height, width) of the input in pixels."""
+        return self.input_size_px, self.input_width_px or self.input_size_px
 
 
 @dataclass(frozen=True)
@@ -86,7 +94,10 @@ class ModelConfig:
     ``score_window_px``: side of the box filter before the max that gives the image score (DRAEM: 21 at 256 px);
     0 means scale 21 px with the input size (odd, at least 3).
     ``roi``: the region the network sees. "center": the centre square of the frame (the part's known position on
-    the line), image score over the whole square; what a station can run. "frame": the whole frame squeezed to the
+    the line), image score over the whole square; what a station can run. "band": the middle half (in height) of
+    the centre square, at twice the centre square's resolution for the same ``input_size_px`` (input
+    ``input_size_px`` x 2 ``input_size_px``): for a part longer than wide laid across the view by the fixture, as
+    on the shipped line (``model.draem.roi.band_box``); also a station's. "frame": the whole frame squeezed to the
     square input (no crop: the region of interest switched off, for comparison; not with the normal prior, whose
     estimator reads the centre square). "object": a square around the rendered object mask, image score on the
     object only; needs ground truth at inference (research upper bound)."""
@@ -108,8 +119,8 @@ class ModelConfig:
         NetworkConfig(1, self.reconstructive_width, self.discriminative_width, self.input_size_px)
         if self.roi not in ROIS:
             raise ModelError(f"roi must be one of {', '.join(ROIS)}, got {self.roi!r}")
-        if self.roi == "frame" and "normal" in self.priors:
-            raise ModelError("roi 'frame' cannot take the normal prior: its estimator reads the centre square")
+        if self.roi in ("frame", "band") and "normal" in self.priors:
+            raise ModelError(f"roi {self.roi!r} cannot take the normal prior: its estimator reads the centre square")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 
@@ -130,13 +141,19 @@ class ModelConfig:
         return w if w % 2 else w + 1
 
     @property
+    def input_shape(self) -> tuple[int, int]:
+        """(height, width) of the network input in pixels: ``input_size_px`` high, twice as wide for roi "band"."""
+        return self.input_size_px, (2 if self.roi == "band" else 1) * self.input_size_px
+
+    @property
     def in_channels(self) -> int:
         return sum(PRIOR_CHANNELS[p] for p in self.priors)
 
     def networks(self) -> dict[str, NetworkConfig]:
         """Network configs keyed by member name: one per prior (ensemble) or one named "fused"."""
-        mk = lambda c: NetworkConfig(c, self.reconstructive_width, self.discriminative_width,  # noqa: E731
-                                     self.input_size_px)
+        h, w = self.input_shape
+        mk = lambda c: NetworkConfig(c, self.reconstructive_width, self.discriminative_width, h,  # noqa: E731
+                                     0 if w == h else w)
         if self.fusion == "fused":
             return {"fused": mk(self.in_channels)}
         return {p: mk(PRIOR_CHANNELS[p]) for p in self.priors}

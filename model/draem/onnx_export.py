@@ -54,7 +54,7 @@ def export_network(net: nn.Module, path: str | Path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     net.eval()
-    x = torch.zeros(1, net.config.in_channels, net.config.input_size_px, net.config.input_size_px)
+    x = torch.zeros(1, net.config.in_channels, *net.config.input_shape)
     with warnings.catch_warnings(), _quiet("torch.onnx", "onnxscript", "onnx_ir"):
         warnings.simplefilter("ignore")  # e.g. torch.export's own deprecations; the check against torch is ours
         try:
@@ -127,7 +127,7 @@ class OnnxDetector:
     @classmethod
     def from_detector(cls, detector: Detector, work_dir: str | Path, threads: int | None = None) -> OnnxDetector:
         onnx = cls.from_files(detector, export_onnx(detector, work_dir), threads)
-        x = torch.rand(1, detector.config.in_channels, detector.config.input_size_px, detector.config.input_size_px,
+        x = torch.rand(1, detector.config.in_channels, *detector.config.input_shape,
                        generator=torch.Generator().manual_seed(0))
         err = float((onnx.predict(x).anomaly_map - detector.predict(x).anomaly_map).abs().max())
         if err > MAX_ABS_ERROR:

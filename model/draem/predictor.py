@@ -124,12 +124,12 @@ class Predictor:
 
         shape = next(iter(maps.values())).shape[:2]
         top, left, h, w = roi_box(self.config.roi, shape)
-        # stack only the square the network sees, not whole frames (the same values crop_resize would cut out)
+        # stack only the region the network sees, not whole frames (the same values crop_resize would cut out)
         cut = {k: v[top:top + h, left:left + w] for k, v in maps.items()}
         if self.normals is not None:  # same square as the DRAEM's: both read roi "center" ("frame" has no normal)
             cut["normal"] = self.normals.predict_box(cut, shape, (top, left, h, w))
         x = stack_priors(cut, self.used_priors)
-        xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_size_px, self.used_priors)
+        xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_shape, self.used_priors)
         xt = self._all_channels(xt).unsqueeze(0).to(self.device)
         if self.device.type == "cpu" and self.precision not in (Precision.ONNX, Precision.INT8):
             xt = xt.contiguous(memory_format=torch.channels_last)

@@ -47,22 +47,25 @@ def stack_priors(maps: Mapping[str, np.ndarray], priors: tuple[str, ...]) -> np.
     return np.stack([np.asarray(a, dtype=np.float32) for a in out])
 
 
-def crop_resize(x: np.ndarray | torch.Tensor, box: tuple[int, int, int, int], size_px: int, priors: tuple[str, ...],
-                masks: tuple[np.ndarray, ...] = ()) -> tuple[torch.Tensor, tuple[torch.Tensor, ...]]:
-    """Crop (C, H, W) stacked priors to ``box`` and resize to (C, size_px, size_px) (bilinear, antialiased when
-    shrinking; unit-vector priors renormalised). ``masks``: (H, W) bool maps cropped and resized alike (nearest)."""
+def crop_resize(x: np.ndarray | torch.Tensor, box: tuple[int, int, int, int], size_px: int | tuple[int, int],
+                priors: tuple[str, ...], masks: tuple[np.ndarray, ...] = ()
+                ) -> tuple[torch.Tensor, tuple[torch.Tensor, ...]]:
+    """Crop (C, H, W) stacked priors to ``box`` and resize to (C, *size) (``size_px``: (height, width), or one int
+    for a square; bilinear, antialiased when shrinking; unit-vector priors renormalised). ``masks``: (H, W) bool
+    maps cropped and resized alike (area, then >= 0.5)."""
     t = torch.as_tensor(x, dtype=torch.float32)
     top, left, hh, ww = box
+    size = (size_px, size_px) if isinstance(size_px, int) else tuple(size_px)
     t = t[:, top:top + hh, left:left + ww].unsqueeze(0)
-    t = F.interpolate(t, size=(size_px, size_px), mode="bilinear", align_corners=False,
-                      antialias=hh > size_px)[0]
+    t = F.interpolate(t, size=size, mode="bilinear", align_corners=False,
+                      antialias=hh > size[0] or ww > size[1])[0]
     for p, sl in channel_slices(priors).items():
         if p in UNIT_VECTOR_PRIORS:
             t[sl] = unit_vectors(t[sl], 0, fallback=t[sl])
     out_masks = []
     for m in masks:
         mt = torch.as_tensor(np.asarray(m, dtype=np.float32))[top:top + hh, left:left + ww][None, None]
-        out_masks.append(F.interpolate(mt, size=(size_px, size_px), mode="area")[0, 0] >= 0.5)
+        out_masks.append(F.interpolate(mt, size=size, mode="area")[0, 0] >= 0.5)
     return t, tuple(out_masks)
 
 

@@ -1,5 +1,5 @@
 """The region of a frame a network sees (``ModelConfig.roi``), as (top, left, height, width) in pixels; it is
-resized to the network's square input.
+resized to the network's input (``ModelConfig.input_shape``).
 
 Numpy only, so the station's numerics (the presence check) can use the model's region without importing torch.
 """
@@ -34,10 +34,21 @@ def center_box(height: int, width: int) -> tuple[int, int, int, int]:
     return ((height - side) // 2) & ~1, ((width - side) // 2) & ~1, side, side
 
 
+def band_box(height: int, width: int) -> tuple[int, int, int, int]:
+    """The middle half (in height) of the centre square: (top, left, side // 2, side) of a height x width frame,
+    side = min(height, width); top and left even (the mosaic's 2x2 layout kept), height even. For 640 x 480:
+    rows 120-359, columns 80-559, which hold the shipped line's part wherever the fixture's jitter puts it."""
+    top, left, side, _ = center_box(height, width)
+    band = (side // 2) & ~1
+    return (top + (side - band) // 2) & ~1, left, band, side
+
+
 def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None) -> tuple[int, int, int, int]:
     """The region a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W)."""
     if roi == "center":
         return center_box(*shape)
+    if roi == "band":
+        return band_box(*shape)
     if roi == "frame":
         return 0, 0, shape[0], shape[1]
     if roi == "object":

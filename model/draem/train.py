@@ -269,13 +269,20 @@ def _load_last(out: Path, config: ModelConfig, device: torch.device) -> tuple[De
 
 
 def _load_init(init: str | Path, config: ModelConfig, device: torch.device) -> Detector:
-    """The weights and normalisation of checkpoint ``init`` to start from (same model config required)."""
+    """The weights and normalisation of checkpoint ``init`` to start from (same model config required, except the
+    region of interest: the networks are convolutional, so a model trained on the centre square can start one
+    that sees the band at twice the resolution)."""
     ck = load_checkpoint(init, map_location=device)
-    if ck.detector.config != config:
+    if ck.detector.config.with_(roi=config.roi) != config:
         raise CheckpointError(f"{paths(init)[1]}: init from a different model ({ck.meta['model']}); it "
                               f"must have the trained model's priors, fusion, preset and size")
-    log.info("starting from %s (step %s)", paths(init)[0], (ck.meta.get("train") or {}).get("step"))
-    return ck.detector.to(device)
+    log.info("starting from %s (step %s, roi %s)", paths(init)[0], (ck.meta.get("train") or {}).get("step"),
+             ck.detector.config.roi)
+    detector = ck.detector
+    if detector.config != config:
+        detector = Detector(config, ck.detector.normalizer)
+        detector.load_state_dict(ck.detector.state_dict())
+    return detector.to(device)
 
 
 def _restore_or_init(config: ModelConfig, data: TrainData, out: Path, resume: bool, init: str | Path | None,

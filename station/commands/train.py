@@ -17,6 +17,7 @@ import logging
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from model.draem.config import ROIS
 from model.draem.runtime import TRAIN_PRECISIONS
 from station.datasets import (
     fov_of,
@@ -43,8 +44,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), lean (16/16 @ 128), tiny")
     p.add_argument("--fusion", default="ensemble", choices=("ensemble", "fused"),
                    help="ensemble: one DRAEM per prior, averaged (the paper); fused: one over all priors")
-    p.add_argument("--roi", default="center", choices=("center", "frame", "object"),
-                   help="center: centre square of the frame, what a station runs; frame: the whole frame resized "
+    p.add_argument("--roi", default="center", choices=ROIS,
+                   help="center: centre square of the frame, what a station runs; band: the middle half of that "
+                        "square at twice its resolution (input SIZE x 2 SIZE; a part laid across the view); "
+                        "frame: the whole frame resized "
                         "(no crop, for comparison); object: square around the rendered object mask (needs ground "
                         "truth at inference: research upper bound)")
     p.add_argument("--normal-net", default=None,
@@ -148,7 +151,7 @@ def run(args: argparse.Namespace) -> int:
     priors = check_priors(args.priors)
     config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size, args.roi)
     out = Path(args.out or f"runs/train/{args.preset}-{args.fusion}")
-    size = config.input_size_px
+    size = config.input_shape
     normals = normal_estimator(args.normal_net, args.data, out) if "normal" in priors else None
     normal_prior = normal_prior_record(normals) if "normal" in priors else None
     mixed = args.rendered_fraction > 0
@@ -164,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
     if args.holdout_type:  # keep-best and the threshold must not see the type held out either
         va = subset(va, [i for i, t in enumerate(va.defect_type) if t != args.holdout_type])
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
-             len(tr.index), len(va.index), int(va.label.sum()), size, size,
+             len(tr.index), len(va.index), int(va.label.sum()), size[1], size[0],
              (normal_prior or {}).get("source", "not used"))
     rendered = EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known)
     has_both = 0 < int(va.label.sum()) < len(va.index)

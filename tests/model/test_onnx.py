@@ -41,3 +41,12 @@ def test_export_network_writes_one_file_with_a_dynamic_batch_only_and_says_nothi
     assert dims == {"x": [BATCH_AXIS, 3, 64, 64], "map": [BATCH_AXIS, 64, 64]}
     out = capsys.readouterr()
     assert out.out == "" and out.err == ""
+
+
+def test_onnx_export_of_a_band_model_takes_its_wide_input(tmp_path) -> None:
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(1))
+    det.eval()
+    onnx = OnnxDetector.from_detector(det, tmp_path / "y")  # checks against torch on a (1, C, 32, 64) input
+    x = torch.rand(2, 3, 32, 64, generator=torch.Generator().manual_seed(2))
+    assert onnx.predict(x).anomaly_map.shape == (2, 32, 64)

@@ -67,3 +67,15 @@ def test_roi_frame_sees_the_whole_frame_and_center_only_its_square(tmp_path: Pat
     assert heat["frame"][:, :16].any() and heat["frame"][:, 80:].any()
     with pytest.raises(ModelError, match="centre square"):
         ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "frame")
+
+
+def test_roi_band_sees_the_middle_half_of_the_centre_square_at_twice_its_resolution(tmp_path: Path) -> None:
+    wide = {k: np.concatenate([v, v[:, :32]], 1) for k, v in frames(1)[0].items()}  # 64 x 96
+    assert roi_box("band", (64, 96)) == (16, 16, 32, 64) and roi_box("band", (480, 640)) == (120, 80, 240, 480)
+    det = DraemDetector(save(tmp_path / "band", ("intensity", "dolp", "aolp"), "fused", "band"), "cpu")
+    assert det.config.input_shape == (32, 64)  # the centre square's 64 x 64 would be 32 x 32
+    heat = det.infer(wide).heatmap
+    assert heat.shape == (64, 96) and heat[16:48, 16:80].all()
+    assert not heat[:16].any() and not heat[48:].any() and not heat[:, :16].any() and not heat[:, 80:].any()
+    with pytest.raises(ModelError, match="centre square"):
+        ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "band")
