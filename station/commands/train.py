@@ -69,8 +69,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="leave this defect type out of the rendered training defects, to evaluate the model on a "
                         "kind of defect it never saw (station eval marks it); default: none left out")
     p.add_argument("--init", default=None, metavar="MODEL",
-                   help="start from this checkpoint (path without suffix, same priors, fusion, preset and size) with "
-                        "a fresh optimiser: e.g. fine-tune a model trained on good parts with --rendered-fraction")
+                   help="start from this checkpoint (path without suffix, same priors, fusion and preset; roi and "
+                        "size may differ) with a fresh optimiser: e.g. fine-tune a model trained on good parts with "
+                        "--rendered-fraction")
     p.add_argument("--stop-at-step", type=int, default=None, metavar="N",
                    help="stop after step N of the --steps schedule (a checkpoint is written); rerun with a later N, "
                         "or without, to go on with the same schedule")
