@@ -103,3 +103,48 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
     where = "" if same_set else " (not its training set: recorded in the sidecar)"
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
             f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}")
+
+
+def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05) -> str:
+    """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on its good
+    val parts, thresholded on the val split (``set_threshold``'s rule), written to ``out``; one line saying what it
+    does on the val split."""
+    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+    from model.draem.errors import ModelError
+    from model.draem.evaluate import EvalData, evaluate
+    from model.draem.metrics import choose_threshold
+    from model.draem.with_variation import add_variation
+    from station.datasets import manifest_sha256
+
+    if not 0.0 <= max_good_flagged < 1.0:
+        raise UserError(f"--max-good-flagged {max_good_flagged}: a fraction in [0, 1)")
+    ck = load_checkpoint(model)
+    try:  # the model's own refusals first, before minutes of loading
+        ck.detector.config.with_(variation=True)
+        if ck.detector.config.variation:
+            raise ModelError("the detector already has a variation model")
+    except ModelError as exc:
+        raise UserError(f"{model}: {exc}") from None
+    tr = model_split(ck, model, data, "train")
+    va = model_split(ck, model, data, "val")
+    good_tr, good_va = tr.label == 0, va.label == 0
+    if int(good_tr.sum()) < 8 or int(good_va.sum()) < 2:
+        raise UserError(f"{data}: the variation model needs >= 8 good train parts and >= 2 good val parts, got "
+                        f"{int(good_tr.sum())} and {int(good_va.sum())}")
+    try:
+        det = add_variation(ck.detector, tr.priors[good_tr], tr.object_mask[good_tr] if tr.object_masks_known else None,
+                            va.priors[good_va])
+    except ModelError as exc:
+        raise UserError(f"{model}: {exc}") from None
+    ev = evaluate(det, EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known))
+    labels = va.label.numpy()
+    choice = choose_threshold(labels, ev.scores, max_good_flagged)
+    train = {**ck.meta.get("train", {}), "variation": {
+        "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": int(good_tr.sum()),
+        "calibration_parts": int(good_va.sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
+    save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
+    n_bad = int(labels.sum())
+    detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
+    return (f"{out}: variation model fitted on {int(good_tr.sum())} good parts; threshold {choice.threshold:.4g} "
+            f"({choice.rule}); on {len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts"
+            f"{detected}; image AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")

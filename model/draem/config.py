@@ -100,7 +100,9 @@ class ModelConfig:
     on the shipped line (``model.draem.roi.band_box``); also a station's. "frame": the whole frame squeezed to the
     square input (no crop: the region of interest switched off, for comparison; not with the normal prior, whose
     estimator reads the centre square). "object": a square around the rendered object mask, image score on the
-    object only; needs ground truth at inference (research upper bound)."""
+    object only; needs ground truth at inference (research upper bound).
+    ``variation``: the detector also carries the registered variation model (``model.draem.variation``), fitted on
+    good parts after training (``station variation``), and decides on the larger of the two detectors' findings."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -110,6 +112,7 @@ class ModelConfig:
     input_size_px: int = 128
     score_window_px: int = 0
     roi: str = "center"
+    variation: bool = False
     extra: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -121,6 +124,8 @@ class ModelConfig:
             raise ModelError(f"roi must be one of {', '.join(ROIS)}, got {self.roi!r}")
         if self.roi in ("frame", "band") and "normal" in self.priors:
             raise ModelError(f"roi {self.roi!r} cannot take the normal prior: its estimator reads the centre square")
+        if self.variation and "intensity" not in self.priors:
+            raise ModelError("the variation model registers parts by their intensity: add the intensity prior")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 

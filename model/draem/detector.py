@@ -14,6 +14,7 @@ from .config import ModelConfig, channel_slices
 from .errors import ModelError
 from .networks import Draem, DraemEvalOutput, init_weights
 from .preprocess import Normalizer
+from .variation import VariationModel, combine
 
 
 def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, window_px: int) -> torch.Tensor:
@@ -55,6 +56,9 @@ class Detector(nn.Module):
             raise ModelError(f"normalizer has {len(self.normalizer.mean)} channels, model {config.in_channels}")
         self.members = nn.ModuleDict({name: Draem(cfg) for name, cfg in config.networks().items()})
         self._slices = channel_slices(config.priors)
+        start = {p: sl.start for p, sl in self._slices.items()}
+        self.variation = (VariationModel(config.in_channels, config.input_shape, start["intensity"],
+                                         start.get("dolp"), start.get("aolp")) if config.variation else None)
 
     def member_slice(self, member: str) -> slice:
         """Channels of the stacked input that member ``member`` sees."""
@@ -83,6 +87,18 @@ class Detector(nn.Module):
             assert isinstance(out, DraemEvalOutput), "predict needs eval mode: call detector.eval()"
             maps[name] = out.anomaly_map.float()
             scores[name] = image_scores(maps[name], object_mask, self.config.score_window)
+        return self.output(x, maps, scores)
+
+    def output(self, x: torch.Tensor, maps: dict[str, torch.Tensor], scores: dict[str, torch.Tensor]
+               ) -> DetectorOutput:
+        """The detector's answer from its networks' maps and scores on physical input ``x``: their mean, combined
+        with the variation model's finding when the model has one (``model.draem.variation.combine``; its map and
+        score join the member outputs as "variation")."""
         amap = torch.stack(list(maps.values())).mean(0)
         score = torch.stack(list(scores.values())).mean(0)
+        if self.variation is not None:
+            vmap, vscore = self.variation.zmaps(x)
+            amap, score = combine(amap, score, vmap.to(amap.device), vscore.to(score.device),
+                                  self.variation.calibration)
+            maps, scores = {**maps, "variation": vmap}, {**scores, "variation": vscore}
         return DetectorOutput(amap, score, maps, scores)

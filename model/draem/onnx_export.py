@@ -153,5 +153,4 @@ class OnnxDetector:
             member_in = z[:, self.detector.member_slice(name)].contiguous().numpy()
             maps[name] = torch.from_numpy(session.run(None, {"x": member_in})[0]).float()
             scores[name] = image_scores(maps[name], object_mask, self.config.score_window)
-        amap = torch.stack(list(maps.values())).mean(0)
-        return DetectorOutput(amap, torch.stack(list(scores.values())).mean(0), maps, scores)
+        return self.detector.output(x, maps, scores)

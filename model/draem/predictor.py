@@ -100,7 +100,8 @@ class Predictor:
     """The learned normal estimator when a member reads the normal prior (fp32 torch on ``device``)."""
     early_exit_margin: float | None
     """None: every member runs; 0: stop once the rest cannot change the decision; m > 0: also once the running
-    mean is more than m from the threshold (``model.draem.early_exit``). Always None for a single network."""
+    mean is more than m from the threshold (``model.draem.early_exit``). Always None for a single network and for a
+    model with the variation member (its decision is not a mean of members)."""
     model_id: str
     """``<name>-<preset>-<fusion>-<first 8 hex of the weights' sha256>``."""
     meta: dict[str, Any]
@@ -247,6 +248,8 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
         raise PredictorError(f"{js}: a fused model has no members to choose")
     if members is not None and (not members or not set(members) <= set(every)):
         raise PredictorError(f"{js}: members {list(members)}: name some of the ensemble's {list(every)}")
+    if members is not None and cfg.variation and set(members) != set(every):
+        raise PredictorError(f"{js}: the model's variation member reads every prior: run all its members")
     chosen_members = tuple(members) if members is not None else every
     used_priors = tuple(p for p in cfg.priors if cfg.fusion == "fused" or p in chosen_members)
     normals = _normal_estimator(js, ck.meta, dev) if "normal" in used_priors else None
@@ -277,7 +280,8 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
     sha = ck.meta.get("weights_sha256") or hashlib.sha256(pt.read_bytes()).hexdigest()
     predictor = Predictor(config=cfg, net=net, device=dev, precision=precision, threshold=float(chosen),
                           members=chosen_members, used_priors=used_priors, normals=normals,
-                          early_exit_margin=early_exit_margin if len(chosen_members) > 1 else None,
+                          early_exit_margin=(early_exit_margin if len(chosen_members) > 1 and not cfg.variation
+                                             else None),
                           model_id=f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}", meta=ck.meta)
     log.info("model %s: priors %s, %s %dpx, roi %s, threshold %.4g, %s %s", predictor.model_id, list(cfg.priors),
              cfg.fusion, cfg.input_size_px, cfg.roi, predictor.threshold, dev, precision)

@@ -98,7 +98,8 @@ def test_init_fine_tunes_a_model_and_keeps_a_held_out_type_out_of_its_history(tm
     band = tmp_path / "band"
     assert main([*argv, "--roi", "band", "--size", "64", "--init", str(plain / "last"), "--out", str(band)]) == 0
     meta = json.loads((band / "last.json").read_text())
-    assert meta["model"]["roi"] == "band" and meta["model"]["input_size_px"] == 64 and meta["train"]["init"]["weights_sha256"] == start["weights_sha256"]
+    assert meta["model"]["roi"] == "band" and meta["model"]["input_size_px"] == 64
+    assert meta["train"]["init"]["weights_sha256"] == start["weights_sha256"]
     assert main(["eval", "--model", str(band / "last"), "--data", str(data), "--no-plots", "--no-synthetic",
                  "--out", str(tmp_path / "ev-band")]) == 0
 

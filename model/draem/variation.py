@@ -1,0 +1,191 @@
+"""The registered variation model: a member of the detector beside the DRAEM networks that needs no defect to learn.
+
+The fixture puts every part in nearly the same place, so a good part looks like the good parts before it up to a
+small warp (the fixture's play, the camera's mounting) and the line's lighting. The classic machine-vision
+"variation model" uses that: register each part to a reference, compare every pixel with the per-pixel statistics
+of registered good parts, and flag what lies outside them. It is an anomaly detector by construction (it never saw
+a defect, so no defect type is "held out" from it), it reads the same physical priors as the networks, and it
+fits in seconds on the good training parts.
+
+Convention (all at the network's input: ``ModelConfig.input_shape``, channels as ``config.channel_slices``):
+    features  intensity as log(max(I, 1e-3)) minus its median over the part region (exposure and gain are a
+              factor on I, an offset here); AoLP as DoLP * (cos 2a, sin 2a) = (S1, S2) / S0 when the model reads
+              DoLP (the unit vector's direction is noise where DoLP is low, its Stokes components are not:
+              measured on the training set's val split, image AUROC 0.73 with the unit vector, 0.78 with these);
+              every other channel as is (DoLP in [0, 1], normals as unit vectors)
+    register  an affine warp of the frame's log intensity onto ``reference`` (OpenCV ECC, the correlation
+              coefficient: blind to brightness and contrast); a failed or implausible fit (shift > 1/4 of a side,
+              scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high
+    z map     per pixel and channel |feature - median| / scale (scale = 1.4826 MAD of the good parts, floored at
+              the ``floor_quantile`` of the scales over the region and at ``MIN_SCALE``, so flat regions do not
+              divide by ~0), max over
+              channels, box-averaged over ``box_px``, zero outside the eroded part region
+    score     max of the z map: a number of robust standard deviations
+
+``Detector.predict`` combines it with the networks (``combine``). numpy + OpenCV at run time (torch only for the
+buffers, so the checkpoint carries them); never NaN or Inf.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+import torch
+from torch import nn
+
+from .errors import ModelError
+
+LOG_FLOOR = 1e-3
+"""Intensity below this (full scale) is read as this before the log: black belt and shadows stay finite."""
+
+MIN_SCALE = 0.01
+"""Smallest per-pixel scale in feature units (1 % in intensity, 0.01 in DoLP and in cos/sin 2 AoLP): about the
+sensor's noise on the part at 12 bits, so a channel that happens to be flat over the good parts (quantised, or
+noise-free renders) cannot turn a tiny difference into a huge z."""
+
+MAX_SHIFT = 0.25
+"""Largest registration shift, as a fraction of the input's side, still taken as a fit."""
+
+
+class VariationModel(nn.Module):
+    """Buffers (saved with the checkpoint): ``reference`` (H, W) log intensity to register to, ``median`` and
+    ``scale`` (C, H, W) per-pixel statistics of registered good parts, ``region`` (H, W) where the part is (bool),
+    ``calibration`` (4,): location and spread of the networks' and this model's image scores on good validation
+    parts (``combine``). ``intensity``, ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's
+    cosine (its sine follows), None when the model does not read that prior."""
+
+    def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
+                 aolp: int | None = None, box_px: int = 5) -> None:
+        super().__init__()
+        if box_px < 1 or box_px % 2 == 0:
+            raise ModelError(f"variation box_px must be odd and >= 1, got {box_px}")
+        h, w = shape
+        self.intensity, self.dolp, self.aolp, self.box_px = intensity, dolp, aolp, box_px
+        self.register_buffer("reference", torch.zeros(h, w))
+        self.register_buffer("median", torch.zeros(channels, h, w))
+        self.register_buffer("scale", torch.ones(channels, h, w))
+        self.register_buffer("region", torch.ones(h, w, dtype=torch.bool))
+        self.register_buffer("calibration", torch.tensor([0.0, 1.0, 0.0, 1.0]))
+
+    # --- features and registration (numpy) ---
+
+    def features(self, x: np.ndarray, region: np.ndarray | None = None) -> np.ndarray:
+        """(C, H, W) physical priors -> features (module docstring), float32, finite."""
+        f = np.nan_to_num(np.asarray(x, np.float32), nan=0.0, posinf=1.0, neginf=0.0).copy()
+        li = np.log(np.maximum(f[self.intensity], LOG_FLOOR))
+        reg = self.region.numpy() if region is None else region
+        f[self.intensity] = li - (np.median(li[reg]) if reg.any() else np.median(li))
+        if self.dolp is not None and self.aolp is not None:
+            f[self.aolp:self.aolp + 2] *= f[self.dolp]
+        return f
+
+    def warp_to(self, reference: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """Features ``f`` (C, H, W) warped onto ``reference`` (H, W) (module docstring: register)."""
+        h, w = reference.shape
+        m = np.eye(2, 3, dtype=np.float32)
+        try:
+            _, m = cv2.findTransformECC(reference, f[self.intensity], m, cv2.MOTION_AFFINE,
+                                        (cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 50, 1e-4), None, 5)
+        except cv2.error:
+            m = np.eye(2, 3, dtype=np.float32)
+        sx, sy = float(np.hypot(*m[:, 0])), float(np.hypot(*m[:, 1]))
+        if (not np.isfinite(m).all() or abs(m[0, 2]) > MAX_SHIFT * w or abs(m[1, 2]) > MAX_SHIFT * h
+                or not (0.8 <= sx <= 1.25 and 0.8 <= sy <= 1.25)):
+            m = np.eye(2, 3, dtype=np.float32)
+        flags = cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP
+        return np.stack([cv2.warpAffine(c, m, (w, h), flags=flags, borderMode=cv2.BORDER_REPLICATE) for c in f])
+
+    # --- fitting ---
+
+    @torch.no_grad()
+    def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0) -> None:
+        """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
+        (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
+        of the first 64 parts registered to it; the region is where at least half of the registered masks lie."""
+        xs = x.float().cpu().numpy()
+        n = len(xs)
+        if n < 8:
+            raise ModelError(f"the variation model needs at least 8 good parts to fit, got {n}")
+        masks = (np.ones((n, *xs.shape[2:]), bool) if object_mask is None
+                 else object_mask.bool().cpu().numpy())
+        feats = [self.features(xi, mi) for xi, mi in zip(xs, masks, strict=True)]
+        ref = feats[0][self.intensity]
+        for _ in range(2):
+            ref = np.median(np.stack([self.warp_to(ref, f)[self.intensity] for f in feats[:64]]), 0)
+        # each part's mask travels with its features (last channel), so the region is where the registered parts are
+        stack = np.stack([self.warp_to(ref, np.concatenate([f, m[None].astype(np.float32)]))
+                          for f, m in zip(feats, masks, strict=True)])
+        region = stack[:, -1].mean(0) >= 0.5
+        if not region.any():
+            region = np.ones_like(region)
+        stack = stack[:, :-1]
+        median = np.median(stack, 0)
+        scale = 1.4826 * np.median(np.abs(stack - median), 0)
+        floor = np.array([max(float(np.percentile(s[region], floor_quantile)), MIN_SCALE) for s in scale], np.float32)
+        scale = np.maximum(scale, floor[:, None, None])
+        self.reference.copy_(torch.from_numpy(ref.astype(np.float32)))
+        self.median.copy_(torch.from_numpy(median.astype(np.float32)))
+        self.scale.copy_(torch.from_numpy(scale.astype(np.float32)))
+        self.region.copy_(torch.from_numpy(region))
+
+    def calibrate(self, network_scores: torch.Tensor, variation_scores: torch.Tensor) -> None:
+        """Location (median) and spread (1.4826 MAD, floored) of both image scores on good validation parts."""
+        def loc_spread(s: torch.Tensor) -> tuple[float, float]:
+            s = s.double()
+            med = float(s.median())
+            return med, max(1.4826 * float((s - med).abs().median()), 1e-6)
+
+        if len(network_scores) < 2:
+            raise ModelError("calibrating the variation model needs good validation parts (at least 2)")
+        self.calibration.copy_(torch.tensor([*loc_spread(network_scores), *loc_spread(variation_scores)]))
+
+    def check(self) -> None:
+        """ModelError unless every buffer is finite and every spread > 0 (a NaN would pass every part)."""
+        for name in ("reference", "median", "scale", "calibration"):
+            if not bool(torch.isfinite(getattr(self, name)).all()):
+                raise ModelError(f"variation model: {name} has NaN or Inf values")
+        if not bool((self.scale > 0).all()) or float(self.calibration[1]) <= 0 or float(self.calibration[3]) <= 0:
+            raise ModelError("variation model: a scale or calibration spread is not > 0")
+
+    # --- scoring ---
+
+    @torch.no_grad()
+    def zmaps(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """(N, C, H, W) physical priors -> ((N, H, W) box-averaged z maps, zero off the part; (N,) image scores)."""
+        xs = x.float().cpu().numpy()
+        ref, med, scale = self.reference.numpy(), self.median.numpy(), self.scale.numpy()
+        region = cv2.erode(self.region.numpy().astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+        if not region.any():
+            region = self.region.numpy()
+        maps = []
+        for xi in xs:
+            f = self.warp_to(ref, self.features(xi))
+            z = (np.abs(f - med) / scale).max(0)
+            z = cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE)
+            maps.append(np.where(region, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
+        m = torch.from_numpy(np.stack(maps)).to(x.device)
+        return m, m.flatten(1).amax(1)
+
+
+SQUASH_CENTRE = 3.0
+"""Combined score = sigmoid(z - SQUASH_CENTRE): a part 3 robust standard deviations above the good parts in either
+detector scores 0.5; kept in [0, 1] like every image score of the project (thresholds are checked in [0, 1])."""
+
+
+def squash(z: torch.Tensor) -> torch.Tensor:
+    return torch.sigmoid(z - SQUASH_CENTRE)
+
+
+def combine(network_map: torch.Tensor, network_score: torch.Tensor, variation_map: torch.Tensor,
+            variation_score: torch.Tensor, calibration: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """The detector's map and score from the networks' and the variation model's: each put in robust standard
+    deviations above its good validation parts (``calibration`` = network location, spread, variation location,
+    spread), the larger taken (either detector's finding rejects the part), then ``squash``. Pixel maps use the
+    image calibration. Returns ((N, H, W) map, (N,) score), both in [0, 1]."""
+    dl, ds, vl, vs = (float(c) for c in calibration)
+    zn_map, zv_map = (network_map - dl) / ds, (variation_map - vl) / vs
+    zn, zv = (network_score - dl) / ds, (variation_score - vl) / vs
+    out_map = squash(torch.maximum(zn_map, zv_map.to(zn_map.dtype)))
+    out = squash(torch.maximum(zn, zv.to(zn.dtype)))
+    return out_map.float(), out.float()
+

@@ -1,0 +1,27 @@
+"""``station variation``: add the registered variation model (``model.draem.variation``) to a trained detector.
+
+Fitted on the good parts of ``--data``'s train split, calibrated on its val split's good parts, then the threshold
+is chosen on the val split with ``station threshold``'s rule (``model.draem.metrics.choose_threshold``). The networks
+are copied unchanged; the sidecar records the fit (``train.variation``: set, manifest hash, parts, date).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("variation", help="add the registered variation model (fitted on good parts) to a detector")
+    p.add_argument("--model", required=True, help="trained checkpoint, path without suffix (e.g. runs/x/best)")
+    p.add_argument("--data", required=True, help="set with good parts in its train and val splits (the training set)")
+    p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
+    p.add_argument("--max-good-flagged", type=float, default=0.05,
+                   help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from station.evaluation import fit_variation
+
+    print(fit_variation(args.model, args.data, args.out, args.max_good_flagged))
+    return 0

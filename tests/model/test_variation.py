@@ -1,0 +1,129 @@
+"""The registered variation model: registration undoes the fixture's play, a local change scores far above good
+parts, it combines with the networks into scores in [0, 1], and no input makes it say NaN or pass by accident."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+
+from model.draem.checkpoint import load_checkpoint, save_checkpoint
+from model.draem.config import ModelConfig
+from model.draem.detector import Detector
+from model.draem.errors import CheckpointError, ModelError
+from model.draem.variation import SQUASH_CENTRE, VariationModel
+from model.draem.with_variation import add_variation
+
+H, W = 32, 64
+
+
+def part(rng: np.random.Generator, dy: float = 0.0, dx: float = 0.0, defect: bool = False) -> torch.Tensor:
+    """(4, H, W) priors of a textured bright part on a dark belt, shifted by (dy, dx) px, with an optional dent-like
+    change of DoLP and intensity; intensity scaled as an exposure change would."""
+    y, x = np.mgrid[0:H, 0:W].astype(np.float32)
+    inside = ((np.abs(y - H / 2 - dy) < 9) & (np.abs(x - W / 2 - dx) < 22)).astype(np.float32)
+    texture = 0.1 * np.sin((x - dx) / 3.0) * np.cos((y - dy) / 4.0)
+    intensity = (0.05 + inside * (0.4 + texture)) * rng.uniform(0.7, 1.3)
+    dolp = 0.05 + 0.2 * inside + 0.005 * rng.standard_normal((H, W))
+    angle = 0.3 + 0.5 * inside
+    if defect:
+        blob = np.exp(-((y - H / 2 - dy) ** 2 + (x - W / 2 + 8 - dx) ** 2) / 4.0)
+        dolp = dolp + 0.15 * blob
+        intensity = intensity * (1 - 0.5 * blob)
+    x4 = np.stack([intensity + 0.002 * rng.standard_normal((H, W)), dolp, np.cos(2 * angle), np.sin(2 * angle)])
+    return torch.from_numpy(x4.astype(np.float32))
+
+
+def parts(n: int, seed: int, defect: bool = False, play: float = 2.0) -> torch.Tensor:
+    rng = np.random.default_rng(seed)
+    return torch.stack([part(rng, *rng.uniform(-play, play, 2), defect=defect) for _ in range(n)])
+
+
+def fitted() -> VariationModel:
+    vm = VariationModel(4, (H, W), intensity=0)
+    x = parts(40, 0)
+    vm.fit(x, x[:, 0] > 0.15)  # the object masks a rendered set has
+    return vm
+
+
+def test_registration_undoes_the_fixtures_play_and_a_local_change_stands_out() -> None:
+    vm = fitted()
+    good, bad = vm.zmaps(parts(20, 1))[1], vm.zmaps(parts(20, 2, defect=True))[1]
+    assert float(bad.min()) > float(good.max())  # every defective part above every good one
+    # without registration the same good parts look defective: the play alone moves edges by pixels
+    unregistered = VariationModel(4, (H, W), intensity=0)
+    unregistered.load_state_dict(vm.state_dict())
+    unregistered.warp_to = lambda ref, f: f  # type: ignore[method-assign]
+    assert float(unregistered.zmaps(parts(20, 1))[1].median()) > 2 * float(good.median())
+    assert bool(vm.region[H // 2, W // 2]) and not bool(vm.region[0, 0])  # the part, not the belt
+
+
+def test_too_few_parts_and_bad_buffers_are_errors() -> None:
+    with pytest.raises(ModelError, match="at least 8"):
+        VariationModel(4, (H, W), 0).fit(parts(3, 0))
+    vm = fitted()
+    vm.calibration[1] = float("nan")
+    with pytest.raises(ModelError, match="calibration"):
+        vm.check()
+
+
+def detector_with_variation(tmp_path: Path) -> tuple[Detector, Path]:
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    det.eval()
+    with_var = add_variation(det, parts(40, 0), None, parts(10, 3))
+    path = tmp_path / "var"
+    save_checkpoint(path, with_var, threshold=0.5, threshold_rule="test")
+    return with_var, path
+
+
+def test_combined_scores_are_in_0_1_rank_defects_above_good_parts_and_survive_a_checkpoint(tmp_path: Path) -> None:
+    det, path = detector_with_variation(tmp_path)
+    good, bad = det.predict(parts(10, 4)), det.predict(parts(10, 5, defect=True))
+    assert float(bad.score.min()) > float(good.score.max())
+    assert set(good.member_scores) == {"fused", "variation"} and good.anomaly_map.shape == (10, H, W)
+    for out in (good, bad):
+        assert bool(((out.score >= 0) & (out.score <= 1)).all()) and bool(torch.isfinite(out.anomaly_map).all())
+    # a good part at the calibration's median in both detectors scores sigmoid(-3)
+    assert float(good.score.median()) < 0.5 < float(bad.score.min())
+    assert 1 / (1 + math.exp(SQUASH_CENTRE)) < 0.05
+    loaded = load_checkpoint(path).detector
+    assert loaded.config.variation and torch.equal(loaded.predict(parts(10, 4)).score, good.score)
+
+
+def test_hostile_inputs_give_finite_scores_that_reject(tmp_path: Path) -> None:
+    det, _ = detector_with_variation(tmp_path)
+    x = parts(4, 6)  # priors in their ranges (model.priors never returns NaN) but nothing like a part
+    x[0] = 0.0
+    x[1, 0] = 1.0  # a saturated frame
+    x[2] = torch.rand(x[2].shape, generator=torch.Generator().manual_seed(0))
+    x[3, :, ::2] = 1.0 - x[3, :, ::2]  # stripes
+    out = det.predict(x)
+    assert bool(torch.isfinite(out.score).all()) and bool(torch.isfinite(out.anomaly_map).all())
+    assert float(out.score.min()) > 0.5  # none of them looks like a good part
+    assert det.variation is not None
+    x[0], x[1] = float("nan"), float("inf")  # the variation member alone stays finite even on these
+    assert bool(torch.isfinite(det.variation.zmaps(x)[0]).all())
+
+
+def test_a_checkpoint_with_a_nan_buffer_is_refused_naming_the_file(tmp_path: Path) -> None:
+    det, path = detector_with_variation(tmp_path)
+    assert det.variation is not None
+    det.variation.calibration[3] = float("nan")
+    save_checkpoint(path, det, threshold=0.5, threshold_rule="test")
+    with pytest.raises(CheckpointError, match=r"var\.pt: variation model: calibration"):
+        load_checkpoint(path)
+
+
+def test_onnx_runs_the_variation_member_too(tmp_path: Path) -> None:
+    pytest.importorskip("onnxruntime")
+    from model.draem.onnx_export import OnnxDetector
+
+    det, _ = detector_with_variation(tmp_path)
+    onnx = OnnxDetector.from_detector(det, tmp_path / "onnx")
+    x = torch.cat([parts(3, 7), parts(3, 8, defect=True)])
+    a, b = onnx.predict(x), det.predict(x)
+    assert "variation" in a.member_scores and float((a.score - b.score).abs().max()) < 1e-4

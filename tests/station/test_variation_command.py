@@ -1,0 +1,46 @@
+"""``station variation``: a trained detector plus the registered variation model, fitted on the set's good train
+parts, calibrated and thresholded on its val split, recorded in the sidecar; errors in one line."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
+
+from station.cli import main
+
+BASE = ["--preset", "tiny", "--fusion", "fused", "--size", "32", "--steps", "2", "--batch-size", "4",
+        "--eval-every", "2", "--device", "cpu", "--roi", "band"]
+
+
+def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
+    assert main(["train", "--data", str(data), "--priors", "intensity,dolp,aolp", *BASE,
+                 "--out", str(tmp_path / "t")]) == 0
+    capsys.readouterr()
+    out = tmp_path / "v"
+    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--out", str(out)]) == 0
+    line = capsys.readouterr().out
+    assert "variation model fitted on" in line and "of good parts" in line
+    meta = json.loads(out.with_suffix(".json").read_text())
+    assert meta["model"]["variation"] is True and 0.0 <= meta["threshold"] <= 1.0
+    rec = meta["train"]["variation"]
+    assert rec["fit_parts"] > 8 and rec["calibration_parts"] >= 2 and rec["from"].endswith("last")
+    assert main(["eval", "--model", str(out), "--data", str(data), "--no-plots", "--no-synthetic",
+                 "--out", str(tmp_path / "ev")]) == 0
+    rows = json.loads((tmp_path / "ev" / "eval.json").read_text())["rows"]
+    assert rows and all(0.0 <= r["image_auroc"] <= 1.0 for r in rows if r.get("image_auroc") == r.get("image_auroc"))
+    # twice: a detector that already has one is refused in one line
+    assert main(["variation", "--model", str(out), "--data", str(data), "--out", str(tmp_path / "w")]) == 2
+    assert "already has a variation model" in capsys.readouterr().err
+
+
+def test_a_model_without_intensity_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
+    assert main(["train", "--data", str(data), "--priors", "dolp,aolp", *BASE, "--out", str(tmp_path / "t")]) == 0
+    capsys.readouterr()
+    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data),
+                 "--out", str(tmp_path / "v")]) == 2
+    err = capsys.readouterr().err
+    assert "intensity" in err and len(err.strip().splitlines()) == 1
