@@ -4,7 +4,9 @@ decision threshold is set from good parts that the fitting never saw.
 What depends on the line, in this model:
   - the input normalisation (``Normalizer``: per-channel mean and std over all pixels of the region of interest,
     the same statistic training used): exposure, gain, light and belt move it;
-  - per-position statistics: none (the detector keeps no per-pixel reference of the part);
+  - per-position statistics: the variation model's per-pixel median and scale (``model.draem.variation``), when
+    the detector has one: re-estimated on the line's good parts, registered to the reference it was trained
+    with (its part region kept); then both detectors' calibration, from the held-out scores;
   - optionally the weights: a brief fine-tune on the good parts with DRAEM's synthetic anomalies
     (``AdaptConfig.fine_tune_steps``; off by default).
 
@@ -37,12 +39,14 @@ from .errors import ModelError
 from .loss import draem_loss
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
+from .variation import combined_score, network_score
 
 log = logging.getLogger(__name__)
 
 MIN_GOOD = 10
 """Fewer good parts than this cannot set a threshold worth the name."""
 PER_POSITION = "none (the detector keeps no per-position statistics of the part)"
+PER_POSITION_REFIT = "the variation model's per-pixel statistics and the calibration, re-estimated on the good parts"
 
 
 @dataclass(frozen=True)
@@ -143,6 +147,38 @@ def image_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> n
     return torch.cat(out).numpy()
 
 
+@torch.no_grad()
+def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tuple[torch.Tensor, torch.Tensor]:
+    """(N,) network and (N,) variation image scores of a detector with a variation model, before combining."""
+    detector.eval()
+    net, var = [], []
+    for i in range(0, x.shape[0], batch_size):
+        out = detector.predict(x[i:i + batch_size])
+        net.append(network_score(out.member_scores).float().cpu())
+        var.append(out.member_scores["variation"].float().cpu())
+    return torch.cat(net), torch.cat(var)
+
+
+def _refit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Detector:
+    """A copy with the normalisation (and the variation model's statistics, when it has one) fitted on ``x``."""
+    d = with_normalizer(detector, _fit(detector, x, cfg))
+    if d.variation is not None:
+        d.variation.fit(x, keep_reference=True)
+    return d
+
+
+def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> np.ndarray:
+    """Held-out image scores: each (detector fitted without them, parts) scored. With a variation model, the
+    final detector's calibration is first set from all held-out member scores, and every part's combined score
+    uses it (a calibration from the fitted parts would be biased low)."""
+    if final.variation is None:
+        return np.concatenate([image_scores(d, xp) for d, xp in parts])
+    pairs = [member_scores(d, xp) for d, xp in parts]
+    net, var = torch.cat([p[0] for p in pairs]), torch.cat([p[1] for p in pairs])
+    final.variation.calibrate(net, var)
+    return combined_score(net, var, final.variation.calibration).numpy()
+
+
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,
               batch_size: int, seed: int, anomaly: AnomalyConfig, progress: bool = True) -> Detector:
     """A copy of ``detector`` trained ``steps`` more steps on good parts ``x`` with synthetic anomalies (DRAEM's
@@ -189,27 +225,29 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                          "to a line")
     order = torch.from_numpy(np.random.default_rng(cfg.seed).permutation(n))
     before = detector.normalizer
+    what = "normalisation" + (" and variation statistics" if detector.variation is not None else "")
     if cfg.fine_tune_steps == 0:
         folds = min(cfg.folds, n)
-        scores = np.empty(n)
-        for k in range(folds):
-            held = order[k::folds]
-            rest = torch.from_numpy(np.setdiff1d(order.numpy(), held.numpy()))
-            scores[held.numpy()] = image_scores(with_normalizer(detector, _fit(detector, x[rest], cfg)), x[held])
-        final = with_normalizer(detector, _fit(detector, x, cfg))
-        heldout, scheme = scores, f"cross-fitted normalisation, {folds} folds"
+        helds = [order[k::folds] for k in range(folds)]
+        parts = [(_refit(detector, x[torch.from_numpy(np.setdiff1d(order.numpy(), h.numpy()))], cfg), x[h])
+                 for h in helds]
+        final = _refit(detector, x, cfg)
+        heldout = np.empty(n)
+        heldout[torch.cat(helds).numpy()] = _heldout_scores(final, parts)
+        scheme = f"cross-fitted {what}, {folds} folds"
         n_held, steps = n, 0
     else:
         n_held = max(1, round(cfg.holdout_fraction * n))
         held, fit = order[:n_held], order[n_held:]
-        tuned = with_normalizer(detector, _fit(detector, x[fit], cfg))
+        tuned = _refit(detector, x[fit], cfg)
         final = fine_tune(tuned, x[fit], object_mask[fit], cfg.fine_tune_steps, cfg.fine_tune_lr, cfg.batch_size,
                           cfg.seed, cfg.anomaly, progress)
-        heldout = image_scores(final, x[held])
-        scheme = f"normalisation and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
+        heldout = _heldout_scores(final, [(final, x[held])])
+        scheme = f"{what} and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
         steps = cfg.fine_tune_steps
     choice = false_reject_threshold(heldout, cfg.false_reject)
     fr = float((heldout >= choice.threshold).mean())
     log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
              choice.threshold, 100 * fr)
-    return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps)
+    per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
+    return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position)

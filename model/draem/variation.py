@@ -98,19 +98,25 @@ class VariationModel(nn.Module):
     # --- fitting ---
 
     @torch.no_grad()
-    def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0) -> None:
+    def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
+            keep_reference: bool = False) -> None:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
-        of the first 64 parts registered to it; the region is where at least half of the registered masks lie."""
+        of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
+        ``keep_reference``: register to the reference and keep the region already fitted, re-estimating only the
+        per-pixel statistics (``station adapt`` on a line's good parts, which have no object masks)."""
         xs = x.float().cpu().numpy()
         n = len(xs)
         if n < 8:
             raise ModelError(f"the variation model needs at least 8 good parts to fit, got {n}")
-        masks = (np.ones((n, *xs.shape[2:]), bool) if object_mask is None
-                 else object_mask.bool().cpu().numpy())
+        if keep_reference:
+            masks = np.repeat(self.region.numpy()[None], n, 0)
+        else:
+            masks = (np.ones((n, *xs.shape[2:]), bool) if object_mask is None
+                     else object_mask.bool().cpu().numpy())
         feats = [self.features(xi, mi) for xi, mi in zip(xs, masks, strict=True)]
-        ref = feats[0][self.intensity]
-        for _ in range(2):
+        ref = self.reference.numpy() if keep_reference else feats[0][self.intensity]
+        for _ in range(0 if keep_reference else 2):
             ref = np.median(np.stack([self.warp_to(ref, f)[self.intensity] for f in feats[:64]]), 0)
         # each part's mask travels with its features (last channel), so the region is where the registered parts are
         stack = np.stack([self.warp_to(ref, np.concatenate([f, m[None].astype(np.float32)]))
@@ -118,6 +124,8 @@ class VariationModel(nn.Module):
         region = stack[:, -1].mean(0) >= 0.5
         if not region.any():
             region = np.ones_like(region)
+        if keep_reference:
+            region = self.region.numpy()
         stack = stack[:, :-1]
         median = np.median(stack, 0)
         scale = 1.4826 * np.median(np.abs(stack - median), 0)
@@ -167,6 +175,11 @@ class VariationModel(nn.Module):
         return m, m.flatten(1).amax(1)
 
 
+def network_score(member_scores: dict[str, torch.Tensor]) -> torch.Tensor:
+    """The networks' image score (mean over network members) from a detector output's ``member_scores``."""
+    return torch.stack([v for k, v in member_scores.items() if k != "variation"]).mean(0)
+
+
 SQUASH_CENTRE = 3.0
 """Combined score = sigmoid(z - SQUASH_CENTRE): a part 3 robust standard deviations above the good parts in either
 detector scores 0.5; kept in [0, 1] like every image score of the project (thresholds are checked in [0, 1])."""
@@ -182,10 +195,13 @@ def combine(network_map: torch.Tensor, network_score: torch.Tensor, variation_ma
     deviations above its good validation parts (``calibration`` = network location, spread, variation location,
     spread), the larger taken (either detector's finding rejects the part), then ``squash``. Pixel maps use the
     image calibration. Returns ((N, H, W) map, (N,) score), both in [0, 1]."""
+    return (combined_score(network_map, variation_map, calibration),
+            combined_score(network_score, variation_score, calibration))
+
+
+def combined_score(network: torch.Tensor, variation: torch.Tensor, calibration: torch.Tensor) -> torch.Tensor:
+    """``combine``'s rule on scores (or maps) of any shape: squash(max((n - dl) / ds, (v - vl) / vs))."""
     dl, ds, vl, vs = (float(c) for c in calibration)
-    zn_map, zv_map = (network_map - dl) / ds, (variation_map - vl) / vs
-    zn, zv = (network_score - dl) / ds, (variation_score - vl) / vs
-    out_map = squash(torch.maximum(zn_map, zv_map.to(zn_map.dtype)))
-    out = squash(torch.maximum(zn, zv.to(zn.dtype)))
-    return out_map.float(), out.float()
+    zn, zv = (network.float() - dl) / ds, (variation.float().to(network.device) - vl) / vs
+    return squash(torch.maximum(zn, zv)).float()
 

@@ -99,3 +99,22 @@ def test_fine_tune_keeps_parts_out_for_the_threshold(line) -> None:
     assert changed
     with pytest.raises(ModelError, match="false_reject"):
         AdaptConfig(false_reject=0.0)
+
+
+def test_adapt_refits_the_variation_models_statistics_and_calibration(line, tmp_path: Path, capsys) -> None:
+    """The variation model's per-pixel statistics depend on the line: adapt re-estimates them (reference and part
+    region kept) and sets the calibration from cross-fitted held-out scores. (Its log-intensity features do not
+    move with exposure, so unlike the networks alone it does not reject this brighter line before adapting.)"""
+    model, base, shifted = line
+    with_var = tmp_path / "var"
+    assert main(["variation", "--model", str(model), "--data", str(base), "--out", str(with_var)]) == 0
+    out = tmp_path / "adapted"
+    assert main(["adapt", "--model", str(with_var), "--good", str(shifted), "--out", str(out),
+                 "--false-reject", "0.05"]) == 0
+    assert _false_rejects(out, shifted) <= 0.2
+    old, new = load_checkpoint(with_var).detector.variation, load_checkpoint(out).detector.variation
+    assert old is not None and new is not None
+    assert torch.equal(old.reference, new.reference) and torch.equal(old.region, new.region)
+    assert not torch.equal(old.median, new.median) and not torch.equal(old.calibration, new.calibration)
+    rec = json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]
+    assert "variation" in rec["per_position"] and "variation statistics" in rec["scheme"]
