@@ -8,9 +8,11 @@
 #   2. render a held-out set with its own seed (every sample test, with the detectability oracle)
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
-#   5. held-out types: the base fine-tuned the same way without one defect type, per type (HOLDOUT_TYPES)
-#   6. thresholds on validation, evaluation on the held-out set, copy to model/weights/default (fp32 only: the
-#      int8 networks of this model scored a hostile frame across the threshold, see model/weights/README.md)
+#   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
+#   6. variation: the registered variation model added (fitted on good train parts, thresholded on validation)
+#   7. held-out types: band + variation without one defect type, per type (HOLDOUT_TYPES), from the base
+#   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
+#      int8 networks of an earlier model scored a hostile frame across the threshold, see model/weights/README.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
@@ -22,6 +24,8 @@ HELDOUT_COUNT=${HELDOUT_COUNT:-500}
 BASE_STEPS=${BASE_STEPS:-1000}
 BASE_STOP=${BASE_STOP:-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
 MIXED_STEPS=${MIXED_STEPS:-400}
+BAND_STEPS=${BAND_STEPS:-1200}
+BAND=(--roi band --size 96)
 HOLDOUT_STEPS=${HOLDOUT_STEPS:-150}
 HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
 JOBS=${JOBS:-2}
@@ -46,20 +50,30 @@ render "$HELDOUT" --count "$HELDOUT_COUNT" --seed 202 --defects 0.6 --heldout --
     --eval-every 100 --out "$RUNS/base"
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
     --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
+"$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
+    --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
+variation() {  # variation IN OUT: add the variation model unless OUT exists (resumable)
+    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --out "$2"
+}
+variation "$RUNS/band/best" "$RUNS/band-variation"
 for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
-    "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$HOLDOUT_STEPS" --eval-every "$HOLDOUT_STEPS" \
-        --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" --out "$RUNS/holdout-$t"
+    "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
+        --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
+        --out "$RUNS/holdout-$t"
+    variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation"
 done
 
 "$BIN/station" threshold --model "$RUNS/base/last" --data "$DATA"
-for m in base/last mixed/best $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/best"; done); do
-    "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$DATA" --out "$RUNS/eval-${m%%/*}"
+for m in base/last mixed/best band/best band-variation $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/variation"; done)
+do
+    name=${m%/last}; name=${name%/best}; name=${name//\//-}
+    "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$DATA" --out "$RUNS/eval-$name"
 done
 "$BIN/station" compare "$RUNS"/eval-* --out "$RUNS/compare"
 
 if [ "$SHIP" = 1 ]; then
     "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
-        "$RUNS/mixed/best" model/weights/default
+        "$RUNS/band-variation" model/weights/default
     "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$DATA" \
         --out model/weights/default-eval
     cp "$RUNS"/compare/compare.* model/weights/default-eval/

@@ -83,7 +83,7 @@ class ImportReport:
         masks = ("no defect masks: image-level metrics only" if self.n_defective and not self.n_defect_masks else
                  f"defect masks for {self.n_defect_masks} of {self.n_defective} defective parts")
         obj = (f"object masks for {self.n_object_masks} samples" if self.n_object_masks
-               else "no object masks: the station's region of interest (centre square) is used")
+               else "no object masks: the model's region of interest is used")
         val = f"; val: {self.val_from_train} good parts held out of train/good" if self.val_from_train else ""
         return (f"imported {sum(sum(c.values()) for c in self.counts.values())} mosaics {self.width}x{self.height}, "
                 f"{self.bit_depth}-bit, layout {self.layout} into {self.out} ({'; '.join(parts)}{val}); {masks}; "

@@ -126,6 +126,26 @@ FALSE_REJECTS = (0.01, 0.05)
 """The industrial pair's fixed shares of good parts rejected."""
 
 
+def detector_rows(ev, label, types: list[str]) -> list[dict]:
+    """Image AUROC of a model with the variation member, all defects and per type: the networks alone, the
+    variation model alone, and their combination (the model's score). ``label``: (N,) numpy 0/1."""
+    import numpy as np
+    import torch
+
+    from model.draem import metrics as M
+    from model.draem.variation import network_score
+
+    scores = {"networks": network_score({k: torch.from_numpy(v) for k, v in ev.member_scores.items()}).numpy(),
+              "variation": ev.member_scores["variation"], "combined": ev.scores}
+    t = np.asarray(types)
+    rows = []
+    for name in ["all", *sorted(set(types) - {""})]:
+        keep = np.ones(len(t), bool) if name == "all" else (label == 0) | (t == name)
+        rows.append({"type": name, "parts": int(label[keep].sum()),
+                     **{k: M.auroc(label[keep], v[keep]) for k, v in scores.items()}})
+    return rows
+
+
 def industrial_rows(report, train_meta: dict) -> list[dict]:
     """``model.draem.metrics.detection_by_type``'s report as table rows: per defect type (and all), parts, image
     AUROC and the share caught at each of ``FALSE_REJECTS``, and whether the type was among the model's rendered
@@ -286,8 +306,9 @@ def run(args: argparse.Namespace) -> int:
     files = [] if args.no_plots else _plots(out, roc, data, ev.maps, ev.scores, thr)
     ablation = ablation_rows(ev, data) if args.ablation else []
     channels = channel_rows(ck.detector, sp.priors[good], sp.object_mask[good]) if bool(good.any()) else []
-    early = early_exit_rows(ev, sp.label.numpy(), thr, tuple(cfg.networks())) if ev.member_scores and thr is not None \
-        else []
+    early = (early_exit_rows(ev, sp.label.numpy(), thr, tuple(cfg.networks()))
+             if len(cfg.networks()) > 1 and not cfg.variation and thr is not None else [])
+    detectors = detector_rows(ev, sp.label.numpy(), sp.defect_type) if cfg.variation else []
     if ablation and not args.no_plots:
         files.append(_ablation_plot(out, ablation))
     by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(args.data, sp.index),
@@ -316,7 +337,8 @@ def run(args: argparse.Namespace) -> int:
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": normal_prior_record(ck), "rows": rows,
-               "ablation": ablation, "early_exit": early, "channels": channels, "by_detectability": by_snr,
+               "ablation": ablation, "early_exit": early, "detectors": detectors, "channels": channels,
+               "by_detectability": by_snr,
                "industrial": industrial, "industrial_note": industrial_note,
                "industrial_val_data": str(args.val_data or args.data), "plots": files}
     cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",
@@ -334,6 +356,10 @@ def run(args: argparse.Namespace) -> int:
         table += ("\n\nDetection by detectability (the oracle's best-prior SNR, station/detectability.py; caught: "
                   "score > threshold, the station's rule; image AUROC: these defects against all good parts):\n\n"
                   + markdown_table(by_snr, DETECTABILITY_COLUMNS))
+    if detectors:
+        table += ("\n\nImage AUROC by detector (networks: their mean score; variation: the registered variation "
+                  "model, which never saw a defect of any type; combined: the model's decision score):\n\n"
+                  + markdown_table(detectors, ["type", "parts", "networks", "variation", "combined"]))
     if ablation:
         table += "\n\nAblation (ensemble members averaged, rendered defects):\n\n" + markdown_table(
             ablation, ["priors", "members", "image_auroc", "pixel_auroc", "pixel_ap"])

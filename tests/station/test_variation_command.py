@@ -29,8 +29,10 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     assert rec["fit_parts"] > 8 and rec["calibration_parts"] >= 2 and rec["from"].endswith("last")
     assert main(["eval", "--model", str(out), "--data", str(data), "--no-plots", "--no-synthetic",
                  "--out", str(tmp_path / "ev")]) == 0
-    rows = json.loads((tmp_path / "ev" / "eval.json").read_text())["rows"]
-    assert rows and all(0.0 <= r["image_auroc"] <= 1.0 for r in rows if r.get("image_auroc") == r.get("image_auroc"))
+    report = json.loads((tmp_path / "ev" / "eval.json").read_text())
+    assert [r["type"] for r in report["detectors"]] == ["all", "stain"] and not report["early_exit"]
+    assert all(0.0 <= r[k] <= 1.0 for r in report["detectors"] for k in ("networks", "variation", "combined"))
+    assert "Image AUROC by detector" in capsys.readouterr().out
     # twice: a detector that already has one is refused in one line
     assert main(["variation", "--model", str(out), "--data", str(data), "--out", str(tmp_path / "w")]) == 2
     assert "already has a variation model" in capsys.readouterr().err
