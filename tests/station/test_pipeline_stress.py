@@ -20,9 +20,10 @@ from station.inspector import Inspector
 from station.model_detector import DraemDetector
 
 H, W = 48, 64
+SHIPPED = Path(__file__).parents[2] / "model" / "weights" / "default"
 BF16_SCORE_BOUND = 0.02
-"""Largest |score(bf16) - score(fp32)| accepted for the shipped model on the hostile frames below (measured 0.0009
-with scores spread over 0.10..0.38)."""
+"""Largest |score(bf16) - score(fp32)| accepted for the shipped networks on the hostile frames below (measured 0.0033
+with scores spread over 0.42..0.52, 2026-11-24; the previous model's 0.0009 over 0.10..0.38)."""
 
 
 @pytest.fixture(scope="module")
@@ -78,11 +79,24 @@ def test_hostile_frames_give_finite_scores_in_range(inspectors: dict[str, Inspec
     assert 0.0 <= result.priors["dolp"].min() and result.priors["dolp"].max() <= 1.0
 
 
-def test_bf16_decides_like_fp32_within_the_bound() -> None:
-    """On the shipped (trained) model: a random-weight model's scores do not depend on the input at all."""
-    shipped = Path(__file__).parents[2] / "model" / "weights" / "default"
-    fp32 = Inspector(DraemDetector(shipped, "cpu", "fp32"), IMX250MZR)
-    bf16 = Inspector(DraemDetector(shipped, "cpu", "bf16"), IMX250MZR)
+def shipped_networks(tmp: Path) -> Path:
+    """The shipped model's networks without its variation member (which is numpy fp32 whatever the precision and
+    puts every hostile frame near 1), saved as a checkpoint: what bf16 changes."""
+    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+    from model.draem.detector import Detector
+
+    ck = load_checkpoint(SHIPPED)
+    nets = Detector(ck.detector.config.with_(variation=False), ck.detector.normalizer)
+    nets.load_state_dict({k: v for k, v in ck.detector.state_dict().items() if not k.startswith("variation.")})
+    save_checkpoint(tmp / "networks", nets, threshold=0.5, threshold_rule="test")
+    return tmp / "networks"
+
+
+def test_bf16_decides_like_fp32_within_the_bound(tmp_path: Path) -> None:
+    """On the shipped (trained) networks: a random-weight model's scores do not depend on the input at all."""
+    nets = shipped_networks(tmp_path)
+    fp32 = Inspector(DraemDetector(nets, "cpu", "fp32"), IMX250MZR)
+    bf16 = Inspector(DraemDetector(nets, "cpu", "bf16"), IMX250MZR)
     scores, diffs = [], []
     for seed, kind in enumerate(KINDS):
         frame = Frame(hostile_frame(kind, 12, seed), "Mono16", 12, seed + 1, 0, time.time_ns())
@@ -90,9 +104,21 @@ def test_bf16_decides_like_fp32_within_the_bound() -> None:
         assert a.error is None and b.error is None
         scores.append(a.score)
         diffs.append(abs(a.score - b.score))
-    assert max(scores) - min(scores) > 10 * BF16_SCORE_BOUND  # the frames really do score differently
+    assert max(scores) - min(scores) > 4 * BF16_SCORE_BOUND  # the frames really do score differently
     print(f"scores {min(scores):.3f}..{max(scores):.3f}; bf16 vs fp32 max |difference| {max(diffs):.4f}")
     assert max(diffs) <= BF16_SCORE_BOUND, diffs
+
+
+def test_the_shipped_model_rejects_every_hostile_frame() -> None:
+    """Frames unlike any part (dark, saturated, noise, one polarizer lit, half clipped) are far from the good parts
+    the variation member knows: all above the threshold, in fp32 and bf16 (fail closed)."""
+    for precision in ("fp32", "bf16"):
+        det = DraemDetector(SHIPPED, "cpu", precision)
+        inspector = Inspector(det, IMX250MZR)
+        for seed, kind in enumerate(KINDS):
+            result = inspector.inspect(Frame(hostile_frame(kind, 12, seed), "Mono16", 12, seed + 1, 0,
+                                             time.time_ns()))
+            assert result.error is None and result.score > det.threshold, (precision, kind, result.score)
 
 
 def test_onnx_runtime_scores_like_torch_on_the_shipped_model() -> None:
