@@ -28,6 +28,8 @@ buffers, so the checkpoint carries them); never NaN or Inf.
 
 from __future__ import annotations
 
+import math
+
 import cv2
 import numpy as np
 import torch
@@ -181,12 +183,15 @@ def network_score(member_scores: dict[str, torch.Tensor]) -> torch.Tensor:
 
 
 SQUASH_CENTRE = 3.0
-"""Combined score = sigmoid(z - SQUASH_CENTRE): a part 3 robust standard deviations above the good parts in either
-detector scores 0.5; kept in [0, 1] like every image score of the project (thresholds are checked in [0, 1])."""
+"""Combined score = 1/2 + atan(z - SQUASH_CENTRE) / pi: a part 3 robust standard deviations above the good parts in
+either detector scores 0.5; kept in [0, 1] like every image score of the project (thresholds are checked in
+[0, 1]). Not a sigmoid: that reaches 1.0 in float32 at z of about 20, which defects pass easily, and a threshold of
+1.0 can never be exceeded (an adapted threshold of exactly 1 would pass every part). 1 - score falls as
+1 / (pi z), distinct in float32 up to z of about 1e6."""
 
 
 def squash(z: torch.Tensor) -> torch.Tensor:
-    return torch.sigmoid(z - SQUASH_CENTRE)
+    return 0.5 + torch.atan(z - SQUASH_CENTRE) / math.pi
 
 
 def combine(network_map: torch.Tensor, network_score: torch.Tensor, variation_map: torch.Tensor,

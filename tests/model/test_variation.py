@@ -14,7 +14,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
-from model.draem.variation import SQUASH_CENTRE, VariationModel
+from model.draem.variation import SQUASH_CENTRE, VariationModel, squash
 from model.draem.with_variation import add_variation
 
 H, W = 32, 64
@@ -87,11 +87,18 @@ def test_combined_scores_are_in_0_1_rank_defects_above_good_parts_and_survive_a_
     assert set(good.member_scores) == {"fused", "variation"} and good.anomaly_map.shape == (10, H, W)
     for out in (good, bad):
         assert bool(((out.score >= 0) & (out.score <= 1)).all()) and bool(torch.isfinite(out.anomaly_map).all())
-    # a good part at the calibration's median in both detectors scores sigmoid(-3)
     assert float(good.score.median()) < 0.5 < float(bad.score.min())
-    assert 1 / (1 + math.exp(SQUASH_CENTRE)) < 0.05
+    assert 0.5 + math.atan(-SQUASH_CENTRE) / math.pi < 0.11  # a good part at the calibration's median
     loaded = load_checkpoint(path).detector
     assert loaded.config.variation and torch.equal(loaded.predict(parts(10, 4)).score, good.score)
+
+
+def test_the_combined_score_never_saturates_at_1() -> None:
+    """Defects sit tens or hundreds of standard deviations out: they must stay ordered and below 1, or a threshold
+    could reach 1.0, which no score exceeds (every part would pass)."""
+    z = torch.tensor([10.0, 30.0, 100.0, 1e3, 1e5])
+    s = squash(z + SQUASH_CENTRE)
+    assert bool((s < 1.0).all()) and bool((s.diff() > 0).all())
 
 
 def test_hostile_inputs_give_finite_scores_that_reject(tmp_path: Path) -> None:
