@@ -29,6 +29,6 @@ $(STAMP): pyproject.toml scripts/system-deps.sh
 clean:
 	rm -rf $(VENV)
 
-# The shipped model from nothing (render, train, held-out evaluation, int8, copy to model/weights/default); hours.
+# The shipped model from nothing (render, train, variation model, held-out evaluation, copy to model/weights/default); hours.
 model: setup
 	scripts/make-model.sh
