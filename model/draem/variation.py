@@ -5,7 +5,7 @@ small warp (the fixture's play, the camera's mounting) and the line's lighting. 
 "variation model" uses that: register each part to a reference, compare every pixel with the per-pixel statistics
 of registered good parts, and flag what lies outside them. It is an anomaly detector by construction (it never saw
 a defect, so no defect type is "held out" from it), it reads the same physical priors as the networks, and it
-fits in seconds on the good training parts.
+fits in about a minute on a few hundred good training parts.
 
 Convention (all at the network's input: ``ModelConfig.input_shape``, channels as ``config.channel_slices``):
     features  intensity as log(max(I, 1e-3)) minus its median over the part region (exposure and gain are a
@@ -18,8 +18,7 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high
     z map     per pixel and channel |feature - median| / scale (scale = 1.4826 MAD of the good parts, floored at
               the ``floor_quantile`` of the scales over the region and at ``MIN_SCALE``, so flat regions do not
-              divide by ~0), max over
-              channels, box-averaged over ``box_px``, zero outside the eroded part region
+              divide by ~0), max over channels, box-averaged over ``box_px``, zero outside the eroded part region
     score     max of the z map: a number of robust standard deviations
 
 ``Detector.predict`` combines it with the networks (``combine``). numpy + OpenCV at run time (torch only for the
