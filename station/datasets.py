@@ -62,10 +62,9 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
                limit: int | None = None, good_only: bool = False, progress: bool = True, roi: str = "center",
                normals: NormalEstimator | None = None) -> SplitTensors:
     """Read one split of a set into tensors at the network input size (``size_px``: (height, width) or a square's
-    side), cropped to ``roi`` (see
-    ``model.draem.config.ModelConfig.roi``). Object and defect masks come along (for anomaly synthesis and the
-    pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field of view must be the
-    set's), or from the rendered ground truth when it is None."""
+    side), cropped to ``roi`` (see ``model.draem.config.ModelConfig.roi``). Object and defect masks come along (for
+    anomaly synthesis and the pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field
+    of view must be the set's), or from the rendered ground truth when it is None."""
     import numpy as np
     import torch
     from tqdm import tqdm

@@ -20,9 +20,10 @@ def normal_prior_record(ck) -> dict | None:
     return ck.meta.get("train", {}).get("normal_prior") if "normal" in ck.detector.config.priors else None
 
 
-def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None):
-    """``data``'s split as checkpoint ``ck`` (loaded from ``model``) sees it at the station: its roi, its input
-    size, its learned normal prior. Returns ``station.datasets.SplitTensors``."""
+def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None, good_only: bool = False):
+    """``data``'s split (only its good parts with ``good_only``) as checkpoint ``ck`` (loaded from ``model``) sees
+    it at the station: its roi, its input size, its learned normal prior. Returns
+    ``station.datasets.SplitTensors``."""
     from station.datasets import load_split
 
     cfg = ck.detector.config
@@ -36,7 +37,8 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
         from model.normals.estimator import load_for_checkpoint
 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
-    return load_split(data, split, cfg.priors, cfg.input_shape, limit, roi=cfg.roi, normals=normals)
+    return load_split(data, split, cfg.priors, cfg.input_shape, limit, good_only=good_only, roi=cfg.roi,
+                      normals=normals)
 
 
 def inference_net(ck, model: str, precision: str):
@@ -71,6 +73,12 @@ def evaluate_split(ck, net, model: str, data: str | Path, split: str, limit: int
     return sp, tensors, evaluate(net, tensors)
 
 
+def check_max_good_flagged(value: float) -> None:
+    """UserError unless ``--max-good-flagged`` is a fraction in [0, 1)."""
+    if not 0.0 <= value < 1.0:
+        raise UserError(f"--max-good-flagged {value}: a fraction in [0, 1)")
+
+
 def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: str = "val") -> str:
     """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
     does there (one line)."""
@@ -78,8 +86,7 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
     from model.draem.metrics import choose_threshold
     from station.datasets import manifest_sha256
 
-    if not 0.0 <= max_good_flagged < 1.0:
-        raise UserError(f"--max-good-flagged {max_good_flagged}: a fraction in [0, 1)")
+    check_max_good_flagged(max_good_flagged)
     trained_sha = read_sidecar(model).get("data_manifest_sha256")
     data_sha = manifest_sha256(data)
     same_set = trained_sha == data_sha
@@ -116,8 +123,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     from model.draem.with_variation import add_variation
     from station.datasets import manifest_sha256
 
-    if not 0.0 <= max_good_flagged < 1.0:
-        raise UserError(f"--max-good-flagged {max_good_flagged}: a fraction in [0, 1)")
+    check_max_good_flagged(max_good_flagged)
     ck = load_checkpoint(model)
     try:  # the model's own refusals first, before minutes of loading
         ck.detector.config.with_(variation=True)
@@ -125,14 +131,14 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
             raise ModelError("the detector already has a variation model")
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
-    tr = model_split(ck, model, data, "train")
+    tr = model_split(ck, model, data, "train", good_only=True)
     va = model_split(ck, model, data, "val")
-    good_tr, good_va = tr.label == 0, va.label == 0
-    if int(good_tr.sum()) < 8 or int(good_va.sum()) < 2:
+    good_va = va.label == 0
+    if len(tr.index) < 8 or int(good_va.sum()) < 2:
         raise UserError(f"{data}: the variation model needs >= 8 good train parts and >= 2 good val parts, got "
-                        f"{int(good_tr.sum())} and {int(good_va.sum())}")
+                        f"{len(tr.index)} and {int(good_va.sum())}")
     try:
-        det = add_variation(ck.detector, tr.priors[good_tr], tr.object_mask[good_tr] if tr.object_masks_known else None,
+        det = add_variation(ck.detector, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va])
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
@@ -140,11 +146,11 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     labels = va.label.numpy()
     choice = choose_threshold(labels, ev.scores, max_good_flagged)
     train = {**ck.meta.get("train", {}), "variation": {
-        "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": int(good_tr.sum()),
+        "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
         "calibration_parts": int(good_va.sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
-    return (f"{out}: variation model fitted on {int(good_tr.sum())} good parts; threshold {choice.threshold:.4g} "
+    return (f"{out}: variation model fitted on {len(tr.index)} good parts; threshold {choice.threshold:.4g} "
             f"({choice.rule}); on {len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts"
             f"{detected}; image AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")

@@ -39,7 +39,8 @@ from .errors import ModelError
 from .loss import draem_loss
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
-from .variation import combined_score, network_score
+from .variation import combined_score
+from .with_variation import member_scores
 
 log = logging.getLogger(__name__)
 
@@ -145,18 +146,6 @@ def image_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> n
     detector.eval()
     out = [detector.predict(x[i:i + batch_size]).score.float().cpu() for i in range(0, x.shape[0], batch_size)]
     return torch.cat(out).numpy()
-
-
-@torch.no_grad()
-def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tuple[torch.Tensor, torch.Tensor]:
-    """(N,) network and (N,) variation image scores of a detector with a variation model, before combining."""
-    detector.eval()
-    net, var = [], []
-    for i in range(0, x.shape[0], batch_size):
-        out = detector.predict(x[i:i + batch_size])
-        net.append(network_score(out.member_scores).float().cpu())
-        var.append(out.member_scores["variation"].float().cpu())
-    return torch.cat(net), torch.cat(var)
 
 
 def _refit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Detector:

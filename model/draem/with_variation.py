@@ -7,6 +7,7 @@ import torch
 
 from .detector import Detector
 from .errors import ModelError
+from .variation import network_score
 
 
 @torch.no_grad()
@@ -26,11 +27,18 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     out.eval()
     assert out.variation is not None
     out.variation.fit(good, good_object_mask)
-    net_scores, var_scores = [], []
-    for i in range(0, len(val_good), batch):
-        x = val_good[i:i + batch]
-        net_scores.append(detector.eval().predict(x).score.cpu())
-        var_scores.append(out.variation.zmaps(x)[1].cpu())
-    out.variation.calibrate(torch.cat(net_scores), torch.cat(var_scores))
+    out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()
     return out
+
+
+@torch.no_grad()
+def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tuple[torch.Tensor, torch.Tensor]:
+    """(N,) network and (N,) variation image scores of a detector with a variation model, before combining."""
+    detector.eval()
+    net, var = [], []
+    for i in range(0, x.shape[0], batch_size):
+        out = detector.predict(x[i:i + batch_size])
+        net.append(network_score(out.member_scores).float().cpu())
+        var.append(out.member_scores["variation"].float().cpu())
+    return torch.cat(net), torch.cat(var)
