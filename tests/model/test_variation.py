@@ -61,6 +61,34 @@ def test_registration_undoes_the_fixtures_play_and_a_local_change_stands_out() -
     assert bool(vm.region[H // 2, W // 2]) and not bool(vm.region[0, 0])  # the part, not the belt
 
 
+def lit(x: torch.Tensor, seed: int, faint_defect: bool = False) -> torch.Tensor:
+    """Parts under a light whose position varies from part to part: intensity times exp(a (x / W - 1/2)), a in
+    +-0.6 (a left-right gradient of up to 1.8x), optionally with a faint dent (-20 % intensity, 3 px)."""
+    rng = np.random.default_rng(seed)
+    yy, xx = np.mgrid[0:H, 0:W].astype(np.float32)
+    out = x.clone()
+    for i in range(len(out)):
+        gain = np.exp(rng.uniform(-0.6, 0.6) * (xx / W - 0.5))
+        if faint_defect:
+            gain = gain * (1 - 0.2 * np.exp(-((yy - H / 2) ** 2 + (xx - W / 2 - 8) ** 2) / 9.0))
+        out[i, 0] *= torch.from_numpy(gain.astype(np.float32))
+    return out
+
+
+def test_the_lines_shared_lighting_changes_are_explained_not_flagged(monkeypatch) -> None:
+    """A light that moves from part to part widens every pixel's spread over the good parts, and a faint dent
+    hides in it; the appearance components take the shared change out, and the dent stands clear of good parts."""
+    good, test_good, test_bad = lit(parts(60, 0), 1), lit(parts(20, 1), 2), lit(parts(20, 2), 3, faint_defect=True)
+
+    def margin(components: int) -> float:
+        monkeypatch.setattr("model.draem.variation.COMPONENTS", components)
+        vm = VariationModel(4, (H, W), intensity=0)
+        vm.fit(good, good[:, 0] > 0.15)
+        return float(vm.zmaps(test_bad)[1].min() / vm.zmaps(test_good)[1].max())
+
+    assert margin(0) < 1.0 < margin(10)  # per-pixel spread alone: some good part outscores a dent
+
+
 def test_too_few_parts_and_bad_buffers_are_errors() -> None:
     with pytest.raises(ModelError, match="at least 8"):
         VariationModel(4, (H, W), 0).fit(parts(3, 0))
