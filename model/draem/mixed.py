@@ -25,6 +25,7 @@ import torch
 
 from .anomaly import AnomalyConfig, synthesize
 from .errors import ModelError
+from .polarization_noise import add_polarization_noise
 
 
 class GoodData(Protocol):
@@ -107,15 +108,19 @@ def n_rendered(rendered_fraction: float, batch_size: int) -> int:
 def draw_batch(data: GoodData, priors: tuple[str, ...], batch_size: int, index_gen: torch.Generator,
                synth_gen: torch.Generator, anomaly: AnomalyConfig, device: torch.device,
                defects: DefectData | None = None, rendered: int = 0,
-               defect_gen: torch.Generator | None = None) -> TrainBatch:
+               defect_gen: torch.Generator | None = None, polarization_noise: float = 0.0) -> TrainBatch:
     """Draw one batch: ``batch_size - rendered`` good samples (indices from ``index_gen``) with DRAEM's synthesis
     (``synth_gen``, on ``device``), then ``rendered`` samples of ``defects`` (indices from ``defect_gen``, CPU).
-    ``rendered = 0`` makes exactly the calls and values of the loop before mixed supervision."""
+    ``rendered = 0`` makes exactly the calls and values of the loop before mixed supervision.
+    ``polarization_noise`` > 0: every input (good and rendered) gets Stokes noise up to that level
+    (``polarization_noise.py``, drawn from ``synth_gen``); the reconstruction targets stay the clean parts, so
+    the networks learn that the noise level is not a defect."""
     n_syn = batch_size - rendered
     idx = torch.randint(len(data), (n_syn,), generator=index_gen)
     x, obj = data.get(idx)
     x, obj = x.to(device, non_blocking=True), obj.to(device, non_blocking=True)
-    syn = synthesize(x, priors, synth_gen, anomaly, obj)
+    x_in = add_polarization_noise(x, priors, polarization_noise, synth_gen)
+    syn = synthesize(x_in, priors, synth_gen, anomaly, obj)
     if rendered == 0:
         return TrainBatch(syn.augmented, x, syn.mask, None, 0)
     if defects is None or defect_gen is None or len(defects) == 0:
@@ -126,9 +131,10 @@ def draw_batch(data: GoodData, priors: tuple[str, ...], batch_size: int, index_g
         raise ModelError(f"rendered defects {tuple(xr.shape)} / masks {tuple(mr.shape)} do not match the good "
                          f"samples {tuple(x.shape)}")
     xr, mr = xr.to(device, x.dtype), mr.to(device).bool()
+    xr_in = add_polarization_noise(xr, priors, polarization_noise, synth_gen)
     mask = torch.cat([syn.mask, mr.to(syn.mask.dtype)])
     if cr is not None:
-        return TrainBatch(torch.cat([syn.augmented, xr]), torch.cat([x, cr.to(device, x.dtype)]), mask, None,
+        return TrainBatch(torch.cat([syn.augmented, xr_in]), torch.cat([x, cr.to(device, x.dtype)]), mask, None,
                           rendered)
     weight = torch.cat([torch.ones_like(syn.mask), (~mr).to(syn.mask.dtype)])
-    return TrainBatch(torch.cat([syn.augmented, xr]), torch.cat([x, xr]), mask, weight, rendered)
+    return TrainBatch(torch.cat([syn.augmented, xr_in]), torch.cat([x, xr]), mask, weight, rendered)

@@ -86,7 +86,9 @@ class TrainConfig:
     one, or none, resumes the same schedule (a long run split over sessions, or a base to fine-tune from).
     ``rendered_fraction``: share of each batch replaced by rendered defective samples (``train(defects=...)``,
     ``mixed.py``), rounded half up to a whole number of samples (``n_rendered``) that must leave at least one
-    synthetic sample; 0 = DRAEM's synthetic anomalies only, exactly as before."""
+    synthetic sample; 0 = DRAEM's synthetic anomalies only, exactly as before. ``polarization_noise``: largest
+    Stokes noise (in units of S0) added to the inputs, a random level per sample (``polarization_noise.py``; 0 =
+    none, exactly as before)."""
 
     steps: int = 2000
     batch_size: int = 8
@@ -103,6 +105,7 @@ class TrainConfig:
     stop_at_step: int | None = None
     anomaly: AnomalyConfig = field(default_factory=AnomalyConfig)
     rendered_fraction: float = 0.0
+    polarization_noise: float = 0.0
 
     def __post_init__(self) -> None:
         if self.steps < 1 or self.batch_size < 1 or self.eval_every < 1:
@@ -111,6 +114,8 @@ class TrainConfig:
             raise ModelError(f"stop_at_step must be in [1, steps = {self.steps}], got {self.stop_at_step}")
         if self.precision not in runtime.TRAIN_PRECISIONS:
             raise ModelError(f"precision must be auto, fp32 or bf16, got {self.precision!r}")
+        if not 0.0 <= self.polarization_noise <= 1.0:
+            raise ModelError(f"polarization_noise must be in [0, 1] (units of S0), got {self.polarization_noise}")
         n_rendered(self.rendered_fraction, self.batch_size)  # raises on a fraction the batch cannot hold
 
     @property
@@ -465,7 +470,7 @@ def _run_steps(learner: _Learner, saver: _Checkpointer, data: TrainData, priors:
     end = tc.stop_at_step or tc.steps
     while step < end:
         batch = draw_batch(data, priors, tc.batch_size, streams.index, streams.synth, tc.anomaly, learner.device,
-                           defects, tc.n_rendered, streams.defect)
+                           defects, tc.n_rendered, streams.defect, tc.polarization_noise)
         loss, terms = learner.step(batch)
         step += 1
         stop = time.perf_counter() > deadline

@@ -65,6 +65,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="share of each batch taken from the training split's rendered defective parts with their "
                         "true masks (mixed supervision; the rest keeps DRAEM's synthetic anomalies); 0 = the paper's "
                         "recipe; needs a set rendered with defects in its train split (default 0)")
+    p.add_argument("--polarization-noise", type=float, default=0.0, metavar="SIGMA",
+                   help="add Stokes noise up to SIGMA (units of S0; a random level per sample) to the training "
+                        "inputs, so that a line's noise level (exposure, gain; a renderer's samples per pixel), "
+                        "which raises DoLP, is not taken for a defect; 0 = none (default 0)")
     p.add_argument("--holdout-type", default=None, metavar="TYPE",
                    help="leave this defect type out of the rendered training defects, to evaluate the model on a "
                         "kind of defect it never saw (station eval marks it); default: none left out")
@@ -180,10 +184,12 @@ def run(args: argparse.Namespace) -> int:
         tc = TrainConfig(steps=args.steps, batch_size=args.batch_size, seed=args.seed, eval_every=args.eval_every,
                          device=args.device, precision=args.precision, max_minutes=args.max_minutes,
                          stop_at_step=args.stop_at_step,
-                         rendered_fraction=args.rendered_fraction)
+                         rendered_fraction=args.rendered_fraction, polarization_noise=args.polarization_noise)
     except ModelError as exc:
         if "stop_at_step" in str(exc):
             raise UserError(f"--stop-at-step {args.stop_at_step}: {exc}") from None
+        if "polarization_noise" in str(exc):
+            raise UserError(f"--polarization-noise {args.polarization_noise}: {exc}") from None
         raise UserError(f"--rendered-fraction {args.rendered_fraction} with --batch-size {args.batch_size}: "
                         f"{exc}") from None
     sha = manifest_sha256(args.data)
@@ -193,6 +199,8 @@ def run(args: argparse.Namespace) -> int:
     if defects is not None:
         meta["rendered_defects"] = {"fraction": args.rendered_fraction, "parts": len(defects),
                                     "holdout_type": args.holdout_type}
+    if args.polarization_noise:
+        meta["polarization_noise"] = args.polarization_noise
     if args.init:
         meta["init"] = init_record(args.init)
         check_init_holds_out(meta["init"], args.holdout_type)
