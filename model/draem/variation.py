@@ -185,10 +185,12 @@ class VariationModel(nn.Module):
 
     @staticmethod
     def _residual(u: np.ndarray, components: np.ndarray) -> np.ndarray:
-        """(N, C, H, W) centred, scaled features minus their projection on ``components`` (K, C, H, W)."""
-        p = components.reshape(len(components), u[0].size)
-        flat = u.reshape(len(u), -1)
-        return (flat - (flat @ p.T) @ p).reshape(u.shape)
+        """(N, C, H, W) centred, scaled features minus their projection on ``components`` (K, C, H, W). In torch,
+        on torch's threads: numpy's BLAS would start its own threads beside torch's, and on 2 cores the two pools
+        spinning against each other doubled the station's time per part (71 -> 143 ms p50, docs/platform-facts.md)."""
+        p = torch.from_numpy(np.ascontiguousarray(components, np.float32)).reshape(len(components), u[0].size)
+        flat = torch.from_numpy(np.ascontiguousarray(u, np.float32)).reshape(len(u), -1)
+        return (flat - (flat @ p.T) @ p).reshape(u.shape).numpy()
 
     def calibrate(self, network_scores: torch.Tensor, variation_scores: torch.Tensor) -> None:
         """Location (median) and spread (1.4826 MAD, floored) of both image scores on good validation parts."""
