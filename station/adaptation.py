@@ -22,7 +22,16 @@ class AdaptSummary:
         r = self.record
         return (f"{self.out}: adapted on {r['n_good']} good parts of {r['data']} ({r['scheme']}); threshold "
                 f"{r['threshold']:.4g}, {100 * r['heldout_false_reject']:.1f} % of held-out good parts rejected "
-                f"(target {100 * r['false_reject_target']:.1f} %); frames: {r['frame_statistics']}")
+                f"(target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: {r['frame_statistics']}")
+
+    def _networks(self) -> str:
+        shift = self.record.get("networks_shift_sd")
+        if shift is None:
+            return ""
+        if self.record.get("decision") == "variation":
+            return (f"; the networks are out of their domain here (good parts {shift:.1f} robust SD above their "
+                    f"validation parts): it decides on the variation model alone (--keep-networks keeps them)")
+        return f"; networks' good parts {shift:.1f} robust SD from their validation parts (kept)"
 
 
 def frames_sha256(root: str | Path, indices: list[int]) -> str:
@@ -36,7 +45,8 @@ def frames_sha256(root: str | Path, indices: list[int]) -> str:
 
 
 def adapt_model(model: str, good: str, out: str, split: str = "train", limit: int | None = None,
-                false_reject: float = 0.01, fine_tune_steps: int = 0, seed: int = 0) -> AdaptSummary:
+                false_reject: float = 0.01, fine_tune_steps: int = 0, seed: int = 0,
+                keep_networks: bool = False) -> AdaptSummary:
     """Adapt checkpoint ``model`` to the good parts of ``good``'s ``split`` (at most ``limit``), write ``out``."""
     from model.draem.adapt import AdaptConfig, adapt
     from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
@@ -46,7 +56,8 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
 
     if paths(out)[1].resolve() == paths(model)[1].resolve():
         raise UserError(f"--out {out}: the same checkpoint as --model; write the adapted model beside it")
-    cfg = AdaptConfig(false_reject=false_reject, fine_tune_steps=fine_tune_steps, seed=seed)
+    cfg = AdaptConfig(false_reject=false_reject, fine_tune_steps=fine_tune_steps, seed=seed,
+                      keep_networks=keep_networks)
     ck = load_checkpoint(model)
     sp = model_split(ck, model, good, split, limit)
     keep = (sp.label == 0).nonzero().flatten()

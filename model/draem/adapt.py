@@ -7,6 +7,10 @@ What depends on the line, in this model:
   - per-position statistics: the variation model's per-pixel median and scale (``model.draem.variation``), when
     the detector has one: re-estimated on the line's good parts, registered to the reference it was trained
     with (its part region kept); then both detectors' calibration, from the held-out scores;
+  - whether the networks still judge: their held-out good parts' median image score, in robust standard
+    deviations of their good validation parts (the trained calibration), after the refit; above
+    ``DOMAIN_SHIFT_SD`` they are out of their domain on this line and the adapted model decides on the variation
+    model alone (``ModelConfig.decision``; ``AdaptConfig.keep_networks`` keeps them);
   - optionally the weights: a brief fine-tune on the good parts with DRAEM's synthetic anomalies
     (``AdaptConfig.fine_tune_steps``; off by default).
 
@@ -47,16 +51,25 @@ log = logging.getLogger(__name__)
 MIN_GOOD = 10
 """Fewer good parts than this cannot set a threshold worth the name."""
 PER_POSITION = "none (the detector keeps no per-position statistics of the part)"
-PER_POSITION_REFIT = "the variation model's per-pixel statistics and the calibration, re-estimated on the good parts"
+PER_POSITION_REFIT = "the variation model's appearance and the calibration, re-estimated on the good parts"
+DOMAIN_SHIFT_SD = 3.0
+"""Networks whose good parts score further than this above their good validation parts (robust SD), after the
+refit, are out of their domain on the line. Measured (docs/results/2026-11-24-low-rank-variation.md): on their own
+line rendered at 8 instead of 16 spp the shipped networks' good parts sat 6.4 SD above, on a shifted line 8.1, on
+held-out 16-spp renders of their line -0.5; the refitted variation model -0.4 and -0.5. Their findings on such a
+line are mostly the shift: adapted, the shifted line scored image AUROC 0.54 by the networks, 0.76 by the variation
+model, 0.71 by the two combined."""
 
 
 @dataclass(frozen=True)
 class AdaptConfig:
     """false_reject: share of good parts the threshold may reject; folds: cross-fitting folds (normalisation
     only); fine_tune_steps: 0 = no fine-tune; holdout_fraction: good parts kept out of a fine-tune for the
-    threshold; refit_normalizer: False keeps the trained normaliser (threshold only)."""
+    threshold; refit_normalizer: False keeps the trained normaliser (threshold only); keep_networks: keep the
+    networks in the decision even when they are out of their domain (module docstring)."""
 
     false_reject: float = 0.01
+    keep_networks: bool = False
     folds: int = 5
     fine_tune_steps: int = 0
     fine_tune_lr: float = 2e-5
@@ -101,6 +114,8 @@ class AdaptResult:
     scheme: str
     fine_tune_steps: int = 0
     per_position: str = PER_POSITION
+    networks_shift_sd: float | None = None
+    decision: str = "combined"
 
     def record(self) -> dict[str, Any]:
         """JSON-able summary for the model's sidecar."""
@@ -112,7 +127,8 @@ class AdaptResult:
                                    "max": float(s.max())},
                 "normalization_before": asdict(self.normalizer_before),
                 "normalization_after": asdict(self.normalizer_after),
-                "fine_tune_steps": self.fine_tune_steps, "per_position": self.per_position}
+                "fine_tune_steps": self.fine_tune_steps, "per_position": self.per_position,
+                "networks_shift_sd": self.networks_shift_sd, "decision": self.decision}
 
 
 def false_reject_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoice:
@@ -156,16 +172,24 @@ def _refit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Detector:
     return d
 
 
-def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> np.ndarray:
+def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]], keep_networks: bool
+                    ) -> tuple[np.ndarray, float | None]:
     """Held-out image scores: each (detector fitted without them, parts) scored. With a variation model, the
-    final detector's calibration is first set from all held-out member scores, and every part's combined score
-    uses it (a calibration from the fitted parts would be biased low)."""
+    networks' shift is measured against the trained calibration (``DOMAIN_SHIFT_SD``: beyond it, and unless
+    ``keep_networks``, ``final`` decides on the variation model alone), then the final detector's calibration is
+    set from all held-out member scores, and every part's combined score uses it (a calibration from the fitted
+    parts would be biased low). Returns (scores, the networks' shift in robust SD or None)."""
     if final.variation is None:
-        return np.concatenate([image_scores(d, xp) for d, xp in parts])
+        return np.concatenate([image_scores(d, xp) for d, xp in parts]), None
     pairs = [member_scores(d, xp) for d, xp in parts]
     net, var = torch.cat([p[0] for p in pairs]), torch.cat([p[1] for p in pairs])
+    location, spread = (float(c) for c in final.variation.calibration[:2])
+    shift = (float(net.double().median()) - location) / spread
+    if shift > DOMAIN_SHIFT_SD and not keep_networks:
+        final.config = final.config.with_(decision="variation")
     final.variation.calibrate(net, var)
-    return combined_score(net, var, final.variation.calibration).numpy()
+    networks = final.config.decision == "combined"
+    return combined_score(net, var, final.variation.calibration, networks).numpy(), shift
 
 
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,
@@ -222,7 +246,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                  for h in helds]
         final = _refit(detector, x, cfg)
         heldout = np.empty(n)
-        heldout[torch.cat(helds).numpy()] = _heldout_scores(final, parts)
+        heldout[torch.cat(helds).numpy()], shift = _heldout_scores(final, parts, cfg.keep_networks)
         scheme = f"cross-fitted {what}, {folds} folds"
         n_held, steps = n, 0
     else:
@@ -231,7 +255,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         tuned = _refit(detector, x[fit], cfg)
         final = fine_tune(tuned, x[fit], object_mask[fit], cfg.fine_tune_steps, cfg.fine_tune_lr, cfg.batch_size,
                           cfg.seed, cfg.anomaly, progress)
-        heldout = _heldout_scores(final, [(final, x[held])])
+        heldout, shift = _heldout_scores(final, [(final, x[held])], cfg.keep_networks)
         scheme = f"{what} and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
         steps = cfg.fine_tune_steps
     choice = false_reject_threshold(heldout, cfg.false_reject)
@@ -239,4 +263,9 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
     log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
              choice.threshold, 100 * fr)
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
-    return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position)
+    if final.config.decision == "variation":
+        log.warning("the networks' good parts score %.1f robust SD above their validation parts on this line (limit "
+                    "%.0f): out of their domain; the adapted model decides on the variation model alone", shift,
+                    DOMAIN_SHIFT_SD)
+    return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position,
+                              shift, final.config.decision)

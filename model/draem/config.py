@@ -85,6 +85,9 @@ PRESETS: dict[str, Preset] = {
 }
 
 
+DECISIONS = ("combined", "variation")
+
+
 @dataclass(frozen=True)
 class ModelConfig:
     """Everything that defines the detector's architecture: priors, fusion, widths, input size.
@@ -102,7 +105,10 @@ class ModelConfig:
     estimator reads the centre square). "object": a square around the rendered object mask, image score on the
     object only; needs ground truth at inference (research upper bound).
     ``variation``: the detector also carries the registered variation model (``model.draem.variation``), fitted on
-    good parts after training (``station variation``), and decides on the larger of the two detectors' findings."""
+    good parts after training (``station variation``), and decides on the larger of the two detectors' findings.
+    ``decision``: "combined" (that rule) or "variation" (the variation model's finding alone; the networks' maps
+    and scores are still computed and reported): ``station adapt`` sets it when the networks are out of their
+    domain on a line (``model.draem.adapt.DOMAIN_SHIFT_SD``)."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -113,6 +119,7 @@ class ModelConfig:
     score_window_px: int = 0
     roi: str = "center"
     variation: bool = False
+    decision: str = "combined"
     extra: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -126,6 +133,9 @@ class ModelConfig:
             raise ModelError(f"roi {self.roi!r} cannot take the normal prior: its estimator reads the centre square")
         if self.variation and "intensity" not in self.priors:
             raise ModelError("the variation model registers parts by their intensity: add the intensity prior")
+        if self.decision not in DECISIONS or (self.decision == "variation" and not self.variation):
+            raise ModelError(f"decision must be one of {', '.join(DECISIONS)} ('variation' needs the variation "
+                             f"model), got {self.decision!r}")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 

@@ -99,6 +99,6 @@ class Detector(nn.Module):
         if self.variation is not None:
             vmap, vscore = self.variation.zmaps(x)
             amap, score = combine(amap, score, vmap.to(amap.device), vscore.to(score.device),
-                                  self.variation.calibration)
+                                  self.variation.calibration, networks=self.config.decision == "combined")
             maps, scores = {**maps, "variation": vmap}, {**scores, "variation": vscore}
         return DetectorOutput(amap, score, maps, scores)

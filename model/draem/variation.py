@@ -250,18 +250,22 @@ def squash(z: torch.Tensor) -> torch.Tensor:
 
 
 def combine(network_map: torch.Tensor, network_score: torch.Tensor, variation_map: torch.Tensor,
-            variation_score: torch.Tensor, calibration: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+            variation_score: torch.Tensor, calibration: torch.Tensor, networks: bool = True
+            ) -> tuple[torch.Tensor, torch.Tensor]:
     """The detector's map and score from the networks' and the variation model's: each put in robust standard
     deviations above its good validation parts (``calibration`` = network location, spread, variation location,
     spread), the larger taken (either detector's finding rejects the part), then ``squash``. Pixel maps use the
-    image calibration. Returns ((N, H, W) map, (N,) score), both in [0, 1]."""
-    return (combined_score(network_map, variation_map, calibration),
-            combined_score(network_score, variation_score, calibration))
+    image calibration. ``networks`` False: the variation model's finding alone (``ModelConfig.decision``).
+    Returns ((N, H, W) map, (N,) score), both in [0, 1]."""
+    return (combined_score(network_map, variation_map, calibration, networks),
+            combined_score(network_score, variation_score, calibration, networks))
 
 
-def combined_score(network: torch.Tensor, variation: torch.Tensor, calibration: torch.Tensor) -> torch.Tensor:
-    """``combine``'s rule on scores (or maps) of any shape: squash(max((n - dl) / ds, (v - vl) / vs))."""
+def combined_score(network: torch.Tensor, variation: torch.Tensor, calibration: torch.Tensor,
+                   networks: bool = True) -> torch.Tensor:
+    """``combine``'s rule on scores (or maps) of any shape: squash(max((n - dl) / ds, (v - vl) / vs)), or
+    squash((v - vl) / vs) without the ``networks``."""
     dl, ds, vl, vs = (float(c) for c in calibration)
     zn, zv = (network.float() - dl) / ds, (variation.float().to(network.device) - vl) / vs
-    return squash(torch.maximum(zn, zv)).float()
+    return squash(torch.maximum(zn, zv) if networks else zv).float()
 

@@ -21,6 +21,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--fine-tune-steps", type=int, default=0,
                    help="also fine-tune this many steps with synthetic anomalies (default 0: off)")
     p.add_argument("--seed", type=int, default=0, help="fold assignment and fine-tune randomness (default 0)")
+    p.add_argument("--keep-networks", action="store_true",
+                   help="keep the networks in the decision even when their good-part scores on this line are out of "
+                        "their domain (default: the adapted model then decides on the variation model alone)")
     p.set_defaults(func=run)
 
 
@@ -28,5 +31,5 @@ def run(args: argparse.Namespace) -> int:
     from station.adaptation import adapt_model
 
     print(adapt_model(args.model, args.good, args.out, args.split, args.limit, args.false_reject,
-                      args.fine_tune_steps, args.seed).describe())
+                      args.fine_tune_steps, args.seed, args.keep_networks).describe())
     return 0

@@ -14,7 +14,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
-from model.draem.variation import SQUASH_CENTRE, VariationModel, squash
+from model.draem.variation import SQUASH_CENTRE, VariationModel, combined_score, squash
 from model.draem.with_variation import add_variation
 
 H, W = 32, 64
@@ -127,6 +127,17 @@ def test_the_combined_score_never_saturates_at_1() -> None:
     z = torch.tensor([10.0, 30.0, 100.0, 1e3, 1e5])
     s = squash(z + SQUASH_CENTRE)
     assert bool((s < 1.0).all()) and bool((s.diff() > 0).all())
+
+
+def test_a_variation_only_decision_ignores_the_networks() -> None:
+    calibration = torch.tensor([0.2, 0.05, 3.0, 1.0])
+    network, variation = torch.tensor([0.9, 0.2]), torch.tensor([3.0, 9.0])  # networks alarm on part 0 only
+    both, alone = combined_score(network, variation, calibration), combined_score(network, variation, calibration,
+                                                                                   networks=False)
+    assert float(both[0]) > 0.9 and abs(float(alone[0]) - float(squash(torch.tensor(0.0)))) < 1e-6
+    assert float(alone[1]) == float(both[1])  # the variation model's own alarm stands
+    with pytest.raises(ModelError, match="decision"):
+        ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band").with_(decision="variation")
 
 
 def test_hostile_inputs_give_finite_scores_that_reject(tmp_path: Path) -> None:

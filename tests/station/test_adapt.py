@@ -118,3 +118,32 @@ def test_adapt_refits_the_variation_models_statistics_and_calibration(line, tmp_
     assert not torch.equal(old.mean, new.mean) and not torch.equal(old.calibration, new.calibration)
     rec = json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]
     assert "variation" in rec["per_position"] and "variation statistics" in rec["scheme"]
+
+
+def test_networks_out_of_their_domain_leave_the_decision_to_the_variation_model(line, tmp_path: Path, capsys,
+                                                                                 monkeypatch) -> None:
+    """Networks whose good parts score far above their validation parts on a line are out of their domain: the
+    adapted model decides on the (refitted) variation model alone, says so, and records it; --keep-networks keeps
+    them. The limit is moved here to take both branches on one line."""
+    from model.draem.variation import squash
+    from model.draem.with_variation import member_scores
+
+    model, base, shifted = line
+    with_var = tmp_path / "var"
+    assert main(["variation", "--model", str(model), "--data", str(base), "--out", str(with_var)]) == 0
+    monkeypatch.setattr("model.draem.adapt.DOMAIN_SHIFT_SD", -1e9)  # every line is out of the networks' domain
+    out, kept = tmp_path / "variation-only", tmp_path / "kept"
+    assert main(["adapt", "--model", str(with_var), "--good", str(shifted), "--out", str(out)]) == 0
+    assert "decides on the variation model alone" in capsys.readouterr().out
+    assert main(["adapt", "--model", str(with_var), "--good", str(shifted), "--out", str(kept), "--keep-networks"]) == 0
+    ck = load_checkpoint(out)
+    assert ck.detector.config.decision == "variation" and load_checkpoint(kept).detector.config.decision == "combined"
+    rec = json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]
+    assert rec["decision"] == "variation" and isinstance(rec["networks_shift_sd"], float)
+    sp = load_split(shifted, "test", PRIORS, 32, progress=False)
+    _, var = member_scores(ck.detector, sp.priors)
+    vl, vs = (float(c) for c in ck.detector.variation.calibration[2:])
+    assert torch.allclose(ck.detector.predict(sp.priors).score, squash((var - vl) / vs), atol=1e-6)
+    monkeypatch.setattr("model.draem.adapt.DOMAIN_SHIFT_SD", 1e9)
+    assert main(["adapt", "--model", str(with_var), "--good", str(shifted), "--out", str(tmp_path / "in")]) == 0
+    assert load_checkpoint(tmp_path / "in").detector.config.decision == "combined"
