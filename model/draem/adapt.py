@@ -4,9 +4,10 @@ decision threshold is set from good parts that the fitting never saw.
 What depends on the line, in this model:
   - the input normalisation (``Normalizer``: per-channel mean and std over all pixels of the region of interest,
     the same statistic training used): exposure, gain, light and belt move it;
-  - per-position statistics: the variation model's per-pixel median and scale (``model.draem.variation``), when
-    the detector has one: re-estimated on the line's good parts, registered to the reference it was trained
-    with (its part region kept); then both detectors' calibration, from the held-out scores;
+  - per-position statistics: the variation model's appearance (mean, principal components, per-pixel scales;
+    ``model.draem.variation``), when the detector has one: re-estimated on the line's good parts, registered to
+    the reference it was trained with (its part region kept); then both detectors' calibration, from the held-out
+    scores;
   - whether the networks still judge: their held-out good parts' median image score, in robust standard
     deviations of their good validation parts (the trained calibration), after the refit; above
     ``DOMAIN_SHIFT_SD`` they are out of their domain on this line and the adapted model decides on the variation

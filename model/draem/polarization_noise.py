@@ -6,7 +6,9 @@ short exposure or high gain, a renderer's Monte Carlo noise) raises the DoLP of 
 on the shipped line (band input, good parts' median DoLP): 0.095 at 16 spp, 0.141 at 8 spp, and networks trained
 at 16 spp scored every 8-spp good part as a defect (8 robust SD above their good validation parts; this module's
 noise at sigma 0.08 reproduces that: 7.7 SD). A station cannot know its line's noise level in advance, so the
-networks learn that it is not a defect.
+networks should learn that it is not a defect. Measured: a 600-step fine-tune of the shipped networks at sigma 0.1
+halved the 8-spp shift relative to the gap between good and defective parts, but not in robust SD (7.9): the DoLP
+bias is one cause among others, and the option is off by default (docs/results/2026-11-24-low-rank-variation.md).
 
 Convention: ``x`` (N, C, H, W) physical priors stacked as ``config.channel_slices(priors)``; the model must read
 DoLP (AoLP alone has no length to bias). Per sample, sigma ~ U(0, ``sigma_max``) in units of S0; the noise is

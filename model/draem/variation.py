@@ -28,8 +28,8 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               0.75x): what hides dents and scratches is the part-to-part variation, not the pixel size
     z map     per pixel and channel |residual| / scale (scale = 1.4826 MAD of the good parts' residuals, each
               from an appearance fitted without that part (``FOLDS``), floored at the ``floor_quantile`` of the
-              scales over the region and at ``MIN_SCALE``, so flat regions do not
-              divide by ~0), max over channels, box-averaged over ``box_px``, zero outside the eroded part region
+              scales over the region and at ``MIN_SCALE``, so flat regions do not divide by ~0), max over
+              channels, box-averaged over ``box_px``, zero outside the eroded part region
     score     max of the z map: a number of robust standard deviations
 
 ``Detector.predict`` combines it with the networks (``combine``). numpy + OpenCV at run time (torch only for the
@@ -72,10 +72,9 @@ class VariationModel(nn.Module):
     """Buffers (saved with the checkpoint): ``reference`` (H, W) log intensity to register to; ``mean`` (C, H, W),
     ``channel_scale`` (C,), ``components`` (COMPONENTS, C, H, W, orthonormal over the region) and ``scale``
     (C, H, W): the good parts' appearance and residual spread (module docstring); ``region`` (H, W) where the
-    part is (bool),
-    ``calibration`` (4,): location and spread of the networks' and this model's image scores on good validation
-    parts (``combine``). ``intensity``, ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's
-    cosine (its sine follows), None when the model does not read that prior."""
+    part is (bool); ``calibration`` (4,): location and spread of the networks' and this model's image scores on
+    good validation parts (``combine``). ``intensity``, ``dolp``, ``aolp``: the channel index of intensity, of
+    DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
                  aolp: int | None = None, box_px: int = 5) -> None:
