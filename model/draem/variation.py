@@ -217,13 +217,13 @@ class VariationModel(nn.Module):
         """(N, C, H, W) physical priors -> ((N, H, W) box-averaged z maps, zero off the part; (N,) image scores)."""
         xs = x.float().cpu().numpy()
         ref, mean, scale = self.reference.numpy(), self.mean.numpy(), self.scale.numpy()
-        cs, components = self.channel_scale.numpy()[:, None, None], self.components.numpy()
-        region = cv2.erode(self.region.numpy().astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+        cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
+        region = cv2.erode(part.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
         if not region.any():
-            region = self.region.numpy()
+            region = part
         maps = []
         for xi in xs:
-            u = (self.warp_to(ref, self.features(xi)) - mean) / cs * self.region.numpy()
+            u = (self.warp_to(ref, self.features(xi)) - mean) / cs * part
             z = (np.abs(self._residual(u[None], components)[0]) / scale).max(0)
             z = cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE)
             maps.append(np.where(region, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
