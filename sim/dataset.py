@@ -24,7 +24,9 @@ Split rule (``SPLIT_RULE``): by index, ``i % 10`` in {0, 1} -> test (20 %, as th
 (10 % of all, a slice of the paper's training 80 % kept for thresholds), else train. Defects are placed with
 probability ``defect_fraction`` in val and test samples only (DRAEM trains on good parts and makes its own
 anomalies) unless ``defects_in_train``; a placed defect that is not visible gives label 0. A held-out set
-(``DatasetSpec.heldout``, ``HELDOUT_SPLIT_RULE``) puts every sample in test.
+(``DatasetSpec.heldout``, ``HELDOUT_SPLIT_RULE``) puts every sample in test; a validation set
+(``DatasetSpec.validation``, ``VALIDATION_SPLIT_RULE``) every sample in val: enough good parts to set a 1 %
+threshold, which the 10 % val slice of a training set is not.
 
 Imported sets (``station import``, ``station.datasets``): the same layout, but the split of each sample comes from
 the folder it was imported from, not from its index: the manifest's ``split_rule`` is ``FOLDER_SPLIT_RULE`` and
@@ -69,16 +71,19 @@ VERSION = 1
 SPLIT_RULE = ("index % 10 in {0, 1}: test; index % 10 == 2: val (slice of the 80 % train part, for thresholds); "
               "else train. Defects only in val/test unless defects_in_train.")
 HELDOUT_SPLIT_RULE = "every sample: test (a held-out evaluation set: nothing in it trains or selects a model)"
+VALIDATION_SPLIT_RULE = "every sample: val (a validation set: thresholds, calibration and selection, never training)"
+WHOLE_SET_RULES = {"test": HELDOUT_SPLIT_RULE, "val": VALIDATION_SPLIT_RULE}
+"""A set whose every sample is in one split: that split -> the manifest's ``split_rule``."""
 FOLDER_SPLIT_RULE = "folders"
 """``split_rule`` of an imported set: splits from the source folders, per sample in the manifest's ``sample_splits``."""
 GT_KEYS = ("s0", "s1", "s2", "normal", "object_mask", "defect_mask", "part_index", "depth")
 
 
-def split_of(index: int, heldout: bool = False) -> str:
-    """The split of sample ``index`` (see ``SPLIT_RULE``); every sample is test in a held-out set
-    (``HELDOUT_SPLIT_RULE``)."""
-    if heldout:
-        return "test"
+def split_of(index: int, whole: str | None = None) -> str:
+    """The split of sample ``index`` (see ``SPLIT_RULE``); ``whole`` in a set whose every sample is in that split
+    (``WHOLE_SET_RULES``: a held-out or a validation set)."""
+    if whole:
+        return whole
     r = index % 10
     return "test" if r in (0, 1) else "val" if r == 2 else "train"
 
@@ -101,6 +106,9 @@ class DatasetSpec:
     """Measure every placed defect's detectability (``sim.oracle``) into ``params.json``'s ``defect``."""
     heldout: bool = False
     """Every sample in the test split (``HELDOUT_SPLIT_RULE``): an evaluation set, rendered with its own seed."""
+    validation: bool = False
+    """Every sample in the val split (``VALIDATION_SPLIT_RULE``): thresholds and selection, rendered with its own
+    seed."""
     mesh: str = ""
     materials: dict[str, Any] = field(default_factory=dict)
     mesh_scale: float = 1.0
@@ -121,7 +129,14 @@ class DatasetSpec:
             raise SimError(f"seed must be >= 0, got {self.seed}")
         if self.mesh_scale <= 0:
             raise SimError(f"mesh_scale must be > 0, got {self.mesh_scale}")
+        if self.heldout and self.validation:
+            raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
         self.render_settings()  # checks size and spp
+
+    @property
+    def whole_split(self) -> str | None:
+        """The split every sample is in (``WHOLE_SET_RULES``), None for the index rule (``SPLIT_RULE``)."""
+        return "test" if self.heldout else "val" if self.validation else None
 
     def render_settings(self) -> RenderSettings:
         return RenderSettings(self.width, self.height, self.spp, self.ground_truth, self.max_depth,
@@ -138,9 +153,9 @@ class DatasetSpec:
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
-        for key in ("visibility", "heldout"):
+        for key in ("visibility", "heldout", "validation"):
             if not d[key]:
-                d.pop(key)  # likewise for sets without the detectability oracle or the held-out split
+                d.pop(key)  # likewise for sets without the detectability oracle or a whole-set split
         if not self.variation.active:
             d.pop("variation")  # and for sets without line variation
         return json.loads(json.dumps(d))  # tuples -> lists, as read back from JSON
@@ -265,7 +280,7 @@ class SampleDraw:
 def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw:
     """Draw sample ``index``'s scene and defect (deterministic in ``spec.seed`` and ``index``)."""
     rng = np.random.default_rng([spec.seed, index])
-    split = split_of(index, spec.heldout)
+    split = split_of(index, spec.whole_split)
     params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
     empty = is_empty(spec.seed, index, spec.empty_rate)
     defect = None
@@ -361,7 +376,7 @@ def manifest_for(spec: DatasetSpec, count: int, spp_choice: dict[str, Any] | Non
     return {"format": FORMAT, "version": VERSION, "convention_version": CONVENTION_VERSION,
             "renderer_version": RENDERER_VERSION, "width": spec.width, "height": spec.height,
             "layout": spec.sensor.layout, "bit_depth": spec.sensor.bit_depth, "seed": spec.seed, "count": count,
-            "split_rule": HELDOUT_SPLIT_RULE if spec.heldout else SPLIT_RULE, "config": spec.to_dict(),
+            "split_rule": WHOLE_SET_RULES.get(spec.whole_split or "", SPLIT_RULE), "config": spec.to_dict(),
             "spp_choice": spp_choice}
 
 
@@ -513,7 +528,8 @@ class Dataset:
         """The split of sample ``index``: from the manifest for an imported set, else ``split_of``."""
         if self._splits is not None:
             return self._splits.get(index, "")
-        return split_of(index, self.manifest.get("split_rule") == HELDOUT_SPLIT_RULE)
+        whole = {rule: split for split, rule in WHOLE_SET_RULES.items()}.get(self.manifest.get("split_rule", ""))
+        return split_of(index, whole)
 
     def load(self, index: int, ground_truth: bool = True) -> Sample:
         d = sample_dir(self.root, index)

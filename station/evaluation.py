@@ -112,10 +112,11 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
             f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}")
 
 
-def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05) -> str:
-    """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on its good
-    val parts, thresholded on the val split (``set_threshold``'s rule), written to ``out``; one line saying what it
-    does on the val split."""
+def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None
+                  ) -> str:
+    """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
+    parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
+    written to ``out``; one line saying what it does on the val split."""
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.errors import ModelError
     from model.draem.evaluate import EvalData, evaluate
@@ -132,11 +133,12 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     tr = model_split(ck, model, data, "train", good_only=True)
-    va = model_split(ck, model, data, "val")
+    val_data = val_data or data
+    va = model_split(ck, model, val_data, "val")
     good_va = va.label == 0
     if len(tr.index) < 8 or int(good_va.sum()) < 2:
-        raise UserError(f"{data}: the variation model needs >= 8 good train parts and >= 2 good val parts, got "
-                        f"{len(tr.index)} and {int(good_va.sum())}")
+        raise UserError(f"{data}, {val_data}: the variation model needs >= 8 good train parts and >= 2 good val parts, "
+                        f"got {len(tr.index)} and {int(good_va.sum())}")
     try:
         det = add_variation(ck.detector, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va])
@@ -147,7 +149,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     choice = choose_threshold(labels, ev.scores, max_good_flagged)
     train = {**ck.meta.get("train", {}), "variation": {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
-        "calibration_parts": int(good_va.sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
+        "calibration_data": str(val_data), "calibration_parts": int(good_va.sum()),
+        "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""

@@ -30,6 +30,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--heldout", action="store_true",
                    help="every sample in the test split: a held-out evaluation set (give it a seed no training set "
                         "used)")
+    p.add_argument("--validation", action="store_true",
+                   help="every sample in the val split: a validation set for thresholds and selection (`station "
+                        "eval/variation/threshold --val-data`); give it a seed no other set used")
     p.add_argument("--empty-rate", type=float, default=0.0, metavar="FRACTION",
                    help="fraction of samples rendered without the part (same scene, no part in view: for the "
                         "station's presence check; any split; training and evaluation skip them); default 0")
@@ -98,6 +101,7 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "ground_truth": not args.no_ground_truth, "defect_fraction": args.defects,
         "defects_in_train": args.defects_in_train, "empty_rate": args.empty_rate, "mesh": args.mesh,
         "visibility": getattr(args, "visibility", False), "heldout": getattr(args, "heldout", False),
+        "validation": getattr(args, "validation", False),
         "materials": materials,
         "mesh_scale": args.mesh_scale, "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,

@@ -1,7 +1,8 @@
 """``station variation``: add the registered variation model (``model.draem.variation``) to a trained detector.
 
-Fitted on the good parts of ``--data``'s train split, calibrated on its val split's good parts, then the threshold
-is chosen on the val split with ``station threshold``'s rule (``model.draem.metrics.choose_threshold``). The networks
+Fitted on the good parts of ``--data``'s train split, calibrated on the val split's good parts (of ``--val-data``, a
+validation set rendered with ``station render --validation``, or else of ``--data``), then the threshold is chosen
+on that val split with ``station threshold``'s rule (``model.draem.metrics.choose_threshold``). The networks
 are copied unchanged; the sidecar records the fit (``train.variation``: set, manifest hash, parts, date).
 """
 
@@ -14,6 +15,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("variation", help="add the registered variation model (fitted on good parts) to a detector")
     p.add_argument("--model", required=True, help="trained checkpoint, path without suffix (e.g. runs/x/best)")
     p.add_argument("--data", required=True, help="set with good parts in its train and val splits (the training set)")
+    p.add_argument("--val-data", default=None, metavar="DATA",
+                   help="set whose val split calibrates and thresholds (default: --data's; a validation set from "
+                        "`station render --validation` has enough good parts for a 1 %% threshold)")
     p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
     p.add_argument("--max-good-flagged", type=float, default=0.05,
                    help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
@@ -23,5 +27,5 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
-    print(fit_variation(args.model, args.data, args.out, args.max_good_flagged))
+    print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data))
     return 0

@@ -74,6 +74,22 @@ def test_a_heldout_set_is_all_test(tmp_path) -> None:
     assert draw.split == "test"
 
 
+def test_a_validation_set_is_all_val_with_defects(tmp_path) -> None:
+    spec = sd.DatasetSpec(seed=9, validation=True, width=8, height=8)
+    manifest = sd.init_dataset(tmp_path / "ds", spec, 10)
+    assert manifest["split_rule"] == sd.VALIDATION_SPLIT_RULE and manifest["config"]["validation"] is True
+    for i in range(10):
+        sd.write_sample(tmp_path / "ds", sd.Sample(i, np.zeros((8, 8), np.uint8),
+                                                   {"index": i, "split": "val", "label": 0, "defect": None}, 0, "val"))
+    ds = sd.Dataset(tmp_path / "ds")
+    assert ds.indices("val") == list(range(10)) and ds.indices("train") == ds.indices("test") == []
+    model = sd.prepare(sd.DatasetSpec(**TINY))
+    draws = [sd.draw_sample(sd.DatasetSpec(validation=True, defect_fraction=1.0, **TINY), model, i) for i in (5, 6)]
+    assert [d.split for d in draws] == ["val", "val"] and all(d.defect is not None for d in draws)  # train indices
+    with pytest.raises(SimError, match="not both"):
+        sd.DatasetSpec(heldout=True, validation=True)
+
+
 def test_config_files_layer_in_order(tmp_path) -> None:
     from station.cli import main
 

@@ -23,9 +23,11 @@ W, H = 96, 64
 
 def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8, seed: int = 0,
                   defective: Callable[[int], bool] = lambda i: i % 10 == 1, object_masks: bool = True,
-                  kind: Callable[[int], str] = lambda i: "stain", heldout: bool = False) -> Path:
-    init_dataset(root, DatasetSpec(width=W, height=H, seed=seed, sensor=SensorConfig(bit_depth=bit_depth),
-                                   heldout=heldout), n)
+                  kind: Callable[[int], str] = lambda i: "stain", heldout: bool = False,
+                  validation: bool = False) -> Path:
+    spec = DatasetSpec(width=W, height=H, seed=seed, sensor=SensorConfig(bit_depth=bit_depth), heldout=heldout,
+                       validation=validation)
+    init_dataset(root, spec, n)
     s0, s1, s2 = detailed_stokes(H, W)
     full = 2**bit_depth - 1
     rng = np.random.default_rng(seed)
@@ -38,7 +40,7 @@ def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8
             mask[20:30, 40:50] = True
             raw[mask] = full
         label = int(mask.any())
-        split = "test" if heldout else split_of(i)
+        split = split_of(i, spec.whole_split)
         write_sample(root, Sample(i, raw, {"index": i, "split": split, "label": label,
                                            "defect": {"type": kind(i)} if label else None}, label, split,
                                   defect_mask=mask, object_mask=np.ones((H, W), bool) if object_masks else None))

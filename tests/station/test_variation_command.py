@@ -38,6 +38,20 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     assert "already has a variation model" in capsys.readouterr().err
 
 
+def test_a_validation_set_calibrates_and_thresholds(tmp_path: Path, capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=40, defective=lambda i: False)  # 4 good val parts
+    val = make_line_set(tmp_path / "val", n=30, seed=3, defective=lambda i: i % 3 == 1, validation=True)
+    assert main(["train", "--data", str(data), "--priors", "intensity,dolp,aolp", *BASE,
+                 "--out", str(tmp_path / "t")]) == 0
+    capsys.readouterr()
+    out = tmp_path / "v"
+    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--val-data", str(val),
+                 "--out", str(out)]) == 0
+    assert "on 30 val parts" in capsys.readouterr().out
+    rec = json.loads(out.with_suffix(".json").read_text())["train"]["variation"]
+    assert rec["calibration_data"] == str(val) and rec["calibration_parts"] == 20 and rec["data"] == str(data)
+
+
 def test_a_model_without_intensity_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
     data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
     assert main(["train", "--data", str(data), "--priors", "dolp,aolp", *BASE, "--out", str(tmp_path / "t")]) == 0
