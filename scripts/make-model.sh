@@ -5,11 +5,13 @@
 # (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
 #
 #   1. render the training set: line-polar preset + line variation, defects in all splits (for mixed supervision)
-#   2. render a held-out set with its own seed (every sample test, with the detectability oracle)
+#   2. render a held-out set with its own seed (every sample test, with the detectability oracle), and a validation
+#      set with another (every sample val: calibration, thresholds and selection; 600 parts, ~360 good)
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
-#   6. variation: the registered variation model added (fitted on good train parts, thresholded on validation)
+#   6. variation: the registered variation model added (fitted on good train parts, calibrated and thresholded on
+#      the validation set)
 #   7. held-out types: band + variation without one defect type, per type (HOLDOUT_TYPES), from the base
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
 #      int8 networks of an earlier model scored a hostile frame across the threshold, see model/weights/README.md)
@@ -18,9 +20,11 @@ cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
 DATA=${DATA:-data/line-polar-train}
 HELDOUT=${HELDOUT:-data/line-polar-heldout}
+VAL=${VAL:-data/line-polar-val}
 RUNS=${RUNS:-runs/make-model}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
 HELDOUT_COUNT=${HELDOUT_COUNT:-500}
+VAL_COUNT=${VAL_COUNT:-600}
 BASE_STEPS=${BASE_STEPS:-1000}
 BASE_STOP=${BASE_STOP:-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
 MIXED_STEPS=${MIXED_STEPS:-400}
@@ -45,6 +49,7 @@ render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
 
 render "$DATA" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed 202 --defects 0.6 --heldout --visibility
+render "$VAL" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
     --eval-every 100 --out "$RUNS/base"
@@ -53,7 +58,7 @@ render "$HELDOUT" --count "$HELDOUT_COUNT" --seed 202 --defects 0.6 --heldout --
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
     --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
 variation() {  # variation IN OUT: add the variation model unless OUT exists (resumable)
-    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --out "$2"
+    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$VAL" --out "$2"
 }
 variation "$RUNS/band/best" "$RUNS/band-variation"
 for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
@@ -67,14 +72,14 @@ done
 for m in base/last mixed/best band/best band-variation $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/variation"; done)
 do
     name=${m%/last}; name=${name%/best}; name=${name//\//-}
-    "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$DATA" --out "$RUNS/eval-$name"
+    "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-$name"
 done
 "$BIN/station" compare "$RUNS"/eval-* --out "$RUNS/compare"
 
 if [ "$SHIP" = 1 ]; then
     "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
         "$RUNS/band-variation" model/weights/default
-    "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$DATA" \
+    "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$VAL" \
         --out model/weights/default-eval
     cp "$RUNS"/compare/compare.* model/weights/default-eval/
 fi

@@ -35,7 +35,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="int8: the model's int8 networks from `station quantize` (ONNX Runtime, CPU)")
     p.add_argument("--val-data", default=None, metavar="DATA",
                    help="set whose val split fixes the industrial thresholds (default: --data; a held-out set, "
-                        "rendered with --heldout, has none: give the set the model was trained and selected on)")
+                        "rendered with --heldout, has none: give a validation set, rendered with --validation, or "
+                        "the set the model was trained and selected on)")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
     p.set_defaults(func=run)
