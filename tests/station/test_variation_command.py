@@ -39,7 +39,7 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
 
 
 def test_a_validation_set_calibrates_and_thresholds(tmp_path: Path, capsys) -> None:
-    data = make_line_set(tmp_path / "ds", n=40, defective=lambda i: False)  # 4 good val parts
+    data = make_line_set(tmp_path / "ds", n=40, defective=lambda i: i % 10 == 1)  # 4 good val parts
     val = make_line_set(tmp_path / "val", n=30, seed=3, defective=lambda i: i % 3 == 1, validation=True)
     assert main(["train", "--data", str(data), "--priors", "intensity,dolp,aolp", *BASE,
                  "--out", str(tmp_path / "t")]) == 0
@@ -50,6 +50,10 @@ def test_a_validation_set_calibrates_and_thresholds(tmp_path: Path, capsys) -> N
     assert "on 30 val parts" in capsys.readouterr().out
     rec = json.loads(out.with_suffix(".json").read_text())["train"]["variation"]
     assert rec["calibration_data"] == str(val) and rec["calibration_parts"] == 20 and rec["data"] == str(data)
+    # and the industrial thresholds of an evaluation come from its 20 good parts, not the training set's 4
+    assert main(["eval", "--model", str(out), "--data", str(data), "--val-data", str(val), "--no-plots",
+                 "--no-synthetic", "--out", str(tmp_path / "ev")]) == 0
+    assert f"val split of {val}, 20 good parts" in capsys.readouterr().out
 
 
 def test_a_model_without_intensity_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
