@@ -112,11 +112,12 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
             f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}")
 
 
-def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None
-                  ) -> str:
+def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
+                  decision: str = "combined") -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
-    written to ``out``; one line saying what it does on the val split."""
+    written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
+    ("combined": either detector's finding rejects; "variation": the variation model's alone)."""
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.errors import ModelError
     from model.draem.evaluate import EvalData, evaluate
@@ -127,7 +128,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     check_max_good_flagged(max_good_flagged)
     ck = load_checkpoint(model)
     try:  # the model's own refusals first, before minutes of loading
-        ck.detector.config.with_(variation=True)
+        ck.detector.config.with_(variation=True, decision=decision)
         if ck.detector.config.variation:
             raise ModelError("the detector already has a variation model")
     except ModelError as exc:
@@ -141,7 +142,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
                         f"got {len(tr.index)} and {int(good_va.sum())}")
     try:
         det = add_variation(ck.detector, tr.priors, tr.object_mask if tr.object_masks_known else None,
-                            va.priors[good_va])
+                            va.priors[good_va], decision=decision)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     ev = evaluate(det, EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known))
@@ -154,6 +155,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
-    return (f"{out}: variation model fitted on {len(tr.index)} good parts; threshold {choice.threshold:.4g} "
+    decides = "" if decision == "combined" else f" (decision: {decision} alone)"
+    return (f"{out}: variation model fitted on {len(tr.index)} good parts{decides}; threshold {choice.threshold:.4g} "
             f"({choice.rule}); on {len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts"
             f"{detected}; image AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")

@@ -12,16 +12,17 @@ from .variation import network_score
 
 @torch.no_grad()
 def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
-                  val_good: torch.Tensor, batch: int = 16) -> Detector:
+                  val_good: torch.Tensor, batch: int = 16, decision: str = "combined") -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
-    training parts: a fitted model scores its own parts low)."""
+    training parts: a fitted model scores its own parts low). ``decision``: ``ModelConfig.decision`` of the copy
+    (which finding rejects; calibration and member scores do not depend on it)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
         raise ModelError(f"calibrating the variation model needs good validation parts, got {len(val_good)}")
-    out = Detector(detector.config.with_(variation=True), detector.normalizer)
+    out = Detector(detector.config.with_(variation=True, decision=decision), detector.normalizer)
     missing, unexpected = out.load_state_dict(detector.state_dict(), strict=False)
     assert not unexpected and all(k.startswith("variation.") for k in missing), (missing, unexpected)
     out.eval()

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import argparse
 
+from model.draem.config import DECISIONS
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("variation", help="add the registered variation model (fitted on good parts) to a detector")
@@ -18,6 +20,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--val-data", default=None, metavar="DATA",
                    help="set whose val split calibrates and thresholds (default: --data's; a validation set from "
                         "`station render --validation` has enough good parts for a 1 %% threshold)")
+    p.add_argument("--decision", default="combined", choices=DECISIONS,
+                   help="which finding rejects: either detector's (combined, default) or the variation model's alone "
+                        "(the networks still run and are reported)")
     p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
     p.add_argument("--max-good-flagged", type=float, default=0.05,
                    help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
@@ -27,5 +32,5 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
-    print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data))
+    print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision))
     return 0

@@ -38,7 +38,7 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     assert "already has a variation model" in capsys.readouterr().err
 
 
-def test_a_validation_set_calibrates_and_thresholds(tmp_path: Path, capsys) -> None:
+def test_a_validation_set_calibrates_and_thresholds_and_a_decision_is_recorded(tmp_path: Path, capsys) -> None:
     data = make_line_set(tmp_path / "ds", n=40, defective=lambda i: i % 10 == 1)  # 4 good val parts
     val = make_line_set(tmp_path / "val", n=30, seed=3, defective=lambda i: i % 3 == 1, validation=True)
     assert main(["train", "--data", str(data), "--priors", "intensity,dolp,aolp", *BASE,
@@ -46,9 +46,12 @@ def test_a_validation_set_calibrates_and_thresholds(tmp_path: Path, capsys) -> N
     capsys.readouterr()
     out = tmp_path / "v"
     assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--val-data", str(val),
-                 "--out", str(out)]) == 0
-    assert "on 30 val parts" in capsys.readouterr().out
-    rec = json.loads(out.with_suffix(".json").read_text())["train"]["variation"]
+                 "--decision", "variation", "--out", str(out)]) == 0
+    line = capsys.readouterr().out
+    assert "on 30 val parts" in line and "decision: variation alone" in line
+    meta = json.loads(out.with_suffix(".json").read_text())
+    assert meta["model"]["decision"] == "variation"
+    rec = meta["train"]["variation"]
     assert rec["calibration_data"] == str(val) and rec["calibration_parts"] == 20 and rec["data"] == str(data)
     # and the industrial thresholds of an evaluation come from its 20 good parts, not the training set's 4
     assert main(["eval", "--model", str(out), "--data", str(data), "--val-data", str(val), "--no-plots",
