@@ -11,8 +11,10 @@
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
 #   6. variation: the registered variation model added (fitted on good train parts, calibrated and thresholded on
-#      the validation set)
-#   7. held-out types: band + variation without one defect type, per type (HOLDOUT_TYPES), from the base
+#      the validation set); the shipped model decides on its finding alone (DECISION, chosen on the validation set:
+#      model/weights/README.md), the networks still run and are reported
+#   7. held-out types: the networks without one type, decision combined, so the comparison shows what the networks
+#      do with a type they never saw (the variation model never sees any defect)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
 #      int8 networks of an earlier model scored a hostile frame across the threshold, see model/weights/README.md)
 set -euo pipefail
@@ -34,6 +36,7 @@ HOLDOUT_STEPS=${HOLDOUT_STEPS:-150}
 HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
 JOBS=${JOBS:-2}
 SHIP=${SHIP:-1}
+DECISION=${DECISION:-variation}
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
@@ -57,10 +60,10 @@ render "$VAL" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
     --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
     --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
-variation() {  # variation IN OUT: add the variation model unless OUT exists (resumable)
-    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$VAL" --out "$2"
+variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exists (resumable)
+    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$VAL" --out "$2" "${@:3}"
 }
-variation "$RUNS/band/best" "$RUNS/band-variation"
+variation "$RUNS/band/best" "$RUNS/band-variation" --decision "$DECISION"
 for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
     "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
         --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \

@@ -56,7 +56,7 @@ def test_registration_undoes_the_fixtures_play_and_a_local_change_stands_out() -
     # without registration the same good parts look defective: the play alone moves edges by pixels
     unregistered = VariationModel(4, (H, W), intensity=0)
     unregistered.load_state_dict(vm.state_dict())
-    unregistered.warp_to = lambda ref, f: f  # type: ignore[method-assign]
+    unregistered.warp_to = lambda ref, f, mask=None: f  # type: ignore[method-assign]
     assert float(unregistered.zmaps(parts(20, 1))[1].median()) > 2 * float(good.median())
     assert bool(vm.region[H // 2, W // 2]) and not bool(vm.region[0, 0])  # the part, not the belt
 
@@ -87,6 +87,28 @@ def test_the_lines_shared_lighting_changes_are_explained_not_flagged(monkeypatch
         return float(vm.zmaps(test_bad)[1].min() / vm.zmaps(test_good)[1].max())
 
     assert margin(0) < 1.0 < margin(10)  # per-pixel spread alone: some good part outscores a dent
+
+
+def spot(x: torch.Tensor, rows: slice = slice(9, 16), cols: slice = slice(44, 53)) -> torch.Tensor:
+    """A stray light's clipped highlight on every part: intensity at 0.98 of full scale, DoLP 0.05, on the part's
+    right end (clear of ``part``'s defect); the whole part with ``rows`` and ``cols`` of slice(None)."""
+    out = x.clone()
+    out[:, 0, rows, cols], out[:, 1, rows, cols] = 0.98, 0.05
+    return out
+
+
+def test_a_stray_lights_highlight_is_not_judged_but_a_clipped_part_still_rejects(monkeypatch) -> None:
+    vm = VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2)
+    x = parts(40, 0)
+    vm.fit(x, x[:, 0] > 0.15)
+    good = vm.zmaps(parts(20, 1))[1]
+    spotted, spotted_bad = vm.zmaps(spot(parts(20, 1)))[1], vm.zmaps(spot(parts(20, 2, defect=True)))[1]
+    assert float(spotted.max()) <= float(good.max())  # the rest of the part scores as good parts do
+    assert float(spotted_bad.min()) > float(good.max())  # a defect beside it still stands out
+    clipped = vm.zmaps(spot(parts(20, 1), slice(None), slice(None)))[1]
+    assert float(clipped.min()) > 3 * float(good.max())  # all of it clipped: too much hidden, judged as is
+    monkeypatch.setattr("model.draem.variation.HIGHLIGHT_LEVEL", float("inf"))  # without the rule
+    assert float(vm.zmaps(spot(parts(20, 1)))[1].min()) > float(good.max())  # the highlight alone rejects
 
 
 def test_too_few_parts_and_bad_buffers_are_errors() -> None:

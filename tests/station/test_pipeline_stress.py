@@ -86,7 +86,7 @@ def shipped_networks(tmp: Path) -> Path:
     from model.draem.detector import Detector
 
     ck = load_checkpoint(SHIPPED)
-    nets = Detector(ck.detector.config.with_(variation=False), ck.detector.normalizer)
+    nets = Detector(ck.detector.config.with_(variation=False, decision="combined"), ck.detector.normalizer)
     nets.load_state_dict({k: v for k, v in ck.detector.state_dict().items() if not k.startswith("variation.")})
     save_checkpoint(tmp / "networks", nets, threshold=0.5, threshold_rule="test")
     return tmp / "networks"
