@@ -37,7 +37,7 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               second light's specular reflection, which moves with that light: a stray spot on a good part
               scored 13-55 robust SD, above most defects, and these few good parts set the 1 % threshold. On
               the validation set (600 parts, 370 good), caught at 1 % of good parts rejected: 25 % -> 47 %
-              (missing studs 21 -> 100 %, stains 71 -> 90 %, chips 27 -> 47 %), at 5 % unchanged (53 %); a
+              (missing studs 21 -> 100 %, stains 71 -> 90 %, chips 27 -> 51 %), at 5 % unchanged (53 %); a
               good part had 15 % of its region hidden at the 90th percentile, 38 % at most. A defect inside a
               highlight is not judged there. Fail closed: when more than ``MAX_HIDDEN`` of the part would be
               hidden, nothing is (the part scores as without the rule, and a clipped part rejects)
