@@ -28,6 +28,9 @@ class AdaptSummary:
         shift = self.record.get("networks_shift_sd")
         if shift is None:
             return ""
+        if self.record.get("decision") == "variation" and not self.record.get("decision_changed", True):
+            return (f"; it decides on the variation model alone, as the model did (networks' good parts "
+                    f"{shift:.1f} robust SD from their validation parts, reported only)")
         if self.record.get("decision") == "variation":
             return (f"; the networks are out of their domain here (good parts {shift:.1f} robust SD above their "
                     f"validation parts): it decides on the variation model alone (--keep-networks keeps them)")

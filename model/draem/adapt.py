@@ -117,6 +117,8 @@ class AdaptResult:
     per_position: str = PER_POSITION
     networks_shift_sd: float | None = None
     decision: str = "combined"
+    decision_changed: bool = False
+    """True when the domain check moved the decision from combined to the variation model alone."""
 
     def record(self) -> dict[str, Any]:
         """JSON-able summary for the model's sidecar."""
@@ -129,7 +131,8 @@ class AdaptResult:
                 "normalization_before": asdict(self.normalizer_before),
                 "normalization_after": asdict(self.normalizer_after),
                 "fine_tune_steps": self.fine_tune_steps, "per_position": self.per_position,
-                "networks_shift_sd": self.networks_shift_sd, "decision": self.decision}
+                "networks_shift_sd": self.networks_shift_sd, "decision": self.decision,
+                "decision_changed": self.decision_changed}
 
 
 def false_reject_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoice:
@@ -264,9 +267,10 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
     log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
              choice.threshold, 100 * fr)
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
-    if final.config.decision == "variation":
+    changed = detector.config.decision != final.config.decision
+    if changed:
         log.warning("the networks' good parts score %.1f robust SD above their validation parts on this line (limit "
                     "%.0f): out of their domain; the adapted model decides on the variation model alone", shift,
                     DOMAIN_SHIFT_SD)
     return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position,
-                              shift, final.config.decision)
+                              shift, final.config.decision, changed)

@@ -139,7 +139,7 @@ def test_networks_out_of_their_domain_leave_the_decision_to_the_variation_model(
     ck = load_checkpoint(out)
     assert ck.detector.config.decision == "variation" and load_checkpoint(kept).detector.config.decision == "combined"
     rec = json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]
-    assert rec["decision"] == "variation" and isinstance(rec["networks_shift_sd"], float)
+    assert rec["decision"] == "variation" and rec["decision_changed"] and isinstance(rec["networks_shift_sd"], float)
     sp = load_split(shifted, "test", PRIORS, 32, progress=False)
     _, var = member_scores(ck.detector, sp.priors)
     vl, vs = (float(c) for c in ck.detector.variation.calibration[2:])
@@ -147,3 +147,13 @@ def test_networks_out_of_their_domain_leave_the_decision_to_the_variation_model(
     monkeypatch.setattr("model.draem.adapt.DOMAIN_SHIFT_SD", 1e9)
     assert main(["adapt", "--model", str(with_var), "--good", str(shifted), "--out", str(tmp_path / "in")]) == 0
     assert load_checkpoint(tmp_path / "in").detector.config.decision == "combined"
+    # a model that already decides on the variation model alone keeps that, and does not blame the networks
+    alone = tmp_path / "alone"
+    assert main(["variation", "--model", str(model), "--data", str(base), "--decision", "variation",
+                 "--out", str(alone)]) == 0
+    capsys.readouterr()
+    assert main(["adapt", "--model", str(alone), "--good", str(shifted), "--out", str(tmp_path / "alone-in")]) == 0
+    said = capsys.readouterr().out
+    assert "as the model did" in said and "out of their domain" not in said
+    rec = json.loads((tmp_path / "alone-in").with_suffix(".json").read_text())["train"]["adapted"]
+    assert rec["decision"] == "variation" and rec["decision_changed"] is False
