@@ -93,9 +93,15 @@ class Detector(nn.Module):
                ) -> DetectorOutput:
         """The detector's answer from its networks' maps and scores on physical input ``x``: their mean, combined
         with the variation model's finding when the model has one (``model.draem.variation.combine``; its map and
-        score join the member outputs as "variation")."""
-        amap = torch.stack(list(maps.values())).mean(0)
-        score = torch.stack(list(scores.values())).mean(0)
+        score join the member outputs as "variation"). No network output is needed when the variation model alone
+        decides (``ModelConfig.decision``): the station skips them then."""
+        if maps:
+            amap = torch.stack(list(maps.values())).mean(0)
+            score = torch.stack(list(scores.values())).mean(0)
+        elif self.variation is not None and self.config.decision == "variation":
+            amap, score = x.new_zeros((x.shape[0], *x.shape[2:])), x.new_zeros(x.shape[0])  # not read by combine
+        else:
+            raise ModelError("no network ran, and the model's decision needs them")
         if self.variation is not None:
             vmap, vscore = self.variation.zmaps(x)
             amap, score = combine(amap, score, vmap.to(amap.device), vscore.to(score.device),

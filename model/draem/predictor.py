@@ -136,14 +136,22 @@ class Predictor:
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
             if self.early_exit_margin is None:
-                out = self.net.predict(xt, members=self.members)
-                self.members_run += len(self.members)
+                members = self.members if self.networks_decide else ()
+                out = self.net.predict(xt, members=members)
+                self.members_run += len(members)
             else:
                 out = self._predict_early(xt)
         amap = out.anomaly_map[0].float().cpu().numpy()
         heat = np.zeros(shape, np.float32)
         heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
         return float(out.score[0]), heat
+
+    @property
+    def networks_decide(self) -> bool:
+        """False when the variation model alone decides (``ModelConfig.decision``): the networks are not run, as
+        their answer would change nothing the station uses (score and heatmap); ``station eval`` still runs and
+        reports them."""
+        return not (self.config.variation and self.config.decision == "variation")
 
     def _all_channels(self, xt: torch.Tensor) -> torch.Tensor:
         """(C, S, S) of the priors used -> the model's full channel stack; members left out (``members``) get

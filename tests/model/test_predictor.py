@@ -64,3 +64,31 @@ def test_a_bad_setting_is_a_model_error_naming_its_key(tmp_path: Path, kwargs: d
 
 def test_the_normal_prior_reads_the_estimator_inputs() -> None:
     assert PRIOR_MAPS["normal"] == MAP_NAMES
+
+
+@pytest.mark.parametrize("precision", ["fp32", "onnx"])
+def test_a_variation_only_decision_skips_the_networks_and_scores_the_same(tmp_path: Path, precision: str,
+                                                                          monkeypatch) -> None:
+    """The station reads the score and heatmap only: when the variation model alone decides, running the networks
+    changes neither, so they are not run (0 members per part) and the answer is the same."""
+    if precision == "onnx":
+        pytest.importorskip("onnxruntime")
+    from model.draem.predictor import Predictor
+    from model.draem.with_variation import add_variation
+
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32))
+    det.init_weights(torch.Generator().manual_seed(0))
+    det.eval()
+    x = torch.stack([torch.from_numpy(np.stack([maps(0)[k][8:40, 16:48] for k in MAP_NAMES])) for _ in range(12)])
+    x = x + 0.01 * torch.randn(x.shape, generator=torch.Generator().manual_seed(1))
+    full = add_variation(det, x[:10], None, x[10:], decision="variation")
+    save_checkpoint(tmp_path / "v", full, threshold=0.5, threshold_rule="test")
+    pred = load_predictor(tmp_path / "v", "cpu", precision)
+    assert not pred.networks_decide
+    score, heat = pred.predict(maps(0))
+    assert pred.members_run == 0 and np.isfinite(heat).all()
+    monkeypatch.setattr(Predictor, "networks_decide", property(lambda self: True))  # run them after all
+    again, heat_again = pred.predict(maps(0))
+    assert pred.members_run == 1 and again == score and np.array_equal(heat, heat_again)
+    with pytest.raises(ModelError, match="no network ran"):
+        det.output(x[:1], {}, {})  # a model without the variation member cannot do without them
