@@ -107,6 +107,9 @@ def test_a_stray_lights_highlight_is_not_judged_but_a_clipped_part_still_rejects
     assert float(spotted_bad.min()) > float(good.max())  # a defect beside it still stands out
     clipped = vm.zmaps(spot(parts(20, 1), slice(None), slice(None)))[1]
     assert float(clipped.min()) > 3 * float(good.max())  # all of it clipped: too much hidden, judged as is
+    # merely bright is judged: only where the brightest polarizer reading, I (1 + DoLP), can reach full scale
+    bright = np.full((H, W), 0.8, np.float32)
+    assert not vm.highlight(bright * 1.2).any() and vm.highlight(bright * 1.25).all()
     monkeypatch.setattr("model.draem.variation.HIGHLIGHT_LEVEL", float("inf"))  # without the rule
     assert float(vm.zmaps(spot(parts(20, 1)))[1].min()) > float(good.max())  # the highlight alone rejects
 
