@@ -22,7 +22,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "`station render --validation` has enough good parts for a 1 %% threshold)")
     p.add_argument("--decision", default="combined", choices=DECISIONS,
                    help="which finding rejects: either detector's (combined, default) or the variation model's alone "
-                        "(the networks still run and are reported)")
+                        "(station eval still runs and reports the networks; the station skips them)")
     p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
     p.add_argument("--max-good-flagged", type=float, default=0.05,
                    help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
