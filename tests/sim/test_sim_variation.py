@@ -104,3 +104,17 @@ def test_config_files_layer_in_order(tmp_path) -> None:
     config = json.loads((out / "manifest.json").read_text())["config"]
     assert config["scene"]["colour"] == [0.3, 0.4] and config["sensor"]["bit_depth"] == 12
     assert config["variation"]["exposure_scale"] == [0.9, 1.1]
+
+
+def test_station_render_validation_makes_an_all_val_set_and_refuses_heldout_with_it(tmp_path, capsys) -> None:
+    from station.cli import main
+
+    tiny = ["--count", "3", "--width", "32", "--height", "24", "--spp", "1", "--no-ground-truth"]
+    out = tmp_path / "val"
+    assert main(["render", "--out", str(out), "--validation", *tiny]) == 0
+    ds = sd.Dataset(out)
+    assert ds.manifest["split_rule"] == sd.VALIDATION_SPLIT_RULE and ds.indices("val") == [0, 1, 2]
+    capsys.readouterr()
+    assert main(["render", "--out", str(tmp_path / "both"), "--validation", "--heldout", *tiny]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "not both" in err[0]
