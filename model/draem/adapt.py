@@ -192,8 +192,7 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     if shift > DOMAIN_SHIFT_SD and not keep_networks:
         final.config = final.config.with_(decision="variation")
     final.variation.calibrate(net, var)
-    networks = final.config.decision == "combined"
-    return combined_score(net, var, final.variation.calibration, networks).numpy(), shift
+    return combined_score(net, var, final.variation.calibration, final.config.networks_decide).numpy(), shift
 
 
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,

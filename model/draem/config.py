@@ -106,9 +106,9 @@ class ModelConfig:
     object only; needs ground truth at inference (research upper bound).
     ``variation``: the detector also carries the registered variation model (``model.draem.variation``), fitted on
     good parts after training (``station variation``), and decides on the larger of the two detectors' findings.
-    ``decision``: "combined" (that rule) or "variation" (the variation model's finding alone; the networks' maps
-    and scores are still computed and reported): ``station adapt`` sets it when the networks are out of their
-    domain on a line (``model.draem.adapt.DOMAIN_SHIFT_SD``)."""
+    ``decision``: "combined" (that rule) or "variation" (the variation model's finding alone; ``station eval``
+    still computes and reports the networks, the station skips them): set by ``station variation --decision``, and
+    by ``station adapt`` when the networks are out of their domain on a line (``model.draem.adapt.DOMAIN_SHIFT_SD``)."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -159,6 +159,12 @@ class ModelConfig:
     def input_shape(self) -> tuple[int, int]:
         """(height, width) of the network input in pixels: ``input_size_px`` high, twice as wide for roi "band"."""
         return self.input_size_px, (2 if self.roi == "band" else 1) * self.input_size_px
+
+    @property
+    def networks_decide(self) -> bool:
+        """Whether the networks' finding enters the decision (``decision`` "combined"; "variation" needs the
+        variation model, checked above)."""
+        return self.decision == "combined"
 
     @property
     def in_channels(self) -> int:

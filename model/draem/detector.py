@@ -98,13 +98,13 @@ class Detector(nn.Module):
         if maps:
             amap = torch.stack(list(maps.values())).mean(0)
             score = torch.stack(list(scores.values())).mean(0)
-        elif self.variation is not None and self.config.decision == "variation":
+        elif not self.config.networks_decide:
             amap, score = x.new_zeros((x.shape[0], *x.shape[2:])), x.new_zeros(x.shape[0])  # not read by combine
         else:
             raise ModelError("no network ran, and the model's decision needs them")
         if self.variation is not None:
             vmap, vscore = self.variation.zmaps(x)
             amap, score = combine(amap, score, vmap.to(amap.device), vscore.to(score.device),
-                                  self.variation.calibration, networks=self.config.decision == "combined")
+                                  self.variation.calibration, networks=self.config.networks_decide)
             maps, scores = {**maps, "variation": vmap}, {**scores, "variation": vscore}
         return DetectorOutput(amap, score, maps, scores)

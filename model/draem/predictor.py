@@ -151,7 +151,7 @@ class Predictor:
         """False when the variation model alone decides (``ModelConfig.decision``): the networks are not run, as
         their answer would change nothing the station uses (score and heatmap); ``station eval`` still runs and
         reports them."""
-        return not (self.config.variation and self.config.decision == "variation")
+        return self.config.networks_decide
 
     def _all_channels(self, xt: torch.Tensor) -> torch.Tensor:
         """(C, S, S) of the priors used -> the model's full channel stack; members left out (``members``) get
