@@ -150,7 +150,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     choice = choose_threshold(labels, ev.scores, max_good_flagged)
     train = {**ck.meta.get("train", {}), "variation": {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
-        "calibration_data": str(val_data), "calibration_parts": int(good_va.sum()),
+        "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
+        "calibration_parts": int(good_va.sum()),
         "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
     n_bad = int(labels.sum())

@@ -53,6 +53,7 @@ def test_a_validation_set_calibrates_and_thresholds_and_a_decision_is_recorded(t
     assert meta["model"]["decision"] == "variation"
     rec = meta["train"]["variation"]
     assert rec["calibration_data"] == str(val) and rec["calibration_parts"] == 20 and rec["data"] == str(data)
+    assert rec["calibration_manifest_sha256"] != rec["manifest_sha256"]  # the validation set's own, recorded
     # and the industrial thresholds of an evaluation come from its 20 good parts, not the training set's 4
     assert main(["eval", "--model", str(out), "--data", str(data), "--val-data", str(val), "--no-plots",
                  "--no-synthetic", "--out", str(tmp_path / "ev")]) == 0
