@@ -501,6 +501,8 @@ class Dataset:
                            f"this code uses {CONVENTION_VERSION}: re-render")
         self._indices = sorted(int(p.name) for p in (self.root / "samples").glob("[0-9]" * 6) if p.is_dir())
         self._splits: dict[int, str] | None = None
+        self._whole = {rule: split for split, rule in WHOLE_SET_RULES.items()}.get(self.manifest.get("split_rule", ""))
+        """The split every sample is in (a held-out or validation set), else None."""
         if self.manifest.get("split_rule") == FOLDER_SPLIT_RULE:
             try:
                 self._splits = {int(k): str(v) for k, v in self.manifest["sample_splits"].items()}
@@ -528,8 +530,7 @@ class Dataset:
         """The split of sample ``index``: from the manifest for an imported set, else ``split_of``."""
         if self._splits is not None:
             return self._splits.get(index, "")
-        whole = {rule: split for split, rule in WHOLE_SET_RULES.items()}.get(self.manifest.get("split_rule", ""))
-        return split_of(index, whole)
+        return split_of(index, self._whole)
 
     def load(self, index: int, ground_truth: bool = True) -> Sample:
         d = sample_dir(self.root, index)
