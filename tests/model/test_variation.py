@@ -114,6 +114,33 @@ def test_a_stray_lights_highlight_is_not_judged_but_a_clipped_part_still_rejects
     assert float(vm.zmaps(spot(parts(20, 1)))[1].min()) > float(good.max())  # the highlight alone rejects
 
 
+def noisier(x: torch.Tensor, seed: int, sd: float) -> torch.Tensor:
+    """The same parts from a noisier camera: intensity times (1 + sd n), DoLP and AoLP's cosine and sine plus sd n,
+    n standard normal."""
+    g = torch.Generator().manual_seed(seed)
+    out = x.clone()
+    out[:, 0] *= 1 + sd * torch.randn(out[:, 0].shape, generator=g)
+    out[:, 1:] += sd * torch.randn(out[:, 1:].shape, generator=g)
+    return out
+
+
+def test_a_noisier_cameras_good_parts_score_as_good_parts_and_its_defects_still_stand_out(monkeypatch) -> None:
+    """The residual scale is the fit line's; a line whose frames are noisier (another sensor, gain, renderer) puts
+    every pixel of a good part that many times further out, and without the frame's own noise level every good
+    part rejects. A frame far noisier than NOISE_CAP is not rescaled: it rejects."""
+    vm = VariationModel(4, (H, W), intensity=0)
+    x = noisier(parts(40, 0), 0, 0.01)
+    vm.fit(x, x[:, 0] > 0.15)
+    good = float(vm.zmaps(noisier(parts(20, 1), 1, 0.01))[1].max())
+    noisy_good = vm.zmaps(noisier(parts(20, 1), 2, 0.03))[1]
+    noisy_bad = vm.zmaps(noisier(parts(20, 2, defect=True), 3, 0.03))[1]
+    assert float(noisy_good.max()) < 1.5 * good  # three times the noise: read as the frame's own noise
+    assert float(noisy_bad.min()) > float(noisy_good.max())  # and the defects stand out of it
+    assert float(vm.zmaps(noisier(parts(20, 1), 4, 0.2))[1].min()) > 3 * good  # beyond the cap: rejects
+    monkeypatch.setattr("model.draem.variation.NOISE_CAP", 1.0)  # without the rule
+    assert float(vm.zmaps(noisier(parts(20, 1), 2, 0.03))[1].min()) > good  # every noisy good part out
+
+
 def test_too_few_parts_and_bad_buffers_are_errors() -> None:
     with pytest.raises(ModelError, match="at least 8"):
         VariationModel(4, (H, W), 0).fit(parts(3, 0))
