@@ -6,7 +6,8 @@ inspection log (another program's tables, a newer schema) is refused before anyt
 The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Version 2 added
 ``ground_truth_present``, version 3 the frame statistics (``median_level``, ``high_level``, ``clipped_fraction``,
 ``dolp_level``: ``model.priors.frame_stats``) and ``drift`` (the drift warning in force when the part was judged,
-``station.drift``). Opening an older log for writing adds the missing columns (NULL in the old rows); opened
+``station.drift``), version 4 the model's frame checks (``highlight_fraction``, ``noise_level``: ``MODEL_CHECKS``).
+Opening an older log for writing adds the missing columns (NULL in the old rows); opened
 read-only, they read as NULL. Decisions (``station.decision.Verdict``, stored as its values):
 
 pass           judged good (score <= threshold)
@@ -29,15 +30,19 @@ from typing import Any
 from station.decision import Verdict
 from station.errors import UserError
 
-SCHEMA_VERSION = 3
+SCHEMA_VERSION = 4
 WAL_CHECKPOINT_PAGES = 64
 """Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
 WAL_SIZE_LIMIT_BYTES = 256 * 1024
 """... and truncate it back to this size afterwards: a small disk holds rows, not a stale WAL."""
 ADDED_IN_VERSION = {2: ("ground_truth_present",),
-                    3: ("median_level", "high_level", "clipped_fraction", "dolp_level", "drift")}
+                    3: ("median_level", "high_level", "clipped_fraction", "dolp_level", "drift"),
+                    4: ("highlight_fraction", "noise_level")}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
-READABLE_VERSIONS = (1, 2, 3)
+READABLE_VERSIONS = (1, 2, 3, 4)
+MODEL_CHECKS = ("highlight_fraction", "noise_level")
+"""The detector's frame checks the log keeps (``station.inspector.Inference.checks``, from the variation model:
+``model.draem.variation.VariationOutput``)."""
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
@@ -87,6 +92,13 @@ class InspectionRecord:
     dolp_level: float | None = None
     drift: str | None = None
     """The drift warning in force when the part was judged (``station.drift.DriftMonitor``); None in range."""
+    highlight_fraction: float | None = None
+    """Share of the part (0..1) the model found lit to full scale, and did not judge there; above 0.5 it judged the
+    whole part. None when the model has no variation member or did not run."""
+    noise_level: float | None = None
+    """The frame's noise against the good parts the model was fitted on (about 1 there): the model reads a frame up
+    to ``model.draem.variation.NOISE_CAP`` times noisier as noise and judges a noisier one as it is (it rejects).
+    Parts well above 1 come from a line unlike the model's: ``station adapt``. None as for highlight_fraction."""
 
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:

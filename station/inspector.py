@@ -28,10 +28,13 @@ from station.presence import Presence, PresenceCheck
 
 @dataclass(frozen=True)
 class Inference:
-    """A detector's answer: image score in [0, 1] and per-pixel anomaly probability (H', W') in [0, 1]."""
+    """A detector's answer: image score in [0, 1] and per-pixel anomaly probability (H', W') in [0, 1]; ``checks``:
+    what the model's frame checks found (``model.draem.detector.DetectorOutput.frame_checks``; the log keeps
+    ``station.inspection_log.MODEL_CHECKS`` of them)."""
 
     score: float
     heatmap: np.ndarray | None = None
+    checks: Mapping[str, float] = field(default_factory=dict)
 
 
 class Detector(Protocol):
@@ -58,6 +61,8 @@ class Inspection:
     frame_stats: FrameStatistics | None = None
     """Brightness and polarization of the frame (``model.priors.frame_stats``) when the inspector computes them."""
     timings_ms: dict[str, float] = field(default_factory=dict)
+    checks: dict[str, float] = field(default_factory=dict)
+    """The detector's frame checks (``Inference.checks``)."""
 
     @property
     def present(self) -> bool:
@@ -118,6 +123,7 @@ class Inspector:
         try:
             inference = self.detector.infer(result.priors)
             result.score, result.heatmap = float(inference.score), inference.heatmap
+            result.checks = dict(inference.checks)
         except Exception as exc:
             result.error = (f"frame {frame.frame_id}: model {self.detector.model_id} failed: "
                             f"{type(exc).__name__}: {exc}")

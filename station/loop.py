@@ -42,7 +42,7 @@ from drivers.line_io import Trigger
 from station.decision import Decision, Verdict, decide, late
 from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
-from station.inspection_log import InspectionLog, InspectionRecord, LogError
+from station.inspection_log import MODEL_CHECKS, InspectionLog, InspectionRecord, LogError
 from station.inspector import Inspection, Inspector
 from station.reject_store import RejectStore
 from station.viewer import ViewerFeed, ViewFrame
@@ -364,7 +364,8 @@ class Station:
             io_delivered=False if tell_plc else None, ground_truth_label=truth,
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path,
             **(inspection.frame_stats.as_dict() if inspection is not None and inspection.frame_stats else {}),
-            drift=self.drift.warning if self.drift is not None else None)
+            drift=self.drift.warning if self.drift is not None else None,
+            **{k: inspection.checks[k] for k in MODEL_CHECKS if inspection is not None and k in inspection.checks})
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
         if tell_plc and record.decision == Verdict.PASS:
             late_ms = 1e3 * (time.perf_counter() - part.t_trigger)

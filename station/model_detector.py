@@ -49,7 +49,8 @@ class DraemDetector:
 
     def infer(self, priors: Mapping[str, np.ndarray]) -> Inference:
         """Score one frame's prior maps; the heatmap is frame-sized (zero outside the region of interest)."""
-        return Inference(*self.predictor.predict(priors))
+        p = self.predictor.predict(priors)
+        return Inference(p.score, p.heatmap, p.checks)
 
     def warm_up(self, runs: int = 2) -> float:
         """Run inference on flat frames before the first part; returns the last run's milliseconds."""

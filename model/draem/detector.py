@@ -4,7 +4,7 @@ normalisation and image scoring that belong to it. Input is physical prior value
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import torch
 import torch.nn.functional as F
@@ -37,12 +37,15 @@ def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, wi
 @dataclass
 class DetectorOutput:
     """anomaly_map: (N, H, W) mean of the members' maps; score: (N,) mean of the members' image scores;
-    member_maps / member_scores keyed by member (prior name, or "fused")."""
+    member_maps / member_scores keyed by member (prior name, or "fused"); frame_checks: (N,) per frame, what the
+    variation model's rules found ("highlight_fraction", "noise_level": ``model.draem.variation.VariationOutput``),
+    empty without that model."""
 
     anomaly_map: torch.Tensor
     score: torch.Tensor
     member_maps: dict[str, torch.Tensor]
     member_scores: dict[str, torch.Tensor]
+    frame_checks: dict[str, torch.Tensor] = field(default_factory=dict)
 
 
 class Detector(nn.Module):
@@ -102,9 +105,10 @@ class Detector(nn.Module):
             amap, score = x.new_zeros((x.shape[0], *x.shape[2:])), x.new_zeros(x.shape[0])  # not read by combine
         else:
             raise ModelError("no network ran, and the model's decision needs them")
-        if self.variation is not None:
-            vmap, vscore = self.variation.zmaps(x)
-            amap, score = combine(amap, score, vmap.to(amap.device), vscore.to(score.device),
-                                  self.variation.calibration, networks=self.config.networks_decide)
-            maps, scores = {**maps, "variation": vmap}, {**scores, "variation": vscore}
-        return DetectorOutput(amap, score, maps, scores)
+        if self.variation is None:
+            return DetectorOutput(amap, score, maps, scores)
+        v = self.variation.zmaps(x)
+        amap, score = combine(amap, score, v.maps.to(amap.device), v.scores.to(score.device),
+                              self.variation.calibration, networks=self.config.networks_decide)
+        return DetectorOutput(amap, score, {**maps, "variation": v.maps}, {**scores, "variation": v.scores},
+                              {"highlight_fraction": v.highlight_fraction, "noise_level": v.noise_level})

@@ -41,6 +41,16 @@ PRIOR_MAPS: dict[str, tuple[str, ...]] = {
 """Model prior -> the ``model.priors`` maps it is built from ("normal": the inputs of the learned normal
 estimator, ``model.normals.estimator.MAP_NAMES``; a test keeps the two equal)."""
 
+@dataclass(frozen=True)
+class Prediction:
+    """One frame's answer: image ``score`` in [0, 1]; ``heatmap`` (H, W) float32 in [0, 1], frame-sized, zero outside
+    the region of interest; ``checks``: ``DetectorOutput.frame_checks`` of the frame (empty without them)."""
+
+    score: float
+    heatmap: np.ndarray
+    checks: dict[str, float] = field(default_factory=dict)
+
+
 class PredictorError(ModelError):
     """The checkpoint cannot be run as asked: a setting (``[model] path/device/precision``, members, early exit
     margin), a model unfit for inference on frames, its int8 networks or its normal estimator. The message is one
@@ -113,9 +123,8 @@ class Predictor:
     def __post_init__(self) -> None:
         self.priors = tuple(dict.fromkeys(n for p in self.used_priors for n in PRIOR_MAPS[p]))
 
-    def predict(self, maps: Mapping[str, np.ndarray]) -> tuple[float, np.ndarray]:
-        """Score one frame's prior maps (``priors`` of them, each (H, W)): (image score, (H, W) float32 heatmap,
-        zero outside the region of interest)."""
+    def predict(self, maps: Mapping[str, np.ndarray]) -> Prediction:
+        """Score one frame's prior maps (``priors`` of them, each (H, W))."""
         import cv2
         import torch
 
@@ -144,7 +153,7 @@ class Predictor:
         amap = out.anomaly_map[0].float().cpu().numpy()
         heat = np.zeros(shape, np.float32)
         heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
-        return float(out.score[0]), heat
+        return Prediction(float(out.score[0]), heat, {k: float(v[0]) for k, v in out.frame_checks.items()})
 
     @property
     def networks_decide(self) -> bool:

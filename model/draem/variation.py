@@ -41,18 +41,18 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               part had 12 % of its region hidden at the 90th percentile, 36 % at most. A defect inside a
               highlight is not judged there. Fail closed: when more than ``MAX_HIDDEN`` of the part would be
               hidden, nothing is (the part scores as without the rule, and a clipped part rejects)
-    noise     the z map divided by the frame's own noise factor (``noise_factor``): the median z over its judged
-              pixels and channels against the good parts' (``MEDIAN_ABS_NORMAL``), when above 1 and at most
+    noise     the z map divided by the frame's own noise level (``noise_level``): the median z over its judged
+              pixels and channels against a good part's (``MEDIAN_ABS_NORMAL``), when above 1 and at most
               ``NOISE_CAP``. ``scale`` is the fit line's spread; frames from a noisier camera, gain or renderer
               put every pixel of a good part that many times further out, and a defect covers a small share of
-              the part, so the median reads the frame's noise, not its defect. Measured (shipped model,
-              thresholds from the validation set): good parts of the same line rendered at 8 spp instead of
-              16 had a factor of 1.8 (median) and 27 % of them were rejected at the 5 % threshold, 0 % with
-              the rule; a brighter line's 51 % -> 16 %; the validation and held-out sets' good parts 1.00
-              (at most 1.38), where the rule changed image AUROC 0.812 -> 0.813 and 0.834 -> 0.840. One factor
-              for all channels: per channel it lowered the 8-spp line's AUROC (0.765 -> 0.714), one factor
-              kept it (0.751). Blind spot, by design: a change spread evenly over most of the part and under
-              NOISE_CAP times the good parts' spread is read as noise
+              the part, so the median reads the frame's noise, not its defect. Measured with the shipped model
+              (thresholds from the validation set): good parts of the same line rendered at 8 spp instead of
+              16 have a level of 1.8 (median), and 25 % of them were rejected at the 5 % threshold, none with
+              the rule; the validation and held-out sets' good parts 1.00 (at most 1.38), where image AUROC
+              went 0.812 -> 0.813 and 0.834 -> 0.840. One level for all channels: one per channel lowered
+              the 8-spp line's AUROC (0.765 -> 0.714), one level kept it (0.751). Blind spot, by design: a
+              change spread evenly over most of the part and under NOISE_CAP times the good parts' spread is
+              read as noise. ``zmaps`` reports each frame's level and highlight share (``VariationOutput``)
     score     max of the z map: a number of robust standard deviations
 
 ``Detector.predict`` combines it with the networks (``combine``). numpy + OpenCV at run time (torch only for the
@@ -62,6 +62,7 @@ buffers, so the checkpoint carries them); never NaN or Inf.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import cv2
 import numpy as np
@@ -108,9 +109,20 @@ MEDIAN_ABS_NORMAL = 0.6745
 """Median of |n| for n standard normal: a good part's median z on the fitted line (``scale`` is 1.4826 MAD)."""
 
 NOISE_CAP = 3.0
-"""Largest frame noise factor read as the frame's own noise (module docstring: noise). Good parts of the fitted
+"""Largest frame noise level read as the frame's own noise (module docstring: noise). Good parts of the fitted
 line reach 1.38 (370 validation parts, 500 held-out), an 8-spp line of the same parts 2.1, a brighter line 2.3;
 a frame above the cap is so unlike the fitted line's parts that it is judged unscaled, and rejects."""
+
+
+class VariationOutput(NamedTuple):
+    """``VariationModel.zmaps``, per frame of N: ``maps`` (N, H, W) box-averaged z, zero off the part; ``scores``
+    (N,) their max; ``highlight_fraction`` (N,) the share of the part the highlight rule found (above
+    ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the frame's noise level (1 on the fitted line)."""
+
+    maps: torch.Tensor
+    scores: torch.Tensor
+    highlight_fraction: torch.Tensor
+    noise_level: torch.Tensor
 
 
 class VariationModel(nn.Module):
@@ -279,39 +291,42 @@ class VariationModel(nn.Module):
     # --- scoring ---
 
     @torch.no_grad()
-    def zmaps(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        """(N, C, H, W) physical priors -> ((N, H, W) box-averaged z maps, zero off the part; (N,) image scores)."""
+    def zmaps(self, x: torch.Tensor) -> VariationOutput:
+        """(N, C, H, W) physical priors -> box-averaged z maps, image scores and what each frame's rules found."""
         xs = x.float().cpu().numpy()
         ref, mean, scale = self.reference.numpy(), self.mean.numpy(), self.scale.numpy()
         cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
         region = cv2.erode(part.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
         if not region.any():
             region = part
-        maps = []
+        maps, highlights, noise = [], [], []
         for xi in xs:
             peak = self.peak(xi)
             seen = ~self.highlight(peak)
             warped = self.warp_to(ref, np.concatenate([self.features(xi), peak[None]]),
                                   seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
             judged = part & ~self.highlight(warped[-1])
+            highlights.append(1.0 - judged.sum() / max(part.sum(), 1))
             if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
                 judged = part  # too much hidden to judge the part by the rest: fail closed
             u = (warped[:-1] - mean) / cs * part
             z = np.abs(self._residual(u[None], components, judged)[0]) / scale
-            z = (z / self.noise_factor(z, judged)).max(0)
+            noise.append(self.noise_level(z, judged))
+            z = (z / (noise[-1] if 1.0 < noise[-1] <= NOISE_CAP else 1.0)).max(0)
             z = cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE)
             maps.append(np.where(region & judged, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
         m = torch.from_numpy(np.stack(maps)).to(x.device)
-        return m, m.flatten(1).amax(1)
-
+        return VariationOutput(m, m.flatten(1).amax(1), torch.tensor(highlights, dtype=torch.float32),
+                               torch.tensor(noise, dtype=torch.float32))
 
     @staticmethod
-    def noise_factor(z: np.ndarray, judged: np.ndarray) -> float:
-        """(C, H, W) per-channel z and (H, W) judged pixels -> the frame's noise factor: the median z over every
-        channel and judged pixel / ``MEDIAN_ABS_NORMAL``, when it lies in (1, ``NOISE_CAP``]; else 1 (a quiet
-        frame is not made louder, a frame beyond the cap or a NaN is judged as is)."""
+    def noise_level(z: np.ndarray, judged: np.ndarray) -> float:
+        """(C, H, W) per-channel z and (H, W) judged pixels -> the frame's noise level: the median z over every
+        channel and judged pixel / ``MEDIAN_ABS_NORMAL`` (about 1 on the fitted line's good parts), finite.
+        ``zmaps`` divides by it when it lies in (1, ``NOISE_CAP``]: a quiet frame is not made louder, a frame
+        beyond the cap is judged as is."""
         s = float(np.median(z[:, judged])) / MEDIAN_ABS_NORMAL if judged.any() else 1.0
-        return s if 1.0 < s <= NOISE_CAP else 1.0
+        return s if math.isfinite(s) else 1e6
 
 
 def network_score(member_scores: dict[str, torch.Tensor]) -> torch.Tensor:

@@ -41,8 +41,8 @@ def test_the_predictor_scores_as_the_station_detector(tmp_path: Path, fusion: st
     assert pred.priors == det.priors == ("intensity", "dolp", "aolp_cos", "aolp_sin")
     assert (pred.model_id, pred.threshold, pred.precision) == (det.model_id, det.threshold, det.precision)
     for seed in range(3):
-        score, heat = pred.predict(maps(seed))
-        ref = det.infer(maps(seed))
+        p = pred.predict(maps(seed))
+        score, heat, ref = p.score, p.heatmap, det.infer(maps(seed))
         assert heat.dtype == np.float32 and heat.shape == (48, 64)
         assert score == ref.score and np.array_equal(heat, ref.heatmap)
         assert not heat[:, :8].any() and not heat[:, 56:].any()  # roi "center": the 48 x 48 centre square
@@ -85,10 +85,12 @@ def test_a_variation_only_decision_skips_the_networks_and_scores_the_same(tmp_pa
     save_checkpoint(tmp_path / "v", full, threshold=0.5, threshold_rule="test")
     pred = load_predictor(tmp_path / "v", "cpu", precision)
     assert not pred.networks_decide
-    score, heat = pred.predict(maps(0))
-    assert pred.members_run == 0 and np.isfinite(heat).all()
+    p = pred.predict(maps(0))
+    assert pred.members_run == 0 and np.isfinite(p.heatmap).all()
+    assert set(p.checks) == {"highlight_fraction", "noise_level"}  # the variation model's frame checks
+    assert 0.0 <= p.checks["highlight_fraction"] <= 1.0 and 0.0 < p.checks["noise_level"] < 1e6
     monkeypatch.setattr(Predictor, "networks_decide", property(lambda self: True))  # run them after all
-    again, heat_again = pred.predict(maps(0))
-    assert pred.members_run == 1 and again == score and np.array_equal(heat, heat_again)
+    again = pred.predict(maps(0))
+    assert pred.members_run == 1 and again.score == p.score and np.array_equal(p.heatmap, again.heatmap)
     with pytest.raises(ModelError, match="no network ran"):
         det.output(x[:1], {}, {})  # a model without the variation member cannot do without them

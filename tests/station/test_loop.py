@@ -173,6 +173,27 @@ def test_every_part_is_judged_logged_and_scored_against_truth(tmp_path):
     assert rows[1]["reason"].startswith("score 1.5686 > threshold 0.5000")
 
 
+class CheckingDetector(BrightnessDetector):
+    """Reports frame checks as the variation model does, and one the log does not keep."""
+
+    def infer(self, priors):
+        out = super().infer(priors)
+        return Inference(out.score, checks={"highlight_fraction": 0.25, "noise_level": 1.5, "other": 9.0})
+
+
+def test_the_models_frame_checks_reach_each_row(tmp_path):
+    station, log = make_station(tmp_path, ScriptedCamera([0, 1]), CheckingDetector())
+    station.run(max_parts=2)
+    rows = list(log.rows())
+    assert [(r["highlight_fraction"], r["noise_level"]) for r in rows] == [(0.25, 1.5)] * 2
+    assert "other" not in rows[0]
+    log.close()
+    station, log = make_station(tmp_path / "plain", ScriptedCamera([0]), BrightnessDetector())
+    station.run(max_parts=1)
+    assert [(r["highlight_fraction"], r["noise_level"]) for r in log.rows()] == [(None, None)]
+    log.close()
+
+
 def test_backpressure_drops_are_logged_as_not_inspected_and_rejected_at_the_plc(tmp_path):
     n = 40
     link = ScriptedLink(n)
