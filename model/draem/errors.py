@@ -9,3 +9,11 @@ class ModelError(Exception):
 
 class CheckpointError(ModelError):
     """A checkpoint or its JSON sidecar is missing, unreadable or does not match what the caller expects."""
+
+
+class ConfigError(ModelError):
+    """A configuration value is out of its range; ``key`` names the field (a command maps it to its flag)."""
+
+    def __init__(self, key: str, message: str) -> None:
+        super().__init__(message)
+        self.key = key

@@ -39,7 +39,7 @@ from .anomaly import AnomalyConfig
 from .checkpoint import load_checkpoint, paths, save_checkpoint
 from .config import ModelConfig
 from .detector import Detector
-from .errors import CheckpointError, ModelError
+from .errors import CheckpointError, ConfigError, ModelError
 from .loss import draem_loss
 from .mixed import DefectData, TrainBatch, draw_batch, n_rendered
 from .networks import DraemTrainOutput
@@ -108,15 +108,21 @@ class TrainConfig:
     polarization_noise: float = 0.0
 
     def __post_init__(self) -> None:
-        if self.steps < 1 or self.batch_size < 1 or self.eval_every < 1:
-            raise ModelError(f"train config: steps, batch_size and eval_every must be >= 1 ({self})")
+        for key in ("steps", "batch_size", "eval_every"):
+            if getattr(self, key) < 1:
+                raise ConfigError(key, f"{key} must be >= 1, got {getattr(self, key)}")
         if self.stop_at_step is not None and not 1 <= self.stop_at_step <= self.steps:
-            raise ModelError(f"stop_at_step must be in [1, steps = {self.steps}], got {self.stop_at_step}")
+            raise ConfigError("stop_at_step",
+                              f"stop_at_step must be in [1, steps = {self.steps}], got {self.stop_at_step}")
         if self.precision not in runtime.TRAIN_PRECISIONS:
-            raise ModelError(f"precision must be auto, fp32 or bf16, got {self.precision!r}")
+            raise ConfigError("precision", f"precision must be auto, fp32 or bf16, got {self.precision!r}")
         if not 0.0 <= self.polarization_noise <= 1.0:
-            raise ModelError(f"polarization_noise must be in [0, 1] (units of S0), got {self.polarization_noise}")
-        n_rendered(self.rendered_fraction, self.batch_size)  # raises on a fraction the batch cannot hold
+            raise ConfigError("polarization_noise",
+                              f"polarization_noise must be in [0, 1] (units of S0), got {self.polarization_noise}")
+        try:
+            n_rendered(self.rendered_fraction, self.batch_size)  # a fraction the batch cannot hold
+        except ModelError as exc:
+            raise ConfigError("rendered_fraction", str(exc)) from None
 
     @property
     def n_rendered(self) -> int:

@@ -147,7 +147,7 @@ def check_init_holds_out(record: dict[str, Any] | None, holdout_type: str | None
 def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.config import ModelConfig, check_priors
-    from model.draem.errors import ModelError
+    from model.draem.errors import ConfigError
     from model.draem.evaluate import EvalData, evaluate, synthetic_eval_data
     from model.draem.metrics import choose_threshold
     from model.draem.train import TensorData, TrainConfig, train
@@ -185,13 +185,11 @@ def run(args: argparse.Namespace) -> int:
                          device=args.device, precision=args.precision, max_minutes=args.max_minutes,
                          stop_at_step=args.stop_at_step,
                          rendered_fraction=args.rendered_fraction, polarization_noise=args.polarization_noise)
-    except ModelError as exc:
-        if "stop_at_step" in str(exc):
-            raise UserError(f"--stop-at-step {args.stop_at_step}: {exc}") from None
-        if "polarization_noise" in str(exc):
-            raise UserError(f"--polarization-noise {args.polarization_noise}: {exc}") from None
-        raise UserError(f"--rendered-fraction {args.rendered_fraction} with --batch-size {args.batch_size}: "
-                        f"{exc}") from None
+    except ConfigError as exc:
+        flag = f"--{exc.key.replace('_', '-')} {getattr(args, exc.key)}"
+        if exc.key == "rendered_fraction":
+            flag += f" with --batch-size {args.batch_size}"
+        raise UserError(f"{flag}: {exc}") from None
     sha = manifest_sha256(args.data)
     meta = {"frame_statistics": StatisticsRange.from_frames(tr.frame_stats).to_dict()}
     if normal_prior:

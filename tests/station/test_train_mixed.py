@@ -35,6 +35,10 @@ def test_holdout_and_fraction_errors_are_one_line(tmp_path: Path, capsys) -> Non
     assert "no sample of type ['dent']" in capsys.readouterr().err
     assert main([*argv, "--rendered-fraction", "1.0"]) == 2
     assert "--rendered-fraction 1.0" in capsys.readouterr().err
+    for flag, value in (("--eval-every", "0"), ("--batch-size", "0"), ("--polarization-noise", "2")):
+        assert main([*argv, flag, value]) == 2
+        err = capsys.readouterr().err
+        assert f"{flag} {value}" in err and "--rendered-fraction" not in err  # the flag given, not another
     clean = make_line_set(tmp_path / "clean", n=30, defective=lambda i: False)
     assert main(["train", "--data", str(clean), *BASE, "--rendered-fraction", "0.25",
                  "--out", str(tmp_path / "c")]) == 2
