@@ -53,7 +53,19 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               the 8-spp line's AUROC (0.765 -> 0.714), one level kept it (0.751). Blind spot, by design: a
               change spread evenly over most of the part and under NOISE_CAP times the good parts' spread is
               read as noise. ``zmaps`` reports each frame's level and highlight share (``VariationOutput``)
-    score     max of the z map: a number of robust standard deviations
+    position  the window statistic (the z map above, after the noise level) put against the good parts' own at the
+              same pixel: (w - window_location) / window_spread, zero below; window_location is the median of the
+              training parts' window statistics (from their left-out fits) at that pixel, window_spread their
+              ``WINDOW_QUANTILE``-th percentile above it, smoothed over ``WINDOW_BLUR_PX`` and floored. Good
+              parts' windows are not alike everywhere: at silhouettes, stud edges and where stray light falls they
+              run higher and heavier-tailed than on flat faces, so the part's maximum, and with it the threshold,
+              was set by a few places. Put per pixel, each place rejects good parts about equally often (a
+              constant false-alarm rate), as the localised oracle compares a defect with good parts at its own
+              pixels (docs/results/2026-11-24-low-rank-variation.md). On the validation set (prototype on cached
+              residuals, docs/results/2026-11-24-position.md), against the uncalibrated window: caught at 1 % of
+              good parts rejected 46 % -> 50 % (paired bootstrap SE 2.1), at 5 % 53 % -> 62 % (SE 2.7), image
+              AUROC 0.813 -> 0.830 (SE 0.010)
+    score     max of the map: robust standard deviations above the good parts at the worst pixel
 
 ``Detector.predict`` combines it with the networks (``combine``). numpy + OpenCV at run time (torch only for the
 buffers, so the checkpoint carries them); never NaN or Inf.
@@ -105,6 +117,25 @@ specular lobe around a clipped core."""
 MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
+WINDOW_BUFFERS = ("window_location", "window_spread")
+"""Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with location 0
+and spread 1, which scores as those models did (the window statistic uncalibrated)."""
+
+WINDOW_QUANTILE = 95.0
+"""``window_spread`` is the good parts' WINDOW_QUANTILE-th percentile of the window statistic above its median, per
+pixel (module docstring: position): a tail, because places where good parts run high run heavy-tailed too, and a
+robust spread (1.4826 MAD) let their rare high values through (validation set: caught at 5 % 58 % with the MAD,
+62 % with this)."""
+
+WINDOW_BLUR_PX = 2.0
+"""Gaussian sigma, in input pixels, over which that percentile is smoothed: 376 training parts give a steady 95th
+percentile per pixel, ``station adapt``'s 50 parts do not, and neighbouring pixels share their place's tail."""
+
+ABS_NORMAL_SD = 0.6028
+"""Standard deviation of |n| for n standard normal. ``window_spread`` is floored at ABS_NORMAL_SD / box_px, the
+spread of a window of independent good pixels: where the good parts agree more closely than that (noise-free
+renders, floored scales), a part would otherwise be judged on differences of no physical size."""
+
 MEDIAN_ABS_NORMAL = 0.6745
 """Median of |n| for n standard normal: a good part's median z on the fitted line (``scale`` is 1.4826 MAD)."""
 
@@ -130,7 +161,9 @@ class VariationModel(nn.Module):
     ``channel_scale`` (C,), ``components`` (COMPONENTS, C, H, W, orthonormal over the region) and ``scale``
     (C, H, W): the good parts' appearance and residual spread (module docstring); ``region`` (H, W) where the
     part is (bool); ``calibration`` (4,): location and spread of the networks' and this model's image scores on
-    good validation parts (``combine``). ``intensity``, ``dolp``, ``aolp``: the channel index of intensity, of
+    good validation parts (``combine``); ``window_location``, ``window_spread`` (H, W): median and spread of the
+    good parts' window statistic at each pixel (module docstring: position; ``WINDOW_BUFFERS``). ``intensity``,
+    ``dolp``, ``aolp``: the channel index of intensity, of
     DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
@@ -147,6 +180,8 @@ class VariationModel(nn.Module):
         self.register_buffer("scale", torch.ones(channels, h, w))
         self.register_buffer("region", torch.ones(h, w, dtype=torch.bool))
         self.register_buffer("calibration", torch.tensor([0.0, 1.0, 0.0, 1.0]))
+        self.register_buffer("window_location", torch.zeros(h, w))
+        self.register_buffer("window_spread", torch.ones(h, w))
 
     # --- features and registration (numpy) ---
 
@@ -236,9 +271,15 @@ class VariationModel(nn.Module):
         scale = 1.4826 * np.median(np.abs(residual), 0)
         floor = np.maximum([np.percentile(s[region], floor_quantile) for s in scale], MIN_SCALE / channel_scale)
         scale = np.maximum(scale, floor[:, None, None])
+        windows = np.stack([self.window(np.abs(r) / scale, region)[0] for r in residual])
+        location = np.median(windows, 0)
+        spread = cv2.GaussianBlur(np.percentile(windows, WINDOW_QUANTILE, 0) - location, (0, 0), WINDOW_BLUR_PX)
+        spread = np.maximum(spread, max(float(np.percentile(spread[region], floor_quantile)),
+                                        ABS_NORMAL_SD / self.box_px))
         mean = mean * channel_scale[:, None, None]
         for name, value in (("reference", ref), ("mean", mean), ("channel_scale", channel_scale),
-                            ("components", components), ("scale", scale)):
+                            ("components", components), ("scale", scale), ("window_location", location),
+                            ("window_spread", spread)):
             getattr(self, name).copy_(torch.from_numpy(np.asarray(value, np.float32)))
         self.region.copy_(torch.from_numpy(region))
 
@@ -282,10 +323,11 @@ class VariationModel(nn.Module):
 
     def check(self) -> None:
         """ModelError unless every buffer is finite and every spread > 0 (a NaN would pass every part)."""
-        for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration"):
+        for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *WINDOW_BUFFERS):
             if not bool(torch.isfinite(getattr(self, name)).all()):
                 raise ModelError(f"variation model: {name} has NaN or Inf values")
-        if not bool((self.scale > 0).all()) or float(self.calibration[1]) <= 0 or float(self.calibration[3]) <= 0:
+        if (not bool((self.scale > 0).all()) or not bool((self.window_spread > 0).all())
+                or float(self.calibration[1]) <= 0 or float(self.calibration[3]) <= 0):
             raise ModelError("variation model: a scale or calibration spread is not > 0")
 
     # --- scoring ---
@@ -296,6 +338,7 @@ class VariationModel(nn.Module):
         xs = x.float().cpu().numpy()
         ref, mean, scale = self.reference.numpy(), self.mean.numpy(), self.scale.numpy()
         cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
+        location, spread = self.window_location.numpy(), self.window_spread.numpy()
         region = cv2.erode(part.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
         if not region.any():
             region = part
@@ -310,14 +353,20 @@ class VariationModel(nn.Module):
             if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
                 judged = part  # too much hidden to judge the part by the rest: fail closed
             u = (warped[:-1] - mean) / cs * part
-            z = np.abs(self._residual(u[None], components, judged)[0]) / scale
-            noise.append(self.noise_level(z, judged))
-            z = (z / (noise[-1] if 1.0 < noise[-1] <= NOISE_CAP else 1.0)).max(0)
-            z = cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE)
+            w, level = self.window(np.abs(self._residual(u[None], components, judged)[0]) / scale, judged)
+            noise.append(level)
+            z = np.maximum((w - location) / spread, 0.0)
             maps.append(np.where(region & judged, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
         m = torch.from_numpy(np.stack(maps)).to(x.device)
         return VariationOutput(m, m.flatten(1).amax(1), torch.tensor(highlights, dtype=torch.float32),
                                torch.tensor(noise, dtype=torch.float32))
+
+    def window(self, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, float]:
+        """(C, H, W) per-channel z of a part and its (H, W) judged pixels -> ((H, W) window statistic: the largest
+        channel's z after the frame's noise level, box-averaged over ``box_px``; the noise level)."""
+        level = self.noise_level(z, judged)
+        z = (z / (level if 1.0 < level <= NOISE_CAP else 1.0)).max(0)
+        return cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE), level
 
     @staticmethod
     def noise_level(z: np.ndarray, judged: np.ndarray) -> float:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import cv2
 import numpy as np
 import pytest
 import torch
@@ -14,7 +15,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
-from model.draem.variation import SQUASH_CENTRE, VariationModel, combined_score, squash
+from model.draem.variation import SQUASH_CENTRE, WINDOW_BUFFERS, VariationModel, combined_score, squash
 from model.draem.with_variation import add_variation
 
 H, W = 32, 64
@@ -141,6 +142,36 @@ def test_a_noisier_cameras_good_parts_score_as_good_parts_and_its_defects_still_
     assert float(vm.zmaps(noisier(parts(20, 1), 2, 0.03))[1].min()) > good  # every noisy good part out
 
 
+def mottled(x: torch.Tensor, seed: int, defect: bool = False) -> torch.Tensor:
+    """Parts whose right end is mottled differently on every part (intensity times exp(0.3 n), n smooth noise of
+    unit spread: a 5 px window does not average it out), optionally with a faint dent (-30 %, 2 px) on the flat
+    centre."""
+    rng = np.random.default_rng(seed)
+    yy, xx = np.mgrid[0:H, 0:W].astype(np.float32)
+    out = x.clone()
+    for i in range(len(out)):
+        n = cv2.GaussianBlur(rng.standard_normal((H, W)).astype(np.float32), (0, 0), 2.0)
+        gain = np.exp(0.3 * n / n.std() * (xx > 44))
+        if defect:
+            gain = gain * (1 - 0.3 * np.exp(-((yy - H / 2) ** 2 + (xx - W / 2 + 4) ** 2) / 4.0))
+        out[i, 0] *= torch.from_numpy(gain.astype(np.float32))
+    return out
+
+
+def test_a_place_where_good_parts_vary_more_does_not_hide_a_faint_defect_elsewhere() -> None:
+    """Where good parts run high and heavy-tailed (here a mottled end; on the line silhouettes, stud edges, stray
+    light), their window statistic set the part's maximum; put against the good parts at the same pixel, each
+    place rejects good parts about equally often, and a faint dent on a flat face stands out."""
+    vm = VariationModel(4, (H, W), intensity=0)
+    x = mottled(noisier(parts(60, 0), 0, 0.01), 0)
+    vm.fit(x, x[:, 0] > 0.15)
+    good, bad = mottled(noisier(parts(20, 1), 1, 0.01), 1), mottled(noisier(parts(20, 2), 2, 0.01), 2, defect=True)
+    assert float(vm.zmaps(bad)[1].min()) > float(vm.zmaps(good)[1].max())
+    vm.window_location.zero_()  # the window uncalibrated, as before the position rule
+    vm.window_spread.fill_(1.0)
+    assert float(vm.zmaps(bad)[1].min()) < float(vm.zmaps(good)[1].max())
+
+
 def test_too_few_parts_and_bad_buffers_are_errors() -> None:
     with pytest.raises(ModelError, match="at least 8"):
         VariationModel(4, (H, W), 0).fit(parts(3, 0))
@@ -205,6 +236,17 @@ def test_hostile_inputs_give_finite_scores_that_reject(tmp_path: Path) -> None:
     assert det.variation is not None
     x[0], x[1] = float("nan"), float("inf")  # the variation member alone stays finite even on these
     assert bool(torch.isfinite(det.variation.zmaps(x)[0]).all())
+
+
+def test_a_checkpoint_from_before_the_position_rule_loads_with_the_window_uncalibrated(tmp_path: Path) -> None:
+    _, path = detector_with_variation(tmp_path)
+    pt = path.with_suffix(".pt")
+    state = torch.load(pt, weights_only=True)
+    for name in WINDOW_BUFFERS:
+        del state[f"variation.{name}"]
+    torch.save(state, pt)
+    old = load_checkpoint(path, verify_hash=False).detector.variation
+    assert old is not None and not bool(old.window_location.any()) and bool((old.window_spread == 1).all())
 
 
 def test_a_checkpoint_with_a_nan_buffer_is_refused_naming_the_file(tmp_path: Path) -> None:
