@@ -11,9 +11,11 @@ from typing import Any
 import numpy as np
 
 from station.decision import Verdict
-from station.inspection_log import DECISIONS
+from station.inspection_log import DECISIONS, MODEL_CHECKS
 
 PERCENTILES = (50, 90, 99)
+NOISY_LINE_LEVEL = 1.5
+"""Median ``noise_level`` from which the report warns: the model's own held-out renders reach 1.4 at most."""
 
 
 @dataclass(frozen=True)
@@ -37,6 +39,8 @@ class LogSummary:
     """Parts judged while a drift warning was in force (``drift`` column, schema version 3)."""
     last_drift: str | None = None
     """The newest drift warning in the log."""
+    frame_checks: dict[str, dict[str, float]] = field(default_factory=dict)
+    """Per model frame check (``MODEL_CHECKS``, schema version 4) over the parts that have it: median, p99, max."""
 
 
 def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
@@ -47,7 +51,11 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     confusion: Counter[str] = Counter()
     times: list[float] = []
     drift_parts, last_drift = 0, None
+    checks: dict[str, list[float]] = {k: [] for k in MODEL_CHECKS}
     for r in rows:
+        for k in MODEL_CHECKS:
+            if r.get(k) is not None:
+                checks[k].append(r[k])
         counts[r["decision"]] += 1
         if r.get("drift"):
             drift_parts, last_drift = drift_parts + 1, r["drift"]
@@ -75,6 +83,8 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
         last_unix_s=max(times) if times else None,
         drift_parts=drift_parts,
         last_drift=last_drift,
+        frame_checks={k: {"median": float(np.median(v)), "p99": float(np.percentile(v, 99)), "max": float(max(v))}
+                      for k, v in checks.items() if v},
     )
 
 
@@ -99,6 +109,13 @@ def format_summary(s: LogSummary) -> str:
     if s.drift_parts:
         lines.append(f"DRIFT: {s.drift_parts} part(s) judged while the frames were outside the model's trained "
                      f"range; last warning: {s.last_drift}")
+    for k, v in s.frame_checks.items():
+        lines.append(f"{k}: median {v['median']:.3f}, p99 {v['p99']:.3f}, max {v['max']:.3f}")
+    noise = s.frame_checks.get("noise_level", {}).get("median", 0.0)
+    if noise >= NOISY_LINE_LEVEL:
+        lines.append(f"NOISE: the frames' median noise level is {noise:.2f} times the model's good parts' (at most 1.4 "
+                     "on its own renders): the camera is noisier than the model's line; lower the gain or station "
+                     "adapt on this line's good parts")
     return "\n".join(lines) + "\n"
 
 

@@ -141,6 +141,20 @@ def test_report_tells_how_many_parts_were_judged_under_a_drift_warning(tmp_path)
     assert "DRIFT: 3 part(s)" in format_summary(s)
 
 
+def test_report_gives_the_models_frame_checks_and_warns_of_a_noisy_line(tmp_path):
+    from station.log_report import format_summary, summarize
+
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append([rec(i, noise_level=1.0 + 0.01 * i, highlight_fraction=0.02) for i in range(10)] + [rec(10)])
+        quiet = summarize(log.rows())
+        log.append([rec(i, noise_level=2.0, highlight_fraction=0.0) for i in range(11, 31)])
+        noisy = summarize(log.rows())
+    assert quiet.frame_checks["noise_level"]["max"] == pytest.approx(1.09)  # the row without checks is left out
+    assert quiet.frame_checks["highlight_fraction"]["median"] == pytest.approx(0.02)
+    assert "noise_level: median 1.045" in format_summary(quiet) and "NOISE" not in format_summary(quiet)
+    assert "NOISE: the frames' median noise level is 2.00" in format_summary(noisy)
+
+
 def test_report_cli_writes_json_and_png(tmp_path):
     db = tmp_path / "log.sqlite"
     with InspectionLog(db) as log:
