@@ -45,10 +45,10 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               pixels and channels against a good part's (``MEDIAN_ABS_NORMAL``), when above 1 and at most
               ``NOISE_CAP``. ``scale`` is the fit line's spread; frames from a noisier camera, gain or renderer
               put every pixel of a good part that many times further out, and a defect covers a small share of
-              the part, so the median reads the frame's noise, not its defect. Measured with the shipped model
-              (thresholds from the validation set): good parts of the same line rendered at 8 spp instead of
-              16 have a level of 1.8 (median), and 25 % of them were rejected at the 5 % threshold, none with
-              the rule; the validation and held-out sets' good parts 1.00 (at most 1.38), where image AUROC
+              the part, so the median reads the frame's noise, not its defect. Measured when it was added, before
+              ``position`` (thresholds from the validation set): good parts of the same line rendered at 8 spp
+              instead of 16 have a level of 1.8 (median), and 25 % of them were rejected at the 5 % threshold,
+              none with the rule; the validation and held-out sets' good parts 1.00 (at most 1.38), where image AUROC
               went 0.812 -> 0.813 and 0.834 -> 0.840. One level for all channels: one per channel lowered
               the 8-spp line's AUROC (0.765 -> 0.714), one level kept it (0.751). Blind spot, by design: a
               change spread evenly over most of the part and under NOISE_CAP times the good parts' spread is
@@ -65,7 +65,8 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               residuals, docs/results/2026-11-24-position.md), against the uncalibrated window: caught at 1 % of
               good parts rejected 46 % -> 50 % (paired bootstrap SE 2.1), at 5 % 53 % -> 62 % (SE 2.7), image
               AUROC 0.813 -> 0.830 (SE 0.010)
-    score     max of the map: robust standard deviations above the good parts at the worst pixel
+    score     max of the map: how far the worst place of the part lies beyond the good parts there, in units of
+              their 95th-percentile excess
 
 ``Detector.predict`` combines it with the networks (``combine``). numpy + OpenCV at run time (torch only for the
 buffers, so the checkpoint carries them); never NaN or Inf.
@@ -146,7 +147,8 @@ a frame above the cap is so unlike the fitted line's parts that it is judged uns
 
 
 class VariationOutput(NamedTuple):
-    """``VariationModel.zmaps``, per frame of N: ``maps`` (N, H, W) box-averaged z, zero off the part; ``scores``
+    """``VariationModel.zmaps``, per frame of N: ``maps`` (N, H, W) window statistic against the good parts at each
+    pixel (module docstring: position), zero off the part and below their median; ``scores``
     (N,) their max; ``highlight_fraction`` (N,) the share of the part the highlight rule found (above
     ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the frame's noise level (1 on the fitted line)."""
 
