@@ -382,7 +382,8 @@ class Station:
             self.viewer.put(ViewFrame(part.part_id, record.decision, inspection.score, self.threshold,
                                       p["intensity"], p.get("dolp"), p.get("aolp"), p.get("normal"),
                                       inspection.heatmap, "\n".join(t for t in (record.reason, record.drift) if t),
-                                      self.stats.summary()))
+                                      self.stats.summary(),
+                                      {k: v for k in MODEL_CHECKS if (v := getattr(record, k)) is not None}))
 
     def _refused(self, trigger: Trigger) -> str:
         """A part announced while the station stops: recorded, then rejected (``LineLink.refuse_triggers``)."""

@@ -37,6 +37,8 @@ class ViewFrame:
     reason: str | None = None
     stats: dict[str, float] = field(default_factory=dict)
     """Running statistics shown under the badge, e.g. parts, rejects, parts_per_s, p99_ms."""
+    checks: dict[str, float] = field(default_factory=dict)
+    """The model's frame checks of this part (``station.inspection_log.MODEL_CHECKS``), shown beside its score."""
 
 
 class ViewerFeed:
@@ -152,6 +154,10 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
             score = "" if f.score is None else f"score {f.score:.3f}"
             if f.threshold is not None:
                 score += f" / threshold {f.threshold:.3f}"
+            if "noise_level" in f.checks:
+                score += f"  noise level {f.checks['noise_level']:.2f}"
+            if "highlight_fraction" in f.checks:
+                score += f"  highlights {100 * f.checks['highlight_fraction']:.0f} %"
             stats = "  ".join(f"{k} {v:.4g}" for k, v in f.stats.items())
             self.stats.setText(f"part {f.part_id}  {score}\n{f.reason or ''}\n{stats}")
             feed.shown += 1

@@ -33,7 +33,8 @@ def test_follower_shows_only_new_parts_with_the_saved_images_of_rejects(tmp_path
     heat[10:20, 10:20] = 0.9
     image = RejectStore(tmp_path / "rejects").save("P2", 2, raw, heat)
     station_log.append([record("pass", "P1", score=0.1, threshold=0.5),
-                        record("reject", "P2", score=0.9, threshold=0.5, reason="score", image_path=image),
+                        record("reject", "P2", score=0.9, threshold=0.5, reason="score", image_path=image,
+                               noise_level=1.2, highlight_fraction=0.05),
                         record("reject", "P3", score=0.8, threshold=0.5, image_path=str(tmp_path / "gone.npz"))])
     assert follower.poll() == 3 and follower.poll() == 0
     gone = feed.latest()  # the GUI shows the newest
@@ -46,6 +47,7 @@ def test_follower_shows_only_new_parts_with_the_saved_images_of_rejects(tmp_path
     assert p2.decision == "reject" and p2.intensity.shape == (48, 64) and p2.dolp is not None
     np.testing.assert_allclose(p2.heatmap, heat, atol=1e-3)  # stored as float16
     assert shown[-3].reason == "passed parts keep no image" and shown[-3].heatmap is None
+    assert p2.checks == {"highlight_fraction": 0.05, "noise_level": 1.2} and shown[-3].checks == {}
     assert p2.stats["parts"] == 3 and p2.stats["rejects"] == 1 and follower2.stats()["rejects"] == 2
     follower.close()
     follower2.close()
