@@ -113,19 +113,23 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
 
 
 def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
-                  decision: str = "combined") -> str:
+                  decision: str = "combined", fit_parts: int | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
-    ("combined": either detector's finding rejects; "variation": the variation model's alone)."""
+    ("combined": either detector's finding rejects; "variation": the variation model's alone). ``fit_parts``: fit on
+    the first that many good train parts only (None: all of them), to measure how many a line needs."""
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.errors import ModelError
     from model.draem.evaluate import EvalData, evaluate
     from model.draem.metrics import choose_threshold
+    from model.draem.variation import MIN_FIT_PARTS
     from model.draem.with_variation import add_variation
     from station.datasets import manifest_sha256
 
     check_max_good_flagged(max_good_flagged)
+    if fit_parts is not None and fit_parts < MIN_FIT_PARTS:
+        raise UserError(f"--fit-parts {fit_parts}: the variation model needs at least {MIN_FIT_PARTS} good parts")
     ck = load_checkpoint(model)
     try:  # the model's own refusals first, before minutes of loading
         ck.detector.config.with_(variation=True, decision=decision)
@@ -133,13 +137,13 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
             raise ModelError("the detector already has a variation model")
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
-    tr = model_split(ck, model, data, "train", good_only=True)
+    tr = model_split(ck, model, data, "train", limit=fit_parts, good_only=True)
     val_data = val_data or data
     va = model_split(ck, model, val_data, "val")
     good_va = va.label == 0
-    if len(tr.index) < 8 or int(good_va.sum()) < 2:
-        raise UserError(f"{data}, {val_data}: the variation model needs >= 8 good train parts and >= 2 good val parts, "
-                        f"got {len(tr.index)} and {int(good_va.sum())}")
+    if len(tr.index) < MIN_FIT_PARTS or int(good_va.sum()) < 2:
+        raise UserError(f"{data}, {val_data}: the variation model needs >= {MIN_FIT_PARTS} good train parts and >= 2 "
+                        f"good val parts, got {len(tr.index)} and {int(good_va.sum())}")
     try:
         det = add_variation(ck.detector, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va], decision=decision)

@@ -98,6 +98,10 @@ A fit keeps at most one per 20 parts of the two thirds each fold fits on (``FOLD
 keep all 10, ``station adapt`` on 50 line parts 1 or 2. Components fitted on too few parts follow those parts'
 noise, and new good parts then score high."""
 
+MIN_FIT_PARTS = 8
+"""Fewest good parts a fit takes. Far too few for a line: on the validation set, image AUROC was 0.790 with 94 parts,
+0.829 with 188, 0.832 with 282 and 376 (docs/results/2026-11-24-data-and-features.md)."""
+
 FOLDS = 3
 """The residual scale is measured on parts left out of the appearance fit (each third once)."""
 
@@ -239,8 +243,8 @@ class VariationModel(nn.Module):
         masks)."""
         xs = x.float().cpu().numpy()
         n = len(xs)
-        if n < 8:
-            raise ModelError(f"the variation model needs at least 8 good parts to fit, got {n}")
+        if n < MIN_FIT_PARTS:
+            raise ModelError(f"the variation model needs at least {MIN_FIT_PARTS} good parts to fit, got {n}")
         if keep_reference:
             masks = np.repeat(self.region.numpy()[None], n, 0)
         else:

@@ -24,6 +24,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="which finding rejects: either detector's (combined, default) or the variation model's alone "
                         "(station eval still runs and reports the networks; the station skips them)")
     p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
+    p.add_argument("--fit-parts", type=int, default=None, metavar="N",
+                   help="fit on the first N good train parts only (default: all), to measure how many a line needs")
     p.add_argument("--max-good-flagged", type=float, default=0.05,
                    help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
     p.set_defaults(func=run)
@@ -32,5 +34,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
-    print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision))
+    print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
+                        args.fit_parts))
     return 0

@@ -68,3 +68,21 @@ def test_a_model_without_intensity_is_refused_in_one_line(tmp_path: Path, capsys
                  "--out", str(tmp_path / "v")]) == 2
     err = capsys.readouterr().err
     assert "intensity" in err and len(err.strip().splitlines()) == 1
+
+
+def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: Path, capsys) -> None:
+    """``--fit-parts N``: how many good parts a line needs (a learning curve, docs/results) is asked with one flag."""
+    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
+    assert main(["train", "--data", str(data), "--priors", "intensity,dolp,aolp", *BASE,
+                 "--out", str(tmp_path / "t")]) == 0
+    capsys.readouterr()
+    out = tmp_path / "v"
+    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--fit-parts", "12",
+                 "--out", str(out)]) == 0
+    assert "fitted on 12 good parts" in capsys.readouterr().out
+    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["fit_parts"] == 12
+    for bad in ("7", "0"):  # fewer than the fit needs: one line naming the flag, before any loading
+        assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--fit-parts", bad,
+                     "--out", str(tmp_path / "w")]) == 2
+        err = capsys.readouterr().err
+        assert "--fit-parts" in err and len(err.strip().splitlines()) == 1
