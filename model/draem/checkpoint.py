@@ -26,7 +26,7 @@ from .config import ModelConfig
 from .detector import Detector
 from .errors import CheckpointError, ModelError
 from .preprocess import Normalizer
-from .variation import WINDOW_BUFFERS
+from .variation import LATER_BUFFERS
 
 FORMAT = "polar-ano-draem"
 SIDECAR_VERSION = 1
@@ -228,8 +228,8 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
                               f"{config.in_channels}")
     if expect_priors is not None and tuple(expect_priors) != config.priors:
         raise CheckpointError(f"{js}: model uses priors {list(config.priors)}, expected {list(expect_priors)}")
-    if detector.variation is not None:  # added later: absent, they score as their models did (WINDOW_BUFFERS)
-        for name in WINDOW_BUFFERS:
+    if detector.variation is not None:  # added later: absent, they score as their models did (LATER_BUFFERS)
+        for name in LATER_BUFFERS:
             state.setdefault(f"variation.{name}", getattr(detector.variation, name).clone())
     missing = sorted(set(detector.state_dict()) - set(state))
     unexpected = sorted(set(state) - set(detector.state_dict()))

@@ -13,7 +13,8 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               factor on I, an offset here); AoLP as DoLP * (cos 2a, sin 2a) = (S1, S2) / S0 when the model reads
               DoLP (the unit vector's direction is noise where DoLP is low, its Stokes components are not:
               measured on the training set's val split, image AUROC 0.73 with the unit vector, 0.78 with these);
-              every other channel as is (DoLP in [0, 1], normals as unit vectors)
+              DoLP itself not as a feature of its own in new fits (``READ_DOLP``: noise biases it, the Stokes
+              components carry it); every other channel as is (normals as unit vectors)
     register  an affine warp of the frame's log intensity onto ``reference`` (OpenCV ECC, the correlation
               coefficient: blind to brightness and contrast); a failed or implausible fit (shift > 1/4 of a side,
               scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high
@@ -122,9 +123,22 @@ specular lobe around a clipped core."""
 MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
-WINDOW_BUFFERS = ("window_location", "window_spread")
-"""Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with location 0
-and spread 1, which scores as those models did (the window statistic uncalibrated)."""
+LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp")
+"""Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
+initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
+a feature), which score as those models did."""
+
+READ_DOLP = False
+"""Whether a new fit reads DoLP as a feature of its own (module docstring: features). DoLP is the length of the
+normalised Stokes vector, and noise lengthens it: the training renders' median DoLP on the part is 0.097 at 16
+spp, 0.144 at 8 spp and 0.054 at 64 spp. Read as a feature, a frame less noisy than the renders (a cleaner
+renderer, and a real sensor's shot noise is below 16-spp render noise) lies 1.5 robust SD below every good part
+everywhere: at the 5 % threshold, 82 % of the good parts of the same line rendered at 64 spp were rejected (3 %
+without DoLP). (S1, S2) / S0 have no such bias and carry DoLP as their length. Measured on the variation model
+alone, thresholds from the validation set (docs/results/2026-11-24-dolp-bias.md): validation image AUROC 0.832
+with DoLP, 0.831 without; caught at 1 % of good parts rejected 49.6 % and 44.3 % (missing studs and chips, whose
+DoLP changes, now also seen through their Stokes components); on the 8-spp and brighter lines image AUROC 0.751
+and 0.687 with, 0.745 and 0.755 without. Old checkpoints keep reading it (``LATER_BUFFERS``)."""
 
 WINDOW_QUANTILE = 95.0
 """``window_spread`` is the good parts' WINDOW_QUANTILE-th percentile of the window statistic above its median, per
@@ -168,7 +182,9 @@ class VariationModel(nn.Module):
     (C, H, W): the good parts' appearance and residual spread (module docstring); ``region`` (H, W) where the
     part is (bool); ``calibration`` (4,): location and spread of the networks' and this model's image scores on
     good validation parts (``combine``); ``window_location``, ``window_spread`` (H, W): median and spread of the
-    good parts' window statistic at each pixel (module docstring: position; ``WINDOW_BUFFERS``). ``intensity``,
+    good parts' window statistic at each pixel (module docstring: position); ``reads_dolp`` 1.0 when DoLP is
+    a feature of its own, 0.0 when it is read only through AoLP's Stokes components (``READ_DOLP``;
+    ``LATER_BUFFERS``). ``intensity``,
     ``dolp``, ``aolp``: the channel index of intensity, of
     DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
 
@@ -188,6 +204,7 @@ class VariationModel(nn.Module):
         self.register_buffer("calibration", torch.tensor([0.0, 1.0, 0.0, 1.0]))
         self.register_buffer("window_location", torch.zeros(h, w))
         self.register_buffer("window_spread", torch.ones(h, w))
+        self.register_buffer("reads_dolp", torch.tensor(1.0))
 
     # --- features and registration (numpy) ---
 
@@ -199,7 +216,18 @@ class VariationModel(nn.Module):
         f[self.intensity] = li - (np.median(li[reg]) if reg.any() else np.median(li))
         if self.dolp is not None and self.aolp is not None:
             f[self.aolp:self.aolp + 2] *= f[self.dolp]
+        if not self.dolp_read:
+            f[self.dolp] = 0.0
         return f
+
+    @property
+    def dolp_read(self) -> bool:
+        """Whether DoLP is a feature of its own (``READ_DOLP``); always when there is no AoLP to carry it."""
+        return self.dolp is None or self.aolp is None or bool(self.reads_dolp > 0.5)
+
+    def used(self, z: np.ndarray) -> np.ndarray:
+        """(C, ...) per-channel values -> the channels that are features (without DoLP when it is not read)."""
+        return z if self.dolp_read else np.delete(z, self.dolp, axis=0)
 
     def peak(self, x: np.ndarray) -> np.ndarray:
         """(C, H, W) physical priors -> (H, W) I (1 + DoLP) (I without the DoLP prior), finite."""
@@ -243,6 +271,7 @@ class VariationModel(nn.Module):
         masks)."""
         xs = x.float().cpu().numpy()
         n = len(xs)
+        self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
         if n < MIN_FIT_PARTS:
             raise ModelError(f"the variation model needs at least {MIN_FIT_PARTS} good parts to fit, got {n}")
         if keep_reference:
@@ -329,7 +358,7 @@ class VariationModel(nn.Module):
 
     def check(self) -> None:
         """ModelError unless every buffer is finite and every spread > 0 (a NaN would pass every part)."""
-        for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *WINDOW_BUFFERS):
+        for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *LATER_BUFFERS):
             if not bool(torch.isfinite(getattr(self, name)).all()):
                 raise ModelError(f"variation model: {name} has NaN or Inf values")
         if (not bool((self.scale > 0).all()) or not bool((self.window_spread > 0).all())
@@ -370,7 +399,7 @@ class VariationModel(nn.Module):
     def window(self, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, float]:
         """(C, H, W) per-channel z of a part and its (H, W) judged pixels -> ((H, W) window statistic: the largest
         channel's z after the frame's noise level, box-averaged over ``box_px``; the noise level)."""
-        level = self.noise_level(z, judged)
+        level = self.noise_level(self.used(z), judged)
         z = (z / (level if 1.0 < level <= NOISE_CAP else 1.0)).max(0)
         return cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE), level
 

@@ -15,7 +15,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
-from model.draem.variation import SQUASH_CENTRE, WINDOW_BUFFERS, VariationModel, combined_score, squash
+from model.draem.variation import LATER_BUFFERS, SQUASH_CENTRE, VariationModel, combined_score, squash
 from model.draem.with_variation import add_variation
 
 H, W = 32, 64
@@ -242,11 +242,38 @@ def test_a_checkpoint_from_before_the_position_rule_loads_with_the_window_uncali
     _, path = detector_with_variation(tmp_path)
     pt = path.with_suffix(".pt")
     state = torch.load(pt, weights_only=True)
-    for name in WINDOW_BUFFERS:
+    for name in LATER_BUFFERS:
         del state[f"variation.{name}"]
     torch.save(state, pt)
     old = load_checkpoint(path, verify_hash=False).detector.variation
     assert old is not None and not bool(old.window_location.any()) and bool((old.window_spread == 1).all())
+    assert old.dolp_read  # and it reads DoLP as its fit did
+
+
+def test_a_cleaner_cameras_lower_dolp_is_not_read_as_a_defect(monkeypatch) -> None:
+    """DoLP is a length, lengthened by noise: a camera or renderer less noisy than the training renders measures a
+    lower DoLP everywhere, with the same Stokes components. A new fit reads polarization only through (S1, S2) / S0,
+    so those good parts score as good parts; a fit that reads DoLP (as old checkpoints do) rejects them."""
+    def cleaner(x: torch.Tensor) -> torch.Tensor:
+        out = x.clone()
+        out[:, 1] *= 0.6
+        out[:, 2:4] /= 0.6  # DoLP (cos 2a, sin 2a) = (S1, S2) / S0 unchanged
+        return out
+
+    def scores(read_dolp: bool) -> tuple[float, float, float]:
+        monkeypatch.setattr("model.draem.variation.READ_DOLP", read_dolp)
+        vm = VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2)
+        x = parts(40, 0)
+        vm.fit(x, x[:, 0] > 0.15)
+        assert vm.dolp_read == read_dolp
+        good = vm.zmaps(parts(20, 1))[1]
+        return (float(good.max()), float(vm.zmaps(cleaner(parts(20, 1)))[1].max()),
+                float(vm.zmaps(cleaner(parts(20, 2, defect=True)))[1].min()))
+
+    good, clean_good, clean_bad = scores(False)
+    assert clean_good <= 1.5 * good < clean_bad  # good parts stay good, defects still stand out
+    good, clean_good, _ = scores(True)
+    assert clean_good > 3 * good
 
 
 def test_a_checkpoint_with_a_nan_buffer_is_refused_naming_the_file(tmp_path: Path) -> None:
