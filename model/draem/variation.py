@@ -101,7 +101,7 @@ noise, and new good parts then score high."""
 
 MIN_FIT_PARTS = 8
 """Fewest good parts a fit takes. Far too few for a line: on the validation set, image AUROC was 0.790 with 94 parts,
-0.829 with 188, 0.832 with 282 and 376 (docs/results/2026-11-24-data-and-features.md)."""
+0.829 with 188, 0.832 with 282 and 376, 0.823 with 755 (docs/results/2026-11-24-data-size-and-features.md)."""
 
 FOLDS = 3
 """The residual scale is measured on parts left out of the appearance fit (each third once)."""
@@ -184,9 +184,8 @@ class VariationModel(nn.Module):
     good validation parts (``combine``); ``window_location``, ``window_spread`` (H, W): median and spread of the
     good parts' window statistic at each pixel (module docstring: position); ``reads_dolp`` 1.0 when DoLP is
     a feature of its own, 0.0 when it is read only through AoLP's Stokes components (``READ_DOLP``;
-    ``LATER_BUFFERS``). ``intensity``,
-    ``dolp``, ``aolp``: the channel index of intensity, of
-    DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
+    ``LATER_BUFFERS``). ``intensity``, ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's
+    cosine (its sine follows), None when the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
                  aolp: int | None = None, box_px: int = 5) -> None:
