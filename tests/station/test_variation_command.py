@@ -14,13 +14,18 @@ BASE = ["--preset", "tiny", "--fusion", "fused", "--size", "32", "--steps", "2",
         "--eval-every", "2", "--device", "cpu", "--roi", "band"]
 
 
-def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, capsys) -> None:
+def trained(tmp_path: Path, capsys, priors: str = "intensity,dolp,aolp") -> tuple[Path, Path]:
+    """A 60-part line set (every third part defective) and a detector trained on it for 2 steps: (set, model)."""
     data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
-    assert main(["train", "--data", str(data), "--priors", "intensity,dolp,aolp", *BASE,
-                 "--out", str(tmp_path / "t")]) == 0
+    assert main(["train", "--data", str(data), "--priors", priors, *BASE, "--out", str(tmp_path / "t")]) == 0
     capsys.readouterr()
+    return data, tmp_path / "t" / "last"
+
+
+def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, capsys) -> None:
+    data, model = trained(tmp_path, capsys)
     out = tmp_path / "v"
-    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--out", str(out)]) == 0
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(out)]) == 0
     line = capsys.readouterr().out
     assert "variation model fitted on" in line and "of good parts" in line
     meta = json.loads(out.with_suffix(".json").read_text())
@@ -61,10 +66,8 @@ def test_a_validation_set_calibrates_and_thresholds_and_a_decision_is_recorded(t
 
 
 def test_a_model_without_intensity_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
-    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
-    assert main(["train", "--data", str(data), "--priors", "dolp,aolp", *BASE, "--out", str(tmp_path / "t")]) == 0
-    capsys.readouterr()
-    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data),
+    data, model = trained(tmp_path, capsys, priors="dolp,aolp")
+    assert main(["variation", "--model", str(model), "--data", str(data),
                  "--out", str(tmp_path / "v")]) == 2
     err = capsys.readouterr().err
     assert "intensity" in err and len(err.strip().splitlines()) == 1
@@ -72,17 +75,14 @@ def test_a_model_without_intensity_is_refused_in_one_line(tmp_path: Path, capsys
 
 def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: Path, capsys) -> None:
     """``--fit-parts N``: how many good parts a line needs (a learning curve, docs/results) is asked with one flag."""
-    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
-    assert main(["train", "--data", str(data), "--priors", "intensity,dolp,aolp", *BASE,
-                 "--out", str(tmp_path / "t")]) == 0
-    capsys.readouterr()
+    data, model = trained(tmp_path, capsys)
     out = tmp_path / "v"
-    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--fit-parts", "12",
+    assert main(["variation", "--model", str(model), "--data", str(data), "--fit-parts", "12",
                  "--out", str(out)]) == 0
     assert "fitted on 12 good parts" in capsys.readouterr().out
     assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["fit_parts"] == 12
     for bad in ("7", "0"):  # fewer than the fit needs: one line naming the flag, before any loading
-        assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data), "--fit-parts", bad,
+        assert main(["variation", "--model", str(model), "--data", str(data), "--fit-parts", bad,
                      "--out", str(tmp_path / "w")]) == 2
         err = capsys.readouterr().err
         assert "--fit-parts" in err and len(err.strip().splitlines()) == 1
