@@ -42,7 +42,8 @@ ADDED_IN_VERSION = {2: ("ground_truth_present",),
 READABLE_VERSIONS = (1, 2, 3, 4)
 MODEL_CHECKS = ("highlight_fraction", "noise_level")
 """The detector's frame checks the log keeps (``station.inspector.Inference.checks``, from the variation model:
-``model.draem.variation.VariationOutput``)."""
+``model.draem.variation.FRAME_CHECKS``, spelled again here so the log imports without torch; a test keeps the
+two equal)."""
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")

@@ -38,7 +38,7 @@ def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, wi
 class DetectorOutput:
     """anomaly_map: (N, H, W) mean of the members' maps; score: (N,) mean of the members' image scores;
     member_maps / member_scores keyed by member (prior name, or "fused"); frame_checks: (N,) per frame, what the
-    variation model's rules found ("highlight_fraction", "noise_level": ``model.draem.variation.VariationOutput``),
+    variation model's rules found (``model.draem.variation.FRAME_CHECKS``),
     empty without that model."""
 
     anomaly_map: torch.Tensor
@@ -111,4 +111,4 @@ class Detector(nn.Module):
         amap, score = combine(amap, score, v.maps.to(amap.device), v.scores.to(score.device),
                               self.variation.calibration, networks=self.config.networks_decide)
         return DetectorOutput(amap, score, {**maps, "variation": v.maps}, {**scores, "variation": v.scores},
-                              {"highlight_fraction": v.highlight_fraction, "noise_level": v.noise_level})
+                              v.frame_checks())

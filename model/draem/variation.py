@@ -175,6 +175,14 @@ class VariationOutput(NamedTuple):
     highlight_fraction: torch.Tensor
     noise_level: torch.Tensor
 
+    def frame_checks(self) -> dict[str, torch.Tensor]:
+        """The fields that describe the frame rather than a defect (``FRAME_CHECKS``), by name."""
+        return {name: getattr(self, name) for name in FRAME_CHECKS}
+
+
+FRAME_CHECKS = ("highlight_fraction", "noise_level")
+"""``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
+
 
 class VariationModel(nn.Module):
     """Buffers (saved with the checkpoint): ``reference`` (H, W) log intensity to register to; ``mean`` (C, H, W),

@@ -155,6 +155,15 @@ def test_report_gives_the_models_frame_checks_and_warns_of_a_noisy_line(tmp_path
     assert "NOISE: the frames' median noise level is 2.00" in format_summary(noisy)
 
 
+def test_the_log_has_a_column_for_every_frame_check_the_model_reports():
+    """The log names the checks itself (it must import without torch); the model's list is the one it must match."""
+    from model.draem.variation import FRAME_CHECKS
+    from station.inspection_log import MODEL_CHECKS
+
+    assert MODEL_CHECKS == FRAME_CHECKS
+    assert set(FRAME_CHECKS) <= set(COLUMNS)
+
+
 def test_report_cli_writes_json_and_png(tmp_path):
     db = tmp_path / "log.sqlite"
     with InspectionLog(db) as log:
