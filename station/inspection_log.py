@@ -6,7 +6,7 @@ inspection log (another program's tables, a newer schema) is refused before anyt
 The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Version 2 added
 ``ground_truth_present``, version 3 the frame statistics (``median_level``, ``high_level``, ``clipped_fraction``,
 ``dolp_level``: ``model.priors.frame_stats``) and ``drift`` (the drift warning in force when the part was judged,
-``station.drift``), version 4 the model's frame checks (``highlight_fraction``, ``noise_level``: ``MODEL_CHECKS``).
+``station.drift``), version 4 the model's frame checks (``highlight_fraction``, ``noise_level``: ``FRAME_CHECKS``).
 Opening an older log for writing adds the missing columns (NULL in the old rows); opened
 read-only, they read as NULL. Decisions (``station.decision.Verdict``, stored as its values):
 
@@ -40,10 +40,6 @@ ADDED_IN_VERSION = {2: ("ground_truth_present",),
                     4: ("highlight_fraction", "noise_level")}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
 READABLE_VERSIONS = (1, 2, 3, 4)
-MODEL_CHECKS = ("highlight_fraction", "noise_level")
-"""The detector's frame checks the log keeps (``station.inspector.Inference.checks``, from the variation model:
-``model.draem.variation.FRAME_CHECKS``, spelled again here so the log imports without torch; a test keeps the
-two equal)."""
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")

@@ -30,7 +30,7 @@ from station.presence import Presence, PresenceCheck
 class Inference:
     """A detector's answer: image score in [0, 1] and per-pixel anomaly probability (H', W') in [0, 1]; ``checks``:
     what the model's frame checks found (``model.draem.detector.DetectorOutput.frame_checks``; the log keeps
-    ``station.inspection_log.MODEL_CHECKS`` of them)."""
+    ``model.draem.frame_checks.FRAME_CHECKS`` of them)."""
 
     score: float
     heatmap: np.ndarray | None = None

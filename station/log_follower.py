@@ -18,8 +18,9 @@ from typing import Any
 
 import numpy as np
 
+from model.draem.frame_checks import FRAME_CHECKS
 from station.decision import Verdict
-from station.inspection_log import MODEL_CHECKS, InspectionLog
+from station.inspection_log import InspectionLog
 from station.viewer import ViewerFeed, ViewFrame
 
 log = logging.getLogger(__name__)
@@ -75,7 +76,7 @@ class LogFollower:
             reason = "passed parts keep no image"
         return ViewFrame(str(row["part_id"]), row["decision"], row["score"], row["threshold"], maps["intensity"],
                          maps.get("dolp"), maps.get("aolp"), None, heatmap, reason, self.stats(),
-                         {k: row[k] for k in MODEL_CHECKS if row.get(k) is not None})
+                         {k: row[k] for k in FRAME_CHECKS if row.get(k) is not None})
 
     def _images(self, path: str) -> tuple[dict[str, np.ndarray | None], np.ndarray | None]:
         from model.priors import compute_priors

@@ -10,12 +10,14 @@ from typing import Any
 
 import numpy as np
 
+from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX
 from station.decision import Verdict
-from station.inspection_log import DECISIONS, MODEL_CHECKS
+from station.inspection_log import DECISIONS
 
 PERCENTILES = (50, 90, 99)
 NOISY_LINE_LEVEL = 1.5
-"""Median ``noise_level`` from which the report warns: the model's own held-out renders reach 1.4 at most."""
+"""Median ``noise_level`` from which the report warns: above the model's own renders' highest
+(``OWN_RENDERS_NOISE_LEVEL_MAX``)."""
 
 
 @dataclass(frozen=True)
@@ -40,7 +42,7 @@ class LogSummary:
     last_drift: str | None = None
     """The newest drift warning in the log."""
     frame_checks: dict[str, dict[str, float]] = field(default_factory=dict)
-    """Per model frame check (``MODEL_CHECKS``, schema version 4) over the parts that have it: median, p99, max."""
+    """Per model frame check (``FRAME_CHECKS``, schema version 4) over the parts that have it: median, p99, max."""
 
 
 def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
@@ -51,9 +53,9 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     confusion: Counter[str] = Counter()
     times: list[float] = []
     drift_parts, last_drift = 0, None
-    checks: dict[str, list[float]] = {k: [] for k in MODEL_CHECKS}
+    checks: dict[str, list[float]] = {k: [] for k in FRAME_CHECKS}
     for r in rows:
-        for k in MODEL_CHECKS:
+        for k in FRAME_CHECKS:
             if r.get(k) is not None:
                 checks[k].append(r[k])
         counts[r["decision"]] += 1
@@ -113,9 +115,9 @@ def format_summary(s: LogSummary) -> str:
         lines.append(f"{k}: median {v['median']:.3f}, p99 {v['p99']:.3f}, max {v['max']:.3f}")
     noise = s.frame_checks.get("noise_level", {}).get("median", 0.0)
     if noise >= NOISY_LINE_LEVEL:
-        lines.append(f"NOISE: the frames' median noise level is {noise:.2f} times the model's good parts' (at most 1.4 "
-                     "on its own renders): the camera is noisier than the model's line; lower the gain or station "
-                     "adapt on this line's good parts")
+        lines.append(f"NOISE: the frames' median noise level is {noise:.2f} times the model's good parts' (at most "
+                     f"{OWN_RENDERS_NOISE_LEVEL_MAX} on its own renders): the camera is noisier than the model's "
+                     "line; lower the gain or station adapt on this line's good parts")
     return "\n".join(lines) + "\n"
 
 

@@ -39,10 +39,11 @@ from drivers.camera import Camera
 from drivers.errors import CameraError, CameraTimeout
 from drivers.frame import Frame
 from drivers.line_io import Trigger
+from model.draem.frame_checks import FRAME_CHECKS
 from station.decision import Decision, Verdict, decide, late
 from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
-from station.inspection_log import MODEL_CHECKS, InspectionLog, InspectionRecord, LogError
+from station.inspection_log import InspectionLog, InspectionRecord, LogError
 from station.inspector import Inspection, Inspector
 from station.reject_store import RejectStore
 from station.viewer import ViewerFeed, ViewFrame
@@ -365,7 +366,7 @@ class Station:
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path,
             **(inspection.frame_stats.as_dict() if inspection is not None and inspection.frame_stats else {}),
             drift=self.drift.warning if self.drift is not None else None,
-            **{k: inspection.checks[k] for k in MODEL_CHECKS if inspection is not None and k in inspection.checks})
+            **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks})
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
         if tell_plc and record.decision == Verdict.PASS:
             late_ms = 1e3 * (time.perf_counter() - part.t_trigger)
@@ -383,7 +384,7 @@ class Station:
                                       p["intensity"], p.get("dolp"), p.get("aolp"), p.get("normal"),
                                       inspection.heatmap, "\n".join(t for t in (record.reason, record.drift) if t),
                                       self.stats.summary(),
-                                      {k: v for k in MODEL_CHECKS if (v := getattr(record, k)) is not None}))
+                                      {k: v for k in FRAME_CHECKS if (v := getattr(record, k)) is not None}))
 
     def _refused(self, trigger: Trigger) -> str:
         """A part announced while the station stops: recorded, then rejected (``LineLink.refuse_triggers``)."""

@@ -38,7 +38,7 @@ class ViewFrame:
     stats: dict[str, float] = field(default_factory=dict)
     """Running statistics shown under the badge, e.g. parts, rejects, parts_per_s, p99_ms."""
     checks: dict[str, float] = field(default_factory=dict)
-    """The model's frame checks of this part (``station.inspection_log.MODEL_CHECKS``), shown beside its score."""
+    """The model's frame checks of this part (``model.draem.frame_checks.FRAME_CHECKS``), shown beside its score."""
 
 
 class ViewerFeed:

@@ -38,7 +38,7 @@ def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, wi
 class DetectorOutput:
     """anomaly_map: (N, H, W) mean of the members' maps; score: (N,) mean of the members' image scores;
     member_maps / member_scores keyed by member (prior name, or "fused"); frame_checks: (N,) per frame, what the
-    variation model's rules found (``model.draem.variation.FRAME_CHECKS``),
+    variation model's rules found (``model.draem.frame_checks.FRAME_CHECKS``),
     empty without that model."""
 
     anomaly_map: torch.Tensor

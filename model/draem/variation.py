@@ -84,6 +84,7 @@ import torch
 from torch import nn
 
 from .errors import ModelError
+from .frame_checks import FRAME_CHECKS
 
 LOG_FLOOR = 1e-3
 """Intensity below this (full scale) is read as this before the log: black belt and shadows stay finite."""
@@ -178,10 +179,6 @@ class VariationOutput(NamedTuple):
     def frame_checks(self) -> dict[str, torch.Tensor]:
         """The fields that describe the frame rather than a defect (``FRAME_CHECKS``), by name."""
         return {name: getattr(self, name) for name in FRAME_CHECKS}
-
-
-FRAME_CHECKS = ("highlight_fraction", "noise_level")
-"""``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
 
 
 class VariationModel(nn.Module):
