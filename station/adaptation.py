@@ -22,7 +22,8 @@ class AdaptSummary:
         r = self.record
         return (f"{self.out}: adapted on {r['n_good']} good parts of {r['data']} ({r['scheme']}); threshold "
                 f"{r['threshold']:.4g}, {100 * r['heldout_false_reject']:.1f} % of held-out good parts rejected "
-                f"(target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: {r['frame_statistics']}")
+                f"(target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: {r['frame_statistics']}"
+                + (f"\nnote: {r['advice']}" if r.get("advice") else ""))
 
     def _networks(self) -> str:
         shift = self.record.get("networks_shift_sd")

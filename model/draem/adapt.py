@@ -51,6 +51,12 @@ log = logging.getLogger(__name__)
 
 MIN_GOOD = 10
 """Fewer good parts than this cannot set a threshold worth the name."""
+RECOMMENDED_GOOD = 200
+"""Good parts to adapt a model with the variation member on; fewer work, with a note. The refit keeps one
+appearance component per 20 parts (``variation.COMPONENTS``): 50 parts keep 1-2. On renders of a line with its
+camera, stray light and exposure fixed but the parts' material and pose varying, the shipped model scored image
+AUROC 0.924 unadapted, 0.889 adapted on 50 good parts, 0.912 on 100 and 0.925 on 210; on a line whose parts were
+uniform too, 50 already helped (0.878 -> 0.906; docs/results/2026-11-25-narrow-lines.md)."""
 PER_POSITION = "none (the detector keeps no per-position statistics of the part)"
 PER_POSITION_REFIT = "the variation model's appearance and the calibration, re-estimated on the good parts"
 DOMAIN_SHIFT_SD = 3.0
@@ -119,6 +125,8 @@ class AdaptResult:
     decision: str = "combined"
     decision_changed: bool = False
     """True when the domain check moved the decision from combined to the variation model alone."""
+    advice: str | None = None
+    """What the user should know about this adaptation (fewer good parts than ``RECOMMENDED_GOOD``), or None."""
 
     def record(self) -> dict[str, Any]:
         """JSON-able summary for the model's sidecar."""
@@ -132,7 +140,7 @@ class AdaptResult:
                 "normalization_after": asdict(self.normalizer_after),
                 "fine_tune_steps": self.fine_tune_steps, "per_position": self.per_position,
                 "networks_shift_sd": self.networks_shift_sd, "decision": self.decision,
-                "decision_changed": self.decision_changed}
+                "decision_changed": self.decision_changed, "advice": self.advice}
 
 
 def false_reject_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoice:
@@ -271,5 +279,11 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         log.warning("the networks' good parts score %.1f robust SD above their validation parts on this line (limit "
                     "%.0f): out of their domain; the adapted model decides on the variation model alone", shift,
                     DOMAIN_SHIFT_SD)
+    advice = None
+    if final.variation is not None and n < RECOMMENDED_GOOD:
+        advice = (f"{n} good parts, fewer than the {RECOMMENDED_GOOD} recommended: the variation model's refit keeps "
+                  "few appearance components, and where parts vary in material or pose 50 parts scored below the "
+                  "model unadapted (on renders); adapt again on more good parts")
+        log.warning(advice)
     return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position,
-                              shift, final.config.decision, changed)
+                              shift, final.config.decision, changed, advice)

@@ -55,7 +55,8 @@ def test_adapt_lowers_false_rejects_on_a_shifted_line(line, tmp_path: Path, caps
     out = tmp_path / "adapted"
     assert main(["adapt", "--model", str(model), "--good", str(shifted), "--out", str(out),
                  "--false-reject", "0.05"]) == 0
-    assert "adapted on 140 good parts" in capsys.readouterr().out
+    out_text = capsys.readouterr().out
+    assert "adapted on 140 good parts" in out_text and "recommended" not in out_text  # no variation model: no note
     after = _false_rejects(out, shifted)  # test split: parts the adaptation never saw
     assert after < before and after <= 0.2
     side = json.loads(out.with_suffix(".json").read_text())
@@ -111,6 +112,7 @@ def test_adapt_refits_the_variation_models_statistics_and_calibration(line, tmp_
     out = tmp_path / "adapted"
     assert main(["adapt", "--model", str(with_var), "--good", str(shifted), "--out", str(out),
                  "--false-reject", "0.05"]) == 0
+    assert "note: 140 good parts, fewer than the 200 recommended" in capsys.readouterr().out
     assert _false_rejects(out, shifted) <= 0.2
     old, new = load_checkpoint(with_var).detector.variation, load_checkpoint(out).detector.variation
     assert old is not None and new is not None
@@ -118,6 +120,7 @@ def test_adapt_refits_the_variation_models_statistics_and_calibration(line, tmp_
     assert not torch.equal(old.mean, new.mean) and not torch.equal(old.calibration, new.calibration)
     rec = json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]
     assert "variation" in rec["per_position"] and "variation statistics" in rec["scheme"]
+    assert rec["advice"].startswith("140 good parts, fewer than the 200 recommended")
 
 
 def test_networks_out_of_their_domain_leave_the_decision_to_the_variation_model(line, tmp_path: Path, capsys,
