@@ -2,8 +2,8 @@
 report and viewer read them without loading the model.
 
 A frame check describes the frame rather than a defect (``model.draem.variation``, module docstring: highlights,
-noise): ``highlight_fraction`` is the share of the part region hidden as a highlight (0-1), ``noise_level`` how many
-times a good part's spread the frame's median z lies (>= 1; 1 on the model's own line)."""
+noise): ``highlight_fraction`` is the share of the part region hidden as a highlight (0-1), ``noise_level`` the frame's
+median z against a good part's (about 1 on the model's own line; the z map is divided by it where it is above 1)."""
 
 FRAME_CHECKS = ("highlight_fraction", "noise_level")
 """``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
