@@ -55,8 +55,9 @@ RECOMMENDED_GOOD = 200
 """Good parts to adapt a model with the variation member on; fewer work, with a note. The refit keeps one
 appearance component per 20 parts (``variation.COMPONENTS``): 50 parts keep 1-2. On renders of a line with its
 camera, stray light and exposure fixed but the parts' material and pose varying, the shipped model scored image
-AUROC 0.924 unadapted, 0.889 adapted on 50 good parts, 0.912 on 100 and 0.925 on 210; on a line whose parts were
-uniform too, 50 already helped (0.878 -> 0.906; docs/results/2026-11-25-narrow-lines.md)."""
+AUROC 0.924 unadapted, 0.889 adapted on 50 good parts, 0.912 on 100 and 0.925 on 210; with the parts uniform and
+the station varying, 0.861, 0.830, 0.846 and 0.852. Only with both fixed did 50 help (0.878 -> 0.906;
+docs/results/2026-11-25-narrow-lines.md)."""
 PER_POSITION = "none (the detector keeps no per-position statistics of the part)"
 PER_POSITION_REFIT = "the variation model's appearance and the calibration, re-estimated on the good parts"
 DOMAIN_SHIFT_SD = 3.0
@@ -282,8 +283,8 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
     advice = None
     if final.variation is not None and n < RECOMMENDED_GOOD:
         advice = (f"{n} good parts, fewer than the {RECOMMENDED_GOOD} recommended: the variation model's refit keeps "
-                  "few appearance components, and where parts vary in material or pose 50 parts scored below the "
-                  "model unadapted (on renders); adapt again on more good parts")
+                  "few appearance components, and on renders of lines where something still varied 50 parts scored "
+                  "below the model unadapted; adapt again on more good parts")
         log.warning(advice)
     return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position,
                               shift, final.config.decision, changed, advice)
