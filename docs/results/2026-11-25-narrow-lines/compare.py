@@ -59,9 +59,9 @@ def main() -> None:
     xh, label, kind, _ = load(heldout_dir, ["test"])
     print(f"fit {len(xt)}, thresholds {len(xg)}, held-out {len(xh)} ({int(label.sum())} defective: "
           + ", ".join(f"{t} {int((kind == t).sum())}" for t in TYPES) + ")", flush=True)
-    fitted = VariationModel(len(PRIORS) + 1, SHAPE, 0, 1, 2)  # AoLP as two Stokes channels: 4 features
-    fitted.fit(torch.from_numpy(xt), torch.from_numpy(masks))
     shipped = load_checkpoint("model/weights/default").detector.variation
+    fitted = copy.deepcopy(shipped)  # the shipped model's channels and input; every statistic refitted
+    fitted.fit(torch.from_numpy(xt), torch.from_numpy(masks))
     models = {f"fit on {len(xt)} of its parts": fitted, "shipped": shipped}
     if "--adapt" in sys.argv:
         for n in (50, 100, len(xt)):
