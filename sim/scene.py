@@ -62,6 +62,13 @@ class SceneConfig:
     light_cutoff_deg: float = 15.0
     ambient_radiance: float = 0.02
     """Constant environment (keeps shadows from being exactly black); 0 = none."""
+    ambient_gradient: float = 0.0
+    """A dome brighter on one side: the environment's radiance is ``ambient_radiance * (1 + g * w_x)`` for a
+    direction w (unit vector, world +x is along the fixture, image right on the line presets), g in [0, 1]; 0 =
+    uniform. Under a uniform dome a matte face looks the same whatever its tilt; under this one its irradiance is
+    ``pi L (1 + 2/3 g n_x)``, so a tilt of the surface along x changes intensity to first order (a 3 deg dent flank
+    by 2/3 g 5 %): a segmented dome with one side's LEDs dimmed does it in one shot. The mean over the hemisphere
+    stays ``ambient_radiance``."""
     colour: tuple[float, float] = (0.0, 1.0)
     background_colour: tuple[float, float] | None = None
     """Reflectance range of the ground's colours; None = ``colour``'s."""
@@ -106,6 +113,8 @@ class SceneConfig:
         if self.camera_radius_m[0] * np.cos(np.radians(self.camera_polar_deg[1])) < 0.05:
             raise SimError(f"scene: the camera can come within 5 cm of the ground ({self.camera_radius_m} m at "
                            f"{self.camera_polar_deg[1]} degrees)")
+        if self.ambient_gradient > 1:
+            raise SimError(f"scene.ambient_gradient must be in [0, 1], got {self.ambient_gradient}")
         if self.max_depth < 2:
             raise SimError(f"scene.max_depth must be >= 2, got {self.max_depth}")
 
@@ -127,7 +136,8 @@ class SceneConfig:
         return d
 
 
-LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose", "background_colour")
+LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose", "background_colour",
+              "ambient_gradient")
 """SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
 
@@ -259,6 +269,7 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
         "light": {"origin": light.tolist(), "target": centre.tolist(), "intensity": _uniform(rng, cfg.light_intensity),
                   "cutoff_deg": cfg.light_cutoff_deg},
         "ambient_radiance": cfg.ambient_radiance,
+        **({"ambient_gradient": cfg.ambient_gradient} if cfg.ambient_gradient else {}),  # older sets lack it
         "materials": materials,
         "background": background,
     }
@@ -382,6 +393,24 @@ def emitter_weights(params: dict) -> tuple[float, float]:
     return float(light["intensity"]) / max(d2, 1e-6), float(np.pi * params["ambient_radiance"])
 
 
+def ambient_dict(radiance: float, gradient: float) -> dict:
+    """The environment light (``SceneConfig.ambient_radiance``, ``ambient_gradient``): Mitsuba's constant emitter
+    when uniform, else an envmap whose rows run along its local +y, turned so that local +y is world +x."""
+    import mitsuba as mi
+
+    if not gradient:
+        return {"type": "constant", "radiance": {"type": "spectrum", "value": radiance}}
+    theta = (np.arange(GRADIENT_ROWS) + 0.5) / GRADIENT_ROWS * np.pi  # from the envmap's +y
+    rows = (1.0 + gradient * np.cos(theta)).astype(np.float32)
+    bitmap = mi.Bitmap(np.repeat(rows[:, None, None], 2 * GRADIENT_ROWS, 1))
+    return {"type": "envmap", "bitmap": bitmap, "scale": radiance,
+            "to_world": mi.ScalarTransform4f().rotate(axis=[0, 0, 1], angle=-90)}
+
+
+GRADIENT_ROWS = 64
+"""Rows of the gradient dome's envmap (a smooth cosine: 64 rows are within 0.1 % of it)."""
+
+
 def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,
                 background_size_m: float = 1.0, lights: bool = True, window: tuple[int, int, int, int] | None = None
                 ) -> tuple[dict, list[str]]:
@@ -406,8 +435,8 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
                          "to_world": mi.ScalarTransform4f().look_at(origin=light["origin"], target=light["target"],
                                                                     up=[0, 0, 1])}
         if params["ambient_radiance"] > 0:
-            scene["ambient"] = {"type": "constant", "sampling_weight": ambient_w,
-                                "radiance": {"type": "spectrum", "value": params["ambient_radiance"]}}
+            scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0))
+            scene["ambient"]["sampling_weight"] = ambient_w
     else:
         scene["ground"] = {"type": "rectangle",
                            "to_world": mi.ScalarTransform4f().scale([background_size_m / 2, background_size_m / 2, 1])}

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import tomllib
 from pathlib import Path
 
@@ -33,9 +34,18 @@ def test_default_ranges_draw_what_earlier_sets_drew() -> None:
 def test_default_manifest_has_no_new_keys() -> None:
     # Resuming a set compares manifests: keys at their defaults stay out, so older sets still resume.
     scene = DatasetSpec().to_dict()["scene"]
-    assert not {"yaw_deg", "rest_pose", "camera_azimuth_deg", "light_azimuth_deg", "background_colour"} & set(scene)
+    assert not {"yaw_deg", "rest_pose", "camera_azimuth_deg", "light_azimuth_deg", "background_colour",
+                "ambient_gradient"} & set(scene)
     line = DatasetSpec.from_dict({"scene": {"rest_pose": 0}}).to_dict()["scene"]
     assert line["rest_pose"] == 0
+
+
+def test_gradient_dome_is_in_the_sample_only_when_set() -> None:
+    # a sample's parameters are its record: older samples (no key) render as the uniform dome they were
+    plain = sample_scene(np.random.default_rng(0), SceneConfig(), usb_brick())
+    graded = sample_scene(np.random.default_rng(0), SceneConfig(ambient_gradient=0.8), usb_brick())
+    assert "ambient_gradient" not in plain and graded.pop("ambient_gradient") == 0.8
+    assert json.dumps(graded, sort_keys=True) == json.dumps(plain, sort_keys=True)  # no draw changes
 
 
 def test_line_preset_fixes_pose_orientation_and_ground() -> None:
@@ -63,6 +73,8 @@ def test_line_preset_fixes_pose_orientation_and_ground() -> None:
     ("rest_pose", -2, "scene.rest_pose"),
     ("background_colour", (0.5, 1.5), "scene.background_colour"),
     ("yaw_deg", (10.0, -10.0), "scene.yaw_deg"),
+    ("ambient_gradient", 1.5, "scene.ambient_gradient"),
+    ("ambient_gradient", -0.5, "scene.ambient_gradient"),
 ])
 def test_bad_ranges_name_the_key(key: str, value, words: str) -> None:
     with pytest.raises(SimError, match=words):
