@@ -66,9 +66,9 @@ class SceneConfig:
     """A dome brighter on one side: the environment's radiance is ``ambient_radiance * (1 + g * w_x)`` for a
     direction w (unit vector, world +x is along the fixture, image right on the line presets), g in [0, 1]; 0 =
     uniform. Under a uniform dome a matte face looks the same whatever its tilt; under this one its irradiance is
-    ``pi L (1 + 2/3 g n_x)``, so a tilt of the surface along x changes intensity to first order (a 3 deg dent flank
-    by 2/3 g 5 %): a segmented dome with one side's LEDs dimmed does it in one shot. The mean over the hemisphere
-    stays ``ambient_radiance``."""
+    ``pi L (1 + 2/3 g n_x)``, so a tilt of the surface along x changes intensity to first order (at g = 0.8 a 3 deg
+    dent flank by 2.8 %, a 10 deg one by 9 %): a segmented dome with one side's LEDs dimmed does it in one shot. The
+    mean over the hemisphere stays ``ambient_radiance``."""
     colour: tuple[float, float] = (0.0, 1.0)
     background_colour: tuple[float, float] | None = None
     """Reflectance range of the ground's colours; None = ``colour``'s."""
@@ -393,6 +393,10 @@ def emitter_weights(params: dict) -> tuple[float, float]:
     return float(light["intensity"]) / max(d2, 1e-6), float(np.pi * params["ambient_radiance"])
 
 
+GRADIENT_ROWS = 64
+"""Rows of the gradient dome's envmap (a smooth cosine: 64 rows are within 0.1 % of it)."""
+
+
 def ambient_dict(radiance: float, gradient: float) -> dict:
     """The environment light (``SceneConfig.ambient_radiance``, ``ambient_gradient``): Mitsuba's constant emitter
     when uniform, else an envmap whose rows run along its local +y, turned so that local +y is world +x."""
@@ -405,10 +409,6 @@ def ambient_dict(radiance: float, gradient: float) -> dict:
     bitmap = mi.Bitmap(np.repeat(rows[:, None, None], 2 * GRADIENT_ROWS, 1))
     return {"type": "envmap", "bitmap": bitmap, "scale": radiance,
             "to_world": mi.ScalarTransform4f().rotate(axis=[0, 0, 1], angle=-90)}
-
-
-GRADIENT_ROWS = 64
-"""Rows of the gradient dome's envmap (a smooth cosine: 64 rows are within 0.1 % of it)."""
 
 
 def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,
