@@ -14,8 +14,8 @@ from station import __version__
 from station.errors import USER_ERRORS
 
 COMMANDS = ["run", "view", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train",
-            "ensemble", "variation", "threshold", "quantize", "eval", "normals", "import", "export", "capture", "adapt",
-            "compare"]
+            "ensemble", "variation", "residual", "threshold", "quantize", "eval", "normals", "import", "export",
+            "capture", "adapt", "compare"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 MODULE_OF = {"import": "import_set"}
 """Commands whose module name differs from the command (``import`` is a Python keyword)."""

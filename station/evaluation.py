@@ -164,3 +164,58 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     return (f"{out}: variation model fitted on {len(tr.index)} good parts{decides}; threshold {choice.threshold:.4g} "
             f"({choice.rule}); on {len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts"
             f"{detected}; image AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")
+
+
+def fit_residual(model: str, data: str, out: str, val_data: str | None = None, members: int = 3, steps: int = 3000,
+                 seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = 0.05) -> str:
+    """Checkpoint ``model`` (with its variation model) plus ``members`` residual networks (``model.draem.residual``)
+    deciding, trained on ``data``'s train split (good parts and rendered defective parts with masks, without
+    ``holdout_type``'s), calibrated and thresholded on ``val_data``'s val split (default ``data``'s) as
+    ``fit_variation``; written to ``out``; one line saying what it does on the val split. Progress on stderr."""
+    import sys
+
+    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+    from model.draem.errors import ModelError
+    from model.draem.evaluate import EvalData, evaluate
+    from model.draem.metrics import choose_threshold
+    from model.draem.with_variation import add_residual
+    from sim.defects import DEFECT_TYPES
+    from station.datasets import manifest_sha256
+
+    check_max_good_flagged(max_good_flagged)
+    if holdout_type is not None and holdout_type not in DEFECT_TYPES:
+        raise UserError(f"--holdout-type {holdout_type!r}: not a defect type ({', '.join(DEFECT_TYPES)})")
+    if members < 1 or steps < 1:
+        raise UserError(f"--members {members}, --steps {steps}: both must be >= 1")
+    ck = load_checkpoint(model)
+    if ck.detector.variation is None:
+        raise UserError(f"{model}: the residual networks read the variation model: add it first (station variation)")
+    good = model_split(ck, model, data, "train", good_only=True)
+    tr = model_split(ck, model, data, "train")
+    keep = [i for i, (lab, t) in enumerate(zip(tr.label.tolist(), tr.defect_type, strict=True))
+            if lab and t != holdout_type and tr.mask_known is not None and bool(tr.mask_known[i])]
+    val_data = val_data or data
+    va = model_split(ck, model, val_data, "val")
+    good_va = va.label == 0
+    print(f"{data}: {len(good.index)} good and {len(keep)} defective train parts"
+          f"{f' (without {holdout_type})' if holdout_type else ''}; {members} networks x {steps} steps",
+          file=sys.stderr, flush=True)
+    try:
+        det = add_residual(ck.detector, good.priors, good.object_mask if good.object_masks_known else None,
+                           tr.priors[keep], tr.defect_mask[keep].bool(), va.priors[good_va], members, steps, seed,
+                           progress=lambda line: print(line, file=sys.stderr, flush=True))
+    except ModelError as exc:
+        raise UserError(f"{model}: {exc}") from None
+    ev = evaluate(det, EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known))
+    labels = va.label.numpy()
+    choice = choose_threshold(labels, ev.scores, max_good_flagged)
+    train = {**ck.meta.get("train", {}), "residual": {
+        "data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good.index),
+        "defective_parts": len(keep), "holdout_type": holdout_type, "members": members, "steps": steps,
+        "seed": seed, "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
+        "calibration_parts": int(good_va.sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
+    save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
+    detected = f" and {choice.detected_fraction:.1%} of defective" if int(labels.sum()) else ""
+    return (f"{out}: {members} residual networks decide; threshold {choice.threshold:.4g} ({choice.rule}); on "
+            f"{len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts{detected}; image "
+            f"AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")

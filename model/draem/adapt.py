@@ -191,17 +191,38 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     networks' shift is measured against the trained calibration (``DOMAIN_SHIFT_SD``: beyond it, and unless
     ``keep_networks``, ``final`` decides on the variation model alone), then the final detector's calibration is
     set from all held-out member scores, and every part's combined score uses it (a calibration from the fitted
-    parts would be biased low). Returns (scores, the networks' shift in robust SD or None)."""
+    parts would be biased low). With residual networks deciding, their calibration is set the same way from their
+    held-out raw scores and the parts' scores are the detector's own (the decision stays theirs: the networks'
+    shift concerns the DRAEM networks only). Returns (scores, the networks' shift in robust SD or None)."""
     if final.variation is None:
         return np.concatenate([image_scores(d, xp) for d, xp in parts]), None
     pairs = [member_scores(d, xp) for d, xp in parts]
     net, var = torch.cat([p[0] for p in pairs]), torch.cat([p[1] for p in pairs])
     location, spread = (float(c) for c in final.variation.calibration[:2])
     shift = (float(net.double().median()) - location) / spread
+    final.variation.calibrate(net, var)
+    if final.residual is not None and final.config.decision == "residual":  # they decide: calibrate them the same way
+        raw = torch.cat([_residual_raw(d, xp) for d, xp in parts], 1)
+        final.residual.calibrate(raw)
+        for d, _ in parts:
+            assert d.residual is not None
+            d.residual.calibration.copy_(final.residual.calibration)
+        return np.concatenate([image_scores(d, xp) for d, xp in parts]), shift
     if shift > DOMAIN_SHIFT_SD and not keep_networks:
         final.config = final.config.with_(decision="variation")
-    final.variation.calibrate(net, var)
     return combined_score(net, var, final.variation.calibration, final.config.networks_decide).numpy(), shift
+
+
+@torch.no_grad()
+def _residual_raw(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> torch.Tensor:
+    """(members, N) raw residual-network scores of parts ``x`` (before calibration)."""
+    assert detector.variation is not None and detector.residual is not None
+    raw = []
+    for i in range(0, x.shape[0], batch_size):
+        v = detector.variation.zmaps(x[i:i + batch_size])
+        assert v.signed is not None and v.judged is not None
+        raw.append(detector.residual.raw(*detector.residual_inputs(v.signed, v.judged))[1])
+    return torch.cat(raw, 1)
 
 
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,

@@ -243,9 +243,10 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
                                   f"{tuple(v.shape)}")
     detector.load_state_dict(state)
     detector.eval()
-    if detector.variation is not None:
-        try:
-            detector.variation.check()
-        except ModelError as exc:
-            raise CheckpointError(f"{pt}: {exc}") from None
+    for part in (detector.variation, detector.residual):
+        if part is not None:
+            try:
+                part.check()
+            except ModelError as exc:
+                raise CheckpointError(f"{pt}: {exc}") from None
     return Checkpoint(detector, meta.get("threshold"), meta)

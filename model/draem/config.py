@@ -85,7 +85,7 @@ PRESETS: dict[str, Preset] = {
 }
 
 
-DECISIONS = ("combined", "variation")
+DECISIONS = ("combined", "variation", "residual")
 
 
 @dataclass(frozen=True)
@@ -108,7 +108,9 @@ class ModelConfig:
     good parts after training (``station variation``), and decides on the larger of the two detectors' findings.
     ``decision``: "combined" (that rule) or "variation" (the variation model's finding alone; ``station eval``
     still computes and reports the networks, the station skips them): set by ``station variation --decision``, and
-    by ``station adapt`` when the networks are out of their domain on a line (``model.draem.adapt.DOMAIN_SHIFT_SD``)."""
+    by ``station adapt`` when the networks are out of their domain on a line (``model.draem.adapt.DOMAIN_SHIFT_SD``);
+    "residual" (the residual networks' finding alone, ``model.draem.residual``: set by ``station residual``).
+    ``residual_members``: how many residual networks read the variation model's signed z maps (0: none)."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -120,6 +122,7 @@ class ModelConfig:
     roi: str = "center"
     variation: bool = False
     decision: str = "combined"
+    residual_members: int = 0
     extra: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -136,6 +139,11 @@ class ModelConfig:
         if self.decision not in DECISIONS or (self.decision == "variation" and not self.variation):
             raise ModelError(f"decision must be one of {', '.join(DECISIONS)} ('variation' needs the variation "
                              f"model), got {self.decision!r}")
+        if self.residual_members < 0 or (self.residual_members and not self.variation):
+            raise ModelError(f"residual_members must be >= 0 and needs the variation model, got "
+                             f"{self.residual_members}")
+        if self.decision == "residual" and not self.residual_members:
+            raise ModelError("decision 'residual' needs residual networks (residual_members >= 1)")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 

@@ -14,7 +14,8 @@ from .config import ModelConfig, channel_slices
 from .errors import ModelError
 from .networks import Draem, DraemEvalOutput, init_weights
 from .preprocess import Normalizer
-from .variation import VariationModel, combine
+from .residual import UNJUDGEABLE_Z, ResidualDetector, ResidualOutput
+from .variation import MAX_HIDDEN, NOISE_CAP, VariationModel, combine, squash
 
 
 def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, window_px: int) -> torch.Tensor:
@@ -62,6 +63,8 @@ class Detector(nn.Module):
         start = {p: sl.start for p, sl in self._slices.items()}
         self.variation = (VariationModel(config.in_channels, config.input_shape, start["intensity"],
                                          start.get("dolp"), start.get("aolp")) if config.variation else None)
+        self.residual = (ResidualDetector(config.in_channels, config.residual_members) if config.residual_members
+                         else None)
 
     def member_slice(self, member: str) -> slice:
         """Channels of the stacked input that member ``member`` sees."""
@@ -108,7 +111,30 @@ class Detector(nn.Module):
         if self.variation is None:
             return DetectorOutput(amap, score, maps, scores)
         v = self.variation.zmaps(x)
-        amap, score = combine(amap, score, v.maps.to(amap.device), v.scores.to(score.device),
-                              self.variation.calibration, networks=self.config.networks_decide)
-        return DetectorOutput(amap, score, {**maps, "variation": v.maps}, {**scores, "variation": v.scores},
-                              v.frame_checks())
+        maps, scores = {**maps, "variation": v.maps}, {**scores, "variation": v.scores}
+        if self.residual is not None:
+            r = self.residual_output(v.signed, v.judged)
+            maps["residual"], scores["residual"] = r.map.to(amap.device), r.score.to(score.device)
+        if self.config.decision == "residual":
+            unjudgeable = ((v.noise_level > NOISE_CAP) | (v.highlight_fraction > MAX_HIDDEN)).to(score.device)
+            amap = squash(maps["residual"])
+            score = squash(torch.where(unjudgeable, scores["residual"].clamp_min(UNJUDGEABLE_Z), scores["residual"]))
+        else:
+            amap, score = combine(amap, score, v.maps.to(amap.device), v.scores.to(score.device),
+                                  self.variation.calibration, networks=self.config.networks_decide)
+        return DetectorOutput(amap, score, maps, scores, v.frame_checks())
+
+    def residual_output(self, signed: torch.Tensor, judged: torch.Tensor) -> ResidualOutput:
+        """The residual networks on the variation model's ``signed`` (N, C, H, W) and ``judged`` (N, H, W) maps:
+        map (N, H, W) probability, score (N,) robust SD above the good validation parts."""
+        assert self.residual is not None
+        return self.residual.predict(*self.residual_inputs(signed, judged))
+
+    def residual_inputs(self, signed: torch.Tensor, judged: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """(the residual networks' input (N, C + 2, H, W), (N, H, W) the pixels they judge: ``judged`` inside the
+        variation model's region eroded by 1 px, as its own statistic)."""
+        assert self.residual is not None and self.variation is not None
+        region = self.variation.region.bool()
+        eroded = -F.max_pool2d(-region.float()[None, None], 3, stride=1, padding=1)[0, 0] > 0.5
+        x = self.residual.inputs(signed, region, self.variation.window_spread)
+        return x, judged.bool() & eroded.to(judged.device)

@@ -164,17 +164,25 @@ NOISE_CAP = 3.0
 line reach 1.38 (370 validation parts, 500 held-out), an 8-spp line of the same parts 2.1, a brighter line 2.3;
 a frame above the cap is so unlike the fitted line's parts that it is judged unscaled, and rejects."""
 
+SIGNED_CLIP = 20.0
+"""``signed_z`` clips each channel's signed residual to +-this many ``scale`` units: beyond it a defect is a defect,
+and a frame far off the fitted line (a hostile input) cannot push a network reading it to overflow."""
+
 
 class VariationOutput(NamedTuple):
     """``VariationModel.zmaps``, per frame of N: ``maps`` (N, H, W) window statistic against the good parts at each
     pixel (module docstring: position), zero off the part and below their median; ``scores``
     (N,) their max; ``highlight_fraction`` (N,) the share of the part the highlight rule found (above
-    ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the frame's noise level (1 on the fitted line)."""
+    ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the frame's noise level (1 on the fitted line);
+    ``signed`` (N, C, H, W) each channel's signed residual in units of ``scale`` after the noise level (``signed_z``;
+    what the residual networks read, ``model.draem.residual``); ``judged`` (N, H, W) bool, the pixels judged."""
 
     maps: torch.Tensor
     scores: torch.Tensor
     highlight_fraction: torch.Tensor
     noise_level: torch.Tensor
+    signed: torch.Tensor | None = None
+    judged: torch.Tensor | None = None
 
     def frame_checks(self) -> dict[str, torch.Tensor]:
         """The fields that describe the frame rather than a defect (``FRAME_CHECKS``), by name."""
@@ -266,13 +274,14 @@ class VariationModel(nn.Module):
 
     @torch.no_grad()
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
-            keep_reference: bool = False) -> None:
+            keep_reference: bool = False) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
         ``keep_reference``: register to the reference and keep the region already fitted, re-estimating only the
         appearance (mean, components, scales: ``station adapt`` on a line's good parts, which have no object
-        masks)."""
+        masks). Returns the parts' ``signed_z`` (N, C, H, W) float32, each from the appearance fitted without it: what
+        ``zmaps`` gives a good part it never saw (in-sample residuals are too small), for ``model.draem.residual``."""
         xs = x.float().cpu().numpy()
         n = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -310,6 +319,7 @@ class VariationModel(nn.Module):
         scale = 1.4826 * np.median(np.abs(residual), 0)
         floor = np.maximum([np.percentile(s[region], floor_quantile) for s in scale], MIN_SCALE / channel_scale)
         scale = np.maximum(scale, floor[:, None, None])
+        signed = np.stack([self.signed_z(r / scale, region) for r in residual])
         windows = np.stack([self.window(np.abs(r) / scale, region)[0] for r in residual])
         location = np.median(windows, 0)
         spread = cv2.GaussianBlur(np.percentile(windows, WINDOW_QUANTILE, 0) - location, (0, 0), WINDOW_BLUR_PX)
@@ -321,6 +331,7 @@ class VariationModel(nn.Module):
                             ("window_spread", spread)):
             getattr(self, name).copy_(torch.from_numpy(np.asarray(value, np.float32)))
         self.region.copy_(torch.from_numpy(region))
+        return signed
 
     @staticmethod
     def _appearance(u: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -375,30 +386,58 @@ class VariationModel(nn.Module):
     def zmaps(self, x: torch.Tensor) -> VariationOutput:
         """(N, C, H, W) physical priors -> box-averaged z maps, image scores and what each frame's rules found."""
         xs = x.float().cpu().numpy()
-        ref, mean, scale = self.reference.numpy(), self.mean.numpy(), self.scale.numpy()
+        mean, scale = self.mean.numpy(), self.scale.numpy()
         cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
         location, spread = self.window_location.numpy(), self.window_spread.numpy()
         region = cv2.erode(part.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
         if not region.any():
             region = part
-        maps, highlights, noise = [], [], []
+        maps, highlights, noise, signed, judged_all = [], [], [], [], []
         for xi in xs:
-            peak = self.peak(xi)
-            seen = ~self.highlight(peak)
-            warped = self.warp_to(ref, np.concatenate([self.features(xi), peak[None]]),
-                                  seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
+            warped = self.register(xi, self.features(xi))
             judged = part & ~self.highlight(warped[-1])
             highlights.append(1.0 - judged.sum() / max(part.sum(), 1))
             if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
                 judged = part  # too much hidden to judge the part by the rest: fail closed
             u = (warped[:-1] - mean) / cs * part
-            w, level = self.window(np.abs(self._residual(u[None], components, judged)[0]) / scale, judged)
+            r = self._residual(u[None], components, judged)[0] / scale
+            w, level = self.window(np.abs(r), judged)
             noise.append(level)
+            signed.append(self.signed_z(r, judged))
+            judged_all.append(judged)
             z = np.maximum((w - location) / spread, 0.0)
             maps.append(np.where(region & judged, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
         m = torch.from_numpy(np.stack(maps)).to(x.device)
         return VariationOutput(m, m.flatten(1).amax(1), torch.tensor(highlights, dtype=torch.float32),
-                               torch.tensor(noise, dtype=torch.float32))
+                               torch.tensor(noise, dtype=torch.float32), torch.from_numpy(np.stack(signed)),
+                               torch.from_numpy(np.stack(judged_all)))
+
+    def register(self, xi: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """(C, H, W) physical priors ``xi`` and (K, H, W) maps ``f`` of the same frame -> ``f`` warped onto the
+        reference with the frame's I (1 + DoLP) (``peak``) as its last channel (K + 1, H, W): the warp ``zmaps``
+        uses, matched away from highlights unless more than ``MAX_HIDDEN`` of the frame is highlight."""
+        peak = self.peak(xi)
+        seen = ~self.highlight(peak)
+        return self.warp_to(self.reference.numpy(), np.concatenate([f, peak[None]]),
+                            seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
+
+    def register_masks(self, x: torch.Tensor, masks: torch.Tensor) -> torch.Tensor:
+        """(N, C, H, W) physical priors and (N, H, W) bool masks of the same frames (a rendered defect's) -> the
+        masks in the reference's pixels, as ``zmaps`` registers the frames (bool, (N, H, W))."""
+        out = []
+        for xi, mi in zip(x.float().cpu().numpy(), masks.cpu().numpy(), strict=True):
+            f = np.concatenate([self.features(xi), mi[None].astype(np.float32)])
+            out.append(self.register(xi, f)[-2] > 0.5)
+        return torch.from_numpy(np.stack(out))
+
+    def signed_z(self, r: np.ndarray, judged: np.ndarray) -> np.ndarray:
+        """(C, H, W) residual in units of ``scale`` and (H, W) judged pixels -> the residual
+        divided by the frame's noise level as ``window`` does, zero outside ``judged``, clipped to +-``SIGNED_CLIP``;
+        float32, finite. A channel that is not a feature (DoLP when not read) is zero: its features are."""
+        r = np.nan_to_num(r, nan=0.0, posinf=SIGNED_CLIP, neginf=-SIGNED_CLIP)
+        level = self.noise_level(self.used(np.abs(r)), judged)
+        r = r / (level if 1.0 < level <= NOISE_CAP else 1.0)
+        return (np.clip(r, -SIGNED_CLIP, SIGNED_CLIP) * judged).astype(np.float32)
 
     def window(self, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, float]:
         """(C, H, W) per-channel z of a part and its (H, W) judged pixels -> ((H, W) window statistic: the largest
@@ -419,7 +458,7 @@ class VariationModel(nn.Module):
 
 def network_score(member_scores: dict[str, torch.Tensor]) -> torch.Tensor:
     """The networks' image score (mean over network members) from a detector output's ``member_scores``."""
-    return torch.stack([v for k, v in member_scores.items() if k != "variation"]).mean(0)
+    return torch.stack([v for k, v in member_scores.items() if k not in ("variation", "residual")]).mean(0)
 
 
 SQUASH_CENTRE = 3.0

@@ -1,12 +1,17 @@
 """A trained detector plus the registered variation model (``model.draem.variation``): fitted on good training
-parts, calibrated on good validation parts, networks and normalisation copied unchanged."""
+parts, calibrated on good validation parts, networks and normalisation copied unchanged; and plus the residual
+networks that read it (``model.draem.residual``)."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
+import numpy as np
 import torch
 
 from .detector import Detector
 from .errors import ModelError
+from .residual import train_member
 from .variation import network_score
 
 
@@ -43,3 +48,51 @@ def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> 
         net.append(network_score(out.member_scores).float().cpu())
         var.append(out.member_scores["variation"].float().cpu())
     return torch.cat(net), torch.cat(var)
+
+
+@torch.no_grad()
+def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
+                 defects: torch.Tensor, defect_masks: torch.Tensor, val_good: torch.Tensor, members: int = 3,
+                 steps: int = 3000, seed: int = 0, progress: Callable[[str], None] | None = None) -> Detector:
+    """A copy of ``detector`` (which has the variation model) with ``members`` residual networks
+    (``model.draem.residual``) deciding: the variation model fitted again on ``good`` (N, C, H, W) good training
+    parts (the same parts give the same fit; its left-out residuals are the networks' good examples), ``defects``
+    (M, C, H, W) rendered defective training parts with ``defect_masks`` (M, H, W) registered as the frames,
+    member k trained with seed ``seed + k``; both detectors then calibrated on ``val_good`` (good validation
+    parts). ``progress``: one line per 250 steps."""
+    if detector.variation is None:
+        raise ModelError("the residual networks read the variation model: add it first (station variation)")
+    if len(val_good) < 2:
+        raise ModelError(f"calibrating the residual networks needs good validation parts, got {len(val_good)}")
+    out = Detector(detector.config.with_(residual_members=members, decision="residual"), detector.normalizer)
+    missing, unexpected = out.load_state_dict(detector.state_dict(), strict=False)
+    assert not unexpected and all(k.startswith("residual.") for k in missing), (missing, unexpected)
+    out.eval()
+    assert out.variation is not None and out.residual is not None
+    var, res = out.variation, out.residual
+    signed = torch.from_numpy(var.fit(good, good_object_mask))
+    region = var.region.bool()
+    good_in = res.inputs(signed, region, var.window_spread).numpy()
+    if len(defects):
+        v = var.zmaps(defects)
+        assert v.signed is not None and v.judged is not None
+        masks = (var.register_masks(defects, defect_masks) & v.judged & region).numpy()
+        defect_in = res.inputs(v.signed, region, var.window_spread).numpy()
+    else:
+        masks, defect_in = np.zeros((0, *region.shape), bool), good_in[:0]
+    for k, net in enumerate(res.members):
+        def report(step: int, loss: float, k: int = k) -> None:
+            if progress is not None:
+                progress(f"residual network {k + 1}/{members}: step {step + 1}/{steps}, loss {loss:.3f}")
+        with torch.enable_grad():
+            train_member(net, good_in, defect_in, masks, steps, seed + k, progress=report)
+    var.calibrate(*member_scores(out, val_good))
+    raw = []
+    for i in range(0, len(val_good), 16):
+        v = var.zmaps(val_good[i:i + 16])
+        assert v.signed is not None and v.judged is not None
+        raw.append(res.raw(*out.residual_inputs(v.signed, v.judged))[1])
+    res.calibrate(torch.cat(raw, 1))
+    var.check()
+    res.check()
+    return out

@@ -129,7 +129,8 @@ FALSE_REJECTS = (0.01, 0.05)
 
 def detector_rows(ev, label, types: list[str]) -> list[dict]:
     """Image AUROC of a model with the variation member, all defects and per type: the networks alone, the
-    variation model alone, and their combination (the model's score). ``label``: (N,) numpy 0/1."""
+    variation model alone, the residual networks alone when the model has them, and the model's decision score
+    ("combined"). ``label``: (N,) numpy 0/1."""
     import numpy as np
     import torch
 
@@ -137,7 +138,9 @@ def detector_rows(ev, label, types: list[str]) -> list[dict]:
     from model.draem.variation import network_score
 
     scores = {"networks": network_score({k: torch.from_numpy(v) for k, v in ev.member_scores.items()}).numpy(),
-              "variation": ev.member_scores["variation"], "combined": ev.scores}
+              "variation": ev.member_scores["variation"],
+              **({"residual": ev.member_scores["residual"]} if "residual" in ev.member_scores else {}),
+              "combined": ev.scores}
     t = np.asarray(types)
     rows = []
     for name in ["all", *sorted(set(types) - {""})]:
@@ -152,6 +155,8 @@ def industrial_rows(report, train_meta: dict) -> list[dict]:
     AUROC and the share caught at each of ``FALSE_REJECTS``, and whether the type was among the model's rendered
     training defects ("trained on"), left out of them ("held out") or the model saw none ("synthetic only")."""
     rd = train_meta.get("rendered_defects") or {}
+    if train_meta.get("residual"):  # the residual networks decide: what they trained on is what counts
+        rd = {"fraction": 1.0, "holdout_type": train_meta["residual"].get("holdout_type")}
     rows = []
     for det in [report.overall, *report.per_type.values()]:
         seen = ("" if det.defect_type == "all" else "synthetic only" if not rd
@@ -359,8 +364,8 @@ def run(args: argparse.Namespace) -> int:
                   + markdown_table(by_snr, DETECTABILITY_COLUMNS))
     if detectors:
         table += ("\n\nImage AUROC by detector (networks: their mean score; variation: the registered variation "
-                  "model, which never saw a defect of any type; combined: the model's decision score):\n\n"
-                  + markdown_table(detectors, ["type", "parts", "networks", "variation", "combined"]))
+                  "model, which never saw a defect of any type; residual: the residual networks on its residuals; "
+                  "combined: the model's decision score):\n\n" + markdown_table(detectors, list(detectors[0])))
     if ablation:
         table += "\n\nAblation (ensemble members averaged, rendered defects):\n\n" + markdown_table(
             ablation, ["priors", "members", "image_auroc", "pixel_auroc", "pixel_ap"])

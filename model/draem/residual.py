@@ -1,0 +1,238 @@
+"""The residual networks: small segmentation networks that read what the variation model leaves of a part.
+
+The variation model (``model.draem.variation``) registers each part, takes the line's shared appearance out and
+divides what is left by the good parts' spread at each pixel: ``signed_z``, per channel, about N(0, 1) on a good
+part where render or sensor noise dominates, structured where the part's own variation does. Its decision, the box
+average of the largest channel's |z| against the good parts at that place, treats every leftover alike. A defect
+leaves a shape (a dent a tilt, signed and opposite across it in the Stokes components; a chip an edge; a stain a
+patch in intensity) that a good part's leftovers do not; a network can learn which is which from examples.
+
+Training (``train_residual``): the good training parts' signed z maps, each from the appearance fitted without
+it (``VariationModel.fit``'s return: what an unseen good part looks like), half of them with a synthetic anomaly
+added in z space (``synthetic_anomaly``: a blob, a line or a noise patch, of a signed amplitude per channel or as a
+tilt's signed pattern: shapes nobody rendered, so that the networks also mark defects of kinds they never saw),
+and the training split's rendered defective parts with their masks registered as the frames are. A quarter of each
+batch is rendered defects. Random 64 x 96 crops; per-pixel weighted cross-entropy plus an image term on the top
+``TOP_K`` logits. Input channels: the C signed z channels, the part region, and the log of the variation model's
+``window_spread`` standardised over the region (where good parts vary more: each place against itself, as the
+variation model's own statistic).
+
+Score: each member's image score is the mean of its ``TOP_K`` highest pixel probabilities over the eroded judged
+part, put in robust standard deviations above the good validation parts (``calibration``: median, 1.4826 MAD per
+member), then averaged over members (an ensemble of seeds). Measured on the validation set (600 parts, 370 good)
+against the variation model's own statistic: docs/results/2026-11-25-residual-networks.md.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import NamedTuple
+
+import cv2
+import numpy as np
+import torch
+import torch.nn.functional as F
+from torch import nn
+
+from .errors import ModelError
+
+WIDTH = 16
+"""Channels of the first level (the second and third have twice that): about 60 k parameters per member."""
+
+TOP_K = 10
+"""Pixels averaged for a member's image score (and its image loss): a defect of a few pixels counts, one hot
+pixel does not decide alone."""
+
+CROP = (64, 96)
+"""Training crop (height, width) at the model input; the networks are fully convolutional and score whole frames."""
+
+RENDERED_SHARE = 0.25
+"""Share of each batch drawn from the rendered defective parts (the rest good parts, half of them with a synthetic
+anomaly)."""
+
+UNJUDGEABLE_Z = 1e3
+"""Decision score (robust SD) of a frame the variation model cannot judge: its noise level beyond ``NOISE_CAP`` (a
+frame nothing like the fitted line's parts: hostile, black, saturated, another part) or more than ``MAX_HIDDEN`` of
+the part hidden by highlights. The networks never saw such inputs, so their finding there is not trusted: the part
+is rejected, and its frame checks (``noise_level``, ``highlight_fraction``) say why. The variation model's own
+decision rejects these parts by its statistic."""
+
+
+class ResidualOutput(NamedTuple):
+    """Per frame of N: ``map`` (N, H, W) the members' mean probability of a defect; ``score`` (N,) the calibrated image
+    score (robust SD above the good validation parts, mean over members)."""
+
+    map: torch.Tensor
+    score: torch.Tensor
+
+
+class ResidualNet(nn.Module):
+    """A three-level U-Net: (N, in_channels, H, W) -> (N, H, W) logits. H, W any size (pooled twice)."""
+
+    def __init__(self, in_channels: int, width: int = WIDTH) -> None:
+        super().__init__()
+
+        def block(i: int, o: int) -> nn.Sequential:
+            return nn.Sequential(nn.Conv2d(i, o, 3, padding=1), nn.ReLU(), nn.Conv2d(o, o, 3, padding=1), nn.ReLU())
+
+        self.e1, self.e2, self.e3 = block(in_channels, width), block(width, 2 * width), block(2 * width, 2 * width)
+        self.d2, self.d1 = block(4 * width, 2 * width), block(3 * width, width)
+        self.out = nn.Conv2d(width, 1, 1)
+
+    def forward(self, x: torch.Tensor) -> torch.Tensor:
+        a = self.e1(x)
+        b = self.e2(F.max_pool2d(a, 2))
+        c = self.e3(F.max_pool2d(b, 2))
+        b = self.d2(torch.cat([b, F.interpolate(c, size=b.shape[2:])], 1))
+        a = self.d1(torch.cat([a, F.interpolate(b, size=a.shape[2:])], 1))
+        return self.out(a)[:, 0]
+
+
+class ResidualDetector(nn.Module):
+    """``members`` ResidualNets of ``channels`` + 2 inputs and their ``calibration`` (members, 2): median and spread
+    of each member's image score on good validation parts."""
+
+    def __init__(self, channels: int, members: int) -> None:
+        super().__init__()
+        if members < 1:
+            raise ModelError(f"residual networks: members must be >= 1, got {members}")
+        self.members = nn.ModuleList(ResidualNet(channels + 2) for _ in range(members))
+        self.register_buffer("calibration", torch.tensor([[0.0, 1.0]] * members))
+
+    @staticmethod
+    def inputs(signed: torch.Tensor, region: torch.Tensor, window_spread: torch.Tensor) -> torch.Tensor:
+        """(N, C, H, W) ``signed_z`` maps, (H, W) region and (H, W) window spread of the variation model -> the
+        networks' input (N, C + 2, H, W): the maps, the region, the log spread standardised over the region (zero
+        off it). Finite for finite inputs."""
+        reg = region.bool()
+        ls = torch.log(window_spread.float().clamp_min(1e-6))
+        sel = ls[reg] if bool(reg.any()) else ls.flatten()
+        ls = torch.where(reg, (ls - sel.mean()) / sel.std().clamp_min(1e-6), torch.zeros_like(ls))
+        n = signed.shape[0]
+        extra = torch.stack([reg.float(), ls]).to(signed.device).expand(n, 2, *reg.shape)
+        return torch.cat([signed.float(), extra], 1)
+
+    @staticmethod
+    def member_scores(prob: torch.Tensor, judged: torch.Tensor) -> torch.Tensor:
+        """(N, H, W) probabilities and (N, H, W) bool pixels to judge -> (N,) mean of the ``TOP_K`` highest there
+        (over the whole map when none is judged: fail closed, a frame with nothing judged is not passed by an empty
+        maximum)."""
+        j = judged.bool() | ~judged.flatten(1).any(1).view(-1, 1, 1)
+        v = prob.masked_fill(~j, -1.0).flatten(1)
+        top = v.topk(min(TOP_K, v.shape[1]), 1).values
+        return torch.where(top >= 0, top, torch.zeros_like(top)).sum(1) / (top >= 0).sum(1).clamp_min(1)
+
+    @torch.no_grad()
+    def raw(self, x: torch.Tensor, judged: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """Inputs (N, C + 2, H, W) and judged (N, H, W) -> ((N, H, W) mean probability, (members, N) raw scores)."""
+        probs = [torch.sigmoid(m(x)) for m in self.members]
+        return torch.stack(probs).mean(0), torch.stack([self.member_scores(p, judged) for p in probs])
+
+    @torch.no_grad()
+    def predict(self, x: torch.Tensor, judged: torch.Tensor) -> ResidualOutput:
+        """``raw``, each member's score calibrated and averaged (``ResidualOutput``)."""
+        prob, raw = self.raw(x, judged)
+        loc, spread = self.calibration[:, 0:1], self.calibration[:, 1:2]
+        return ResidualOutput(prob, ((raw - loc) / spread).mean(0))
+
+    def calibrate(self, raw: torch.Tensor) -> None:
+        """Set ``calibration`` from (members, N) raw scores of good validation parts (at least 2)."""
+        if raw.shape[1] < 2:
+            raise ModelError("calibrating the residual networks needs good validation parts (at least 2)")
+        med = raw.double().median(1).values
+        mad = (raw.double() - med[:, None]).abs().median(1).values * 1.4826
+        self.calibration.copy_(torch.stack([med, mad.clamp_min(1e-6)], 1).float())
+
+    def check(self) -> None:
+        """ModelError unless every weight and calibration is finite and every spread > 0."""
+        for name, t in [*self.named_parameters(), ("calibration", self.calibration)]:
+            if not bool(torch.isfinite(t).all()):
+                raise ModelError(f"residual networks: {name} has NaN or Inf values")
+        if not bool((self.calibration[:, 1] > 0).all()):
+            raise ModelError("residual networks: a calibration spread is not > 0")
+
+
+def synthetic_anomaly(rng: np.random.Generator, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One synthetic anomaly added to signed z maps ``z`` (C, H, W) inside ``judged`` (H, W) -> (z copy, (H, W) float
+    mask). Shape: an ellipse (1.5-12 px semi-axes), a line (8-50 px long, 1-3 px wide) or a patch of smooth noise
+    above 1 SD; amplitude per channel uniform in +-(0.5-4) z, either flat over the shape or as a tilt's signed
+    pattern (the shape's gradient along a random direction, as a dent shows in the Stokes components). Channels
+    that are zero everywhere (not features) stay zero. No change when no place fits in 20 tries."""
+    h, w = judged.shape
+    live = np.abs(z).reshape(len(z), -1).max(1) > 0
+    for _ in range(20):
+        cy, cx = int(rng.integers(0, h)), int(rng.integers(0, w))
+        if not judged[cy, cx]:
+            continue
+        m = np.zeros((h, w), np.float32)
+        kind = int(rng.integers(3))
+        if kind == 0:
+            axes = (int(rng.uniform(1.5, 12)), int(rng.uniform(1.5, 12)))
+            cv2.ellipse(m, (cx, cy), axes, float(rng.uniform(0, 180)), 0, 360, 1.0, -1)
+        elif kind == 1:
+            length, a = rng.uniform(8, 50), rng.uniform(0, np.pi)
+            dx, dy = length / 2 * np.cos(a), length / 2 * np.sin(a)
+            cv2.line(m, (int(cx - dx), int(cy - dy)), (int(cx + dx), int(cy + dy)), 1.0, int(rng.integers(1, 4)))
+        else:
+            noise = cv2.GaussianBlur(rng.standard_normal((h, w)).astype(np.float32), (0, 0), rng.uniform(2, 6))
+            r = int(rng.integers(6, 25))
+            box = np.zeros((h, w), bool)
+            box[max(cy - r, 0):cy + r, max(cx - r, 0):cx + r] = True
+            m = ((noise > noise.std()) & box).astype(np.float32)
+        m *= judged
+        if m.sum() < 3:
+            continue
+        amp = (rng.uniform(-1, 1, len(z)) * rng.uniform(0.5, 4.0) * live).astype(np.float32)
+        if rng.random() < 0.5:
+            gy, gx = np.gradient(cv2.GaussianBlur(m, (0, 0), 1.5))
+            a = rng.uniform(0, 2 * np.pi)
+            pattern = np.cos(a) * gx + np.sin(a) * gy
+            pattern = pattern / (np.abs(pattern).max() + 1e-6)
+            soft = np.abs(pattern)
+        else:
+            pattern = soft = cv2.GaussianBlur(m, (0, 0), 0.7)
+        out = z + amp[:, None, None] * (pattern * judged)[None]
+        return out.astype(np.float32), ((soft > 0.25) & judged).astype(np.float32)
+    return z, np.zeros((h, w), np.float32)
+
+
+def train_member(net: ResidualNet, good: np.ndarray, defects: np.ndarray, masks: np.ndarray, steps: int, seed: int,
+                 batch: int = 16, lr: float = 1e-3, progress: Callable[[int, float], None] | None = None) -> None:
+    """Train one member on network inputs: ``good`` (N, C + 2, H, W) of good parts, ``defects`` (M, C + 2, H, W)
+    of rendered defective parts with ``masks`` (M, H, W) (M may be 0). Adam at ``lr``, divided by 5 at 80 % of
+    ``steps``; ``progress(step, loss)`` every 250 steps. Deterministic for a seed on one thread."""
+    rng = np.random.default_rng(seed)
+    torch.manual_seed(seed)
+    opt = torch.optim.Adam(net.parameters(), lr)
+    sched = torch.optim.lr_scheduler.MultiStepLR(opt, [int(steps * 0.8)], 0.2)
+    n_def = round(batch * RENDERED_SHARE) if len(defects) else 0
+    ch, cw = min(CROP[0], good.shape[2]), min(CROP[1], good.shape[3])
+    net.train()
+    for step in range(steps):
+        xb, mb = [], []
+        for k in range(batch):
+            if k < n_def:
+                i = int(rng.integers(len(defects)))
+                x, m = defects[i], masks[i].astype(np.float32)
+            else:
+                x, m = good[int(rng.integers(len(good)))], np.zeros(good.shape[2:], np.float32)
+                if rng.random() < 0.5:
+                    z, m = synthetic_anomaly(rng, x[:-2], x[-2] > 0)
+                    x = np.concatenate([z, x[-2:]])
+            y0, x0 = int(rng.integers(0, x.shape[1] - ch + 1)), int(rng.integers(0, x.shape[2] - cw + 1))
+            xb.append(x[:, y0:y0 + ch, x0:x0 + cw])
+            mb.append(m[y0:y0 + ch, x0:x0 + cw])
+        xt, mt = torch.from_numpy(np.stack(xb)), torch.from_numpy(np.stack(mb))
+        logit = net(xt)
+        inside = xt[:, -2] > 0
+        pix = F.binary_cross_entropy_with_logits(logit[inside], mt[inside], pos_weight=torch.tensor(5.0))
+        top = logit.masked_fill(~inside, -30.0).flatten(1).topk(TOP_K, 1).values.mean(1)
+        img = F.binary_cross_entropy_with_logits(top, (mt.flatten(1).amax(1) > 0).float())
+        loss = pix + 0.5 * img
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+        sched.step()
+        if progress is not None and (step % 250 == 0 or step == steps - 1):
+            progress(step, loss.item())
+    net.eval()

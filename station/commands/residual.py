@@ -1,0 +1,42 @@
+"""``station residual``: add residual networks (``model.draem.residual``) that read the variation model's signed z
+maps, and let them decide.
+
+Trained on ``--data``'s train split (its good parts' left-out residuals, half of them with synthetic anomalies, and
+its rendered defective parts with their masks; ``--holdout-type`` leaves one type's out), calibrated and
+thresholded on ``--val-data``'s val split with ``station threshold``'s rule. The networks and the variation model
+are copied (the variation model fitted again on the same good parts: the same fit); the sidecar records the
+training (``train.residual``).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("residual", help="add residual networks (trained on the variation model's residuals) to a "
+                                        "detector with a variation model; they decide")
+    p.add_argument("--model", required=True, help="checkpoint with a variation model, path without suffix")
+    p.add_argument("--data", required=True, help="the training set: good and rendered defective parts in its train "
+                                                 "split (station render --defects-in-train)")
+    p.add_argument("--val-data", default=None, metavar="DATA",
+                   help="set whose val split calibrates and thresholds (default: --data's)")
+    p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
+    p.add_argument("--members", type=int, default=3, help="networks, each with its own seed; their scores averaged")
+    p.add_argument("--steps", type=int, default=3000, help="training steps per network (about 0.15 s each on 2 "
+                                                           "cores)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the first network (the next ones count up)")
+    p.add_argument("--holdout-type", default=None, metavar="TYPE",
+                   help="leave this defect type's rendered parts out of training, to measure a kind of defect the "
+                        "networks never saw (default: none left out)")
+    p.add_argument("--max-good-flagged", type=float, default=0.05,
+                   help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from station.evaluation import fit_residual
+
+    print(fit_residual(args.model, args.data, args.out, args.val_data, args.members, args.steps, args.seed,
+                       args.holdout_type, args.max_good_flagged))
+    return 0

@@ -1,0 +1,45 @@
+"""``station residual``: residual networks added to a detector with a variation model, trained on its set's train
+split, calibrated and thresholded on the val split, recorded in the sidecar, reported by ``station eval``; errors in
+one line."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from test_variation_command import trained  # same folder (pytest puts it on sys.path)
+
+from station.cli import main
+
+
+def test_residual_networks_are_trained_recorded_thresholded_and_evaluated(tmp_path: Path, capsys) -> None:
+    data, model = trained(tmp_path, capsys)
+    var = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(var)]) == 0
+    capsys.readouterr()
+    out = tmp_path / "r"
+    assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(out), "--members", "2",
+                 "--steps", "3", "--holdout-type", "stain"]) == 0
+    cap = capsys.readouterr()
+    assert "2 residual networks decide" in cap.out and "residual network 2/2: step 3/3" in cap.err
+    meta = json.loads(out.with_suffix(".json").read_text())
+    assert meta["model"]["decision"] == "residual" and meta["model"]["residual_members"] == 2
+    assert 0.0 <= meta["threshold"] <= 1.0
+    rec = meta["train"]["residual"]
+    assert rec["holdout_type"] == "stain" and rec["defective_parts"] == 0 and rec["good_parts"] > 8
+    assert rec["members"] == 2 and rec["steps"] == 3 and rec["from"] == str(var)
+    assert main(["eval", "--model", str(out), "--data", str(data), "--no-plots", "--no-synthetic",
+                 "--out", str(tmp_path / "ev")]) == 0
+    report = json.loads((tmp_path / "ev" / "eval.json").read_text())
+    assert all(0.0 <= r["residual"] <= 1.0 for r in report["detectors"])
+    assert "held out" in capsys.readouterr().out  # the type left out of the networks' training is marked
+
+
+def test_a_model_without_the_variation_model_or_a_bad_type_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
+    data, model = trained(tmp_path, capsys)
+    assert main(["residual", "--model", str(model), "--data", str(data), "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err
+    assert "add it first (station variation)" in err and len(err.strip().splitlines()) == 1
+    assert main(["residual", "--model", str(model), "--data", str(data), "--out", str(tmp_path / "r"),
+                 "--holdout-type", "crack"]) == 2
+    assert "not a defect type" in capsys.readouterr().err
