@@ -190,18 +190,18 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     ck = load_checkpoint(model)
     if ck.detector.variation is None:
         raise UserError(f"{model}: the residual networks read the variation model: add it first (station variation)")
-    good = model_split(ck, model, data, "train", good_only=True)
     tr = model_split(ck, model, data, "train")
+    good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
     keep = [i for i, (lab, t) in enumerate(zip(tr.label.tolist(), tr.defect_type, strict=True))
             if lab and t != holdout_type and tr.mask_known is not None and bool(tr.mask_known[i])]
     val_data = val_data or data
     va = model_split(ck, model, val_data, "val")
     good_va = va.label == 0
-    print(f"{data}: {len(good.index)} good and {len(keep)} defective train parts"
+    print(f"{data}: {len(good)} good and {len(keep)} defective train parts"
           f"{f' (without {holdout_type})' if holdout_type else ''}; {members} networks x {steps} steps",
           file=sys.stderr, flush=True)
     try:
-        det = add_residual(ck.detector, good.priors, good.object_mask if good.object_masks_known else None,
+        det = add_residual(ck.detector, tr.priors[good], tr.object_mask[good] if tr.object_masks_known else None,
                            tr.priors[keep], tr.defect_mask[keep].bool(), va.priors[good_va], members, steps, seed,
                            progress=lambda line: print(line, file=sys.stderr, flush=True))
     except ModelError as exc:
@@ -210,7 +210,7 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     labels = va.label.numpy()
     choice = choose_threshold(labels, ev.scores, max_good_flagged)
     train = {**ck.meta.get("train", {}), "residual": {
-        "data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good.index),
+        "data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good),
         "defective_parts": len(keep), "holdout_type": holdout_type, "members": members, "steps": steps,
         "seed": seed, "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
         "calibration_parts": int(good_va.sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
