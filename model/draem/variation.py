@@ -403,7 +403,7 @@ class VariationModel(nn.Module):
             r = self._residual(u[None], components, judged)[0] / scale
             w, level = self.window(np.abs(r), judged)
             noise.append(level)
-            signed.append(self.signed_z(r, judged))
+            signed.append(self.signed_z(r, judged, level))
             judged_all.append(judged)
             z = np.maximum((w - location) / spread, 0.0)
             maps.append(np.where(region & judged, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
@@ -430,12 +430,14 @@ class VariationModel(nn.Module):
             out.append(self.register(xi, f)[-2] > 0.5)
         return torch.from_numpy(np.stack(out))
 
-    def signed_z(self, r: np.ndarray, judged: np.ndarray) -> np.ndarray:
-        """(C, H, W) residual in units of ``scale`` and (H, W) judged pixels -> the residual
-        divided by the frame's noise level as ``window`` does, zero outside ``judged``, clipped to +-``SIGNED_CLIP``;
-        float32, finite. A channel that is not a feature (DoLP when not read) is zero: its features are."""
+    def signed_z(self, r: np.ndarray, judged: np.ndarray, level: float | None = None) -> np.ndarray:
+        """(C, H, W) residual in units of ``scale`` and (H, W) judged pixels -> the residual divided by the frame's
+        noise level as ``window`` does (``level`` when already known), zero outside ``judged``, clipped to
+        +-``SIGNED_CLIP``; float32, finite. A channel that is not a feature (DoLP when not read) is zero: its
+        features are."""
         r = np.nan_to_num(r, nan=0.0, posinf=SIGNED_CLIP, neginf=-SIGNED_CLIP)
-        level = self.noise_level(self.used(np.abs(r)), judged)
+        if level is None:
+            level = self.noise_level(self.used(np.abs(r)), judged)
         r = r / (level if 1.0 < level <= NOISE_CAP else 1.0)
         return (np.clip(r, -SIGNED_CLIP, SIGNED_CLIP) * judged).astype(np.float32)
 
