@@ -190,6 +190,9 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     ck = load_checkpoint(model)
     if ck.detector.variation is None:
         raise UserError(f"{model}: the residual networks read the variation model: add it first (station variation)")
+    if ck.detector.residual is not None:  # the model's own refusal, before minutes of loading
+        raise UserError(f"{model}: the detector already has residual networks: start from the model they were added "
+                        f"to ({ck.meta.get('train', {}).get('residual', {}).get('from', 'its train.residual.from')})")
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
     keep = [i for i, (lab, t) in enumerate(zip(tr.label.tolist(), tr.defect_type, strict=True))

@@ -62,6 +62,8 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
     parts). ``progress``: one line per 250 steps."""
     if detector.variation is None:
         raise ModelError("the residual networks read the variation model: add it first (station variation)")
+    if detector.residual is not None:
+        raise ModelError("the detector already has residual networks: start from the model they were added to")
     if len(val_good) < 2:
         raise ModelError(f"calibrating the residual networks needs good validation parts, got {len(val_good)}")
     out = Detector(detector.config.with_(residual_members=members, decision="residual"), detector.normalizer)

@@ -33,6 +33,11 @@ def test_residual_networks_are_trained_recorded_thresholded_and_evaluated(tmp_pa
     report = json.loads((tmp_path / "ev" / "eval.json").read_text())
     assert all(0.0 <= r["residual"] <= 1.0 for r in report["detectors"])
     assert "held out" in capsys.readouterr().out  # the type left out of the networks' training is marked
+    # twice: a model that has them already is refused in one line
+    assert main(["residual", "--model", str(out), "--data", str(data), "--out", str(tmp_path / "r2"),
+                 "--steps", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "already has residual networks" in err and len(err.strip().splitlines()) == 1
 
 
 def test_a_model_without_the_variation_model_or_a_bad_type_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
