@@ -37,7 +37,7 @@ from torch import nn
 from .errors import ModelError
 
 WIDTH = 16
-"""Channels of the first level (the second and third have twice that): about 60 k parameters per member."""
+"""Channels of the first level (the second and third have twice that): about 70 k parameters per member."""
 
 TOP_K = 10
 """Pixels averaged for a member's image score (and its image loss): a defect of a few pixels counts, one hot
@@ -200,7 +200,7 @@ def train_member(net: ResidualNet, good: np.ndarray, defects: np.ndarray, masks:
                  batch: int = 16, lr: float = 1e-3, progress: Callable[[int, float], None] | None = None) -> None:
     """Train one member on network inputs: ``good`` (N, C + 2, H, W) of good parts, ``defects`` (M, C + 2, H, W)
     of rendered defective parts with ``masks`` (M, H, W) (M may be 0). Adam at ``lr``, divided by 5 at 80 % of
-    ``steps``; ``progress(step, loss)`` every 250 steps. Deterministic for a seed on one thread."""
+    ``steps``; ``progress(step, loss)`` every 250 steps and at the last."""
     rng = np.random.default_rng(seed)
     torch.manual_seed(seed)
     opt = torch.optim.Adam(net.parameters(), lr)
