@@ -1,34 +1,56 @@
 """Add the training split's defective parts and every scored part's defect mask warped to the reference."""
+
 from __future__ import annotations
-import copy, sys
-import numpy as np, torch
+
+import copy
+import sys
+
+import numpy as np
+
 from model.draem.checkpoint import load_checkpoint
-from model.draem.variation import VariationModel, MAX_HIDDEN
+from model.draem.variation import MAX_HIDDEN, VariationModel
 from station.datasets import load_split
 
-PRIORS = ("intensity", "dolp", "aolp"); SHAPE = (96, 192)
-RES: list = []; JUD: list = []
+PRIORS = ("intensity", "dolp", "aolp")
+SHAPE = (96, 192)
+RES: list = []
+JUD: list = []
 _res, _win = VariationModel._residual, VariationModel.window
+
+
 def res_spy(u, components, keep=None):
-    r = _res(u, components, keep); RES.append(r.astype(np.float32)); return r
+    r = _res(u, components, keep)
+    RES.append(r.astype(np.float32))
+    return r
+
+
 def win_spy(self, z, judged):
-    JUD.append(judged.copy()); return _win(self, z, judged)
+    JUD.append(judged.copy())
+    return _win(self, z, judged)
+
 
 train_dir, val_dir, held_dir, out = sys.argv[1:5]
 st = load_split(train_dir, "train", PRIORS, SHAPE, roi="band", progress=False, good_only=True)
 m = copy.deepcopy(load_checkpoint("model/weights/default").detector.variation)
 m.fit(st.priors.float(), st.object_mask)
-VariationModel._residual = staticmethod(res_spy); VariationModel.window = win_spy
+VariationModel._residual = staticmethod(res_spy)
+VariationModel.window = win_spy
 scale, ref = m.scale.numpy(), m.reference.numpy()
+
 
 def warped_masks(x, masks):
     out = []
-    for xi, mi in zip(x.float().numpy(), masks):
-        peak = m.peak(xi); seen = ~m.highlight(peak)
-        w = m.warp_to(ref, np.concatenate([m.features(xi), peak[None], mi[None].astype(np.float32)]),
-                      seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
+    for xi, mi in zip(x.float().numpy(), masks, strict=True):
+        peak = m.peak(xi)
+        seen = ~m.highlight(peak)
+        w = m.warp_to(
+            ref,
+            np.concatenate([m.features(xi), peak[None], mi[None].astype(np.float32)]),
+            seen if seen.mean() > 1.0 - MAX_HIDDEN else None,
+        )
         out.append(w[-1] > 0.5)
     return np.stack(out)
+
 
 d = {}
 for tag, root, split in (("trdef", train_dir, "train"), ("val", val_dir, "val"), ("held", held_dir, "test")):
@@ -38,9 +60,10 @@ for tag, root, split in (("trdef", train_dir, "train"), ("val", val_dir, "val"),
     mk = s.defect_mask.numpy()[keep].astype(bool)
     d[f"{tag}_wmask"] = warped_masks(x, mk)
     if tag == "trdef":
-        RES.clear(); JUD.clear()
+        RES.clear()
+        JUD.clear()
         for i in range(0, len(x), 50):
-            m.zmaps(x[i:i + 50])
+            m.zmaps(x[i : i + 50])
         d["trdef_z"] = np.stack([m.used(r[0] / scale) for r in RES]).astype(np.float16)
         d["trdef_judged"] = np.stack(JUD)
         d["trdef_type"] = np.array([s.defect_type[i] or "" for i in keep])

@@ -1,10 +1,15 @@
 """Second rule (runs/s32/rule.md): candidates from the residual-network ensemble against the shipped statistic on
 validation, with paired bootstrap SEs of caught at 1 % / 5 % and AUROC. Usage: eval2.py SEEDTAG... [--held]"""
+
 from __future__ import annotations
-import json, sys
+
+import json
+import sys
+
 import numpy as np
-from model.draem.metrics import detection_by_type, false_reject_threshold
 from sklearn.metrics import roc_auc_score
+
+from model.draem.metrics import detection_by_type, false_reject_threshold
 
 TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
 args = [a for a in sys.argv[1:] if not a.startswith("--")]
@@ -13,7 +18,8 @@ lv, kv = c["val_label"], c["val_type"]
 
 
 def zscore(s_val, s):
-    g = s_val[lv == 0]; med = np.median(g)
+    g = s_val[lv == 0]
+    med = np.median(g)
     return (s - med) / (1.4826 * np.median(np.abs(g - med)) + 1e-9)
 
 
@@ -32,7 +38,8 @@ boots = {k: {"c1": [], "c5": [], "auc": []} for k in cands}
 for _ in range(1000):
     i = np.concatenate([rng.choice(gi, len(gi)), rng.choice(di, len(di))])
     for k, s in cands.items():
-        boots[k]["c1"].append(caught(lv[i], s[i], 0.01)); boots[k]["c5"].append(caught(lv[i], s[i], 0.05))
+        boots[k]["c1"].append(caught(lv[i], s[i], 0.01))
+        boots[k]["c5"].append(caught(lv[i], s[i], 0.05))
         boots[k]["auc"].append(roc_auc_score(lv[i], s[i]))
 out = {}
 for k, s in cands.items():
@@ -44,7 +51,9 @@ for k, s in cands.items():
     r.update({t: rep.per_type[t].image_auroc for t in TYPES})
     r.update({t + "_c1": rep.per_type[t].caught[0.01] for t in TYPES})
     out[k] = r
-    print(f"{k:9s} val AUROC {r['auroc']:.3f} (d {r['d_auc']:+.3f} se {r['se_auc']:.3f}) @1% {r['c1']:.0%} "
-          f"(d {r['d_c1']:+.3f} se {r['se_c1']:.3f}) @5% {r['c5']:.0%} (d {r['d_c5']:+.3f} se {r['se_c5']:.3f}) "
-          + " ".join(f"{t[:5]} {r[t]:.3f}/{r[t + '_c1']:.0%}" for t in TYPES))
+    print(
+        f"{k:9s} val AUROC {r['auroc']:.3f} (d {r['d_auc']:+.3f} se {r['se_auc']:.3f}) @1% {r['c1']:.0%} "
+        f"(d {r['d_c1']:+.3f} se {r['se_c1']:.3f}) @5% {r['c5']:.0%} (d {r['d_c5']:+.3f} se {r['se_c5']:.3f}) "
+        + " ".join(f"{t[:5]} {r[t]:.3f}/{r[t + '_c1']:.0%}" for t in TYPES)
+    )
 json.dump(out, open("runs/s32/eval2-" + "-".join(args) + ".json", "w"), indent=1)

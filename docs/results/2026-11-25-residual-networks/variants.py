@@ -1,10 +1,16 @@
 """Signed and oriented window statistics on cached signed z maps (runs/s32/zcache.npz)."""
+
 from __future__ import annotations
-import json, sys
-import cv2, numpy as np
+
+import json
+import sys
+
+import cv2
+import numpy as np
 from sklearn.metrics import roc_auc_score
+
 from model.draem.metrics import detection_by_type
-from model.draem.variation import ABS_NORMAL_SD, NOISE_CAP, WINDOW_BLUR_PX, WINDOW_QUANTILE, MEDIAN_ABS_NORMAL
+from model.draem.variation import MEDIAN_ABS_NORMAL, NOISE_CAP, WINDOW_BLUR_PX, WINDOW_QUANTILE
 
 TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
 c = np.load(sys.argv[1])
@@ -24,8 +30,8 @@ def line_kernels(length, width, n=8):
         k = np.zeros((length, length), np.float32)
         h = (length - 1) / 2
         dx, dy = np.cos(a) * h, np.sin(a) * h
-        p0 = (int(round(h * 16 - dx * 16)), int(round(h * 16 - dy * 16)))
-        p1 = (int(round(h * 16 + dx * 16)), int(round(h * 16 + dy * 16)))
+        p0 = (round(h * 16 - dx * 16), round(h * 16 - dy * 16))
+        p1 = (round(h * 16 + dx * 16), round(h * 16 + dy * 16))
         cv2.line(k, p0, p1, 1.0, width, cv2.LINE_AA, shift=4)
         ks.append(k / k.sum())
     return ks
@@ -39,17 +45,22 @@ def stat(z, judged, kind, p):
         return np.stack([np.abs(cv2.blur(zc, (p, p), borderType=cv2.BORDER_REPLICATE)) for zc in z])
     if kind == "line":
         ks = KERNELS[p]
-        return np.stack([np.max([np.abs(cv2.filter2D(zc, -1, k, borderType=cv2.BORDER_REPLICATE)) for k in ks], 0)
-                         for zc in z])
+        return np.stack(
+            [np.max([np.abs(cv2.filter2D(zc, -1, k, borderType=cv2.BORDER_REPLICATE)) for k in ks], 0) for zc in z]
+        )
     raise ValueError(kind)
 
 
-KERNELS = {(9, 1): line_kernels(9, 1), (15, 1): line_kernels(15, 1), (15, 3): line_kernels(15, 3),
-           (21, 2): line_kernels(21, 2)}
+KERNELS = {
+    (9, 1): line_kernels(9, 1),
+    (15, 1): line_kernels(15, 1),
+    (15, 3): line_kernels(15, 3),
+    (21, 2): line_kernels(21, 2),
+}
 
 
 def maps(zs, judged, kind, p, norm=None):
-    out = np.stack([stat(z, j, kind, p) for z, j in zip(zs, judged)])
+    out = np.stack([stat(z, j, kind, p) for z, j in zip(zs, judged, strict=True)])
     if out.ndim == 4:  # per channel: standardise each channel globally, then the largest
         if norm is None:
             norm = np.array([np.median(out[:, ch][:, region]) for ch in range(out.shape[1])]) + 1e-6
@@ -65,7 +76,8 @@ def calibrate(w):
 
 def scores(w, judged, cal):
     loc, spread = cal
-    return np.array([float(np.maximum((wi - loc) / spread, 0)[eroded & j].max(initial=0.0)) for wi, j in zip(w, judged)])
+    pairs = zip(w, judged, strict=True)
+    return np.array([float(np.maximum((wi - loc) / spread, 0)[eroded & j].max(initial=0.0)) for wi, j in pairs])
 
 
 def metrics(s_val, lab_val, s, lab, kind):
@@ -80,7 +92,8 @@ def metrics(s_val, lab_val, s, lab, kind):
 
 
 def bootstrap(lab, a, b, n=1000, seed=0):
-    rng = np.random.default_rng(seed); d = []
+    rng = np.random.default_rng(seed)
+    d = []
     for _ in range(n):
         i = rng.integers(0, len(lab), len(lab))
         if lab[i].min() == lab[i].max():
@@ -89,17 +102,23 @@ def bootstrap(lab, a, b, n=1000, seed=0):
     return float(np.mean(d)), float(np.std(d))
 
 
-VARIANTS = {"box 5 |z| (shipped)": [("abs", 5)], "signed box 3": [("signed", 3)], "signed box 5": [("signed", 5)],
-            "signed box 7": [("signed", 7)], "signed box 9": [("signed", 9)],
-            "line 9x1": [("line", (9, 1))], "line 15x1": [("line", (15, 1))], "line 15x3": [("line", (15, 3))],
-            "line 21x2": [("line", (21, 2))],
-            "shipped + line 15x1": [("abs", 5), ("line", (15, 1))],
-            "shipped + signed 5": [("abs", 5), ("signed", 5)],
-            "signed 5 + line 15x1": [("signed", 5), ("line", (15, 1))]}
-only = sys.argv[3:] or None
+VARIANTS = {
+    "box 5 |z| (shipped)": [("abs", 5)],
+    "signed box 3": [("signed", 3)],
+    "signed box 5": [("signed", 5)],
+    "signed box 7": [("signed", 7)],
+    "signed box 9": [("signed", 9)],
+    "line 9x1": [("line", (9, 1))],
+    "line 15x1": [("line", (15, 1))],
+    "line 15x3": [("line", (15, 3))],
+    "line 21x2": [("line", (21, 2))],
+    "shipped + line 15x1": [("abs", 5), ("line", (15, 1))],
+    "shipped + signed 5": [("abs", 5), ("signed", 5)],
+    "signed 5 + line 15x1": [("signed", 5), ("line", (15, 1))],
+}
 tj = np.repeat(region[None], len(c["train_z"]), 0)
 comp = {}
-for name, parts in VARIANTS.items():
+for parts in VARIANTS.values():
     for k in parts:
         if k in comp:
             continue
@@ -112,7 +131,8 @@ for name, parts in VARIANTS.items():
 lv, kv, lh, kh = c["val_label"], c["val_type"], c["held_label"], c["held_type"]
 res, base = {}, None
 for name, parts in VARIANTS.items():
-    sv = np.max([comp[k][0] for k in parts], 0); sh = np.max([comp[k][1] for k in parts], 0)
+    sv = np.max([comp[k][0] for k in parts], 0)
+    sh = np.max([comp[k][1] for k in parts], 0)
     if base is None:
         base = (sv, sh)
         print("check vs cached shipped scores: val max|diff|", np.abs(sv - c["val_score"]).max())
@@ -122,8 +142,11 @@ for name, parts in VARIANTS.items():
 for tag in ("val", "heldout"):
     for name, r in res.items():
         r = r[tag]
-        print(f"{name:22s} {tag:4s} AUROC {r['auroc']:.3f} @1%: {r['caught0.01']:.0%} ({r['fr0.01']:.1%}) "
-              f"@5%: {r['caught0.05']:.0%} ({r['fr0.05']:.1%}) "
-              + " ".join(f"{t[:5]} {r[t]:.3f}/{r[t + '_caught0.01']:.0%}" for t in TYPES)
-              + (f" gain {r['gain']:+.3f} se {r['gain_se']:.3f}" if tag == "val" else ""), flush=True)
+        print(
+            f"{name:22s} {tag:4s} AUROC {r['auroc']:.3f} @1%: {r['caught0.01']:.0%} ({r['fr0.01']:.1%}) "
+            f"@5%: {r['caught0.05']:.0%} ({r['fr0.05']:.1%}) "
+            + " ".join(f"{t[:5]} {r[t]:.3f}/{r[t + '_caught0.01']:.0%}" for t in TYPES)
+            + (f" gain {r['gain']:+.3f} se {r['gain_se']:.3f}" if tag == "val" else ""),
+            flush=True,
+        )
 json.dump(res, open(sys.argv[2], "w"), indent=1)
