@@ -45,7 +45,7 @@ from .loss import draem_loss
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
 from .variation import combined_score
-from .with_variation import member_scores
+from .with_variation import member_scores, residual_raw
 
 log = logging.getLogger(__name__)
 
@@ -202,7 +202,7 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     shift = (float(net.double().median()) - location) / spread
     final.variation.calibrate(net, var)
     if final.residual is not None and final.config.decision == "residual":  # they decide: calibrate them the same way
-        raw = torch.cat([_residual_raw(d, xp) for d, xp in parts], 1)
+        raw = torch.cat([residual_raw(d, xp) for d, xp in parts], 1)
         final.residual.calibrate(raw)
         for d, _ in parts:
             assert d.residual is not None
@@ -211,18 +211,6 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     if shift > DOMAIN_SHIFT_SD and not keep_networks:
         final.config = final.config.with_(decision="variation")
     return combined_score(net, var, final.variation.calibration, final.config.networks_decide).numpy(), shift
-
-
-@torch.no_grad()
-def _residual_raw(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> torch.Tensor:
-    """(members, N) raw residual-network scores of parts ``x`` (before calibration)."""
-    assert detector.variation is not None and detector.residual is not None
-    raw = []
-    for i in range(0, x.shape[0], batch_size):
-        v = detector.variation.zmaps(x[i:i + batch_size])
-        assert v.signed is not None and v.judged is not None
-        raw.append(detector.residual.raw(*detector.residual_inputs(v.signed, v.judged))[1])
-    return torch.cat(raw, 1)
 
 
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,

@@ -89,12 +89,20 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
         with torch.enable_grad():
             train_member(net, good_in, defect_in, masks, steps, seed + k, progress=report)
     var.calibrate(*member_scores(out, val_good))
-    raw = []
-    for i in range(0, len(val_good), 16):
-        v = var.zmaps(val_good[i:i + 16])
-        assert v.signed is not None and v.judged is not None
-        raw.append(res.raw(*out.residual_inputs(v.signed, v.judged))[1])
-    res.calibrate(torch.cat(raw, 1))
+    res.calibrate(residual_raw(out, val_good))
     var.check()
     res.check()
     return out
+
+
+@torch.no_grad()
+def residual_raw(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> torch.Tensor:
+    """(members, N) raw scores of the residual networks of ``detector`` on parts ``x``, before calibration (what
+    ``ResidualDetector.calibrate`` reads)."""
+    assert detector.variation is not None and detector.residual is not None
+    raw = []
+    for i in range(0, x.shape[0], batch_size):
+        v = detector.variation.zmaps(x[i:i + batch_size])
+        assert v.signed is not None and v.judged is not None
+        raw.append(detector.residual.raw(*detector.residual_inputs(v.signed, v.judged))[1])
+    return torch.cat(raw, 1)
