@@ -110,9 +110,10 @@ class Detector(nn.Module):
             raise ModelError("no network ran, and the model's decision needs them")
         if self.variation is None:
             return DetectorOutput(amap, score, maps, scores)
-        v = self.variation.zmaps(x)
+        v = self.variation.zmaps(x, signed=self.residual is not None)
         maps, scores = {**maps, "variation": v.maps}, {**scores, "variation": v.scores}
         if self.residual is not None:
+            assert v.signed is not None and v.judged is not None  # asked for above
             r = self.residual_output(v.signed, v.judged)
             maps["residual"], scores["residual"] = r.map.to(amap.device), r.score.to(score.device)
         if self.config.decision == "residual":

@@ -175,7 +175,8 @@ class VariationOutput(NamedTuple):
     (N,) their max; ``highlight_fraction`` (N,) the share of the part the highlight rule found (above
     ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the frame's noise level (1 on the fitted line);
     ``signed`` (N, C, H, W) each channel's signed residual in units of ``scale`` after the noise level (``signed_z``;
-    what the residual networks read, ``model.draem.residual``); ``judged`` (N, H, W) bool, the pixels judged."""
+    what the residual networks read, ``model.draem.residual``); ``judged`` (N, H, W) bool, the pixels judged; both
+    None unless ``zmaps`` was asked for them."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -383,8 +384,10 @@ class VariationModel(nn.Module):
     # --- scoring ---
 
     @torch.no_grad()
-    def zmaps(self, x: torch.Tensor) -> VariationOutput:
-        """(N, C, H, W) physical priors -> box-averaged z maps, image scores and what each frame's rules found."""
+    def zmaps(self, x: torch.Tensor, signed: bool = False) -> VariationOutput:
+        """(N, C, H, W) physical priors -> box-averaged z maps, image scores and what each frame's rules found;
+        with ``signed``, also each frame's signed maps and judged pixels (for the residual networks; a model
+        without them does not pay for them)."""
         xs = x.float().cpu().numpy()
         mean, scale = self.mean.numpy(), self.scale.numpy()
         cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
@@ -392,7 +395,7 @@ class VariationModel(nn.Module):
         region = cv2.erode(part.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
         if not region.any():
             region = part
-        maps, highlights, noise, signed, judged_all = [], [], [], [], []
+        maps, highlights, noise, signed_all, judged_all = [], [], [], [], []
         for xi in xs:
             warped = self.register(xi, self.features(xi))
             judged = part & ~self.highlight(warped[-1])
@@ -403,14 +406,16 @@ class VariationModel(nn.Module):
             r = self._residual(u[None], components, judged)[0] / scale
             w, level = self.window(np.abs(r), judged)
             noise.append(level)
-            signed.append(self.signed_z(r, judged, level))
-            judged_all.append(judged)
+            if signed:
+                signed_all.append(self.signed_z(r, judged, level))
+                judged_all.append(judged)
             z = np.maximum((w - location) / spread, 0.0)
             maps.append(np.where(region & judged, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
         m = torch.from_numpy(np.stack(maps)).to(x.device)
         return VariationOutput(m, m.flatten(1).amax(1), torch.tensor(highlights, dtype=torch.float32),
-                               torch.tensor(noise, dtype=torch.float32), torch.from_numpy(np.stack(signed)),
-                               torch.from_numpy(np.stack(judged_all)))
+                               torch.tensor(noise, dtype=torch.float32),
+                               torch.from_numpy(np.stack(signed_all)) if signed else None,
+                               torch.from_numpy(np.stack(judged_all)) if signed else None)
 
     def register(self, xi: np.ndarray, f: np.ndarray) -> np.ndarray:
         """(C, H, W) physical priors ``xi`` and (K, H, W) maps ``f`` of the same frame -> ``f`` warped onto the

@@ -76,7 +76,7 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
     region = var.region.bool()
     good_in = res.inputs(signed, region, var.window_spread).numpy()
     if len(defects):
-        v = var.zmaps(defects)
+        v = var.zmaps(defects, signed=True)
         assert v.signed is not None and v.judged is not None
         masks = (var.register_masks(defects, defect_masks) & v.judged & region).numpy()
         defect_in = res.inputs(v.signed, region, var.window_spread).numpy()
@@ -102,7 +102,7 @@ def residual_raw(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> t
     assert detector.variation is not None and detector.residual is not None
     raw = []
     for i in range(0, x.shape[0], batch_size):
-        v = detector.variation.zmaps(x[i:i + batch_size])
+        v = detector.variation.zmaps(x[i:i + batch_size], signed=True)
         assert v.signed is not None and v.judged is not None
         raw.append(detector.residual.raw(*detector.residual_inputs(v.signed, v.judged))[1])
     return torch.cat(raw, 1)
