@@ -112,6 +112,28 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
             f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}")
 
 
+def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_good_flagged: float, key: str,
+                       record: dict):
+    """``det`` (a copy of checkpoint ``ck``, loaded from ``model``, with a part added) evaluated on the val split
+    ``va`` of ``val_data``, thresholded there with ``station threshold``'s rule and written to ``out``, its sidecar's
+    ``train.<key>`` = ``record`` plus the calibration set, its manifest hash and good parts, the date and ``model``.
+    Returns (the threshold choice, the evaluation, the val labels)."""
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.evaluate import EvalData, evaluate
+    from model.draem.metrics import choose_threshold
+    from station.datasets import manifest_sha256
+
+    ev = evaluate(det, EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known))
+    labels = va.label.numpy()
+    choice = choose_threshold(labels, ev.scores, max_good_flagged)
+    train = {**ck.meta.get("train", {}), key: {
+        **record, "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
+        "calibration_parts": int((labels == 0).sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"),
+        "from": str(model)}}
+    save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
+    return choice, ev, labels
+
+
 def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
                   decision: str = "combined", fit_parts: int | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
@@ -119,10 +141,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
     ("combined": either detector's finding rejects; "variation": the variation model's alone). ``fit_parts``: fit on
     the first that many good train parts only (None: all of them), to measure how many a line needs."""
-    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+    from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
-    from model.draem.evaluate import EvalData, evaluate
-    from model.draem.metrics import choose_threshold
     from model.draem.variation import MIN_FIT_PARTS
     from model.draem.with_variation import add_variation
     from station.datasets import manifest_sha256
@@ -149,15 +169,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
                             va.priors[good_va], decision=decision)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
-    ev = evaluate(det, EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known))
-    labels = va.label.numpy()
-    choice = choose_threshold(labels, ev.scores, max_good_flagged)
-    train = {**ck.meta.get("train", {}), "variation": {
-        "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
-        "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
-        "calibration_parts": int(good_va.sum()),
-        "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
-    save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
+    choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
+        "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index)})
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
     decides = "" if decision == "combined" else f" (decision: {decision} alone)"
@@ -174,10 +187,8 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     ``fit_variation``; written to ``out``; one line saying what it does on the val split. Progress on stderr."""
     import sys
 
-    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+    from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
-    from model.draem.evaluate import EvalData, evaluate
-    from model.draem.metrics import choose_threshold
     from model.draem.with_variation import add_residual
     from sim.defects import DEFECT_TYPES
     from station.datasets import manifest_sha256
@@ -209,15 +220,10 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
                            progress=lambda line: print(line, file=sys.stderr, flush=True))
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
-    ev = evaluate(det, EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known))
-    labels = va.label.numpy()
-    choice = choose_threshold(labels, ev.scores, max_good_flagged)
-    train = {**ck.meta.get("train", {}), "residual": {
+    choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "residual", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good),
         "defective_parts": len(keep), "holdout_type": holdout_type, "members": members, "steps": steps,
-        "seed": seed, "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
-        "calibration_parts": int(good_va.sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}}
-    save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
+        "seed": seed})
     detected = f" and {choice.detected_fraction:.1%} of defective" if int(labels.sum()) else ""
     return (f"{out}: {members} residual networks decide; threshold {choice.threshold:.4g} ({choice.rule}); on "
             f"{len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts{detected}; image "
