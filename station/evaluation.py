@@ -135,12 +135,13 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
 
 
 def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
-                  decision: str = "combined", fit_parts: int | None = None) -> str:
+                  decision: str = "variation", fit_parts: int | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
-    ("combined": either detector's finding rejects; "variation": the variation model's alone). ``fit_parts``: fit on
-    the first that many good train parts only (None: all of them), to measure how many a line needs."""
+    ("variation", the shipped recipe: the variation model's finding alone rejects; "combined": either detector's).
+    ``fit_parts``: fit on the first that many good train parts only (None: all of them), to measure how many a line
+    needs."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
     from model.draem.variation import MIN_FIT_PARTS

@@ -20,9 +20,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--val-data", default=None, metavar="DATA",
                    help="set whose val split calibrates and thresholds (default: --data's; a validation set from "
                         "`station render --validation` has enough good parts for a 1 %% threshold)")
-    p.add_argument("--decision", default="combined", choices=DECISIONS,
-                   help="which finding rejects: either detector's (combined, default) or the variation model's alone "
-                        "(station eval still runs and reports the networks; the station skips them)")
+    p.add_argument("--decision", default="variation", choices=DECISIONS,
+                   help="which finding rejects: the variation model's alone (variation, default: the shipped recipe; "
+                        "station eval still runs and reports the networks, the station skips them) or either "
+                        "detector's (combined)")
     p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
     p.add_argument("--fit-parts", type=int, default=None, metavar="N",
                    help="fit on the first N good train parts only (default: all), to measure how many a line needs")

@@ -133,7 +133,8 @@ def test_networks_out_of_their_domain_leave_the_decision_to_the_variation_model(
 
     model, base, shifted = line
     with_var = tmp_path / "var"
-    assert main(["variation", "--model", str(model), "--data", str(base), "--out", str(with_var)]) == 0
+    assert main(["variation", "--model", str(model), "--data", str(base), "--decision", "combined",
+                 "--out", str(with_var)]) == 0
     monkeypatch.setattr("model.draem.adapt.DOMAIN_SHIFT_SD", -1e9)  # every line is out of the networks' domain
     out, kept = tmp_path / "variation-only", tmp_path / "kept"
     assert main(["adapt", "--model", str(with_var), "--good", str(shifted), "--out", str(out)]) == 0

@@ -30,6 +30,7 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     assert "variation model fitted on" in line and "of good parts" in line
     meta = json.loads(out.with_suffix(".json").read_text())
     assert meta["model"]["variation"] is True and 0.0 <= meta["threshold"] <= 1.0
+    assert meta["model"]["decision"] == "variation"  # the default is the shipped recipe
     rec = meta["train"]["variation"]
     assert rec["fit_parts"] > 8 and rec["calibration_parts"] >= 2 and rec["from"].endswith("last")
     assert main(["eval", "--model", str(out), "--data", str(data), "--no-plots", "--no-synthetic",
