@@ -68,7 +68,7 @@ for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw ev
     "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
         --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
         --out "$RUNS/holdout-$t"
-    variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation"
+    variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation" --decision combined  # step 7: the networks count
 done
 
 "$BIN/station" threshold --model "$RUNS/base/last" --data "$DATA"

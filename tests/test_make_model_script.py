@@ -1,0 +1,26 @@
+"""`make model` (scripts/make-model.sh) is the shipped recipe: dry-run with a `station` that only records its
+arguments, it asks for the decision each model needs, whatever the commands' defaults are."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
+    calls = tmp_path / "calls"
+    stub = tmp_path / "bin"
+    stub.mkdir()
+    (stub / "station").write_text(f'#!/bin/sh\necho "$*" >> {calls}\n')
+    (stub / "station").chmod(0o755)
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0"}
+    subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
+    variation = [line.split() for line in calls.read_text().splitlines() if line.startswith("variation ")]
+    decisions = {args[args.index("--out") + 1].removeprefix(str(tmp_path / "runs") + "/"):
+                 args[args.index("--decision") + 1] for args in variation if "--decision" in args}
+    assert len(decisions) == len(variation) == 6, variation  # the shipped model and one per defect type
+    assert decisions.pop("band-variation") == "variation"  # the shipped decision (model/weights/README.md)
+    assert set(decisions.values()) == {"combined"}  # held-out types: what the networks do with an unseen type
