@@ -24,3 +24,18 @@ def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
     assert len(decisions) == len(variation) == 6, variation  # the shipped model and one per defect type
     assert decisions.pop("band-variation") == "variation"  # the shipped decision (model/weights/README.md)
     assert set(decisions.values()) == {"combined"}  # held-out types: what the networks do with an unseen type
+
+
+def test_station_train_defaults_are_the_networks_make_model_trains() -> None:
+    """Issue 19, point 7: `station train` with no model options trains the shipped networks' kind (make-model.sh's
+    MODEL options), not the paper's per-prior ensemble on ground-truth normals that no station can run."""
+    import re
+
+    from station.cli import build_parser
+
+    line = re.search(r"^MODEL=\((.*)\)$", (ROOT / "scripts" / "make-model.sh").read_text(), re.M)
+    assert line is not None
+    recipe = dict(zip(line.group(1).split()[::2], line.group(1).split()[1::2], strict=True))
+    args = build_parser().parse_args(["train", "--data", "d"])
+    assert args.priors == recipe["--priors"] and args.fusion == recipe["--fusion"] and args.preset == recipe["--preset"]
+    assert args.batch_size == int(recipe["--batch-size"]) and args.seed == int(recipe["--seed"])

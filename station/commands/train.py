@@ -39,11 +39,14 @@ log = logging.getLogger(__name__)
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("train", help="train the DRAEM detector on a rendered or imported set (checkpoints, keep-best)")
     p.add_argument("--data", required=True, help="dataset folder (station render --out, or station import --out)")
-    p.add_argument("--priors", default="intensity,dolp,aolp,normal", help="comma-separated: intensity,dolp,aolp,normal")
+    p.add_argument("--priors", default="intensity,dolp,aolp",
+                   help="comma-separated, of intensity,dolp,aolp,normal (the default is the shipped model's; the "
+                        "paper's adds normal)")
     p.add_argument("--preset", default="fast",
                    help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), lean (16/16 @ 128), tiny")
-    p.add_argument("--fusion", default="ensemble", choices=("ensemble", "fused"),
-                   help="ensemble: one DRAEM per prior, averaged (the paper); fused: one over all priors")
+    p.add_argument("--fusion", default="fused", choices=("ensemble", "fused"),
+                   help="fused: one DRAEM over all priors (the shipped model); ensemble: one per prior, averaged (the "
+                        "paper)")
     p.add_argument("--roi", default="center", choices=ROIS,
                    help="center: centre square of the frame, what a station runs; band: the middle half of that "
                         "square at twice its resolution (input SIZE x 2 SIZE; a part laid across the view); "
