@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import importlib
 
-BENCHMARKS = ["priors", "render", "camera", "model", "pipeline", "soak", "defects", "faults", "visibility"]
+BENCHMARKS = ["priors", "render", "camera", "model", "pipeline", "soak", "defects", "faults", "visibility", "shift"]
 
 
 def first_sentence(doc: str) -> str:

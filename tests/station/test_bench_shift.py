@@ -1,0 +1,87 @@
+"""``station bench shift``: a model on held-out parts whose priors are changed as another renderer, lens or camera
+would change them, with its validation thresholds fixed. The shifts are pure functions with the project's
+conventions; the benchmark's unchanged row is ``station eval``'s."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
+
+from station.benchmarks.shift import SHIFTS, Channels, shift
+from station.cli import main
+
+CH = Channels(intensity=0, dolp=1, aolp=2)
+
+
+def priors(n: int = 2, h: int = 16, w: int = 24, seed: int = 0) -> np.ndarray:
+    """(n, 4, h, w): intensity in [0.05, 0.6], DoLP in [0, 0.5], AoLP as (cos 2a, sin 2a)."""
+    rng = np.random.default_rng(seed)
+    a = rng.uniform(0, np.pi, (n, h, w))
+    return np.stack([rng.uniform(0.05, 0.6, (n, h, w)), rng.uniform(0.0, 0.5, (n, h, w)), np.cos(2 * a),
+                     np.sin(2 * a)], 1).astype(np.float32)
+
+
+def test_each_shift_changes_what_it_names_and_nothing_else() -> None:
+    x = priors()
+    assert np.array_equal(shift("none", x, CH), x)
+    y = shift("dolp x2", x, CH)
+    assert np.allclose(y[:, 1], np.minimum(2 * x[:, 1], 1.0)) and np.array_equal(y[:, [0, 2, 3]], x[:, [0, 2, 3]])
+    y = shift("aolp +5 deg", x, CH)
+    turned = np.angle((y[:, 2] + 1j * y[:, 3]) / (x[:, 2] + 1j * x[:, 3]))  # 2 * AoLP turns by 10 degrees
+    assert np.allclose(turned, math.radians(10), atol=1e-5) and np.array_equal(y[:, :2], x[:, :2])
+    y = shift("gamma 1.25", x, CH)
+    assert np.allclose(y[:, 0], x[:, 0] ** 1.25) and np.array_equal(y[:, 1:], x[:, 1:])
+    # exposure below full scale: intensity scales, DoLP and AoLP stay
+    y = shift("exposure x1.3", x * np.array([0.5, 1, 1, 1], np.float32)[None, :, None, None], CH)
+    assert np.allclose(y[:, 0], 1.3 * 0.5 * x[:, 0], rtol=1e-5) and np.allclose(y[:, 1], x[:, 1], atol=1e-5)
+    # a uniform frame stays uniform under blur; a polarization edge blurs in the Stokes vector
+    flat = np.ones_like(x) * np.array([0.4, 0.3, 1.0, 0.0], np.float32)[None, :, None, None]
+    assert np.allclose(shift("blur 1 px", flat, CH), flat, atol=1e-6)
+
+
+def test_exposure_clips_each_polarizer_reading_and_polarization_falls_where_they_clip() -> None:
+    x = priors() * np.array([0, 0, 1, 1], np.float32)[None, :, None, None]
+    x[:, 0], x[:, 1] = 0.9, 0.5  # brightest reading 0.9 * 1.5 = 1.35: clips at full scale
+    y = shift("exposure x1.3", x, CH)
+    assert (y[:, 0] < 1.3 * 0.9).all() and (y[:, 1] < 0.5).all() and (y[:, 0] <= 1.0).all()
+
+
+def test_hostile_priors_stay_finite_under_every_shift() -> None:
+    x = priors()
+    x[0, 0, 0, 0], x[0, 1, 0, 1], x[1, 2, 3, 3], x[1, 0, 2, 2] = np.nan, np.inf, -np.inf, 0.0
+    x[1, 0] = 0.0  # a black frame
+    for name in SHIFTS:
+        assert np.isfinite(shift(name, x, CH)).all(), name
+    with pytest.raises(ValueError, match="unknown shift"):
+        shift("sharpen 2", x, CH)
+
+
+def test_bench_shift_reports_every_shift_and_its_unchanged_row_is_station_evals(tmp_path: Path, capsys) -> None:
+    data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
+    held = make_line_set(tmp_path / "held", n=24, seed=5, defective=lambda i: i % 2 == 1, heldout=True)
+    base = ["--preset", "tiny", "--size", "32", "--steps", "2", "--batch-size", "4", "--eval-every", "2",
+            "--device", "cpu", "--roi", "band"]
+    assert main(["train", "--data", str(data), *base, "--out", str(tmp_path / "t")]) == 0
+    assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data),
+                 "--out", str(tmp_path / "v")]) == 0
+    out = tmp_path / "bench"
+    assert main(["bench", "shift", "--model", str(tmp_path / "v"), "--data", str(held), "--val-data", str(data),
+                 "--shifts", "none,dolp x2,blur 1 px", "--out", str(out)]) == 0
+    report = json.loads((out / "shift.json").read_text())
+    assert [r["shift"] for r in report["rows"]] == ["none", "dolp x2", "blur 1 px"] and report["parts"] == 24
+    assert all(math.isfinite(r[k]) for r in report["rows"] for k in ("image_auroc", "caught_1%", "good_rejected_1%"))
+    assert (out / "shift.md").exists() and (out / "shift.png").exists()
+    capsys.readouterr()
+    assert main(["eval", "--model", str(tmp_path / "v"), "--data", str(held), "--no-plots", "--no-synthetic",
+                 "--out", str(tmp_path / "ev")]) == 0
+    rendered = json.loads((tmp_path / "ev" / "eval.json").read_text())["rows"][0]  # all defects of the set
+    assert report["rows"][0]["image_auroc"] == pytest.approx(rendered["image_auroc"], abs=1e-9)
+    # an unknown shift is refused in one line
+    assert main(["bench", "shift", "--model", str(tmp_path / "v"), "--data", str(held), "--val-data", str(data),
+                 "--shifts", "sharpen 2", "--out", str(out)]) == 2
+    assert "unknown" in capsys.readouterr().err
