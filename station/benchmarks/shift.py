@@ -18,7 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-SHIFTS = ("none", "dolp x0.5", "dolp x2", "aolp +5 deg", "gamma 0.8", "gamma 1.25", "exposure x1.3", "blur 1 px")
+SHIFTS = ("none", "dolp x0.5", "dolp x2", "aolp +5 deg", "gamma 0.8", "gamma 1.25", "exposure x1.3", "blur 0.5 px",
+          "blur 1 px")
 """Every shift ``station bench shift`` runs by default, by name (``shift``)."""
 
 
