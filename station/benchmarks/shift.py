@@ -62,6 +62,22 @@ def _from_stokes(x: np.ndarray, ch: Channels, s0: np.ndarray, s1: np.ndarray, s2
     return out
 
 
+KINDS = ("none", "dolp", "aolp", "gamma", "exposure", "blur")
+
+
+def parse(name: str) -> tuple[str, float]:
+    """A shift's name -> (kind, its number): "dolp x2" -> ("dolp", 2.0), "none" -> ("none", 0.0); ValueError naming
+    the shift otherwise (an unknown kind, a missing or non-finite number)."""
+    kind, _, value = name.strip().partition(" ")
+    try:
+        number = 0.0 if kind == "none" else float(value.split()[0].lstrip("x+"))
+    except (IndexError, ValueError):
+        number = math.nan
+    if kind not in KINDS or not math.isfinite(number) or (kind != "aolp" and number < 0):
+        raise ValueError(f"unknown shift {name!r}: e.g. {', '.join(SHIFTS)}")
+    return kind, number
+
+
 def shift(name: str, x: np.ndarray, ch: Channels) -> np.ndarray:
     """``x`` (N, C, H, W) float32 priors changed by shift ``name`` (``SHIFTS``); finite wherever ``x`` is:
     - ``dolp xK``: DoLP times K, clipped to 1 (a material or renderer that polarizes less or more, or a polarizer
@@ -75,10 +91,9 @@ def shift(name: str, x: np.ndarray, ch: Channels) -> np.ndarray:
     import cv2
 
     x = np.nan_to_num(np.asarray(x, np.float32), nan=0.0, posinf=1.0, neginf=0.0)
-    kind, _, value = name.partition(" ")
+    kind, number = parse(name)
     if kind == "none":
         return x.copy()
-    number = float(value.split()[0].lstrip("x+"))
     out = x.copy()
     if kind == "dolp" and ch.dolp is not None:
         out[:, ch.dolp] = np.clip(x[:, ch.dolp] * number, 0.0, 1.0)
@@ -98,8 +113,6 @@ def shift(name: str, x: np.ndarray, ch: Channels) -> np.ndarray:
         s0, s1, s2 = (np.stack([cv2.GaussianBlur(im, (0, 0), number, borderType=cv2.BORDER_REPLICATE) for im in a])
                       for a in _stokes(x, ch))
         out = _from_stokes(x, ch, s0, s1, s2)
-    elif kind not in ("dolp", "aolp", "gamma", "exposure"):
-        raise ValueError(f"unknown shift {name!r}: one of {', '.join(SHIFTS)}")
     return np.nan_to_num(out, nan=0.0, posinf=1.0, neginf=0.0).astype(np.float32)
 
 
@@ -122,9 +135,13 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import evaluate_split, inference_net, model_split
 
     names = [s.strip() for s in args.shifts.split(",") if s.strip()]
-    bad = [n for n in names if n.partition(" ")[0] not in {s.partition(" ")[0] for s in SHIFTS}]
-    if bad or not names:
-        raise UserError(f"--shifts: unknown {bad or names}; e.g. {', '.join(SHIFTS)}")
+    if not names:
+        raise UserError(f"--shifts: none given; e.g. {', '.join(SHIFTS)}")
+    for name in names:
+        try:
+            parse(name)
+        except ValueError as exc:
+            raise UserError(f"--shifts: {exc}") from None
     from model.draem.checkpoint import load_checkpoint
 
     ck = load_checkpoint(args.model)

@@ -57,8 +57,9 @@ def test_hostile_priors_stay_finite_under_every_shift() -> None:
     x[1, 0] = 0.0  # a black frame
     for name in SHIFTS:
         assert np.isfinite(shift(name, x, CH)).all(), name
-    with pytest.raises(ValueError, match="unknown shift"):
-        shift("sharpen 2", x, CH)
+    for bad in ("sharpen 2", "dolp", "dolp xabc", "blur -1 px", "gamma nan"):
+        with pytest.raises(ValueError, match="unknown shift"):
+            shift(bad, x, CH)
 
 
 def test_bench_shift_reports_every_shift_and_its_unchanged_row_is_station_evals(tmp_path: Path, capsys) -> None:
@@ -81,7 +82,9 @@ def test_bench_shift_reports_every_shift_and_its_unchanged_row_is_station_evals(
                  "--out", str(tmp_path / "ev")]) == 0
     rendered = json.loads((tmp_path / "ev" / "eval.json").read_text())["rows"][0]  # all defects of the set
     assert report["rows"][0]["image_auroc"] == pytest.approx(rendered["image_auroc"], abs=1e-9)
-    # an unknown shift is refused in one line
+    # an unknown shift is refused in one line, before anything is loaded
+    capsys.readouterr()
     assert main(["bench", "shift", "--model", str(tmp_path / "v"), "--data", str(held), "--val-data", str(data),
-                 "--shifts", "sharpen 2", "--out", str(out)]) == 2
-    assert "unknown" in capsys.readouterr().err
+                 "--shifts", "dolp xabc", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "unknown shift 'dolp xabc'" in err and len(err.strip().splitlines()) == 1
