@@ -30,8 +30,9 @@ x = tr.priors.numpy()
 rng = np.random.default_rng(0)
 max_sigma = float(sys.argv[sys.argv.index("--max-sigma") + 1]) if "--max-sigma" in sys.argv else 1.0
 sigmas = rng.uniform(0.0, max_sigma, len(x))
-blurred = np.concatenate([shift(f"blur {s:.4f} px", x[i : i + 1], ch) if s > 0 else x[i : i + 1]
-                          for i, s in enumerate(sigmas)])
+blurred = np.concatenate(
+    [shift(f"blur {s:.4f} px", x[i : i + 1], ch) if s > 0 else x[i : i + 1] for i, s in enumerate(sigmas)]
+)
 candidate = copy.deepcopy(shipped)
 candidate.fit(torch.from_numpy(np.concatenate([x, blurred])), torch.cat([tr.object_mask, tr.object_mask]))
 print(f"fitted on {2 * len(x)} parts", flush=True)
@@ -55,6 +56,8 @@ for name in ("none", "blur 0.75 px", "blur 1 px", "blur 1.25 px"):
     for k in hs:
         t5 = false_reject_threshold(val[k][lv == 0], 0.05)
         result[name][k]["good_rejected_5"] = float((hs[k][lh == 0] > t5).mean())
-        print(f"{name} {k}: good parts rejected at the validation 5 % threshold "
-              f"{result[name][k]['good_rejected_5']:.1%}", flush=True)
+        print(
+            f"{name} {k}: good parts rejected at the validation 5 % threshold {result[name][k]['good_rejected_5']:.1%}",
+            flush=True,
+        )
 json.dump(result, open(sys.argv[1], "w"), indent=1)
