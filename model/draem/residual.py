@@ -152,14 +152,11 @@ class ResidualDetector(nn.Module):
             raise ModelError("residual networks: a calibration spread is not > 0")
 
 
-def synthetic_anomaly(rng: np.random.Generator, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """One synthetic anomaly added to signed z maps ``z`` (C, H, W) inside ``judged`` (H, W) -> (z copy, (H, W) float
-    mask). Shape: an ellipse (1.5-12 px semi-axes), a line (8-50 px long, 1-3 px wide) or a patch of smooth noise
-    above 1 SD; amplitude per channel uniform in +-(0.5-4) z, either flat over the shape or as a tilt's signed
-    pattern (the shape's gradient along a random direction, as a dent shows in the Stokes components). Channels
-    that are zero everywhere (not features) stay zero. No change when no place fits in 20 tries."""
+def shape_mask(rng: np.random.Generator, judged: np.ndarray) -> np.ndarray | None:
+    """A random shape inside ``judged`` (H, W) as a float32 (H, W) mask: an ellipse (1.5-12 px semi-axes), a line
+    (8-50 px long, 1-3 px wide) or a patch of smooth noise above 1 SD, at a judged place; None when no place gives
+    3 judged pixels in 20 tries. The shapes of ``synthetic_anomaly``."""
     h, w = judged.shape
-    live = np.abs(z).reshape(len(z), -1).max(1) > 0
     for _ in range(20):
         cy, cx = int(rng.integers(0, h)), int(rng.integers(0, w))
         if not judged[cy, cx]:
@@ -180,20 +177,31 @@ def synthetic_anomaly(rng: np.random.Generator, z: np.ndarray, judged: np.ndarra
             box[max(cy - r, 0):cy + r, max(cx - r, 0):cx + r] = True
             m = ((noise > noise.std()) & box).astype(np.float32)
         m *= judged
-        if m.sum() < 3:
-            continue
-        amp = (rng.uniform(-1, 1, len(z)) * rng.uniform(0.5, 4.0) * live).astype(np.float32)
-        if rng.random() < 0.5:
-            gy, gx = np.gradient(cv2.GaussianBlur(m, (0, 0), 1.5))
-            a = rng.uniform(0, 2 * np.pi)
-            pattern = np.cos(a) * gx + np.sin(a) * gy
-            pattern = pattern / (np.abs(pattern).max() + 1e-6)
-            soft = np.abs(pattern)
-        else:
-            pattern = soft = cv2.GaussianBlur(m, (0, 0), 0.7)
-        out = z + amp[:, None, None] * (pattern * judged)[None]
-        return out.astype(np.float32), ((soft > 0.25) & judged).astype(np.float32)
-    return z, np.zeros((h, w), np.float32)
+        if m.sum() >= 3:
+            return m
+    return None
+
+
+def synthetic_anomaly(rng: np.random.Generator, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One synthetic anomaly added to signed z maps ``z`` (C, H, W) inside ``judged`` (H, W) -> (z copy, (H, W) float
+    mask). Shape: ``shape_mask``; amplitude per channel uniform in +-(0.5-4) z, either flat over the shape or as a
+    tilt's signed pattern (the shape's gradient along a random direction, as a dent shows in the Stokes
+    components). Channels that are zero everywhere (not features) stay zero. No change when no place fits."""
+    m = shape_mask(rng, judged)
+    if m is None:
+        return z, np.zeros(judged.shape, np.float32)
+    live = np.abs(z).reshape(len(z), -1).max(1) > 0
+    amp = (rng.uniform(-1, 1, len(z)) * rng.uniform(0.5, 4.0) * live).astype(np.float32)
+    if rng.random() < 0.5:
+        gy, gx = np.gradient(cv2.GaussianBlur(m, (0, 0), 1.5))
+        a = rng.uniform(0, 2 * np.pi)
+        pattern = np.cos(a) * gx + np.sin(a) * gy
+        pattern = pattern / (np.abs(pattern).max() + 1e-6)
+        soft = np.abs(pattern)
+    else:
+        pattern = soft = cv2.GaussianBlur(m, (0, 0), 0.7)
+    out = z + amp[:, None, None] * (pattern * judged)[None]
+    return out.astype(np.float32), ((soft > 0.25) & judged).astype(np.float32)
 
 
 def train_member(net: ResidualNet, good: np.ndarray, defects: np.ndarray, masks: np.ndarray, steps: int, seed: int,

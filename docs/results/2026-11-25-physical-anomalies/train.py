@@ -31,7 +31,7 @@ import numpy as np
 import torch
 import torch.nn.functional as F
 
-from model.draem.residual import CROP, TOP_K, ResidualNet, synthetic_anomaly
+from model.draem.residual import CROP, TOP_K, ResidualNet, shape_mask, synthetic_anomaly
 from model.draem.variation import MEDIAN_ABS_NORMAL, NOISE_CAP, SIGNED_CLIP
 
 torch.set_num_threads(2)
@@ -58,33 +58,6 @@ def prep(z, judged, with_mean):
     z = np.clip(z / (s if 1.0 < s <= NOISE_CAP else 1.0), -SIGNED_CLIP, SIGNED_CLIP) * (judged & region)
     extra = [region[None].astype(np.float32), logspread[None]] + ([stokes_in] if with_mean else [])
     return np.concatenate([z, *extra]).astype(np.float32)
-
-
-def shape_mask(rng, judged):
-    h, w = judged.shape
-    for _ in range(20):
-        cy, cx = int(rng.integers(0, h)), int(rng.integers(0, w))
-        if not judged[cy, cx]:
-            continue
-        m = np.zeros((h, w), np.float32)
-        kind = int(rng.integers(3))
-        if kind == 0:
-            axes = (int(rng.uniform(1.5, 12)), int(rng.uniform(1.5, 12)))
-            cv2.ellipse(m, (cx, cy), axes, float(rng.uniform(0, 180)), 0, 360, 1.0, -1)
-        elif kind == 1:
-            length, a = rng.uniform(8, 50), rng.uniform(0, np.pi)
-            dx, dy = length / 2 * np.cos(a), length / 2 * np.sin(a)
-            cv2.line(m, (int(cx - dx), int(cy - dy)), (int(cx + dx), int(cy + dy)), 1.0, int(rng.integers(1, 4)))
-        else:
-            noise = cv2.GaussianBlur(rng.standard_normal((h, w)).astype(np.float32), (0, 0), rng.uniform(2, 6))
-            r = int(rng.integers(6, 25))
-            box = np.zeros((h, w), bool)
-            box[max(cy - r, 0) : cy + r, max(cx - r, 0) : cx + r] = True
-            m = ((noise > noise.std()) & box).astype(np.float32)
-        m *= judged
-        if m.sum() >= 3:
-            return m
-    return None
 
 
 def physical_anomaly(rng, z, judged):
