@@ -2,8 +2,8 @@
 convolution: the blur of the maps over the blur of the judged mask), so a smooth change over a face is taken out
 and a local one is kept.
 
-Usage: highpass.py OUT.json [NAME=CACHE ...], from the repository root, after cache.py; each NAME=CACHE a held-out
-cache (its held_* arrays) scored with validation thresholds."""
+Usage: highpass.py OUT.json [NAME=CACHE ...], from the repository root, after the residual-network study's cache.py;
+each NAME=CACHE a held-out cache (its held_* arrays) scored with validation thresholds."""
 
 from __future__ import annotations
 

@@ -2,7 +2,8 @@
 maps minus the mean of its k most similar good training parts' (L2 over the part at 1/4 detail, clipped at +-5 so a
 highlight's huge values do not pick the neighbours; never itself).
 
-Usage: knn.py OUT.json [--held212], from the repository root, after cache.py (runs/s33/zcache.npz, zcache212.npz)."""
+Usage: knn.py OUT.json [--held212], from the repository root, after the residual-network study's cache.py
+(runs/s33/zcache.npz, zcache212.npz)."""
 
 from __future__ import annotations
 

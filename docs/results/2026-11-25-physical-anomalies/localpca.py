@@ -3,7 +3,8 @@
 the good training parts' patches there (a training part's own from the folds without it), overlapping patches
 averaged.
 
-Usage: localpca.py OUT.json [K,K...] [--held212], from the repository root, after cache.py."""
+Usage: localpca.py OUT.json [K,K...] [--held212], from the repository root, after the residual-network study's
+cache.py."""
 
 from __future__ import annotations
 

@@ -1,14 +1,15 @@
 """What the camera's priors show of each defect on this line, for the shipped model: a localised oracle on the held-out
 sets, and the share of the defects it separates that the shipped model catches.
 
-Usage: oracle.py OUT.json NAME=DATASET:CACHE ..., from the repository root, after cache.py (the CACHE's held_* arrays
-are that DATASET's test split, in order). For each defective part the oracle knows the defect's pixels (its mask,
-registered as the model registers the frame, dilated 1 px) and compares a statistic there with every good part of the
-same set at the same pixels; a defect above 99 % of them is one a detector told where to look could catch at 1 % of
-good parts rejected. Two statistics (docs/results/2026-11-24-low-rank-variation.md): "pixels", the mean over the
-pixels of the chi-square over the channels of the residual z (after the frame's noise level); "mean", the chi-square
-over the channels of the residual averaged over the pixels first (pixel noise averaged out). The shipped model's
-decision on the same parts uses its validation thresholds (the cache's val_score)."""
+Usage: oracle.py OUT.json NAME=DATASET:CACHE ..., from the repository root, after the residual-network study's
+cache.py (the CACHE's held_* arrays are that DATASET's test split, in order). For each defective part the oracle
+knows the defect's pixels (its mask, registered as the model registers the frame, dilated 1 px) and compares a
+statistic there with every good part of the same set at the same pixels; a defect above 99 % of them is one a
+detector told where to look could catch at 1 % of good parts rejected. Two statistics
+(docs/results/2026-11-24-low-rank-variation.md): "pixels", the mean over the pixels of the chi-square over the
+channels of the residual z (after the frame's noise level); "mean", the chi-square over the channels of the residual
+averaged over the pixels first (pixel noise averaged out). The shipped model's decision on the same parts uses its
+validation thresholds (the cache's val_score)."""
 
 from __future__ import annotations
 

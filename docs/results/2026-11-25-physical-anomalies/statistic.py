@@ -1,8 +1,8 @@
-"""The shipped window statistic recomputed on cached residual maps (runs/s33/zcache.npz, from cache.py), with a
-transform of the residual maps applied first (rules 4 and 5, rule.md). The cache holds each part's signed residual
-per channel in units of the model's per-pixel scale, before the frame's noise level (train: each from the
-appearance fitted without it). The identity transform gives the shipped statistic (correlation with the model's
-own scores printed by the callers)."""
+"""The shipped window statistic recomputed on cached residual maps (runs/s33/zcache.npz, from the residual-network
+study's cache.py), with a transform of the residual maps applied first (rules 4 and 5, rule.md). The cache holds each
+part's signed residual per channel in units of the model's per-pixel scale, before the frame's noise level (train:
+each from the appearance fitted without it). The identity transform gives the shipped statistic (correlation with the
+model's own scores printed by the callers)."""
 
 from __future__ import annotations
 

@@ -1,8 +1,8 @@
 """Residual networks trained on good parts only, with physically coupled synthetic anomalies (rule 3, rule.md).
 
-Usage: train.py GENERATOR SEED [STEPS] (GENERATOR: physical | shipped), from the repository root, after cache.py
-(runs/s33/zcache.npz). Writes runs/s33/net-GENERATOR-SEED.{pt,json}: raw image scores of the validation and held-out
-parts (and of held-out set 212 when runs/s33/zcache212.npz exists).
+Usage: train.py GENERATOR SEED [STEPS] (GENERATOR: physical | shipped), from the repository root, after the
+residual-network study's cache.py (runs/s33/zcache.npz). Writes runs/s33/net-GENERATOR-SEED.{pt,json}: raw image
+scores of the validation and held-out parts (and of held-out set 212 when runs/s33/zcache212.npz exists).
 
 A physical anomaly changes the part's features as a change of its surface would (convention: features as in
 model.draem.variation: log intensity, and (S1, S2) / S0 of the Stokes vector; AoLP counted counter-clockwise from

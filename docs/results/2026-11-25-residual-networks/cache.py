@@ -1,4 +1,5 @@
-"""Cache the shipped variation model's signed per-channel residual z maps (refit on TRAIN's good parts)."""
+"""Cache the shipped variation model's signed per-channel residual z maps (refit on TRAIN's good parts), and the
+fit's mean, channel scale and per-pixel scale (read by docs/results/2026-11-25-physical-anomalies/)."""
 
 from __future__ import annotations
 
@@ -59,6 +60,9 @@ d = {
     "region": m.region.numpy(),
     "location": m.window_location.numpy(),
     "spread": m.window_spread.numpy(),
+    "mean": m.mean.numpy(),
+    "channel_scale": m.channel_scale.numpy(),
+    "scale": m.scale.numpy(),
 }
 for tag, root, split in (("val", val_dir, "val"), ("held", held_dir, "test")):
     s = load(root, split)
