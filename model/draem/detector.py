@@ -135,7 +135,5 @@ class Detector(nn.Module):
         """(the residual networks' input (N, C + 2, H, W), (N, H, W) the pixels they judge: ``judged`` inside the
         variation model's region eroded by 1 px, as its own statistic)."""
         assert self.residual is not None and self.variation is not None
-        region = self.variation.region.bool()
-        eroded = -F.max_pool2d(-region.float()[None, None], 3, stride=1, padding=1)[0, 0] > 0.5
-        x = self.residual.inputs(signed, region, self.variation.window_spread)
-        return x, judged.bool() & eroded.to(judged.device)
+        x = self.residual.inputs(signed, self.variation.region.bool(), self.variation.window_spread)
+        return x, judged.bool() & torch.from_numpy(self.variation.scored_region()).to(judged.device)

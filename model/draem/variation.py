@@ -392,7 +392,7 @@ class VariationModel(nn.Module):
         mean, scale = self.mean.numpy(), self.scale.numpy()
         cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
         location, spread = self.window_location.numpy(), self.window_spread.numpy()
-        region = cv2.erode(part.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+        region = self.scored_region()
         if not region.any():
             region = part
         maps, highlights, noise, signed_all, judged_all = [], [], [], [], []
@@ -416,6 +416,12 @@ class VariationModel(nn.Module):
                                torch.tensor(noise, dtype=torch.float32),
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
                                torch.from_numpy(np.stack(judged_all)) if signed else None)
+
+    def scored_region(self) -> np.ndarray:
+        """(H, W) bool: the part region eroded by 1 px (the image border does not erode), where a map is scored: a
+        pixel on the region's edge mixes part and background. ``zmaps`` falls back to the whole region when nothing
+        is left; the residual networks judge these pixels too (``Detector.residual_inputs``)."""
+        return cv2.erode(self.region.numpy().astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
 
     def register(self, xi: np.ndarray, f: np.ndarray) -> np.ndarray:
         """(C, H, W) physical priors ``xi`` and (K, H, W) maps ``f`` of the same frame -> ``f`` warped onto the
