@@ -48,17 +48,17 @@ def _stokes(x: np.ndarray, ch: Channels) -> tuple[np.ndarray, np.ndarray, np.nda
 
 
 def _from_stokes(x: np.ndarray, ch: Channels, s0: np.ndarray, s1: np.ndarray, s2: np.ndarray) -> np.ndarray:
-    """Write S0, S1, S2 back as the model's priors (DoLP clipped to [0, 1]; AoLP (1, 0) where it is undefined)."""
+    """Write S0, S1, S2 back as the model's priors, as the camera's priors are computed (``model.priors.stokes``:
+    DoLP in [0, 1] and 0 on dark pixels; AoLP (1, 0) where it is undefined)."""
+    from model.priors.stokes import aolp_vector, dolp
+
     out = x.copy()
-    length = np.hypot(s1, s2)
     if ch.intensity is not None:
         out[:, ch.intensity] = s0
     if ch.dolp is not None:
-        out[:, ch.dolp] = np.clip(length / np.maximum(s0, 1e-6), 0.0, 1.0)
+        out[:, ch.dolp] = dolp(s0, s1, s2)
     if ch.aolp is not None:
-        defined = length > 1e-9
-        out[:, ch.aolp] = np.where(defined, s1 / np.maximum(length, 1e-9), 1.0)
-        out[:, ch.aolp + 1] = np.where(defined, s2 / np.maximum(length, 1e-9), 0.0)
+        out[:, ch.aolp], out[:, ch.aolp + 1] = aolp_vector(s1, s2)
     return out
 
 
