@@ -104,11 +104,15 @@ def shift(name: str, x: np.ndarray, ch: Channels) -> np.ndarray:
     elif kind == "gamma" and ch.intensity is not None:
         out[:, ch.intensity] = np.clip(x[:, ch.intensity], 0.0, None) ** number
     elif kind == "exposure" and ch.intensity is not None:
-        # the four polarizer readings S0 + S1 cos 2t + S2 sin 2t (t = 0, 45, 90, 135 deg; the brightest is
-        # I (1 + DoLP)), scaled and clipped at full scale, then the Stokes vector again from them
-        s0, s1, s2 = (a * number for a in _stokes(x, ch))
-        r0, r45, r90, r135 = (np.clip(s0 + c * s1 + s * s2, 0.0, 1.0) for c, s in ((1, 0), (0, 1), (-1, 0), (0, -1)))
-        out = _from_stokes(x, ch, (r0 + r45 + r90 + r135) / 4, (r0 - r90) / 2, (r45 - r135) / 2)
+        # the four polarizer readings (the brightest is I (1 + DoLP)), scaled and clipped at full scale, then the
+        # Stokes vector again from them; the camera's Stokes are twice these (intensity is S0 / 2)
+        from model.priors.conventions import POLARIZER_ANGLES_DEG
+        from model.priors.stokes import intensities_to_stokes, stokes_to_intensity
+
+        s0, s1, s2 = (2 * number * a for a in _stokes(x, ch))
+        angles = np.radians(POLARIZER_ANGLES_DEG)
+        readings = np.stack([np.clip(stokes_to_intensity(s0, t, s1, s2), 0.0, 1.0) for t in angles])
+        out = _from_stokes(x, ch, *(intensities_to_stokes(readings) / 2))
     elif kind == "blur":
         s0, s1, s2 = (np.stack([cv2.GaussianBlur(im, (0, 0), number, borderType=cv2.BORDER_REPLICATE) for im in a])
                       for a in _stokes(x, ch))
