@@ -7,31 +7,15 @@ import copy
 import sys
 
 import numpy as np
+from spies import JUD, RES, install
 
 from model.draem.checkpoint import load_checkpoint
-from model.draem.variation import FOLDS, VariationModel
+from model.draem.variation import FOLDS
 from station.datasets import load_split
 
 PRIORS = ("intensity", "dolp", "aolp")
 SHAPE = (96, 192)
-RES: list = []
-JUD: list = []
-_res, _win = VariationModel._residual, VariationModel.window
-
-
-def res_spy(u, components, keep=None):
-    r = _res(u, components, keep)
-    RES.append(r.astype(np.float32))
-    return r
-
-
-def win_spy(self, z, judged):
-    JUD.append(judged.copy())
-    return _win(self, z, judged)
-
-
-VariationModel._residual = staticmethod(res_spy)
-VariationModel.window = win_spy
+install()
 
 
 def load(root, split, good_only=False):

@@ -6,35 +6,19 @@ import copy
 import sys
 
 import numpy as np
+from spies import JUD, RES, install
 
 from model.draem.checkpoint import load_checkpoint
-from model.draem.variation import MAX_HIDDEN, VariationModel
+from model.draem.variation import MAX_HIDDEN
 from station.datasets import load_split
 
 PRIORS = ("intensity", "dolp", "aolp")
 SHAPE = (96, 192)
-RES: list = []
-JUD: list = []
-_res, _win = VariationModel._residual, VariationModel.window
-
-
-def res_spy(u, components, keep=None):
-    r = _res(u, components, keep)
-    RES.append(r.astype(np.float32))
-    return r
-
-
-def win_spy(self, z, judged):
-    JUD.append(judged.copy())
-    return _win(self, z, judged)
-
-
 train_dir, val_dir, held_dir, out = sys.argv[1:5]
 st = load_split(train_dir, "train", PRIORS, SHAPE, roi="band", progress=False, good_only=True)
 m = copy.deepcopy(load_checkpoint("model/weights/default").detector.variation)
 m.fit(st.priors.float(), st.object_mask)
-VariationModel._residual = staticmethod(res_spy)
-VariationModel.window = win_spy
+install()
 scale, ref = m.scale.numpy(), m.reference.numpy()
 
 
