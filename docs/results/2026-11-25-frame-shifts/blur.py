@@ -1,8 +1,9 @@
 """Rule 9 (rule.md): the variation model fitted on good parts and blurred copies of them, against the shipped fit, on
 validation (paired bootstrap, rule 3's comparison) and on held-out set 202 blurred by 1 and 0.75 input px.
 
-Usage: blur.py OUT.json [--max-sigma S] [--confirm] (default 1.0: rule 9; 1.5: rule 10; 2 --confirm: rule 11, which
-adds held-out set 202 blurred by 1.5 px and set 212 unblurred (paired bootstrap) and blurred by 1 px), from the
+Usage: blur.py OUT.json [--max-sigma S] [--confirm] [--library] (default 1.0: rule 9; 1.5: rule 10; 2 --confirm:
+rule 11, which adds held-out set 202 blurred by 1.5 px and set 212 unblurred (paired bootstrap) and blurred by 1 px;
+1.5 --confirm --library: rule 12, the fit's own copies, ``VariationModel.fit``'s blur_copies_sigma), from the
 repository root (about 6 min on 2 cores, 10 with --confirm)."""
 
 from __future__ import annotations
@@ -35,7 +36,10 @@ blurred = np.concatenate(
     [shift(f"blur {s:.4f} px", x[i : i + 1], ch) if s > 0 else x[i : i + 1] for i, s in enumerate(sigmas)]
 )
 candidate = copy.deepcopy(shipped)
-candidate.fit(torch.from_numpy(np.concatenate([x, blurred])), torch.cat([tr.object_mask, tr.object_mask]))
+if "--library" in sys.argv:  # rule 12: VariationModel.fit's own copies (the same draws), each left out with its part
+    candidate.fit(torch.from_numpy(x), tr.object_mask, blur_copies_sigma=max_sigma)
+else:  # rules 9-11: the copies appended as parts of their own
+    candidate.fit(torch.from_numpy(np.concatenate([x, blurred])), torch.cat([tr.object_mask, tr.object_mask]))
 print(f"fitted on {2 * len(x)} parts", flush=True)
 
 
