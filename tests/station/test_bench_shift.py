@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
 
-from station.benchmarks.shift import SHIFTS, Channels, shift
+from model.draem.shifts import SHIFTS, Channels, shift
 from station.cli import main
 
 CH = Channels(intensity=0, dolp=1, aolp=2)
@@ -44,6 +44,21 @@ def test_each_shift_changes_what_it_names_and_nothing_else() -> None:
     assert np.allclose(shift("blur 1 px", flat, CH), flat, atol=1e-6)
 
 
+def test_geometric_shifts_move_the_part_and_turn_its_polarization_with_it() -> None:
+    x = np.zeros((1, 4, 21, 21), np.float32)
+    x[:, 0], x[:, 1], x[:, 2] = 0.1, 0.2, 1.0  # AoLP 0 everywhere
+    x[0, 0, 10, 14] = 0.9  # a bright dot 4 px right of the centre
+    at = lambda y: np.unravel_index(np.argmax(y[0, 0]), y.shape[2:])  # noqa: E731
+    assert at(shift("move 2 px", x, CH)) == (10, 16)
+    y = shift("rotate 90 deg", x, CH)
+    assert at(y) == (6, 10)  # counter-clockwise as displayed: right of the centre goes up (row 0 is the top)
+    aolp = 0.5 * np.degrees(np.arctan2(y[0, 3], y[0, 2]))
+    assert np.allclose(np.abs(aolp), 90, atol=1e-3) and np.allclose(y[0, 1], 0.2, atol=1e-5)  # AoLP turns with it
+    assert at(shift("zoom x1.5", x, CH)) == (10, 16)  # 4 px out becomes 6
+    y = shift("rotate 5 deg", x, CH)
+    assert np.allclose(0.5 * np.degrees(np.arctan2(y[0, 3, 0, 0], y[0, 2, 0, 0])), 5, atol=1e-3)
+
+
 def test_exposure_clips_each_polarizer_reading_and_polarization_falls_where_they_clip() -> None:
     x = priors() * np.array([0, 0, 1, 1], np.float32)[None, :, None, None]
     x[:, 0], x[:, 1] = 0.9, 0.5  # brightest reading 0.9 * 1.5 = 1.35: clips at full scale
@@ -57,7 +72,7 @@ def test_hostile_priors_stay_finite_under_every_shift() -> None:
     x[1, 0] = 0.0  # a black frame
     for name in SHIFTS:
         assert np.isfinite(shift(name, x, CH)).all(), name
-    for bad in ("sharpen 2", "dolp", "dolp xabc", "blur -1 px", "gamma nan"):
+    for bad in ("sharpen 2", "dolp", "dolp xabc", "blur -1 px", "gamma nan", "zoom x0", "zoom x-1"):
         with pytest.raises(ValueError, match="unknown shift"):
             shift(bad, x, CH)
 
