@@ -5,6 +5,7 @@ Shared by ``station eval``, ``threshold``, ``ensemble``, ``quantize``, ``adapt``
 
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 
@@ -135,20 +136,25 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
 
 
 def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
-                  decision: str = "variation", fit_parts: int | None = None) -> str:
+                  decision: str = "variation", fit_parts: int | None = None,
+                  blur_copies_sigma: float | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
     ("variation", the shipped recipe: the variation model's finding alone rejects; "combined": either detector's).
     ``fit_parts``: fit on the first that many good train parts only (None: all of them), to measure how many a line
-    needs."""
+    needs. ``blur_copies_sigma``: the fit also sees a blurred copy of each good part, blurs up to this many input px
+    (0: none; None: ``model.draem.variation.BLUR_COPIES_SIGMA``, the shipped recipe)."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
-    from model.draem.variation import MIN_FIT_PARTS
+    from model.draem.variation import BLUR_COPIES_SIGMA, MIN_FIT_PARTS
     from model.draem.with_variation import add_variation
     from station.datasets import manifest_sha256
 
     check_max_good_flagged(max_good_flagged)
+    blur_copies_sigma = BLUR_COPIES_SIGMA if blur_copies_sigma is None else blur_copies_sigma
+    if not (math.isfinite(blur_copies_sigma) and blur_copies_sigma >= 0):
+        raise UserError(f"--blur-copies {blur_copies_sigma}: give a blur in input px, >= 0 (0: no copies)")
     if fit_parts is not None and fit_parts < MIN_FIT_PARTS:
         raise UserError(f"--fit-parts {fit_parts}: the variation model needs at least {MIN_FIT_PARTS} good parts")
     ck = load_checkpoint(model)
@@ -167,17 +173,20 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
                         f"good val parts, got {len(tr.index)} and {int(good_va.sum())}")
     try:
         det = add_variation(ck.detector, tr.priors, tr.object_mask if tr.object_masks_known else None,
-                            va.priors[good_va], decision=decision)
+                            va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
-        "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index)})
+        "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
+        "blur_copies_sigma": blur_copies_sigma})
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
     decides = "" if decision == "combined" else f" (decision: {decision} alone)"
-    return (f"{out}: variation model fitted on {len(tr.index)} good parts{decides}; threshold {choice.threshold:.4g} "
-            f"({choice.rule}); on {len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts"
-            f"{detected}; image AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")
+    copies = f" and a blurred copy of each (up to {blur_copies_sigma:g} px)" if blur_copies_sigma else ""
+    return (f"{out}: variation model fitted on {len(tr.index)} good parts{copies}{decides}; threshold "
+            f"{choice.threshold:.4g} ({choice.rule}); on {len(labels)} val parts it flags "
+            f"{choice.flagged_good_fraction:.1%} of good parts{detected}; "
+            f"image AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")
 
 
 def fit_residual(model: str, data: str, out: str, val_data: str | None = None, members: int = 3, steps: int = 3000,

@@ -6,7 +6,8 @@ What depends on the line, in this model:
     the same statistic training used): exposure, gain, light and belt move it;
   - per-position statistics: the variation model's appearance (mean, principal components, per-pixel scales;
     ``model.draem.variation``), when the detector has one: re-estimated on the line's good parts, registered to
-    the reference it was trained with (its part region kept); then both detectors' calibration, from the held-out
+    the reference it was trained with (its part region kept; with blurred copies of the parts when the model was
+    fitted with them, ``VariationModel.blur_copies_sigma``); then both detectors' calibration, from the held-out
     scores;
   - whether the networks still judge: their held-out good parts' median image score, in robust standard
     deviations of their good validation parts (the trained calibration), after the refit; above

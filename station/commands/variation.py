@@ -27,6 +27,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", required=True, help="checkpoint to write, path without suffix")
     p.add_argument("--fit-parts", type=int, default=None, metavar="N",
                    help="fit on the first N good train parts only (default: all), to measure how many a line needs")
+    p.add_argument("--blur-copies", type=float, default=None, metavar="SIGMA",
+                   help="the fit also sees a copy of each good part blurred by up to SIGMA input px, so a softer lens "
+                        "or another renderer's pixel filter is among what good parts look like (default: the shipped "
+                        "recipe, model.draem.variation.BLUR_COPIES_SIGMA; 0: no copies)")
     p.add_argument("--max-good-flagged", type=float, default=0.05,
                    help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
     p.set_defaults(func=run)
@@ -36,5 +40,5 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
-                        args.fit_parts))
+                        args.fit_parts, args.blur_copies))
     return 0

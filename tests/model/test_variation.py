@@ -172,6 +172,32 @@ def test_a_place_where_good_parts_vary_more_does_not_hide_a_faint_defect_elsewhe
     assert float(vm.zmaps(bad)[1].min()) < float(vm.zmaps(good)[1].max())
 
 
+def test_a_fit_with_blurred_copies_takes_a_softer_lenss_good_parts_as_good_and_still_sees_defects() -> None:
+    """A softer lens (or another renderer's pixel filter) smears the part's silhouette: a fit on sharp parts only
+    scores every such good part far above sharp defective ones. A fit that also saw blurred copies of its good parts
+    (``blur_copies_sigma``) scores them as good parts, and defects, blurred or not, still stand out."""
+    from model.draem.shifts import Channels, shift
+
+    x, ch = parts(40, 0), Channels(0, 1, 2)
+    sharp, soft = (VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2) for _ in range(2))
+    sharp.fit(x, x[:, 0] > 0.15)
+    signed = soft.fit(x, x[:, 0] > 0.15, blur_copies_sigma=2.0)
+    assert signed.shape[0] == 40 and float(soft.blur_copies_sigma) == 2.0  # one left-out map per part, recorded
+
+    def score(vm: VariationModel, name: str, defect: bool = False) -> torch.Tensor:
+        return vm.zmaps(torch.from_numpy(shift(name, parts(20, 2 if defect else 1, defect).numpy(), ch)))[1]
+
+    sharp_good = float(score(sharp, "none").max())
+    assert float(score(sharp, "blur 1 px").min()) > float(score(sharp, "none", defect=True).min())
+    for name in ("none", "blur 0.5 px", "blur 1 px"):
+        assert float(score(soft, name).max()) < sharp_good
+        assert float(score(soft, name, defect=True).min()) > 2 * float(score(soft, name).max())
+    soft.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the recipe
+    assert float(soft.blur_copies_sigma) == 2.0
+    with pytest.raises(ModelError, match="blur_copies_sigma"):
+        soft.fit(x, blur_copies_sigma=-1.0)
+
+
 def test_too_few_parts_and_bad_buffers_are_errors() -> None:
     with pytest.raises(ModelError, match="at least 8"):
         VariationModel(4, (H, W), 0).fit(parts(3, 0))

@@ -87,3 +87,23 @@ def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: P
                      "--out", str(tmp_path / "w")]) == 2
         err = capsys.readouterr().err
         assert "--fit-parts" in err and len(err.strip().splitlines()) == 1
+
+
+def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_path: Path, capsys) -> None:
+    """``--blur-copies SIGMA``: the fit also sees a blurred copy of each good part (a softer lens is among what good
+    parts look like); the model and its sidecar record it, and a refit (station adapt) keeps it."""
+    from model.draem.checkpoint import load_checkpoint
+
+    data, model = trained(tmp_path, capsys)
+    out = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--blur-copies", "1.5",
+                 "--out", str(out)]) == 0
+    assert "and a blurred copy of each (up to 1.5 px)" in capsys.readouterr().out
+    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["blur_copies_sigma"] == 1.5
+    vm = load_checkpoint(out).detector.variation
+    assert vm is not None and float(vm.blur_copies_sigma) == 1.5
+    for bad in ("-1", "nan"):  # one line naming the flag, before any loading
+        assert main(["variation", "--model", str(model), "--data", str(data), "--blur-copies", bad,
+                     "--out", str(tmp_path / "w")]) == 2
+        err = capsys.readouterr().err
+        assert "--blur-copies" in err and len(err.strip().splitlines()) == 1
