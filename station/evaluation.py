@@ -137,18 +137,19 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
 
 def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
                   decision: str = "variation", fit_parts: int | None = None,
-                  blur_copies_sigma: float | None = None) -> str:
+                  blur_copies_sigma: float | None = None, refit: bool = False) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
     ("variation", the shipped recipe: the variation model's finding alone rejects; "combined": either detector's).
     ``fit_parts``: fit on the first that many good train parts only (None: all of them), to measure how many a line
     needs. ``blur_copies_sigma``: the fit also sees a blurred copy of each good part, blurs up to this many input px
-    (0: none; None: ``model.draem.variation.BLUR_COPIES_SIGMA``, the shipped recipe)."""
+    (0: none; None: ``model.draem.variation.BLUR_COPIES_SIGMA``, the shipped recipe). ``refit``: ``model`` already
+    has a variation model; fit it again (its networks kept; otherwise that is an error)."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
     from model.draem.variation import BLUR_COPIES_SIGMA, MIN_FIT_PARTS
-    from model.draem.with_variation import add_variation
+    from model.draem.with_variation import add_variation, without_variation
     from station.datasets import manifest_sha256
 
     check_max_good_flagged(max_good_flagged)
@@ -158,10 +159,13 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     if fit_parts is not None and fit_parts < MIN_FIT_PARTS:
         raise UserError(f"--fit-parts {fit_parts}: the variation model needs at least {MIN_FIT_PARTS} good parts")
     ck = load_checkpoint(model)
+    networks = ck.detector
     try:  # the model's own refusals first, before minutes of loading
-        ck.detector.config.with_(variation=True, decision=decision)
-        if ck.detector.config.variation:
-            raise ModelError("the detector already has a variation model")
+        if networks.config.variation and refit:
+            networks = without_variation(networks)
+        elif networks.config.variation:
+            raise ModelError("the detector already has a variation model (--refit fits it again)")
+        networks.config.with_(variation=True, decision=decision)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     tr = model_split(ck, model, data, "train", limit=fit_parts, good_only=True)
@@ -172,7 +176,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
         raise UserError(f"{data}, {val_data}: the variation model needs >= {MIN_FIT_PARTS} good train parts and >= 2 "
                         f"good val parts, got {len(tr.index)} and {int(good_va.sum())}")
     try:
-        det = add_variation(ck.detector, tr.priors, tr.object_mask if tr.object_masks_known else None,
+        det = add_variation(networks, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None

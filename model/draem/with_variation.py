@@ -40,6 +40,18 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     return out
 
 
+def without_variation(detector: Detector) -> Detector:
+    """A copy of ``detector`` without its variation model: the networks and the normalisation only (decision
+    "combined"), for fitting the variation model again (``station variation --refit``). ModelError when it has
+    residual networks: they read the fit being replaced."""
+    if detector.residual is not None or detector.config.residual_members:
+        raise ModelError("the detector has residual networks, which read its variation model: refit from the "
+                         "checkpoint without them")
+    out = Detector(detector.config.with_(variation=False, decision="combined"), detector.normalizer)
+    out.load_state_dict({k: v for k, v in detector.state_dict().items() if not k.startswith("variation.")})
+    return out.eval()
+
+
 @torch.no_grad()
 def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tuple[torch.Tensor, torch.Tensor]:
     """(N,) network and (N,) variation image scores of a detector with a variation model, before combining."""

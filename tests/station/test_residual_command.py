@@ -38,6 +38,11 @@ def test_residual_networks_are_trained_recorded_thresholded_and_evaluated(tmp_pa
                  "--steps", "1"]) == 2
     err = capsys.readouterr().err
     assert "already has residual networks" in err and len(err.strip().splitlines()) == 1
+    # and its variation model is not refitted under them: they read that fit
+    assert main(["variation", "--model", str(out), "--data", str(data), "--refit",
+                 "--out", str(tmp_path / "v2")]) == 2
+    err = capsys.readouterr().err
+    assert "residual networks" in err and len(err.strip().splitlines()) == 1
 
 
 def test_a_model_without_the_variation_model_or_a_bad_type_is_refused_in_one_line(tmp_path: Path, capsys) -> None:

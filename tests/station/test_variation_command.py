@@ -92,6 +92,8 @@ def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: P
 def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_path: Path, capsys) -> None:
     """``--blur-copies SIGMA``: the fit also sees a blurred copy of each good part (a softer lens is among what good
     parts look like); the model and its sidecar record it, and a refit (station adapt) keeps it."""
+    import torch
+
     from model.draem.checkpoint import load_checkpoint
 
     data, model = trained(tmp_path, capsys)
@@ -102,6 +104,17 @@ def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_pa
     assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["blur_copies_sigma"] == 1.5
     vm = load_checkpoint(out).detector.variation
     assert vm is not None and float(vm.blur_copies_sigma) == 1.5
+    # --refit: a model that has a variation model fits it again, its networks unchanged (the shipped model with
+    # copies, for a line with soft optics); without the flag, one line says how
+    assert main(["variation", "--model", str(out), "--data", str(data), "--blur-copies", "0", "--refit",
+                 "--out", str(tmp_path / "r")]) == 0
+    before, after = load_checkpoint(out).detector, load_checkpoint(tmp_path / "r").detector
+    assert after.variation is not None and float(after.variation.blur_copies_sigma) == 0.0
+    assert not torch.equal(before.variation.mean, after.variation.mean)
+    assert all(torch.equal(v, after.state_dict()[k]) for k, v in before.state_dict().items()
+               if not k.startswith("variation."))
+    assert main(["variation", "--model", str(out), "--data", str(data), "--out", str(tmp_path / "w")]) == 2
+    assert "--refit" in capsys.readouterr().err
     for bad in ("-1", "nan"):  # one line naming the flag, before any loading
         assert main(["variation", "--model", str(model), "--data", str(data), "--blur-copies", bad,
                      "--out", str(tmp_path / "w")]) == 2
