@@ -39,3 +39,17 @@ def test_station_train_defaults_are_the_networks_make_model_trains() -> None:
     args = build_parser().parse_args(["train", "--data", "d"])
     assert args.priors == recipe["--priors"] and args.fusion == recipe["--fusion"] and args.preset == recipe["--preset"]
     assert args.batch_size == int(recipe["--batch-size"]) and args.seed == int(recipe["--seed"])
+
+
+def test_the_shipped_variation_fit_is_station_variations_default() -> None:
+    """The shipped model's variation model was fitted with the blurred copies `station variation` (and so `make
+    model`) makes by default, and its checkpoint says so."""
+    import json
+
+    from model.draem.variation import BLUR_COPIES_SIGMA
+    from station.cli import build_parser
+
+    meta = json.loads((ROOT / "model" / "weights" / "default.json").read_text())
+    assert meta["train"]["variation"]["blur_copies_sigma"] == BLUR_COPIES_SIGMA > 0
+    args = build_parser().parse_args(["variation", "--model", "m", "--data", "d", "--out", "o"])
+    assert args.blur_copies is None  # None: BLUR_COPIES_SIGMA (station.evaluation.fit_variation)
