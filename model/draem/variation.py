@@ -101,12 +101,6 @@ A fit keeps at most one per 20 parts of the two thirds each fold fits on (``FOLD
 keep all 10, ``station adapt`` on 50 line parts 1 or 2. Components fitted on too few parts follow those parts'
 noise, and new good parts then score high."""
 
-POLARIZATION_GAIN = False
-"""Whether a new fit adds a polarization gain per part to its appearance (``fit``'s ``polarization_gain``): the
-good parts' mean polarization features as one more direction, fitted per part, so a part whose polarization is
-weaker or stronger overall (another material, renderer or polarizer array) is explained as the median explains
-its exposure (docs/results/2026-11-25-polarization-gain.md)."""
-
 BLUR_COPIES_SIGMA = 0.0
 """The shipped recipe's ``blur_copies_sigma`` (input px; 0: no blurred copies), ``station variation
 --blur-copies``'s default. Copies up to 1.5 px (3.75 px of the 640 x 480 frame) were measured against the fit
@@ -144,12 +138,10 @@ specular lobe around a clipped core."""
 MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
-LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "polarization_gain",
-                 "gain_direction")
+LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
-a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``polarization_gain`` 0 and ``gain_direction``
-zero: no polarization gain), which score as those models did."""
+a feature; ``blur_copies_sigma`` 0: fitted without blurred copies), which score as those models did."""
 
 READ_DOLP = False
 """Whether a new fit reads DoLP as a feature of its own (module docstring: features). DoLP is the length of the
@@ -221,9 +213,7 @@ class VariationModel(nn.Module):
     good parts' window statistic at each pixel (module docstring: position); ``reads_dolp`` 1.0 when DoLP is
     a feature of its own, 0.0 when it is read only through AoLP's Stokes components (``READ_DOLP``;
     ``LATER_BUFFERS``); ``blur_copies_sigma`` the largest blur of the good parts' blurred copies it was fitted with
-    (input px, 0: none; ``fit``), which a refit keeps; ``polarization_gain`` 1.0 when the appearance has a
-    polarization gain per part, ``gain_direction`` (C, H, W) that direction (unit norm, zero without; ``fit``).
-    ``intensity``, ``dolp``, ``aolp``: the channel index of
+    (input px, 0: none; ``fit``), which a refit keeps. ``intensity``, ``dolp``, ``aolp``: the channel index of
     intensity, of DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
@@ -244,8 +234,6 @@ class VariationModel(nn.Module):
         self.register_buffer("window_spread", torch.ones(h, w))
         self.register_buffer("reads_dolp", torch.tensor(1.0))
         self.register_buffer("blur_copies_sigma", torch.tensor(0.0))
-        self.register_buffer("polarization_gain", torch.tensor(0.0))
-        self.register_buffer("gain_direction", torch.zeros(channels, h, w))
 
     # --- features and registration (numpy) ---
 
@@ -303,8 +291,7 @@ class VariationModel(nn.Module):
 
     @torch.no_grad()
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
-            keep_reference: bool = False, blur_copies_sigma: float | None = None,
-            polarization_gain: bool | None = None) -> np.ndarray:
+            keep_reference: bool = False, blur_copies_sigma: float | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -317,9 +304,7 @@ class VariationModel(nn.Module):
         applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask, and left out
         with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts' only. A softer
         lens or another renderer's pixel filter is then among what good parts look like
-        (``BLUR_COPIES_SIGMA``). ``polarization_gain`` (None: the model's own, so a refit keeps it): the appearance
-        also has the good parts' mean polarization features as a direction of its own, fitted per part, and its
-        principal components are computed with it projected out (``POLARIZATION_GAIN``)."""
+        (``BLUR_COPIES_SIGMA``)."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -329,9 +314,6 @@ class VariationModel(nn.Module):
         if not (math.isfinite(sigma) and sigma >= 0):
             raise ModelError(f"blur_copies_sigma must be finite and >= 0, got {sigma}")
         self.blur_copies_sigma.fill_(sigma)
-        gain_on = bool(self.polarization_gain > 0.5) if polarization_gain is None else bool(polarization_gain)
-        self.polarization_gain.fill_(1.0 if gain_on else 0.0)
-        pol = self.polarization_channels() if gain_on else None
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
@@ -359,15 +341,15 @@ class VariationModel(nn.Module):
         channel_scale = np.maximum(spread, MIN_SCALE).astype(np.float32)
         u = stack / channel_scale[:, None, None] * region
         k = min(COMPONENTS, (n_parts - n_parts // FOLDS) // 20)
-        mean, gain, components = self._appearance(u, k, pol)
+        mean, components = self._appearance(u, k)
         # residuals of each part from a fit without it: in-sample ones are too small, the more so the more components;
         # a blurred copy is left out with its part (a fit that saw the copy has all but seen the part)
         residual = np.empty_like(u)
         fold = np.arange(n) % n_parts % FOLDS
         for f in range(FOLDS):
             out = fold == f
-            fold_mean, fold_gain, fold_components = self._appearance(u[~out], k, pol)
-            residual[out] = self._residual(u[out] - fold_mean, np.concatenate([fold_gain[None], fold_components]))
+            fold_mean, fold_components = self._appearance(u[~out], k)
+            residual[out] = self._residual(u[out] - fold_mean, fold_components)
         scale = 1.4826 * np.median(np.abs(residual), 0)
         floor = np.maximum([np.percentile(s[region], floor_quantile) for s in scale], MIN_SCALE / channel_scale)
         scale = np.maximum(scale, floor[:, None, None])
@@ -379,41 +361,21 @@ class VariationModel(nn.Module):
                                         ABS_NORMAL_SD / self.box_px))
         mean = mean * channel_scale[:, None, None]
         for name, value in (("reference", ref), ("mean", mean), ("channel_scale", channel_scale),
-                            ("components", components), ("gain_direction", gain), ("scale", scale),
-                            ("window_location", location), ("window_spread", spread)):
+                            ("components", components), ("scale", scale), ("window_location", location),
+                            ("window_spread", spread)):
             getattr(self, name).copy_(torch.from_numpy(np.asarray(value, np.float32)))
         self.region.copy_(torch.from_numpy(region))
         return signed[:n_parts]
 
-    def polarization_channels(self) -> np.ndarray:
-        """(C,) bool: the feature channels that carry polarization (AoLP's Stokes components, and DoLP when read)."""
-        pol = np.zeros(self.mean.shape[0], bool)
-        if self.aolp is not None:
-            pol[self.aolp:self.aolp + 2] = True
-        if self.dolp is not None and self.dolp_read:
-            pol[self.dolp] = True
-        return pol
-
     @staticmethod
-    def _appearance(u: np.ndarray, k: int, pol: np.ndarray | None = None
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Mean (C, H, W), polarization gain direction (C, H, W: the mean's channels ``pol`` as a unit vector;
-        zeros when ``pol`` is None or the mean has no polarization) and first ``k`` principal components
-        (COMPONENTS, C, H, W; zeros beyond k) of ``u`` with that direction projected out: together orthonormal."""
+    def _appearance(u: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Mean (C, H, W) and first ``k`` principal components (COMPONENTS, C, H, W; zeros beyond k) of ``u``."""
         mean = u.mean(0)
-        gain = np.zeros_like(mean)
-        if pol is not None:
-            gain[pol] = mean[pol]
-            norm = float(np.linalg.norm(gain))
-            gain = gain / norm if norm > 1e-12 else np.zeros_like(mean)
         components = np.zeros((COMPONENTS, *u.shape[1:]), np.float32)
         if k:
-            centred = (u - mean).reshape(len(u), -1)
-            g = gain.reshape(-1)
-            centred = centred - np.outer(centred @ g, g)
-            vt = np.linalg.svd(centred, full_matrices=False)[2]
+            vt = np.linalg.svd((u - mean).reshape(len(u), -1), full_matrices=False)[2]
             components[:k] = vt[:k].reshape(k, *u.shape[1:])
-        return mean, gain.astype(np.float32), components
+        return mean, components
 
     @staticmethod
     def _residual(u: np.ndarray, components: np.ndarray, keep: np.ndarray | None = None) -> np.ndarray:
@@ -461,8 +423,7 @@ class VariationModel(nn.Module):
         without them does not pay for them)."""
         xs = x.float().cpu().numpy()
         mean, scale = self.mean.numpy(), self.scale.numpy()
-        cs, part = self.channel_scale.numpy()[:, None, None], self.region.numpy()
-        components = np.concatenate([self.gain_direction.numpy()[None], self.components.numpy()])
+        cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
         location, spread = self.window_location.numpy(), self.window_spread.numpy()
         region = self.scored_region()
         if not region.any():

@@ -4,8 +4,8 @@ Fitted on the good parts of ``--data``'s train split, calibrated on the val spli
 validation set rendered with ``station render --validation``, or else of ``--data``), then the threshold is chosen
 on that val split with ``station threshold``'s rule (``model.draem.metrics.choose_threshold``). The networks
 are copied unchanged; the sidecar records the fit (``train.variation``: set, manifest hash, parts, blurred copies,
-date). ``--polarization-gain`` adds a polarization gain per part to its appearance. ``--refit`` fits the variation
-model of a model that has one again (the shipped model on more good parts, or with ``--blur-copies``).
+date). ``--refit`` fits the variation model of a model that has one again (the shipped model on more good parts, or
+with ``--blur-copies``).
 """
 
 from __future__ import annotations
@@ -33,10 +33,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="the fit also sees a copy of each good part blurred by up to SIGMA input px, so a softer lens "
                         "or another renderer's pixel filter is among what good parts look like (default: the shipped "
                         "recipe, model.draem.variation.BLUR_COPIES_SIGMA; 0: no copies)")
-    p.add_argument("--polarization-gain", action=argparse.BooleanOptionalAction, default=None,
-                   help="fit a polarization gain per part, so a part that polarizes less or more overall (another "
-                        "material, renderer or polarizer array) is not a defect (default: the shipped recipe, "
-                        "model.draem.variation.POLARIZATION_GAIN)")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")
@@ -49,5 +45,5 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
-                        args.fit_parts, args.blur_copies, args.refit, args.polarization_gain))
+                        args.fit_parts, args.blur_copies, args.refit))
     return 0

@@ -198,30 +198,6 @@ def test_a_fit_with_blurred_copies_takes_a_softer_lenss_good_parts_as_good_and_s
         soft.fit(x, blur_copies_sigma=-1.0)
 
 
-def test_a_polarization_gain_takes_a_weaker_polarizing_lines_good_parts_as_good() -> None:
-    """A material, renderer or polarizer array that polarizes less scales every part's (S1, S2) / S0: a fit without
-    a polarization gain scores such good parts as high as the defects; with it (``polarization_gain``) they score as
-    good parts, and defects still stand out."""
-    x = parts(40, 0)
-    plain, gained = (VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2) for _ in range(2))
-    plain.fit(x, x[:, 0] > 0.15)
-    gained.fit(x, x[:, 0] > 0.15, polarization_gain=True)
-    assert float(gained.polarization_gain) == 1.0 and abs(float(gained.gain_direction.norm()) - 1) < 1e-5
-    assert not bool(gained.gain_direction[0].any())  # polarization only: intensity keeps its own (median) rule
-
-    def score(vm: VariationModel, k: float, defect: bool = False) -> torch.Tensor:
-        x = parts(20, 2 if defect else 1, defect)
-        x[:, 1] *= k  # DoLP times k: (S1, S2) / S0 too
-        return vm.zmaps(x)[1]
-
-    assert float(score(plain, 0.5).median()) > float(score(plain, 1.0, defect=True).median())  # like defects
-    for k in (1.0, 0.7, 0.5):
-        assert float(score(gained, k).max()) < 1.5 * float(score(plain, 1.0).max())
-        assert float(score(gained, k, defect=True).min()) > 2 * float(score(gained, k).max())
-    gained.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps it
-    assert float(gained.polarization_gain) == 1.0
-
-
 def test_too_few_parts_and_bad_buffers_are_errors() -> None:
     with pytest.raises(ModelError, match="at least 8"):
         VariationModel(4, (H, W), 0).fit(parts(3, 0))

@@ -120,18 +120,3 @@ def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_pa
                      "--out", str(tmp_path / "w")]) == 2
         err = capsys.readouterr().err
         assert "--blur-copies" in err and len(err.strip().splitlines()) == 1
-
-
-def test_polarization_gain_is_fitted_and_recorded(tmp_path: Path, capsys) -> None:
-    """``--polarization-gain``: the fit's appearance has a polarization gain per part; the model and its sidecar
-    record it."""
-    from model.draem.checkpoint import load_checkpoint
-
-    data, model = trained(tmp_path, capsys)
-    out = tmp_path / "v"
-    assert main(["variation", "--model", str(model), "--data", str(data), "--polarization-gain",
-                 "--out", str(out)]) == 0
-    assert "with a polarization gain per part" in capsys.readouterr().out
-    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["polarization_gain"] is True
-    vm = load_checkpoint(out).detector.variation
-    assert vm is not None and float(vm.polarization_gain) == 1.0 and bool(vm.gain_direction.any())
