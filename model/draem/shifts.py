@@ -63,17 +63,22 @@ SIGNED = ("aolp", "move", "rotate")
 """Kinds whose number may be negative."""
 
 
-def parse(name: str) -> tuple[str, float]:
-    """A shift's name -> (kind, its number): "dolp x2" -> ("dolp", 2.0), "none" -> ("none", 0.0); ValueError naming
-    the shift otherwise (an unknown kind, a missing or non-finite number)."""
-    kind, _, value = name.strip().partition(" ")
+def parse(name: str) -> list[tuple[str, float]]:
+    """A shift's name -> its steps (kind, number), in order: "dolp x2" -> [("dolp", 2.0)], "none" -> [("none", 0.0)],
+    "dolp x0.7 & blur 0.25 px" -> [("dolp", 0.7), ("blur", 0.25)] (several changes at once, as another renderer
+    makes them); ValueError naming the shift otherwise (an unknown kind, a missing or non-finite number)."""
+    return [_step(step, name) for step in name.split("&")]
+
+
+def _step(step: str, name: str) -> tuple[str, float]:
+    kind, _, value = step.strip().partition(" ")
     try:
         number = 0.0 if kind == "none" else float(value.split()[0].lstrip("x+"))
     except (IndexError, ValueError):
         number = math.nan
     if (kind not in KINDS or not math.isfinite(number) or (kind not in SIGNED and number < 0)
             or (kind == "zoom" and number == 0)):
-        raise ValueError(f"unknown shift {name!r}: e.g. {', '.join(SHIFTS)}")
+        raise ValueError(f"unknown shift {name!r}: e.g. {', '.join(SHIFTS)}, or several joined by '&'")
     return kind, number
 
 
@@ -92,11 +97,17 @@ def shift(name: str, x: np.ndarray, ch: Channels) -> np.ndarray:
     - ``rotate D deg``: the part turned D degrees counter-clockwise about the input's centre, and its polarization
       with it (AoLP plus D: the angle is counted from image right);
     - ``zoom xK``: the part K times larger about the input's centre (the camera closer, another focal length).
-    The geometric ones resample S0, S1, S2 bilinearly (edges replicated) and write the priors back from them."""
+    The geometric ones resample S0, S1, S2 bilinearly (edges replicated) and write the priors back from them.
+    Several joined by "&" are applied in the order given."""
     import cv2
 
     x = np.nan_to_num(np.asarray(x, np.float32), nan=0.0, posinf=1.0, neginf=0.0)
-    kind, number = parse(name)
+    steps = parse(name)
+    if len(steps) > 1:
+        for step in name.split("&"):
+            x = shift(step, x, ch)
+        return x
+    kind, number = steps[0]
     if kind == "none":
         return x.copy()
     out = x.copy()

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -57,6 +58,16 @@ def test_geometric_shifts_move_the_part_and_turn_its_polarization_with_it() -> N
     assert at(shift("zoom x1.5", x, CH)) == (10, 16)  # 4 px out becomes 6
     y = shift("rotate 5 deg", x, CH)
     assert np.allclose(0.5 * np.degrees(np.arctan2(y[0, 3, 0, 0], y[0, 2, 0, 0])), 5, atol=1e-3)
+
+
+def test_shifts_joined_by_an_ampersand_apply_in_order() -> None:
+    """Another renderer changes several things at once: "dolp x0.5 & blur 1 px" is the one shift after the other."""
+    x = priors()
+    both = shift("dolp x0.5 & blur 1 px", x, CH)
+    assert np.allclose(both, shift("blur 1 px", shift("dolp x0.5", x, CH), CH), atol=1e-6)  # OpenCV: 1e-7 apart
+    assert not np.allclose(both, shift("blur 1 px", x, CH)) and not np.allclose(both, shift("dolp x0.5", x, CH))
+    with pytest.raises(ValueError, match=re.escape("unknown shift 'dolp x0.5 & sharpen 1'")):
+        shift("dolp x0.5 & sharpen 1", x, CH)
 
 
 def test_exposure_clips_each_polarizer_reading_and_polarization_falls_where_they_clip() -> None:
