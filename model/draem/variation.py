@@ -138,11 +138,10 @@ specular lobe around a clipped core."""
 MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
-LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "reads_window_level")
+LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
-a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``reads_window_level`` 0: no window level), which
-score as those models did."""
+a feature; ``blur_copies_sigma`` 0: fitted without blurred copies), which score as those models did."""
 
 READ_DOLP = False
 """Whether a new fit reads DoLP as a feature of its own (module docstring: features). DoLP is the length of the
@@ -235,7 +234,6 @@ class VariationModel(nn.Module):
         self.register_buffer("window_spread", torch.ones(h, w))
         self.register_buffer("reads_dolp", torch.tensor(1.0))
         self.register_buffer("blur_copies_sigma", torch.tensor(0.0))
-        self.register_buffer("reads_window_level", torch.tensor(0.0))
 
     # --- features and registration (numpy) ---
 
@@ -293,8 +291,7 @@ class VariationModel(nn.Module):
 
     @torch.no_grad()
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
-            keep_reference: bool = False, blur_copies_sigma: float | None = None,
-            window_level: bool | None = None) -> np.ndarray:
+            keep_reference: bool = False, blur_copies_sigma: float | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -307,8 +304,7 @@ class VariationModel(nn.Module):
         applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask, and left out
         with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts' only. A softer
         lens or another renderer's pixel filter is then among what good parts look like
-        (``BLUR_COPIES_SIGMA``). ``window_level`` (None: the model's own): each frame's window map is also divided
-        by its window level (``window``), and the per-pixel window location and spread are computed with it."""
+        (``BLUR_COPIES_SIGMA``)."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -318,8 +314,6 @@ class VariationModel(nn.Module):
         if not (math.isfinite(sigma) and sigma >= 0):
             raise ModelError(f"blur_copies_sigma must be finite and >= 0, got {sigma}")
         self.blur_copies_sigma.fill_(sigma)
-        if window_level is not None:
-            self.reads_window_level.fill_(1.0 if window_level else 0.0)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
@@ -362,9 +356,6 @@ class VariationModel(nn.Module):
         signed = np.stack([self.signed_z(r / scale, region) for r in residual])
         windows = np.stack([self.window(np.abs(r) / scale, region)[0] for r in residual])
         location = np.median(windows, 0)
-        if self.reads_window_level > 0.5:  # again, each part's window map against that location
-            windows = np.stack([self.window(np.abs(r) / scale, region, location)[0] for r in residual])
-            location = np.median(windows, 0)
         spread = cv2.GaussianBlur(np.percentile(windows, WINDOW_QUANTILE, 0) - location, (0, 0), WINDOW_BLUR_PX)
         spread = np.maximum(spread, max(float(np.percentile(spread[region], floor_quantile)),
                                         ABS_NORMAL_SD / self.box_px))
@@ -446,7 +437,7 @@ class VariationModel(nn.Module):
                 judged = part  # too much hidden to judge the part by the rest: fail closed
             u = (warped[:-1] - mean) / cs * part
             r = self._residual(u[None], components, judged)[0] / scale
-            w, level = self.window(np.abs(r), judged, location)
+            w, level = self.window(np.abs(r), judged)
             noise.append(level)
             if signed:
                 signed_all.append(self.signed_z(r, judged, level))
@@ -494,22 +485,12 @@ class VariationModel(nn.Module):
         r = r / (level if 1.0 < level <= NOISE_CAP else 1.0)
         return (np.clip(r, -SIGNED_CLIP, SIGNED_CLIP) * judged).astype(np.float32)
 
-    def window(self, z: np.ndarray, judged: np.ndarray, location: np.ndarray | None = None
-               ) -> tuple[np.ndarray, float]:
+    def window(self, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, float]:
         """(C, H, W) per-channel z of a part and its (H, W) judged pixels -> ((H, W) window statistic: the largest
-        channel's z after the frame's noise level, box-averaged over ``box_px``; the noise level). With
-        ``reads_window_level`` and the good parts' (H, W) window ``location``, the window map is also divided by the
-        frame's window level, the median of the map over the judged pixels against the median of ``location``
-        there, when it lies in (1, ``NOISE_CAP``]: a structure spread over the part that smoothing has left above
-        a pixel noise level under 1."""
+        channel's z after the frame's noise level, box-averaged over ``box_px``; the noise level)."""
         level = self.noise_level(self.used(z), judged)
         z = (z / (level if 1.0 < level <= NOISE_CAP else 1.0)).max(0)
-        w = cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE)
-        if location is not None and self.reads_window_level > 0.5 and judged.any():
-            wl = float(np.median(w[judged])) / max(float(np.median(location[judged])), 1e-6)
-            if math.isfinite(wl) and 1.0 < wl <= NOISE_CAP:
-                w = w / wl
-        return w, level
+        return cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE), level
 
     @staticmethod
     def noise_level(z: np.ndarray, judged: np.ndarray) -> float:
