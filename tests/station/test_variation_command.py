@@ -91,7 +91,7 @@ def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: P
 
 def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_path: Path, capsys) -> None:
     """``--blur-copies SIGMA``: the fit also sees a blurred copy of each good part (a softer lens is among what good
-    parts look like); the model and its sidecar record it, and a refit (station adapt) keeps it."""
+    parts look like); the model and its sidecar record it. ``--refit`` fits a model's variation model again."""
     import torch
 
     from model.draem.checkpoint import load_checkpoint
