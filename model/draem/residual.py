@@ -204,6 +204,16 @@ def synthetic_anomaly(rng: np.random.Generator, z: np.ndarray, judged: np.ndarra
     return out.astype(np.float32), ((soft > 0.25) & judged).astype(np.float32)
 
 
+def training_loss(logit: torch.Tensor, mask: torch.Tensor, inside: torch.Tensor) -> torch.Tensor:
+    """A member's loss on a batch: per-pixel logits (N, H, W) against the anomaly ``mask`` (N, H, W, 0/1) on the
+    pixels ``inside`` the part (N, H, W bool), binary cross-entropy with anomalies weighted 5; plus half the image
+    loss, the mean of the ``TOP_K`` largest logits inside against whether the mask has any anomaly."""
+    pix = F.binary_cross_entropy_with_logits(logit[inside], mask[inside], pos_weight=torch.tensor(5.0))
+    top = logit.masked_fill(~inside, -30.0).flatten(1).topk(TOP_K, 1).values.mean(1)
+    img = F.binary_cross_entropy_with_logits(top, (mask.flatten(1).amax(1) > 0).float())
+    return pix + 0.5 * img
+
+
 def train_member(net: ResidualNet, good: np.ndarray, defects: np.ndarray, masks: np.ndarray, steps: int, seed: int,
                  batch: int = 16, lr: float = 1e-3, progress: Callable[[int, float], None] | None = None) -> None:
     """Train one member on network inputs: ``good`` (N, C + 2, H, W) of good parts, ``defects`` (M, C + 2, H, W)
@@ -231,12 +241,7 @@ def train_member(net: ResidualNet, good: np.ndarray, defects: np.ndarray, masks:
             xb.append(x[:, y0:y0 + ch, x0:x0 + cw])
             mb.append(m[y0:y0 + ch, x0:x0 + cw])
         xt, mt = torch.from_numpy(np.stack(xb)), torch.from_numpy(np.stack(mb))
-        logit = net(xt)
-        inside = xt[:, -2] > 0
-        pix = F.binary_cross_entropy_with_logits(logit[inside], mt[inside], pos_weight=torch.tensor(5.0))
-        top = logit.masked_fill(~inside, -30.0).flatten(1).topk(TOP_K, 1).values.mean(1)
-        img = F.binary_cross_entropy_with_logits(top, (mt.flatten(1).amax(1) > 0).float())
-        loss = pix + 0.5 * img
+        loss = training_loss(net(xt), mt, xt[:, -2] > 0)
         opt.zero_grad()
         loss.backward()
         opt.step()

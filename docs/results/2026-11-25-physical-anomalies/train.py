@@ -29,9 +29,8 @@ from pathlib import Path
 import cv2
 import numpy as np
 import torch
-import torch.nn.functional as F
 
-from model.draem.residual import CROP, TOP_K, ResidualNet, shape_mask, synthetic_anomaly
+from model.draem.residual import CROP, TOP_K, ResidualNet, shape_mask, synthetic_anomaly, training_loss
 from model.draem.variation import MEDIAN_ABS_NORMAL, NOISE_CAP, SIGNED_CLIP
 
 torch.set_num_threads(2)
@@ -117,12 +116,7 @@ def train(generator, seed, steps, log=sys.stdout):
             xb.append(x[:, y0 : y0 + ch, x0 : x0 + cw])
             mb.append(m[y0 : y0 + ch, x0 : x0 + cw])
         xt, mt = torch.from_numpy(np.stack(xb)), torch.from_numpy(np.stack(mb))
-        logit = net(xt)
-        inside = xt[:, nz] > 0
-        pix = F.binary_cross_entropy_with_logits(logit[inside], mt[inside], pos_weight=torch.tensor(5.0))
-        top = logit.masked_fill(~inside, -30.0).flatten(1).topk(TOP_K, 1).values.mean(1)
-        img = F.binary_cross_entropy_with_logits(top, (mt.flatten(1).amax(1) > 0).float())
-        loss = pix + 0.5 * img
+        loss = training_loss(net(xt), mt, xt[:, nz] > 0)
         opt.zero_grad()
         loss.backward()
         opt.step()
