@@ -17,8 +17,6 @@ import numpy as np
 
 from model.draem.shifts import SHIFTS, Channels, parse, shift
 
-__all__ = ["SHIFTS", "Channels", "add_arguments", "parse", "run", "shift"]
-
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--model", default="model/weights/default", help="checkpoint, path without suffix")

@@ -20,7 +20,7 @@ from bootstrap import compare, held_out
 
 from model.draem.checkpoint import load_checkpoint
 from model.draem.metrics import false_reject_threshold
-from station.benchmarks.shift import Channels, shift
+from model.draem.shifts import Channels, shift
 from station.evaluation import model_split
 
 MODEL = "model/weights/default"

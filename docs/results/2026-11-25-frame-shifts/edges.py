@@ -1,6 +1,6 @@
 """Where a blurred good part's score comes from: on 60 good held-out parts, the shipped variation model's score, the
 frame's noise level, where on the part its largest window lies (within 4 px of the judged region's edge or not) and
-the mean |z| per channel, for the unchanged frames and two blurs (station.benchmarks.shift).
+the mean |z| per channel, for the unchanged frames and two blurs (model.draem.shifts).
 
 Usage: edges.py, from the repository root."""
 
@@ -11,7 +11,7 @@ import numpy as np
 import torch
 
 from model.draem.checkpoint import load_checkpoint
-from station.benchmarks.shift import Channels, shift
+from model.draem.shifts import Channels, shift
 from station.evaluation import model_split
 
 ck = load_checkpoint("model/weights/default")
