@@ -22,6 +22,13 @@ def trained(tmp_path: Path, capsys, priors: str = "intensity,dolp,aolp") -> tupl
     return data, tmp_path / "t" / "last"
 
 
+def refused_naming(capsys, flag: str, value: str, model: Path, data: Path, out: Path) -> None:
+    """``station variation`` with ``flag value`` exits 2 with one line that names the flag."""
+    assert main(["variation", "--model", str(model), "--data", str(data), flag, value, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert flag in err and len(err.strip().splitlines()) == 1
+
+
 def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, capsys) -> None:
     data, model = trained(tmp_path, capsys)
     out = tmp_path / "v"
@@ -83,10 +90,7 @@ def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: P
     assert "fitted on 12 good parts" in capsys.readouterr().out
     assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["fit_parts"] == 12
     for bad in ("7", "0"):  # fewer than the fit needs: one line naming the flag, before any loading
-        assert main(["variation", "--model", str(model), "--data", str(data), "--fit-parts", bad,
-                     "--out", str(tmp_path / "w")]) == 2
-        err = capsys.readouterr().err
-        assert "--fit-parts" in err and len(err.strip().splitlines()) == 1
+        refused_naming(capsys, "--fit-parts", bad, model, data, tmp_path / "w")
 
 
 def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_path: Path, capsys) -> None:
@@ -116,7 +120,4 @@ def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_pa
     assert main(["variation", "--model", str(out), "--data", str(data), "--out", str(tmp_path / "w")]) == 2
     assert "--refit" in capsys.readouterr().err
     for bad in ("-1", "nan"):  # one line naming the flag, before any loading
-        assert main(["variation", "--model", str(model), "--data", str(data), "--blur-copies", bad,
-                     "--out", str(tmp_path / "w")]) == 2
-        err = capsys.readouterr().err
-        assert "--blur-copies" in err and len(err.strip().splitlines()) == 1
+        refused_naming(capsys, "--blur-copies", bad, model, data, tmp_path / "w")
