@@ -1,7 +1,7 @@
 """Rule 16: the variation model's three channels whitened at each place (rule.md; the page
-docs/results/2026-11-25-channel-covariance.md).
+docs/results/2026-11-25-channels-and-pooling.md).
 
-    PYTHONPATH=. OMP_NUM_THREADS=2 .venv/bin/python docs/results/2026-11-25-channel-covariance/whiten.py \
+    PYTHONPATH=. OMP_NUM_THREADS=2 .venv/bin/python docs/results/2026-11-25-channels-and-pooling/whiten.py \
         data/line-polar-train data/line-polar-val data/line-polar-heldout data/line-polar-heldout-212 OUT.json
 
 Refits the shipped variation model on TRAIN's good train parts (as `station variation` does); its fit returns the
@@ -137,7 +137,8 @@ def main() -> None:
     xv, lv, kv, _ = load(val_dir, "val")
     sv_maps, jv, zv = signed_maps(model, xv)
     val = {n: st.scores(sv_maps, jv, eroded) for n, st in stats.items()}
-    print(f"check: shipped statistic recomputed vs zmaps on validation: max |diff| {np.abs(val['shipped'] - zv).max():.3g}"
+    print("check: shipped statistic recomputed vs zmaps on validation: "
+          f"max |diff| {np.abs(val['shipped'] - zv).max():.3g}"
           f" (median score {np.median(zv):.2f}); AUROC {roc_auc_score(lv, zv):.4f} vs "
           f"{roc_auc_score(lv, val['shipped']):.4f}", flush=True)
     result: dict = {"val": {}, "set 212": {}, "set 202 shifts": {}}
