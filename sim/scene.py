@@ -69,6 +69,11 @@ class SceneConfig:
     ``pi L (1 + 2/3 g n_x)``, so a tilt of the surface along x changes intensity to first order (at g = 0.8 a 3 deg
     dent flank by 2.8 %, a 10 deg one by 9 %): a segmented dome with one side's LEDs dimmed does it in one shot. The
     mean over the hemisphere stays ``ambient_radiance``."""
+    ambient_gradient_azimuth_deg: float = 0.0
+    """Where the gradient dome's bright side lies: degrees from world +x toward +y (0: +x, as above; 180: -x), so
+    ``w_x`` above becomes the direction's component along that azimuth. Two frames of one part under azimuths 0 and
+    180 are the two halves of a segmented dome lit in turn (photometric stereo): their sum is the uniform dome's
+    frame, their normalised difference the surface's tilt along x."""
     colour: tuple[float, float] = (0.0, 1.0)
     background_colour: tuple[float, float] | None = None
     """Reflectance range of the ground's colours; None = ``colour``'s."""
@@ -115,6 +120,9 @@ class SceneConfig:
                            f"{self.camera_polar_deg[1]} degrees)")
         if self.ambient_gradient > 1:
             raise SimError(f"scene.ambient_gradient must be in [0, 1], got {self.ambient_gradient}")
+        if self.ambient_gradient_azimuth_deg >= 360:
+            raise SimError(f"scene.ambient_gradient_azimuth_deg must be in [0, 360), got "
+                           f"{self.ambient_gradient_azimuth_deg}")
         if self.max_depth < 2:
             raise SimError(f"scene.max_depth must be >= 2, got {self.max_depth}")
 
@@ -137,7 +145,7 @@ class SceneConfig:
 
 
 LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose", "background_colour",
-              "ambient_gradient")
+              "ambient_gradient", "ambient_gradient_azimuth_deg")
 """SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
 
@@ -270,6 +278,8 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
                   "cutoff_deg": cfg.light_cutoff_deg},
         "ambient_radiance": cfg.ambient_radiance,
         **({"ambient_gradient": cfg.ambient_gradient} if cfg.ambient_gradient else {}),  # older sets lack it
+        **({"ambient_gradient_azimuth_deg": cfg.ambient_gradient_azimuth_deg}
+           if cfg.ambient_gradient and cfg.ambient_gradient_azimuth_deg else {}),
         "materials": materials,
         "background": background,
     }
@@ -397,9 +407,10 @@ GRADIENT_ROWS = 64
 """Rows of the gradient dome's envmap (a smooth cosine: 64 rows are within 0.1 % of it)."""
 
 
-def ambient_dict(radiance: float, gradient: float) -> dict:
-    """The environment light (``SceneConfig.ambient_radiance``, ``ambient_gradient``): Mitsuba's constant emitter
-    when uniform, else an envmap whose rows run along its local +y, turned so that local +y is world +x."""
+def ambient_dict(radiance: float, gradient: float, azimuth_deg: float = 0.0) -> dict:
+    """The environment light (``SceneConfig.ambient_radiance``, ``ambient_gradient``,
+    ``ambient_gradient_azimuth_deg``): Mitsuba's constant emitter when uniform, else an envmap whose rows run along
+    its local +y, turned about world z so that local +y points ``azimuth_deg`` from world +x toward +y."""
     import mitsuba as mi
 
     if not gradient:
@@ -408,7 +419,7 @@ def ambient_dict(radiance: float, gradient: float) -> dict:
     rows = (1.0 + gradient * np.cos(theta)).astype(np.float32)
     bitmap = mi.Bitmap(np.repeat(rows[:, None, None], 2 * GRADIENT_ROWS, 1))
     return {"type": "envmap", "bitmap": bitmap, "scale": radiance,
-            "to_world": mi.ScalarTransform4f().rotate(axis=[0, 0, 1], angle=-90)}
+            "to_world": mi.ScalarTransform4f().rotate(axis=[0, 0, 1], angle=azimuth_deg - 90)}
 
 
 def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,
@@ -435,7 +446,8 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
                          "to_world": mi.ScalarTransform4f().look_at(origin=light["origin"], target=light["target"],
                                                                     up=[0, 0, 1])}
         if params["ambient_radiance"] > 0:
-            scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0))
+            scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0),
+                                            params.get("ambient_gradient_azimuth_deg", 0.0))
             scene["ambient"]["sampling_weight"] = ambient_w
     else:
         scene["ground"] = {"type": "rectangle",

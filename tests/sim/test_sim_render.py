@@ -79,10 +79,11 @@ def test_specular_sphere_aolp_is_tangential_and_normals_in_camera_frame(variant:
     assert np.degrees(np.median(np.abs(err))) < 5
 
 
-@pytest.mark.parametrize("gradient", [0.0, 0.8])
-def test_gradient_dome_lights_the_plus_x_side(variant: str, gradient: float) -> None:
+@pytest.mark.parametrize(("gradient", "azimuth"), [(0.0, 0.0), (0.8, 0.0), (0.8, 180.0)])
+def test_gradient_dome_lights_the_plus_x_side(variant: str, gradient: float, azimuth: float) -> None:
     """``SceneConfig.ambient_gradient``: a matte sphere under the dome has S0 = c (1 + 2/3 g n_x) (irradiance of
-    the radiance L (1 + g w_x) over a normal's hemisphere), its +x side (image right) the brighter."""
+    the radiance L (1 + g w_x) over a normal's hemisphere), its +x side (image right) the brighter; with
+    ``ambient_gradient_azimuth_deg`` 180 the -x side, c (1 - 2/3 g n_x)."""
     import mitsuba as mi
 
     from sim.render import _channels as render_channels
@@ -92,7 +93,7 @@ def test_gradient_dome_lights_the_plus_x_side(variant: str, gradient: float) -> 
     cam = {"origin": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov_x_deg": 30}
     scene = load_scene({"type": "scene", "sensor": sensor_dict(cam, 64, 64, 64),
                         "ball": {"type": "sphere", "radius": 0.7, "bsdf": {"type": "diffuse"}},
-                        "env": ambient_dict(0.7, gradient)})
+                        "env": ambient_dict(0.7, gradient, azimuth)})
     mi.render(scene, integrator=_integrator("stokes"), spp=64)
     s0 = render_channels(scene)["S0"][..., 0]
     mi.render(scene, integrator=_integrator("aov"), spp=1)
@@ -100,7 +101,7 @@ def test_gradient_dome_lights_the_plus_x_side(variant: str, gradient: float) -> 
     nx = (ch["nn"].reshape(64, 64, 3) @ camera_axes(cam).T)[..., 0]  # camera x is world x here
     on = (np.rint(ch["sid"]) > 0) & (np.abs(nx) < 0.8)
     slope, c = np.polyfit(nx[on], s0[on], 1)
-    assert slope / c == pytest.approx(2 / 3 * gradient, abs=0.05)
+    assert slope / c == pytest.approx(2 / 3 * gradient * np.cos(np.radians(azimuth)), abs=0.05)
     assert c == pytest.approx(0.7 / 2, rel=0.05)  # albedo 0.5 under a mean radiance of 0.7: the mean is kept
 
 

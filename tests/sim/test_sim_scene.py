@@ -46,6 +46,10 @@ def test_gradient_dome_is_in_the_sample_only_when_set() -> None:
     graded = sample_scene(np.random.default_rng(0), SceneConfig(ambient_gradient=0.8), usb_brick())
     assert "ambient_gradient" not in plain and graded.pop("ambient_gradient") == 0.8
     assert json.dumps(graded, sort_keys=True) == json.dumps(plain, sort_keys=True)  # no draw changes
+    flipped = sample_scene(np.random.default_rng(0),
+                           SceneConfig(ambient_gradient=0.8, ambient_gradient_azimuth_deg=180.0), usb_brick())
+    assert flipped.pop("ambient_gradient_azimuth_deg") == 180.0 and flipped.pop("ambient_gradient") == 0.8
+    assert json.dumps(flipped, sort_keys=True) == json.dumps(plain, sort_keys=True)  # the same part, pose and draws
 
 
 def test_line_preset_fixes_pose_orientation_and_ground() -> None:
@@ -75,6 +79,8 @@ def test_line_preset_fixes_pose_orientation_and_ground() -> None:
     ("yaw_deg", (10.0, -10.0), "scene.yaw_deg"),
     ("ambient_gradient", 1.5, "scene.ambient_gradient"),
     ("ambient_gradient", -0.5, "scene.ambient_gradient"),
+    ("ambient_gradient_azimuth_deg", 360.0, "scene.ambient_gradient_azimuth_deg"),
+    ("ambient_gradient_azimuth_deg", -90.0, "scene.ambient_gradient_azimuth_deg"),
 ])
 def test_bad_ranges_name_the_key(key: str, value, words: str) -> None:
     with pytest.raises(SimError, match=words):
