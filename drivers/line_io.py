@@ -26,7 +26,8 @@ in order, after the reconnect. A decision that still has no ACK after its resend
 closed, is reported undelivered: an ERROR log line and ``on_undelivered(part_id, line)``, and it is listed by
 ``undelivered()``. With ``require_ack=False`` a decision counts as delivered once written. ``outcomes()`` hands
 out each settled decision once: (part id, acknowledged or given up, when, the decision as sent). A PASS reported
-with a ``deadline`` that passes before it could be written goes out as ``REJECT <id> late_link``.
+with a ``deadline`` is never written as PASS after it: sent, resent or sent again after a reconnect once the
+deadline has passed, it goes out as ``REJECT <id> late_link``.
 
 Faults: the peer disappearing shows as ``SerialException``/``OSError`` on read or write; the link is closed,
 logged once, and reopened with back-off (``reconnect_backoff_s`` doubling to ``reconnect_backoff_max_s``).
@@ -147,7 +148,7 @@ class _Pending:
     line: bytes
     sent_at: float | None = None  # monotonic time of the last send; None = not yet sent
     sends: int = 0
-    deadline: float | None = None  # perf_counter time after which a PASS never sent goes out as REJECT
+    deadline: float | None = None  # perf_counter time after which a PASS is written as REJECT (_too_late_to_pass)
 
     @property
     def decision(self) -> Verdict:
@@ -242,8 +243,9 @@ class LineIO:
     def report(self, part_id: str, decision: Verdict | str, reason: str | None,
                deadline: float | None = None) -> bool | None:
         """Queue PASS/REJECT for ``part_id``; False: sent once the link is up, acknowledged later (``outcomes``).
-        ``deadline`` (``time.perf_counter()`` s): a PASS still unsent then (the link was down) goes out as
-        ``REJECT <id> late_link`` instead, since the part has moved on. Never blocks and never drops."""
+        ``deadline`` (``time.perf_counter()`` s): a PASS written after it (the link was down, or the PLC did not
+        acknowledge and it is resent) goes out as ``REJECT <id> late_link`` instead, since the part has moved on.
+        Never blocks and never drops."""
         line = decision_line(part_id, decision, reason)
         with self._lock:
             self.stats.decisions += 1
@@ -419,6 +421,7 @@ class LineIO:
                     self._inflight.pop(p.part_id, None)
                 self._give_up(p, f"no ACK after {p.sends} sends")
             else:
+                self._too_late_to_pass(p)
                 self._write(p.line)
                 p.sent_at, p.sends = time.monotonic(), p.sends + 1
                 self.stats.resent += 1
@@ -427,11 +430,7 @@ class LineIO:
                 if not self._outbox:
                     return
                 p = self._outbox[0]
-                if p.sends == 0 and p.deadline is not None and p.decision == Verdict.PASS \
-                        and time.perf_counter() > p.deadline:  # never sent in time: the part has moved on
-                    p.line = decision_line(p.part_id, Verdict.REJECT, "late link")  # link down or I/O thread behind
-                    log.warning("PLC link %s: PASS %s could not be sent before its deadline: sent as REJECT",
-                                self.config.port, p.part_id)
+                self._too_late_to_pass(p)
             self._write(p.line)  # raises on a dead link: p stays queued
             p.sent_at, p.sends = time.monotonic(), p.sends + 1
             self.stats.sent += 1
@@ -441,6 +440,15 @@ class LineIO:
                     self._inflight[p.part_id] = p
                 else:
                     self._outcomes.append((p.part_id, True, time.perf_counter(), p.decision))
+
+    def _too_late_to_pass(self, p: _Pending) -> None:
+        """A PASS about to be written (first send, resend, or again after a reconnect) once its part's deadline has
+        passed becomes ``REJECT <id> late_link``: the part has moved on, and a PASS reaching the PLC now would pass
+        a part nobody judged in time (or, resent, one whose first PASS the PLC may never have had)."""
+        if p.deadline is not None and p.decision == Verdict.PASS and time.perf_counter() > p.deadline:
+            p.line = decision_line(p.part_id, Verdict.REJECT, "late link")
+            log.warning("PLC link %s: PASS %s not %s before its deadline: sent as REJECT", self.config.port,
+                        p.part_id, "acknowledged" if p.sends else "sent")
 
     def _give_up(self, p: _Pending, why: str) -> None:
         text = p.line.decode().strip()

@@ -540,9 +540,10 @@ class RecordKeeper:
                 for p in written:
                     row_id, _, decided = self._row_of[p]
                     if decided == Verdict.PASS and self._unsettled[p][2] != Verdict.PASS:
-                        self.log.amend_decision(row_id, Verdict.REJECT, "not answered in time: the PASS could not go "
-                                                                  "out before the part's deadline (PLC link down or "
-                                                                  "behind) and went out as a REJECT")
+                        self.log.amend_decision(row_id, Verdict.REJECT, "not answered in time: the PASS was not "
+                                                                  "delivered before the part's deadline (PLC link "
+                                                                  "down, behind or not acknowledging) and went out "
+                                                                  "as a REJECT")
                         self._row_of[p] = (row_id, self._row_of[p][1], Verdict.REJECT)
                 self.log.set_delivered({self._row_of[p][0]: (True, 1e3 * (self._unsettled[p][1] - self._row_of[p][1]))
                                         for p in written if self._unsettled[p][0]})

@@ -263,3 +263,39 @@ def test_a_pass_that_cannot_go_out_before_its_deadline_goes_out_as_a_reject(pair
         assert io.flush(2.0)
         assert [(p, ok, sent) for p, ok, _, sent in io.outcomes()] == [("7", True, "reject"), ("8", True, "pass")]
     peer.close()
+
+
+def test_a_pass_unacknowledged_by_its_deadline_is_never_sent_again_as_a_pass(pair: Socat) -> None:
+    """A PASS the PLC did not acknowledge is resent; once its part's deadline has passed, a resend as PASS would reach
+    the PLC after the part moved on (fail open): it goes out as REJECT late_link, and the outcome says reject."""
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a, ack_timeout_ms=200, max_resends=3)) as io:
+        io.report("11", "pass", None, deadline=time.perf_counter() + 0.1)
+        assert peer.lines(2, timeout_s=2) == ["PASS 11", "REJECT 11 late_link"]  # the ACK of the PASS never came
+        peer.send(b"ACK 11\n")
+        assert io.flush(2.0)
+        assert [(p, ok, sent) for p, ok, _, sent in io.outcomes()] == [("11", True, "reject")]
+    peer.close()
+
+
+def test_a_pass_in_flight_when_the_link_drops_is_not_resent_as_a_pass_after_its_deadline(pair: Socat) -> None:
+    """Decisions in flight when the link drops are sent again after the reconnect; a PASS whose deadline passed
+    meanwhile goes out as REJECT late_link."""
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a, ack_timeout_ms=5000)) as io:
+        io.report("12", "pass", None, deadline=time.perf_counter() + 0.2)
+        assert peer.lines(1) == ["PASS 12"]
+        peer.close()
+        pair.kill()
+        deadline = time.monotonic() + 3
+        while io.link_up and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert not io.link_up
+        time.sleep(0.3)  # down past the part's deadline
+        pair.start()
+        peer = Peer(pair.b)
+        assert peer.lines(1, timeout_s=5) == ["REJECT 12 late_link"]
+        peer.send(b"ACK 12\n")
+        assert io.flush(2.0)
+        assert [(p, ok, sent) for p, ok, _, sent in io.outcomes()] == [("12", True, "reject")]
+    peer.close()
