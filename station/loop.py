@@ -53,6 +53,15 @@ log = logging.getLogger(__name__)
 MAX_LOST_ROWS = 10000
 """At most this many rows for one gap in frame ids (a camera reset can jump its counter by millions)."""
 
+MAX_HELD_GAP = 16
+"""Line trigger: the most frames that may go missing between two frames for the newer one to be kept for the part it
+belongs to (``Station._grab_for``); a larger jump in frame ids (a reset or misread counter) cannot be matched to a
+part, and the frame is dropped (its part rejected, the next parts resynchronise)."""
+
+
+class FramesLost(Exception):
+    """Line trigger: the frame of the part being grabbed was lost in transport (a gap in frame ids)."""
+
 
 class LineLink(Protocol):
     """The station's side of the PLC link (``drivers.line_io.LineIO`` over a serial port, the simulated PLC
@@ -198,6 +207,9 @@ class Station:
         self._stop = threading.Event()
         self._dropped: deque[Part] = deque()
         self._last_frame: tuple[int, float] | None = None  # (frame id, perf_counter) of the newest frame
+        self._line_last_id: int | None = None  # line trigger: the newest frame id taken from the camera
+        self._held: Frame | None = None  # line trigger: a frame kept for the part it belongs to, after lost ones
+        self._owed = 0  # line trigger: parts still to come whose frames were lost before the held one
         self._grabbed = 0
         self._count_lock = threading.Lock()
         self._counter = 0
@@ -221,25 +233,44 @@ class Station:
         else:
             self._counter += 1
             part = Part(str(self._counter), time.perf_counter())
+        if self._owed:
+            self._owed -= 1
+            part.error = f"no frame for part {part.part_id}: its frame was lost in transport (a gap in frame ids)"
+            part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
+            return part
         try:
             part.frame = self._grab_for(part)
+        except FramesLost as exc:
+            part.error = f"no frame for part {part.part_id}: {exc}"
         except CameraTimeout as exc:
             if not self.link.triggered:  # free run: no part was announced, nothing to judge
                 log.warning("grab timeout without a trigger: %s", exc)
                 return None
             part.error = f"no frame for part {part.part_id}: {exc}"
+            if self._line_last_id is not None:  # line trigger: its frame id, if the camera made it, is spent
+                self._line_last_id += 1
         except CameraError as exc:  # lost camera (after the driver's reconnects): judge this part, then stop
             part.error = f"camera error for part {part.part_id}: {exc}"
             self.fatal = str(exc)
             self._stop.set()
+        except Exception as exc:  # a frame that cannot be read, a trigger call that failed: this part only
+            if not self.link.triggered:
+                log.warning("frame not usable without a trigger: %s: %s", type(exc).__name__, exc)
+                return None
+            log.warning("no usable frame for part %s: %s: %s", part.part_id, type(exc).__name__, exc)
+            part.error = f"no usable frame for part {part.part_id}: {type(exc).__name__}: {exc}"
         part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
         return part
 
     def _grab_for(self, part: Part) -> Frame:
         """The frame of ``part``: triggered, frames completed before the part could have been imaged are an earlier
         part's (one that arrived after its own part timed out) and are skipped, never judged for this part.
-        Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host."""
+        Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host.
+        Line trigger: frames are the parts' in order, so a gap in frame ids means the frames of this part and of
+        the parts after it were lost in transport: FramesLost for this part, the owed parts are rejected without a
+        grab, and the frame is held for its own part (``MAX_HELD_GAP``)."""
         software = self.camera.config.trigger == "software"
+        line = self.link.triggered and self.camera.config.trigger.startswith("line")
         if software:
             earliest = time.perf_counter()
             self.camera.trigger()
@@ -248,7 +279,12 @@ class Station:
         deadline = time.perf_counter() + self.grab_timeout_ms / 1e3
         while True:
             remaining_ms = max(1, int(1e3 * (deadline - time.perf_counter())))
-            frame = self.camera.grab(remaining_ms)
+            if self._held is not None:  # already matched to this part by its frame id
+                frame, self._held = self._held, None
+            else:
+                frame = self.camera.grab(remaining_ms)
+                if line:
+                    self._check_line_frame(frame)
             if not self.link.triggered or frame.host_timestamp_ns <= 0:
                 return frame
             completed = time.perf_counter() - (time.time_ns() - frame.host_timestamp_ns) / 1e9
@@ -259,6 +295,21 @@ class Station:
                         frame.frame_id, 1e3 * (earliest - completed), part.part_id)
             if time.perf_counter() >= deadline:
                 raise CameraTimeout(f"no frame of its own within {self.grab_timeout_ms} ms (only earlier parts')")
+
+    def _check_line_frame(self, frame: Frame) -> None:
+        """Line trigger: raise FramesLost when frame ids are missing before ``frame`` (held for its own part when
+        at most ``MAX_HELD_GAP`` are); a counter that restarts (a lower id, after a reconnect) starts a new run."""
+        last, self._line_last_id = self._line_last_id, frame.frame_id
+        if last is None or frame.frame_id <= last + 1:
+            return
+        missing = frame.frame_id - last - 1
+        if missing <= MAX_HELD_GAP:
+            self._held, self._owed = frame, missing - 1
+            raise FramesLost(f"its frame was lost in transport ({missing} frame id(s) missing between {last} and "
+                             f"{frame.frame_id}); frame {frame.frame_id} is kept for the part {missing} trigger(s) "
+                             "later")
+        raise FramesLost(f"frame ids jumped from {last} to {frame.frame_id}: which part frame {frame.frame_id} "
+                         "belongs to cannot be told, so it is dropped")
 
     def _note_lost_frames(self, part: Part) -> None:
         """Free run: frames missing between two frame ids never reached the host, one not-inspected row each, at

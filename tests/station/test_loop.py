@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from drivers.camera import CameraBase, CameraConfig
-from drivers.errors import CameraLost, CameraTimeout
+from drivers.errors import CameraLost, CameraTimeout, PixelFormatError
 from drivers.frame import Frame, GroundTruth
 from drivers.line_io import Trigger
 from model.priors import IMX250MZR
@@ -44,7 +44,8 @@ class ScriptedCamera(CameraBase):
         if isinstance(item, Exception):
             raise item
         self._stats.completed += 1
-        self.frame_id += 1 + (item == "gap") * 3  # "gap": three frames lost in transport before this one
+        self.frame_id += 1 + {"gap": 3, "gap1": 1}.get(item, 0)  # "gap": three frames lost in transport before this
+        # one, "gap1": one
         raw = np.full((8, 8), 200 if item == 1 else 20, np.uint8)
         return Frame(raw, "Mono8", 8, self.frame_id, 0, time.time_ns(),
                      ground_truth=GroundTruth(label=int(item == 1)))
@@ -267,6 +268,45 @@ def test_triggered_rows_are_the_parts_announced_whatever_the_frame_ids_do(tmp_pa
     station.run(max_parts=3)
     assert [r["part_id"] for r in log.rows()] == ["T0", "T1", "T2"]
     assert dict(link.reports) == {"T0": "pass", "T1": "pass", "T2": "pass"}
+
+
+def test_a_frame_lost_under_a_line_trigger_rejects_its_part_and_keeps_the_next_frame_for_its_own(tmp_path):
+    """Hardware trigger: frames are matched to parts in order, so a frame lost in transport (an incomplete GigE
+    frame) used to shift every later part onto its successor's frame: the defective T1 passed on T4's. Three frame
+    ids missing before frame 5: T1-T3's frames are lost, they are rejected, and frame 5 is T4's."""
+    link = ScriptedLink(5)
+    camera = ScriptedCamera([0, "gap"], trigger="line0")  # T0: frame 1; frames 2-4 lost; frame 5 (good)
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block")
+    station.run(max_parts=5)
+    rows = list(log.rows())
+    assert [(r["part_id"], r["decision"], r["camera_frame_id"]) for r in rows] == [
+        ("T0", "pass", 1), ("T1", "reject", None), ("T2", "reject", None), ("T3", "reject", None), ("T4", "pass", 5)]
+    assert all("lost in transport" in r["reason"] for r in rows[1:4])
+    assert dict(link.reports) == {"T0": "pass", "T1": "reject", "T2": "reject", "T3": "reject", "T4": "pass"}
+
+
+def test_a_line_triggered_part_whose_grab_timed_out_spent_its_frame_id(tmp_path):
+    """T1's frame was lost and its grab timed out (T1 rejected): frame 3 is then T2's own, not a gap to hold."""
+    link = ScriptedLink(4)
+    camera = ScriptedCamera([0, CameraTimeout("no frame"), "gap1", 1], trigger="line0")
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block")
+    station.run(max_parts=4)
+    assert [(r["part_id"], r["decision"], r["camera_frame_id"]) for r in log.rows()] == [
+        ("T0", "pass", 1), ("T1", "reject", None), ("T2", "pass", 3), ("T3", "reject", 4)]
+
+
+def test_a_frame_that_cannot_be_read_rejects_its_part_and_the_station_goes_on(tmp_path):
+    """A frame the driver cannot decode (or a trigger call that fails) is not a lost camera: the part is rejected
+    with the error and the next part is judged. It used to stop the station with the part unanswered and unlogged."""
+    link = ScriptedLink(3)
+    camera = ScriptedCamera([0, PixelFormatError("Mono12p 640x480: buffer of 10 B, need 460800 B"), 0],
+                            trigger="software")
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block")
+    station.run(max_parts=3)
+    rows = list(log.rows())
+    assert [(r["part_id"], r["decision"]) for r in rows] == [("T0", "pass"), ("T1", "reject"), ("T2", "pass")]
+    assert "PixelFormatError" in rows[1]["reason"] and "buffer of 10 B" in rows[1]["reason"]
+    assert dict(link.reports) == {"T0": "pass", "T1": "reject", "T2": "pass"} and station.fatal is None
 
 
 def test_a_frame_counter_jump_in_free_run_adds_no_more_rows_than_frames_possible(tmp_path):
