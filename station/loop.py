@@ -22,6 +22,7 @@ acknowledgements are awaited and recorded, and the link is closed. Rules and fau
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
 import logging
@@ -29,7 +30,7 @@ import signal
 import threading
 import time
 from collections import Counter, deque
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from typing import Protocol
 
@@ -508,11 +509,19 @@ class Station:
 
     def run_until_signal(self, max_parts: int | None = None) -> LiveStats:
         """``run`` with SIGINT/SIGTERM mapped to a clean ``stop`` (main thread only)."""
+        with self.stop_on_signals():
+            return self.run(max_parts)
+
+    @contextlib.contextmanager
+    def stop_on_signals(self) -> Iterator[None]:
+        """SIGINT/SIGTERM call ``stop`` while inside (main thread only): the queue drains and every trigger until
+        the port closes is answered and logged. ``station run --viewer`` runs the station in a thread beside the
+        Qt loop under it (the viewer's timer lets Python run the handler)."""
         previous = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
         for s in previous:
             signal.signal(s, lambda *_: self.stop())
         try:
-            return self.run(max_parts)
+            yield
         finally:
             for s, handler in previous.items():
                 signal.signal(s, handler)

@@ -81,10 +81,11 @@ def run(args: argparse.Namespace) -> int:
             from station.viewer import run_viewer
 
             worker = threading.Thread(target=station.run, args=(args.frames,), name="station", daemon=True)
-            worker.start()
-            run_viewer(viewer, done=lambda: not worker.is_alive())  # until the window closes or the run ends
-            station.stop()
-            worker.join()
+            with station.stop_on_signals():  # Ctrl-C / SIGTERM stop the station; the window then closes itself
+                worker.start()
+                run_viewer(viewer, done=lambda: not worker.is_alive())  # until the window closes or the run ends
+                station.stop()
+                worker.join()
             stats = station.stats
         camera_stats = camera.statistics().as_dict()
     summary = {**stats.summary(), "confusion": dict(stats.confusion), "camera": camera_stats,

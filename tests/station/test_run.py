@@ -132,3 +132,42 @@ def test_viewer_run_ends_with_the_frames(setup, monkeypatch) -> None:
     cfg = write_config(tmp, model, ds)
     assert main(["run", "--config", str(cfg), "--frames", "4", "--viewer"]) == 0  # returns: the window closed itself
     assert sqlite3.connect(tmp / "log.sqlite").execute("SELECT COUNT(*) FROM inspections").fetchone()[0] == 4
+
+
+def test_viewer_run_stops_cleanly_on_sigterm(setup) -> None:
+    """With ``--viewer`` the station runs beside the Qt loop; SIGTERM used to kill the process (no summary, parts in
+    flight unanswered). Now it stops as without a viewer: every trigger answered and logged, the summary written."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    pytest.importorskip("pyqtgraph")
+    tmp, model, ds = setup
+    cfg = write_config(tmp, model, ds)
+    env = {**os.environ, "QT_QPA_PLATFORM": "offscreen", "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
+    proc = subprocess.Popen([sys.executable, "-m", "station", "run", "--config", str(cfg), "--viewer",
+                             "--summary-json", str(tmp / "s.json")], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        rows = 0
+        while rows < 3 and time.monotonic() < deadline and proc.poll() is None:
+            time.sleep(0.2)
+            if (tmp / "log.sqlite").exists():
+                try:
+                    rows = sqlite3.connect(tmp / "log.sqlite").execute("SELECT COUNT(*) FROM inspections").fetchone()[0]
+                except sqlite3.OperationalError:
+                    rows = 0
+        assert rows >= 3, proc.stderr.read() if proc.poll() is not None else "no rows in time"
+        proc.send_signal(signal.SIGTERM)
+        out, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 0, err[-2000:]
+    assert "summary:" in out
+    summary = json.loads((tmp / "s.json").read_text())
+    logged = sqlite3.connect(tmp / "log.sqlite").execute("SELECT COUNT(*) FROM inspections").fetchone()[0]
+    assert summary["plc_link"]["triggers"] == logged >= 3  # every part announced has its row
