@@ -462,7 +462,8 @@ class Station:
 
     @property
     def unrecorded_rows(self) -> int:
-        """Rows never written (the disk stayed full; each went to the process log as JSON at shutdown)."""
+        """Rows never written, or left saying pass for a part answered REJECT (the disk stayed full; each went to the
+        process log at shutdown: ``UNRECORDED ROW`` as JSON, ``UNRECORDED AMENDMENT``)."""
         return self._records.lost_rows
 
     def run(self, max_parts: int | None = None, progress_every_s: float = 5.0) -> LiveStats:
@@ -617,7 +618,8 @@ class RecordKeeper:
 
     def give_up(self) -> None:
         """At shutdown: rows still unwritten go to the process log (stderr), one JSON line each, so that no record
-        vanishes without a trace; their parts were rejected at the PLC."""
+        vanishes without a trace; their parts were rejected at the PLC. A row that says pass for a part answered
+        REJECT, which could not be corrected, is named there too (``UNRECORDED AMENDMENT``)."""
         with self._lock:
             try:
                 self._flush_backlog()
@@ -628,6 +630,13 @@ class RecordKeeper:
                 log.error("UNRECORDED ROW %s", json.dumps(dataclasses.asdict(r)))
             self.lost_rows += len(self._backlog)
             self._backlog.clear()
+            self.settle([])  # a last try at the PLC's answers still waiting for the log (it logs its own error)
+            for p, (_, _, sent) in self._unsettled.items():
+                row = self._row_of.get(p)
+                if row is not None and row[2] == Verdict.PASS and sent != Verdict.PASS:
+                    log.error("UNRECORDED AMENDMENT row %d part %s says pass but was answered %s at the PLC: the row "
+                              "could not be corrected", row[0], p, sent)
+                    self.lost_rows += 1
 
     def _keep(self, entry: tuple[InspectionRecord, float, bool]) -> None:
         if len(self._backlog) >= self.MAX_BACKLOG:

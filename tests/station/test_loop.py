@@ -507,6 +507,27 @@ def test_a_disk_that_stays_full_leaves_every_unwritten_row_in_the_process_log(tm
     assert len(unrecorded) == 3 and '"part_id": "T4"' in unrecorded[-1]
 
 
+def test_a_pass_row_that_cannot_be_corrected_to_a_reject_is_reported_at_shutdown(tmp_path, caplog):
+    """A part passed in its row but answered REJECT (it turned late, its PASS went out as late_link): when the disk
+    stays full the row cannot be amended, and it used to stay a silent, untrue pass. At shutdown it is reported in
+    the process log and counted."""
+    from station.inspection_log import InspectionRecord, LogError
+    from station.loop import RecordKeeper
+
+    class NoAmend(InspectionLog):
+        def amend_decision(self, row_id, decision, reason):
+            raise LogError(f"inspection log {self.path}: cannot amend row {row_id}: database or disk is full")
+
+    log = NoAmend(tmp_path / "log.sqlite")
+    keeper = RecordKeeper(log)
+    keeper.write(InspectionRecord(decision="pass", time_unix_s=1.0, part_id="P7"), True, time.perf_counter())
+    keeper.settle([("P7", True, time.perf_counter(), "reject")])  # the PLC acknowledged a REJECT for P7
+    keeper.give_up()
+    wrong = [r.message for r in caplog.records if r.message.startswith("UNRECORDED AMENDMENT")]
+    assert len(wrong) == 1 and "P7" in wrong[0] and "reject" in wrong[0] and keeper.lost_rows == 1
+    log.close()
+
+
 def test_images_never_take_the_room_the_log_needs(tmp_path):
     from station.reject_store import RejectStore
 
