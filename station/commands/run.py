@@ -58,6 +58,9 @@ def run(args: argparse.Namespace) -> int:
     detector = load_detector(cfg)
     print(f"model {detector.model_id}: priors {', '.join(detector.config.priors)}, threshold "
           f"{detector.threshold:.4g}, warm-up {detector.warm_up():.0f} ms per part on {detector.device}")
+    if detector.threshold >= 1.0:  # scores lie in [0, 1] and reject when above the threshold
+        log.warning("threshold %.4g rejects no part on its score: only parts that cannot be judged are rejected "
+                    "([decision] threshold or the model's own)", detector.threshold)
     with ExitStack() as stack:
         inspection_log = stack.enter_context(InspectionLog(cfg.log.path))
         rejects = RejectStore(cfg.log.image_dir) if cfg.log.save_rejects else None

@@ -171,3 +171,12 @@ def test_viewer_run_stops_cleanly_on_sigterm(setup) -> None:
     summary = json.loads((tmp / "s.json").read_text())
     logged = sqlite3.connect(tmp / "log.sqlite").execute("SELECT COUNT(*) FROM inspections").fetchone()[0]
     assert summary["plc_link"]["triggers"] == logged >= 3  # every part announced has its row
+
+
+def test_a_threshold_of_one_is_warned_about(setup, caplog) -> None:
+    """Scores lie in [0, 1]: at threshold 1 no part is rejected on its score (the fault bench uses it on purpose;
+    on a line it would pass every defect), so the station says so when it starts."""
+    tmp, model, ds = setup
+    cfg = write_config(tmp, model, ds, "[decision]\nthreshold = 1.0\n")
+    assert main(["run", "--config", str(cfg), "--frames", "1"]) == 0
+    assert any("rejects no part on its score" in r.message for r in caplog.records)
