@@ -60,6 +60,12 @@ belongs to (``Station._grab_for``); a larger jump in frame ids (a reset or misre
 part, and the frame is dropped (its part rejected, the next parts resynchronise)."""
 
 
+MAX_UNUSABLE_FRAMES = 50
+"""Grabs in a row that may fail with something other than a timeout or a lost camera (a frame that cannot be decoded,
+a trigger call that fails) before the station stops as for a lost camera: each such part is rejected with the error,
+and a camera that delivers nothing usable must not keep the line running on rejects (or spin in free run)."""
+
+
 class FramesLost(Exception):
     """Line trigger: the frame of the part being grabbed was lost in transport (a gap in frame ids)."""
 
@@ -211,6 +217,7 @@ class Station:
         self._line_last_id: int | None = None  # line trigger: the newest frame id taken from the camera
         self._held: Frame | None = None  # line trigger: a frame kept for the part it belongs to, after lost ones
         self._owed = 0  # line trigger: parts still to come whose frames were lost before the held one
+        self._unusable = 0  # grabs in a row that raised something other than a timeout or a lost camera
         self._grabbed = 0
         self._count_lock = threading.Lock()
         self._counter = 0
@@ -255,11 +262,18 @@ class Station:
             self.fatal = str(exc)
             self._stop.set()
         except Exception as exc:  # a frame that cannot be read, a trigger call that failed: this part only
+            self._unusable += 1
+            why = f"{type(exc).__name__}: {exc}"
+            if self._unusable >= MAX_UNUSABLE_FRAMES:  # a camera that gives nothing usable is a lost camera
+                self.fatal = f"{self._unusable} grabs in a row gave no usable frame, the last: {why}"
+                self._stop.set()
             if not self.link.triggered:
-                log.warning("frame not usable without a trigger: %s: %s", type(exc).__name__, exc)
+                log.warning("frame not usable without a trigger: %s", why)
                 return None
-            log.warning("no usable frame for part %s: %s: %s", part.part_id, type(exc).__name__, exc)
-            part.error = f"no usable frame for part {part.part_id}: {type(exc).__name__}: {exc}"
+            log.warning("no usable frame for part %s: %s", part.part_id, why)
+            part.error = f"no usable frame for part {part.part_id}: {why}"
+        else:
+            self._unusable = 0
         part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
         return part
 

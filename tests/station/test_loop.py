@@ -285,6 +285,21 @@ def test_a_frame_lost_under_a_line_trigger_rejects_its_part_and_keeps_the_next_f
     assert dict(link.reports) == {"T0": "pass", "T1": "reject", "T2": "reject", "T3": "reject", "T4": "pass"}
 
 
+def test_a_camera_that_gives_only_unreadable_frames_stops_the_station(tmp_path):
+    """One unreadable frame rejects its part; MAX_UNUSABLE_FRAMES in a row stop the station as a lost camera does,
+    every part announced answered and logged."""
+    from station.loop import MAX_UNUSABLE_FRAMES
+
+    n = MAX_UNUSABLE_FRAMES + 5
+    link = ScriptedLink(n)
+    camera = ScriptedCamera([PixelFormatError("truncated buffer")] * n, trigger="software")
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block")
+    station.run(max_parts=n)
+    assert station.fatal and "no usable frame" in station.fatal and "truncated buffer" in station.fatal
+    rows = list(log.rows())
+    assert len(rows) == len(link.reports) == n and all(r["decision"] == "reject" for r in rows)
+
+
 def test_a_line_triggered_part_whose_grab_timed_out_spent_its_frame_id(tmp_path):
     """T1's frame was lost and its grab timed out (T1 rejected): frame 3 is then T2's own, not a gap to hold."""
     link = ScriptedLink(4)
