@@ -59,7 +59,6 @@ MAX_HELD_GAP = 16
 belongs to (``Station._grab_for``); a larger jump in frame ids (a reset or misread counter) cannot be matched to a
 part, and the frame is dropped (its part rejected, the next parts resynchronise)."""
 
-
 MAX_UNUSABLE_FRAMES = 50
 """Grabs in a row that may fail with something other than a timeout or a lost camera (a frame that cannot be decoded,
 a trigger call that fails) before the station stops as for a lost camera: each such part is rejected with the error,
