@@ -2,11 +2,13 @@
 docs/results/2026-11-25-photometric-stereo.md).
 
     PYTHONPATH=. OMP_NUM_THREADS=2 .venv/bin/python docs/results/2026-11-25-photometric-stereo/photometric.py OUT.json
+        [--four]
 
 Sets (same seeds, so the same parts, poses, defects, exposure and stray light): data/uniform-{good,heldout} (the
 uniform dome), data/gradient-{good,heldout} (bright at +x), data/gradient-minus-{good,heldout} (bright at -x).
 Each row is a variation model with the shipped recipe fitted on the good set's 210 train parts, thresholds from its
-90 val and test parts, scored on the held-out set's 300 parts (``narrow-lines/compare.py``'s method).
+90 val and test parts, scored on the held-out set's 300 parts (``narrow-lines/compare.py``'s method). ``--four``
+(rule 19) adds row E from data/gradient-{90,270}-{good,heldout} (bright at +y and -y) as well.
 """
 from __future__ import annotations
 
@@ -36,14 +38,15 @@ def load(root: str, splits: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarr
             np.concatenate([s.object_mask.numpy() for s in sets]))
 
 
-def pair(plus: np.ndarray, minus: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two frames' priors (N, 4, H, W: I, DoLP, cos 2a, sin 2a) -> (the mean of their Stokes vectors as priors, the
-    tilt t = (I+ - I-) / (I+ + I-) (N, H, W))."""
+def pair(plus: np.ndarray, minus: np.ndarray, *more: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two (or more) frames' priors (N, 4, H, W: I, DoLP, cos 2a, sin 2a) -> (the mean of their Stokes vectors as
+    priors, the tilt t = (I+ - I-) / (I+ + I-) (N, H, W) of the first two)."""
     def stokes(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         return x[:, 0], x[:, 0] * x[:, 1] * x[:, 2], x[:, 0] * x[:, 1] * x[:, 3]
 
-    (i1, a1, b1), (i2, a2, b2) = stokes(plus), stokes(minus)
-    i, s1, s2 = (i1 + i2) / 2, (a1 + a2) / 2, (b1 + b2) / 2
+    frames = [stokes(x) for x in (plus, minus, *more)]
+    (i1, _, _), (i2, _, _) = frames[:2]
+    i, s1, s2 = (sum(f[k] for f in frames) / len(frames) for k in range(3))
     length = np.hypot(s1, s2)
     dolp = np.clip(length / np.maximum(i, EPS), 0.0, 1.0)
     c = np.where(length > 0, s1 / np.maximum(length, 1e-12), 1.0)
@@ -85,12 +88,15 @@ def main() -> None:
     out = sys.argv[1]
     torch.set_num_threads(2)
     data = {}
+    four = "--four" in sys.argv
     for name, good, held in (("uniform", "data/uniform-good", "data/uniform-heldout"),
                              ("plus", "data/gradient-good", "data/gradient-heldout"),
-                             ("minus", "data/gradient-minus-good", "data/gradient-minus-heldout")):
+                             ("minus", "data/gradient-minus-good", "data/gradient-minus-heldout"),
+                             *((("up", "data/gradient-90-good", "data/gradient-90-heldout"),
+                                ("down", "data/gradient-270-good", "data/gradient-270-heldout")) if four else ())):
         data[name] = (load(good, ["train"]), load(good, ["val", "test"]), load(held, ["test"]))
     ref = data["uniform"]
-    for name in ("plus", "minus"):  # the same parts: labels, types and object masks agree
+    for name in [n for n in data if n != "uniform"]:  # the same parts: labels, types and object masks agree
         for a, b in zip(data[name], ref, strict=True):
             assert (a[1] == b[1]).all() and (a[2] == b[2]).all(), name
             print(f"{name}: object masks agree on {np.mean(a[3] == b[3]):.4f} of pixels", flush=True)
@@ -107,6 +113,13 @@ def main() -> None:
     inputs["B. pair, sum"] = summed
     inputs["C. pair, sum + tilt"] = [np.concatenate([x, t[:, None]], 1) for x, t in zip(summed, tilts, strict=True)]
     inputs["D. intensity + tilt"] = [np.stack([x[:, 0], t], 1) for x, t in zip(summed, tilts, strict=True)]
+    if four:
+        rows_e = []
+        for i in range(3):
+            x, tx = pair(*(data[n][i][0] for n in ("plus", "minus", "up", "down")))
+            ty = pair(data["up"][i][0], data["down"][i][0])[1]
+            rows_e.append(np.concatenate([x, tx[:, None], ty[:, None]], 1))
+        inputs["E. four frames"] = rows_e
     masks = ref[0][3]
     result, all_scores = {}, {}
     for name, (xt, xg, xh) in inputs.items():
@@ -114,7 +127,7 @@ def main() -> None:
             model = copy.deepcopy(shipped)
         else:
             c = xt.shape[1]
-            model = VariationModel(c, SHAPE, intensity=0, dolp=1 if c == 5 else None, aolp=2 if c == 5 else None,
+            model = VariationModel(c, SHAPE, intensity=0, dolp=1 if c >= 5 else None, aolp=2 if c >= 5 else None,
                                    box_px=shipped.box_px)
         model.fit(torch.from_numpy(xt), torch.from_numpy(masks))
         s_good, s = scores(model, xg), scores(model, xh)
@@ -124,6 +137,13 @@ def main() -> None:
             for t in (None, "dent", "scratch"):
                 r[f"gain_{t or 'all'}"], r[f"gain_{t or 'all'}_se"] = paired_gain(label, kind, all_scores["A. uniform"],
                                                                                   s, t)
+        if name == "E. four frames":
+            for t in (None, "dent", "scratch"):
+                k = f"vs_C_{t or 'all'}"
+                r[k], r[k + "_se"] = paired_gain(label, kind, all_scores["C. pair, sum + tilt"], s, t)
+            print(f"E against C: all {r['vs_C_all']:+.3f} ({r['vs_C_all_se']:.3f}) dent {r['vs_C_dent']:+.3f} "
+                  f"({r['vs_C_dent_se']:.3f}) scratch {r['vs_C_scratch']:+.3f} ({r['vs_C_scratch_se']:.3f})",
+                  flush=True)
         print(f"{name:22s} AUROC {r['auroc']:.3f}  at 1 %: {r['caught0.01']:.0%} ({r['fr0.01']:.1%})  at 5 %: "
               f"{r['caught0.05']:.0%} ({r['fr0.05']:.1%})  " + " ".join(f"{t} {r[t]:.3f}" for t in TYPES)
               + ("" if name == "A. uniform" else
