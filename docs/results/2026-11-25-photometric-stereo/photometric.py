@@ -2,13 +2,15 @@
 docs/results/2026-11-25-photometric-stereo.md).
 
     PYTHONPATH=. OMP_NUM_THREADS=2 .venv/bin/python docs/results/2026-11-25-photometric-stereo/photometric.py OUT.json
-        [--four]
+        [--four] [--line controlled]
 
 Sets (same seeds, so the same parts, poses, defects, exposure and stray light): data/uniform-{good,heldout} (the
 uniform dome), data/gradient-{good,heldout} (bright at +x), data/gradient-minus-{good,heldout} (bright at -x).
 Each row is a variation model with the shipped recipe fitted on the good set's 210 train parts, thresholds from its
 90 val and test parts, scored on the held-out set's 300 parts (``narrow-lines/compare.py``'s method). ``--four``
-(rule 19) adds row E from data/gradient-{90,270}-{good,heldout} (bright at +y and -y) as well.
+(rule 19) adds row E from data/gradient-{90,270}-{good,heldout} (bright at +y and -y) as well. ``--line controlled``
+(rule 20): the station-fixed line's sets instead, data/controlled-{uniform,minus,90,270}-{good,heldout} and
+data/gradient-controlled-{good,heldout} (bright at +x).
 """
 from __future__ import annotations
 
@@ -89,11 +91,13 @@ def main() -> None:
     torch.set_num_threads(2)
     data = {}
     four = "--four" in sys.argv
-    for name, good, held in (("uniform", "data/uniform-good", "data/uniform-heldout"),
-                             ("plus", "data/gradient-good", "data/gradient-heldout"),
-                             ("minus", "data/gradient-minus-good", "data/gradient-minus-heldout"),
-                             *((("up", "data/gradient-90-good", "data/gradient-90-heldout"),
-                                ("down", "data/gradient-270-good", "data/gradient-270-heldout")) if four else ())):
+    controlled = "controlled" in sys.argv[2:]
+    sets = ({"uniform": "controlled-uniform", "plus": "gradient-controlled", "minus": "controlled-minus",
+             "up": "controlled-90", "down": "controlled-270"} if controlled else
+            {"uniform": "uniform", "plus": "gradient", "minus": "gradient-minus", "up": "gradient-90",
+             "down": "gradient-270"})
+    for name in ("uniform", "plus", "minus", *(("up", "down") if four else ())):
+        good, held = f"data/{sets[name]}-good", f"data/{sets[name]}-heldout"
         data[name] = (load(good, ["train"]), load(good, ["val", "test"]), load(held, ["test"]))
     ref = data["uniform"]
     for name in [n for n in data if n != "uniform"]:  # the same parts: labels, types and object masks agree
