@@ -17,6 +17,7 @@ from __future__ import annotations
 import copy
 import json
 import sys
+from pathlib import Path
 
 import numpy as np
 import torch
@@ -24,20 +25,11 @@ from sklearn.metrics import roc_auc_score
 
 from model.draem.checkpoint import load_checkpoint
 from model.draem.variation import VariationModel
-from station.datasets import load_split
 
-PRIORS = ("intensity", "dolp", "aolp")
-SHAPE = (96, 192)
-TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "2026-11-25-narrow-lines"))
+from compare import SHAPE, TYPES, load, scores  # the narrowed-lines study's loading and scoring, the same method
+
 EPS = 1e-3
-
-
-def load(root: str, splits: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    sets = [load_split(root, s, PRIORS, SHAPE, roi="band", progress=False) for s in splits]
-    return (np.concatenate([s.priors.numpy() for s in sets]).astype(np.float32),
-            np.concatenate([s.label.numpy() for s in sets]),
-            np.concatenate([np.array([t or "" for t in s.defect_type]) for s in sets]),
-            np.concatenate([s.object_mask.numpy() for s in sets]))
 
 
 def pair(plus: np.ndarray, minus: np.ndarray, *more: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -55,10 +47,6 @@ def pair(plus: np.ndarray, minus: np.ndarray, *more: np.ndarray) -> tuple[np.nda
     s = np.where(length > 0, s2 / np.maximum(length, 1e-12), 0.0)
     tilt = (i1 - i2) / np.maximum(i1 + i2, EPS)
     return np.stack([i, dolp, c, s], 1).astype(np.float32), tilt.astype(np.float32)
-
-
-def scores(model: VariationModel, x: np.ndarray) -> np.ndarray:
-    return np.concatenate([model.zmaps(torch.from_numpy(x[i:i + 50])).scores.numpy() for i in range(0, len(x), 50)])
 
 
 def row(s_good: np.ndarray, s: np.ndarray, label: np.ndarray, kind: np.ndarray) -> dict:
