@@ -46,6 +46,7 @@ from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
 from station.inspection_log import InspectionLog, InspectionRecord, LogError
 from station.inspector import Inspection, Inspector
+from station.model_thread import ModelThread, NoAnswer
 from station.reject_store import RejectStore
 from station.viewer import ViewerFeed, ViewFrame
 
@@ -63,6 +64,11 @@ MAX_UNUSABLE_FRAMES = 50
 """Grabs in a row that may fail with something other than a timeout or a lost camera (a frame that cannot be decoded,
 a trigger call that fails) before the station stops as for a lost camera: each such part is rejected with the error,
 and a camera that delivers nothing usable must not keep the line running on rejects (or spin in free run)."""
+
+MAX_MODEL_BUSY_PARTS = 50
+"""Parts rejected as "model busy" while the model is still on one earlier part's frame (``station.model_thread``)
+before the station stops as for a lost camera: a model that never returns must not keep the line running on rejects.
+A model that is merely slower than the cycle answers between parts and never reaches this."""
 
 
 class FramesLost(Exception):
@@ -217,6 +223,8 @@ class Station:
         self._held: Frame | None = None  # line trigger: a frame kept for the part it belongs to, after lost ones
         self._owed = 0  # line trigger: parts still to come whose frames were lost before the held one
         self._unusable = 0  # grabs in a row that raised something other than a timeout or a lost camera
+        self._model: ModelThread | None = None  # the inspector on its own thread, while ``run`` runs
+        self._model_busy = 0  # parts rejected as "model busy" since the model took its current frame
         self._grabbed = 0
         self._count_lock = threading.Lock()
         self._counter = 0
@@ -381,7 +389,13 @@ class Station:
         inspection = None
         late_ms = part.late_ms if part.late_ms is not None else 1e3 * (time.perf_counter() - part.t_trigger)
         if part.error is None and part.frame is not None and late_ms <= self.cycle_time_ms:
-            inspection = self.inspector.inspect(part.frame)
+            assert self._model is not None
+            answer = self._model.inspect(part.part_id, part.frame, part.t_trigger + self.cycle_time_ms / 1e3)
+            if isinstance(answer, NoAnswer):
+                self._no_answer(part, answer)
+                return
+            self._model_busy = 0
+            inspection = answer
             t = time.perf_counter()
             empty = inspection.presence.reason if inspection.presence and not inspection.present else None
             decision = decide(inspection.score, self.threshold, elapsed_ms=1e3 * (t - part.t_trigger),
@@ -397,6 +411,18 @@ class Station:
         else:
             decision = decide(None, self.threshold, error=part.error or "no frame")
         self._finish(part, inspection, decision)
+
+    def _no_answer(self, part: Part, answer: NoAnswer) -> None:
+        """The model did not answer by the part's deadline, or is still on an earlier part: reject it now;
+        ``MAX_MODEL_BUSY_PARTS`` busy in a row stop the station."""
+        self._model_busy = self._model_busy + 1 if answer.busy else 0
+        if self._model_busy >= MAX_MODEL_BUSY_PARTS:
+            self.fatal = f"the model gave no answer while {self._model_busy} parts came: {answer.reason}"
+            log.error("%s: stopping", self.fatal)
+            self._stop.set()
+        decision = (decide(None, self.threshold, error=answer.reason) if answer.busy else
+                    late(1e3 * (time.perf_counter() - part.t_trigger), self.cycle_time_ms, answer.reason))
+        self._finish(part, None, decision)
 
     def _finish(self, part: Part, inspection: Inspection | None, decision: Decision,
                 not_inspected: bool = False) -> None:
@@ -483,6 +509,7 @@ class Station:
         """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; answer every part
         announced until the link is closed; return the statistics."""
         acq = threading.Thread(target=self._acquire, args=(max_parts,), name="acquisition", daemon=True)
+        self._model = ModelThread(self.inspector.inspect)
         self.camera.start()
         acq.start()
         last = time.perf_counter()
@@ -507,6 +534,7 @@ class Station:
             self.camera.stop()
             self._finish_dropped()
             self._shut_down_link()
+            self._model.close()
         return self.stats
 
     def _shut_down_link(self) -> None:

@@ -609,3 +609,84 @@ def test_drift_from_the_trained_brightness_is_logged_per_part_and_warned_once(tm
     assert rows[-1]["drift"].startswith("drift over the last 10 frames: median_level")
     assert "raise [camera] exposure_us" in rows[-1]["drift"]
     assert sum("drift over the last" in r.message for r in caplog.records) == 1  # warned once, kept in every row
+
+
+class HangingDetector(BrightnessDetector):
+    """Its ``hang_on``-th call (1-based; every call when None) blocks until ``release`` is set: a hung model."""
+
+    def __init__(self, release, hang_on=None):
+        super().__init__()
+        self.release, self.hang_on, self.calls = release, hang_on, 0
+
+    def infer(self, priors):
+        self.calls += 1
+        if self.hang_on is None or self.calls == self.hang_on:
+            self.release.wait()
+        return super().infer(priors)
+
+
+def run_announcing(station, link, names, every_s, release_after=None, release=None):
+    """Announce ``names`` from a PLC thread, one each ``every_s`` until the port closes; set ``release`` after
+    ``release_after`` of them. Returns (announced, answered) perf_counter times by part id."""
+    announced, answered = {}, {}
+    report = link.report
+
+    def timed_report(part_id, decision, reason, deadline=None):
+        answered.setdefault(part_id, time.perf_counter())
+        return report(part_id, decision, reason, deadline)
+
+    link.report = timed_report
+
+    def plc():
+        for i, name in enumerate(names):
+            time.sleep(every_s)
+            t = time.perf_counter()
+            if link.announce(name):  # False once the station closed its port
+                announced[name] = t
+            if release is not None and i + 1 == release_after:
+                release.set()
+
+    feeder = threading.Thread(target=plc)
+    feeder.start()
+    station.run(max_parts=len(names))
+    feeder.join()
+    return announced, answered
+
+
+def test_a_hung_model_holds_no_part_past_its_cycle(tmp_path):
+    """The model hangs on the second part: that part is rejected at its deadline, the parts that arrive while it
+    hangs are rejected at once, and once it returns parts are judged again (it used to answer nothing until then)."""
+    release = threading.Event()
+    link = ScriptedLink(0)
+    camera = ScriptedCamera([0, 1] + [0] * 10, trigger="software")  # the hung frame scores high: its late
+    # answer, dropped, must not become a later part's
+    station, log = make_station(tmp_path, camera, HangingDetector(release, hang_on=2), link, queue_size=8,
+                                backpressure="block", cycle_time_ms=150.0)
+    names = [f"P{i}" for i in range(10)]
+    announced, answered = run_announcing(station, link, names, every_s=0.1, release_after=6, release=release)
+    rows = {r["part_id"]: r for r in log.rows()}
+    assert set(rows) == set(names) and len(list(log.rows())) == len(names)
+    for name in names:
+        assert answered[name] - announced[name] < 0.3, f"{name} waited {answered[name] - announced[name]:.2f} s"
+    assert rows["P1"]["decision"] == "reject" and "model" in rows["P1"]["reason"]
+    busy = [n for n in names[2:6] if "model busy" in (rows[n]["reason"] or "")]
+    assert busy and all(rows[n]["decision"] == "reject" for n in busy)
+    assert [rows[n]["decision"] for n in ("P0", "P6", "P7", "P8", "P9")] == ["pass"] * 5
+
+
+def test_a_model_that_never_returns_stops_the_station(tmp_path, monkeypatch):
+    monkeypatch.setattr("station.loop.MAX_MODEL_BUSY_PARTS", 3)
+    release = threading.Event()
+    threading.Timer(5.0, release.set).start()  # frees the model's thread after the test
+    link = ScriptedLink(0)
+    camera = ScriptedCamera([0] * 12, trigger="software")
+    station, log = make_station(tmp_path, camera, HangingDetector(release), link, queue_size=8,
+                                backpressure="block", cycle_time_ms=100.0)
+    t0 = time.perf_counter()
+    names = [f"H{i}" for i in range(8)]
+    announced, answered = run_announcing(station, link, names, every_s=0.05)
+    assert time.perf_counter() - t0 < 3.0
+    assert station.fatal and "model" in station.fatal
+    rows = list(log.rows())
+    assert sorted(r["part_id"] for r in rows) == sorted(answered) == sorted(announced)
+    assert len(rows) >= 4 and all(r["decision"] == "reject" for r in rows)
