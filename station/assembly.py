@@ -166,7 +166,7 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
                           presence=presence_check(cfg), statistics=drift is not None)
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
-                   grab_timeout_ms=cfg.camera.timeout_ms,
+                   grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,
                    viewer=viewer, rejects=rejects, drift=drift)
 
 

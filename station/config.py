@@ -56,6 +56,7 @@ class AcquisitionConfig:
     queue_size: int = _opt(4, range=(1, 1024))
     backpressure: str = _opt("drop_oldest", choices=("drop_newest", "drop_oldest", "block"))
     cycle_time_ms: float = _opt(100.0, range=(1.0, 600000.0))
+    max_frame_delay_ms: float | None = _opt(None, range=(1.0, 600000.0))
 
 
 @dataclass(frozen=True)

@@ -72,7 +72,8 @@ A model that is merely slower than the cycle answers between parts and never rea
 
 
 class FramesLost(Exception):
-    """Line trigger: the frame of the part being grabbed was lost in transport (a gap in frame ids)."""
+    """Line trigger: the part being grabbed has no frame: it was lost in transport (a gap in frame ids), or the camera
+    never saw its pulse (the next frame completed too long after its TRIG)."""
 
 
 class LineLink(Protocol):
@@ -204,11 +205,15 @@ class Station:
                  backpressure: str = "drop_oldest",
                  grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
                  rejects: RejectStore | None = None, settle_timeout_s: float = 2.0,
-                 drift: DriftMonitor | None = None) -> None:
+                 drift: DriftMonitor | None = None, max_frame_delay_ms: float | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold = inspector.detector.threshold if threshold is None else threshold
         self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         self.settle_timeout_s = settle_timeout_s
+        self.max_frame_delay_ms = cycle_time_ms if max_frame_delay_ms is None else max_frame_delay_ms
+        """Line trigger: a frame completed later than this after a part's TRIG reached the host is the next part's
+        (the camera missed this part's pulse): this part is rejected and the frame kept for the next. Default: the
+        cycle time (such a frame could only make its part late)."""
         self.drift = drift
         """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
         logged when it starts and stops, kept in every row while it lasts, and shown in the viewer."""
@@ -290,7 +295,9 @@ class Station:
         Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host.
         Line trigger: frames are the parts' in order, so a gap in frame ids means the frames of this part and of
         the parts after it were lost in transport: FramesLost for this part, the owed parts are rejected without a
-        grab, and the frame is held for its own part (``MAX_HELD_GAP``)."""
+        grab, and the frame is held for its own part (``MAX_HELD_GAP``). A frame completed more than
+        ``max_frame_delay_ms`` after the part's TRIG is a later part's (the camera missed this part's pulse, which
+        spends no frame id): FramesLost for this part, and the frame is held for the next."""
         software = self.camera.config.trigger == "software"
         line = self.link.triggered and self.camera.config.trigger.startswith("line")
         if software:
@@ -310,6 +317,12 @@ class Station:
             if not self.link.triggered or frame.host_timestamp_ns <= 0:
                 return frame
             completed = time.perf_counter() - (time.time_ns() - frame.host_timestamp_ns) / 1e9
+            delay_ms = 1e3 * (completed - part.t_trigger)
+            if line and delay_ms > self.max_frame_delay_ms:
+                self._held = frame
+                raise FramesLost(f"the camera missed its trigger pulse: the next frame ({frame.frame_id}) completed "
+                                 f"{delay_ms:.0f} ms after its TRIG, over [acquisition] max_frame_delay_ms "
+                                 f"({self.max_frame_delay_ms:.0f} ms); the frame is kept for the next part")
             if completed >= earliest:
                 return frame
             self.stale_frames += 1

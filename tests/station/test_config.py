@@ -28,7 +28,8 @@ def test_shipped_station_toml_documents_exactly_the_defaults():
 
 def test_values_are_typed():
     cfg = parse_config('[camera]\nexposure_us = 500\nkind = "aravis"\n[priors]\nbit_depth = 12\n'
-                       "angles_deg = [[0, 45], [135, 90]]\n")
+                       "angles_deg = [[0, 45], [135, 90]]\n[acquisition]\nmax_frame_delay_ms = 60\n")
+    assert cfg.acquisition.max_frame_delay_ms == 60.0 and StationConfig().acquisition.max_frame_delay_ms is None
     assert cfg.camera.exposure_us == 500.0 and isinstance(cfg.camera.exposure_us, float)
     assert cfg.camera.kind == "aravis" and cfg.priors.bit_depth == 12
     assert cfg.decision.threshold is None

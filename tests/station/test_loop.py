@@ -690,3 +690,72 @@ def test_a_model_that_never_returns_stops_the_station(tmp_path, monkeypatch):
     rows = list(log.rows())
     assert sorted(r["part_id"] for r in rows) == sorted(answered) == sorted(announced)
     assert len(rows) >= 4 and all(r["decision"] == "reject" for r in rows)
+
+
+class PulsedCamera(ScriptedCamera):
+    """A hardware-triggered camera: ``pulse(label)`` makes a frame that completes ``delay_s`` later (exposure,
+    readout, transfer); a pulse the camera never saw makes none and spends no frame id."""
+
+    def __init__(self, delay_s=0.01):
+        super().__init__([], trigger="line0")
+        self.delay_s = delay_s
+        self.frames = deque()
+        self.ready = threading.Condition()
+
+    def pulse(self, label):
+        def complete():
+            with self.ready:
+                self.frame_id += 1
+                raw = np.full((8, 8), 200 if label == 1 else 20, np.uint8)
+                self.frames.append(Frame(raw, "Mono8", 8, self.frame_id, 0, time.time_ns(),
+                                         ground_truth=GroundTruth(label=label)))
+                self.ready.notify_all()
+
+        threading.Timer(self.delay_s, complete).start()
+
+    def grab(self, timeout_ms=None):
+        with self.ready:
+            if not self.ready.wait_for(lambda: self.frames, timeout=(timeout_ms or 1000) / 1e3):
+                raise CameraTimeout("no frame")
+            return self.frames.popleft()
+
+
+def run_line(tmp_path, labels, missed, spacing_s, **kw):
+    """Parts P0, P1, ... announced ``spacing_s`` apart, each with its hardware pulse, except those in ``missed``."""
+    link = ScriptedLink(0)
+    camera = PulsedCamera()
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block",
+                                grab_timeout_ms=int(2e3 * spacing_s), **kw)
+
+    def plc():
+        for i, label in enumerate(labels):
+            time.sleep(spacing_s)
+            link.announce(f"P{i}")
+            if i not in missed:
+                camera.pulse(label)
+
+    feeder = threading.Thread(target=plc)
+    feeder.start()
+    station.run(max_parts=len(labels))
+    feeder.join()
+    return {r["part_id"]: r for r in log.rows()}
+
+
+def test_a_pulse_the_camera_missed_rejects_its_part_and_no_part_takes_its_successors_frame(tmp_path):
+    """Parts closer together than the cycle: a missed pulse used to put every later part on its successor's frame
+    (P2, defective, passed on P3's; P5, defective, passed on P6's)."""
+    labels = [0, 0, 1, 0, 0, 1, 0, 0]
+    rows = run_line(tmp_path, labels, missed={2}, spacing_s=0.1, cycle_time_ms=300.0, max_frame_delay_ms=50.0)
+    assert rows["P2"]["decision"] == "reject" and "missed" in rows["P2"]["reason"]
+    judged = {p: r["decision"] for p, r in rows.items() if p != "P2"}
+    assert judged == {f"P{i}": "reject" if label else "pass" for i, label in enumerate(labels) if i != 2}
+    assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items() if p != "P2")
+
+
+def test_a_missed_pulse_does_not_make_every_later_part_late(tmp_path):
+    """Parts further apart than the cycle, the default limit (a cycle): the successor's frame is too late for the
+    part whose pulse was missed, and goes to its own part (every later part used to be rejected as late)."""
+    labels = [0, 0, 0, 0, 0, 0]
+    rows = run_line(tmp_path, labels, missed={1}, spacing_s=0.15, cycle_time_ms=100.0)
+    assert rows["P1"]["decision"] == "reject"
+    assert [rows[f"P{i}"]["decision"] for i in (0, 2, 3, 4, 5)] == ["pass"] * 5
