@@ -76,6 +76,33 @@ class FramesLost(Exception):
     never saw its pulse (the next frame completed too long after its TRIG)."""
 
 
+class TransferClock:
+    """Line trigger: when a frame would have reached the host had its transfer been as quick as the quickest of the
+    last ``WINDOW`` frames; it tells a frame exposed late (a later part's, after a missed pulse) from one that was
+    exposed on time and came slowly (packet resends). Uses the camera's timestamp (its own clock, in ns): the host
+    time of a frame minus it is the clock offset plus that frame's transfer time; the smallest over recent frames
+    is the offset plus the quickest transfer. Camera timestamps that go backwards (a reconnect resets the camera's
+    clock) start over; a camera without timestamps (0) leaves the host's completion time as it is."""
+
+    WINDOW = 64
+
+    def __init__(self) -> None:
+        self._offsets: deque[float] = deque(maxlen=self.WINDOW)
+        self._last_ns = 0
+
+    def fastest(self, frame: Frame, completed: float) -> float:
+        """``completed`` (``time.perf_counter()`` clock, s) less the part of the frame's transfer time above the
+        quickest lately."""
+        if frame.timestamp_ns <= 0:
+            return completed
+        if frame.timestamp_ns < self._last_ns:
+            self._offsets.clear()
+        self._last_ns = frame.timestamp_ns
+        camera_s = frame.timestamp_ns / 1e9
+        self._offsets.append(completed - camera_s)
+        return camera_s + min(self._offsets)
+
+
 class LineLink(Protocol):
     """The station's side of the PLC link (``drivers.line_io.LineIO`` over a serial port, the simulated PLC
     included; ``NoLink`` without a PLC)."""
@@ -227,6 +254,7 @@ class Station:
         self._line_last_id: int | None = None  # line trigger: the newest frame id taken from the camera
         self._held: Frame | None = None  # line trigger: a frame kept for the part it belongs to, after lost ones
         self._owed = 0  # line trigger: parts still to come whose frames were lost before the held one
+        self._transfer = TransferClock()
         self._unusable = 0  # grabs in a row that raised something other than a timeout or a lost camera
         self._model: ModelThread | None = None  # the inspector on its own thread, while ``run`` runs
         self._model_busy = 0  # parts rejected as "model busy" since the model took its current frame
@@ -296,8 +324,10 @@ class Station:
         Line trigger: frames are the parts' in order, so a gap in frame ids means the frames of this part and of
         the parts after it were lost in transport: FramesLost for this part, the owed parts are rejected without a
         grab, and the frame is held for its own part (``MAX_HELD_GAP``). A frame completed more than
-        ``max_frame_delay_ms`` after the part's TRIG is a later part's (the camera missed this part's pulse, which
-        spends no frame id): FramesLost for this part, and the frame is held for the next."""
+        ``max_frame_delay_ms`` after the part's TRIG, had its transfer been as quick as the quickest lately
+        (``TransferClock``), is a later part's (the camera missed this part's pulse, which spends no frame id):
+        FramesLost for this part, and the frame is held for the next. A frame late only in transfer stays its own
+        part's."""
         software = self.camera.config.trigger == "software"
         line = self.link.triggered and self.camera.config.trigger.startswith("line")
         if software:
@@ -317,11 +347,11 @@ class Station:
             if not self.link.triggered or frame.host_timestamp_ns <= 0:
                 return frame
             completed = time.perf_counter() - (time.time_ns() - frame.host_timestamp_ns) / 1e9
-            delay_ms = 1e3 * (completed - part.t_trigger)
-            if line and delay_ms > self.max_frame_delay_ms:
+            delay_ms = 1e3 * (self._transfer.fastest(frame, completed) - part.t_trigger) if line else 0.0
+            if delay_ms > self.max_frame_delay_ms:
                 self._held = frame
-                raise FramesLost(f"the camera missed its trigger pulse: the next frame ({frame.frame_id}) completed "
-                                 f"{delay_ms:.0f} ms after its TRIG, over [acquisition] max_frame_delay_ms "
+                raise FramesLost(f"the camera missed its trigger pulse: the next frame ({frame.frame_id}) was "
+                                 f"exposed {delay_ms:.0f} ms after its TRIG, over [acquisition] max_frame_delay_ms "
                                  f"({self.max_frame_delay_ms:.0f} ms); the frame is kept for the next part")
             if completed >= earliest:
                 return frame

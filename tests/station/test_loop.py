@@ -702,16 +702,19 @@ class PulsedCamera(ScriptedCamera):
         self.frames = deque()
         self.ready = threading.Condition()
 
-    def pulse(self, label):
+    def pulse(self, label, transfer_s=0.0):
+        """The frame's camera timestamp is its exposure's end; the host has it ``transfer_s`` later."""
+        exposed_ns = time.monotonic_ns() + int(1e9 * self.delay_s)
+
         def complete():
             with self.ready:
                 self.frame_id += 1
                 raw = np.full((8, 8), 200 if label == 1 else 20, np.uint8)
-                self.frames.append(Frame(raw, "Mono8", 8, self.frame_id, 0, time.time_ns(),
+                self.frames.append(Frame(raw, "Mono8", 8, self.frame_id, exposed_ns, time.time_ns(),
                                          ground_truth=GroundTruth(label=label)))
                 self.ready.notify_all()
 
-        threading.Timer(self.delay_s, complete).start()
+        threading.Timer(self.delay_s + transfer_s, complete).start()
 
     def grab(self, timeout_ms=None):
         with self.ready:
@@ -720,8 +723,9 @@ class PulsedCamera(ScriptedCamera):
             return self.frames.popleft()
 
 
-def run_line(tmp_path, labels, missed, spacing_s, **kw):
-    """Parts P0, P1, ... announced ``spacing_s`` apart, each with its hardware pulse, except those in ``missed``."""
+def run_line(tmp_path, labels, missed, spacing_s, slow=None, **kw):
+    """Parts P0, P1, ... announced ``spacing_s`` apart, each with its hardware pulse, except those in ``missed``;
+    ``slow``: {part index: seconds its frame's transfer takes}."""
     link = ScriptedLink(0)
     camera = PulsedCamera()
     station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block",
@@ -732,7 +736,7 @@ def run_line(tmp_path, labels, missed, spacing_s, **kw):
             time.sleep(spacing_s)
             link.announce(f"P{i}")
             if i not in missed:
-                camera.pulse(label)
+                camera.pulse(label, (slow or {}).get(i, 0.0))
 
     feeder = threading.Thread(target=plc)
     feeder.start()
@@ -759,3 +763,29 @@ def test_a_missed_pulse_does_not_make_every_later_part_late(tmp_path):
     rows = run_line(tmp_path, labels, missed={1}, spacing_s=0.15, cycle_time_ms=100.0)
     assert rows["P1"]["decision"] == "reject"
     assert [rows[f"P{i}"]["decision"] for i in (0, 2, 3, 4, 5)] == ["pass"] * 5
+
+
+def test_a_frame_slow_in_transfer_stays_its_own_parts(tmp_path):
+    """A frame whose transfer took longer than the cycle is not a missed pulse: the camera's timestamp says when it
+    was exposed. Its part is rejected as late and the next part is judged on its own frame (held for the next part,
+    it would have been judged for P2, defective, and passed)."""
+    labels = [0, 0, 1, 0, 0]
+    rows = run_line(tmp_path, labels, missed=set(), spacing_s=0.15, slow={1: 0.12}, cycle_time_ms=100.0)
+    assert rows["P1"]["decision"] == "reject" and "not judged in time" in rows["P1"]["reason"]
+    assert rows["P1"]["ground_truth_label"] == 0
+    assert rows["P2"]["decision"] == "reject" and rows["P2"]["ground_truth_label"] == 1
+    assert [rows[f"P{i}"]["decision"] for i in (0, 3, 4)] == ["pass"] * 3
+
+
+def test_the_transfer_clock_takes_out_slow_transfers_and_starts_over_when_the_camera_clock_resets():
+    from station.loop import TransferClock
+
+    clock = TransferClock()
+
+    def frame(camera_s):
+        return Frame(np.zeros((2, 2), np.uint8), "Mono8", 8, 1, int(camera_s * 1e9), 1)
+
+    assert clock.fastest(frame(100.0), 5.010) == pytest.approx(5.010)  # offset -95 s (clock) + 10 ms (transfer)
+    assert clock.fastest(frame(100.1), 5.160) == pytest.approx(5.110)  # 50 ms slower in transfer: taken out
+    assert clock.fastest(frame(0.5), 5.620) == pytest.approx(5.620)  # the camera's clock restarted: no history
+    assert clock.fastest(Frame(np.zeros((2, 2), np.uint8), "Mono8", 8, 1, 0, 1), 7.0) == 7.0  # no timestamp
