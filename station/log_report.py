@@ -19,6 +19,32 @@ NOISY_LINE_LEVEL = 1.5
 """Median ``noise_level`` from which the report warns: above the model's own renders' highest
 (``OWN_RENDERS_NOISE_LEVEL_MAX``)."""
 
+REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("score over threshold", ("score ",)),
+    ("log not writable", ("not recorded:",)),
+    ("PLC link", ("the PASS was not",)),
+    ("station stopping", ("station stopping",)),
+    ("not judged in time", ("not judged in time",)),
+    ("camera missed trigger pulse", ("missed its trigger pulse",)),
+    ("frame lost", ("lost in transport", "lost before reaching the host")),
+    ("no frame", ("no frame", "camera error", "no usable frame")),
+    ("model busy or failed", ("model busy", "failed:", "model score is")),
+    ("invalid pixels", ("input pixels invalid",)),
+    ("queue full", ("processing queue full",)),
+)
+"""Why a part was rejected or not inspected, read from its reason, first match wins (the reasons are worded in
+``station.loop``, ``station.decision`` and ``station.inspector``; a test keeps each cause's words in that code).
+A reason matching none counts as "other"."""
+
+
+def reject_cause(reason: str | None) -> str:
+    """The ``REJECT_CAUSES`` name of a reject's or a not-inspected row's ``reason``."""
+    text = reason or ""
+    for cause, needles in REJECT_CAUSES:
+        if any(text.startswith(n) if n == "score " else n in text for n in needles):
+            return cause
+    return "other"
+
 
 @dataclass(frozen=True)
 class LogSummary:
@@ -43,6 +69,9 @@ class LogSummary:
     """The newest drift warning in the log."""
     frame_checks: dict[str, dict[str, float]] = field(default_factory=dict)
     """Per model frame check (``FRAME_CHECKS``, schema version 4) over the parts that have it: median, p99, max."""
+    reject_causes: dict[str, int] = field(default_factory=dict)
+    """Rejected and not-inspected parts per cause (``reject_cause``), most first: "score over threshold" is the
+    model's judgement, every other cause a part the station could not judge."""
 
 
 def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
@@ -54,11 +83,14 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     times: list[float] = []
     drift_parts, last_drift = 0, None
     checks: dict[str, list[float]] = {k: [] for k in FRAME_CHECKS}
+    causes: Counter[str] = Counter()
     for r in rows:
         for k in FRAME_CHECKS:
             if r.get(k) is not None:
                 checks[k].append(r[k])
         counts[r["decision"]] += 1
+        if r["decision"] in (Verdict.REJECT, Verdict.NOT_INSPECTED):
+            causes[reject_cause(r["reason"])] += 1
         if r.get("drift"):
             drift_parts, last_drift = drift_parts + 1, r["drift"]
         times.append(r["time_unix_s"])
@@ -87,12 +119,15 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
         last_drift=last_drift,
         frame_checks={k: {"median": float(np.median(v)), "p99": float(np.percentile(v, 99)), "max": float(max(v))}
                       for k, v in checks.items() if v},
+        reject_causes=dict(causes.most_common()),
     )
 
 
 def format_summary(s: LogSummary) -> str:
     lines = ["| decision | parts |", "|---|---|"] + [f"| {d} | {n} |" for d, n in s.counts.items()]
     lines.append(f"\nreject rate (of judged parts): {100 * s.reject_rate:.2f} %")
+    if s.reject_causes:
+        lines.append("rejects by cause: " + ", ".join(f"{c} {n}" for c, n in s.reject_causes.items()))
     if s.latency_ms:
         lines.append("latency grab->decision: " + ", ".join(f"{k} {v:.1f} ms" for k, v in s.latency_ms.items()))
     if s.confusion:

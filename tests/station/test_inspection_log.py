@@ -8,6 +8,8 @@ import signal
 import subprocess
 import sys
 import textwrap
+from collections import Counter
+from pathlib import Path
 
 import pytest
 
@@ -21,6 +23,7 @@ from station.inspection_log import (
     export_rows,
 )
 
+ROOT = Path(__file__).resolve().parents[2]
 
 def rec(i: int, decision: str = "pass", **kw) -> InspectionRecord:
     return InspectionRecord(decision=decision, time_unix_s=1000.0 + i, part_id=f"P{i}", camera_frame_id=i,
@@ -305,3 +308,48 @@ def test_verdicts_are_stored_and_exported_as_the_plain_strings(tmp_path, fmt):
         files.append((tmp_path / f"{kind}.{fmt}").read_bytes())
     assert files[0] == files[1]
 
+
+
+REASONS = {  # a reject reason as the station words it -> the cause the report counts it under
+    "score 0.9100 > threshold 0.8800": "score over threshold",
+    "not judged in time: 130.2 ms > cycle time 100.0 ms (before the model could start)": "not judged in time",
+    "not judged: no frame for part T3: the camera missed its trigger pulse: the next frame (4) was exposed 140 ms "
+    "after its TRIG": "camera missed trigger pulse",
+    "not judged: no frame for part T3: its frame was lost in transport (a gap in frame ids)": "frame lost",
+    "frame 12 lost before reaching the host": "frame lost",
+    "not judged: no frame for part T3: no frame within 1000 ms": "no frame",
+    "not judged: camera error for part T3: camera lost": "no frame",
+    "not judged: no usable frame for part T3: ValueError: bad": "no frame",
+    "not judged: model busy: still on part T2 after 230 ms": "model busy or failed",
+    "not judged: frame 3: model default failed: RuntimeError: x": "model busy or failed",
+    "not judged: model score is nan": "model busy or failed",
+    "not judged: 2.00 % of input pixels invalid (limit 1.00 %)": "invalid pixels",
+    "not recorded: disk full; judged pass": "log not writable",
+    "not answered in time: the PASS was not delivered before the part's deadline": "PLC link",
+    "not judged: station stopping": "station stopping",
+    "dropped: processing queue full (drop_oldest)": "queue full",
+    "something new": "other",
+}
+
+
+def test_report_counts_rejects_by_cause(tmp_path):
+    from station.log_report import format_summary, summarize
+
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append([rec(i, "reject", reason=reason) for i, reason in enumerate(REASONS)]
+                   + [rec(100, "pass"), rec(101, "empty", reason="dolp contrast 0.01 < 0.10")])
+        s = summarize(log.rows())
+    expected = Counter(REASONS.values())
+    assert s.reject_causes == dict(expected)
+    text = format_summary(s)
+    assert "rejects by cause:" in text and all(f"{cause} {n}" in text for cause, n in expected.items())
+
+
+def test_each_reject_cause_matches_a_wording_the_station_uses():
+    """A reworded reason must not fall silently into "other": each cause's text is in the station's source."""
+    from station.log_report import REJECT_CAUSES
+
+    source = "\n".join(p.read_text() for d in ("station", "drivers") for p in (ROOT / d).rglob("*.py")
+                       if p.name != "log_report.py")
+    for cause, needles in REJECT_CAUSES:
+        assert any(n in source for n in needles), f"no reason in the code reads like {cause!r}: {needles}"
