@@ -157,13 +157,13 @@ def format_summary(s: LogSummary) -> str:
 
 
 def plot_summary(s: LogSummary, threshold: float | None, path: str | Path) -> Path:
-    """Score histogram per decision (with the threshold) and decision counts, as one PNG."""
+    """Score histogram per decision (with the threshold), decision counts and rejects by cause, as one PNG."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8), gridspec_kw={"width_ratios": [2, 1]})
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(14, 3.8), gridspec_kw={"width_ratios": [2, 1, 1.4]})
     centers = (np.array(s.score_bins[:-1]) + np.array(s.score_bins[1:])) / 2
     width = s.score_bins[1] - s.score_bins[0]
     ax1.bar(centers, s.score_hist[Verdict.PASS], width=width, color="tab:green", alpha=0.7, label="pass")
@@ -176,6 +176,11 @@ def plot_summary(s: LogSummary, threshold: float | None, path: str | Path) -> Pa
     ax2.bar(list(s.counts), list(s.counts.values()), color=["tab:green", "tab:red", "tab:gray", "tab:orange"])
     ax2.set(title="decisions", ylabel="parts")
     ax2.tick_params(axis="x", rotation=30)
+    causes = list(s.reject_causes)[::-1]
+    bars = ax3.barh(causes, [s.reject_causes[c] for c in causes],
+                    color=["tab:red" if c == "score over threshold" else "tab:orange" for c in causes])
+    ax3.bar_label(bars, padding=2)
+    ax3.set(title="rejects by cause", xlabel="parts")
     fig.tight_layout()
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
