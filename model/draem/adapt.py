@@ -42,6 +42,7 @@ import torch
 from .anomaly import AnomalyConfig, synthesize
 from .detector import Detector
 from .errors import ModelError
+from .metrics import usable_threshold
 from .loss import draem_loss
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
@@ -156,7 +157,7 @@ def false_reject_threshold(scores: np.ndarray, false_reject: float) -> Threshold
     z = np.log(np.clip(s, 1e-6, 1 - 1e-6)) - np.log1p(-np.clip(s, 1e-6, 1 - 1e-6))
     q = float(z.mean() + NormalDist().inv_cdf(1 - false_reject) * z.std(ddof=1)) if s.size > 1 else float(z[0])
     tail = float(1.0 / (1.0 + math.exp(-q)))
-    t = max(empirical, tail)
+    t = usable_threshold(max(empirical, tail), "adapt")
     which = "logit-normal tail" if tail > empirical else "empirical quantile"
     rule = (f"adapt: at most {false_reject:.2%} of {s.size} held-out good parts rejected ({which}; empirical "
             f"{empirical:.4g}, tail {tail:.4g})")

@@ -18,6 +18,23 @@ import numpy as np
 from scipy import ndimage
 from sklearn.metrics import average_precision_score, precision_recall_curve, roc_auc_score
 
+from .errors import ModelError
+
+MAX_THRESHOLD = 0.9999
+"""The highest threshold a fit may hand to a station. Scores lie in [0, 1] and a part is rejected when its score is
+above the threshold, so above this almost no part can be rejected; good parts scoring that high mean the model's
+calibration collapsed (fitted or adapted on identical frames from a frozen camera, say). ``usable_threshold``."""
+
+
+def usable_threshold(t: float, what: str) -> float:
+    """``t`` if a part can still score above it, else ModelError naming ``what`` (fail closed: a threshold of 1
+    passes every part)."""
+    if not t < MAX_THRESHOLD:
+        raise ModelError(f"{what}: the threshold would be {t:.7g}, which no part can exceed, so it cannot reject "
+                         "a part: the good parts score up to 1 and the model cannot tell them apart (was it fitted "
+                         "or adapted on identical or unusable frames?)")
+    return t
+
 
 def _two_classes(labels: np.ndarray) -> bool:
     return labels.size > 0 and 0 < int(labels.sum()) < labels.size
@@ -146,7 +163,8 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: f
     Never flags more than ``max_good_flagged`` of the good validation parts (a line cannot live with a weak
     model's F1-max threshold that rejects most good parts, nor with the minimum score when validation has no
     anomalies, the trap of anomalib issue 2433). With anomalies in validation: the F1-max threshold, raised to that
-    bound when it flags more. Raises ValueError on empty validation, no good parts, or non-finite scores."""
+    bound when it flags more. Raises ValueError on empty validation, no good parts, or non-finite scores, and
+    ModelError when the threshold would be one no part can exceed (``usable_threshold``)."""
     y = np.asarray(labels).reshape(-1).astype(bool)
     s = np.asarray(scores, dtype=np.float64).reshape(-1)
     if s.size == 0 or y.size != s.size:
@@ -168,6 +186,7 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: f
             t, rule = t_cap, f"f1_max on validation raised to {bound}"
     else:
         t, rule = t_cap, f"no anomalies in validation: {bound}"
+    usable_threshold(t, "choose_threshold")
     flagged = float((s[~y] > t).mean()) if (~y).any() else math.nan
     detected = float((s[y] > t).mean()) if y.any() else math.nan
     return ThresholdChoice(float(t), rule, flagged, detected)

@@ -78,3 +78,19 @@ def test_threshold_on_all_good_validation_never_flags_every_part():
     assert tiny.flagged_good_fraction == 0.0  # a constant scorer must not reject every good part
     with pytest.raises(ValueError, match="NaN"):
         M.choose_threshold(np.zeros(2), np.array([0.1, np.nan]))
+
+
+@pytest.mark.parametrize("top", [1.0, 0.99999958])
+def test_no_threshold_is_chosen_that_no_part_can_exceed(top):
+    """Good parts scoring 1 (a model whose calibration collapsed, e.g. adapted on a frozen camera's identical
+    frames) used to give threshold 1.0: every part passed."""
+    from model.draem.adapt import false_reject_threshold
+    from model.draem.errors import ModelError
+
+    good = np.array([0.3] * 5 + [top] * 20)
+    with pytest.raises(ModelError, match="cannot reject"):
+        M.choose_threshold(np.zeros(25, int), good)
+    with pytest.raises(ModelError, match="cannot reject"):
+        M.choose_threshold(np.r_[np.zeros(25, int), 1], np.r_[good, 1.0])
+    with pytest.raises(ModelError, match="cannot reject"):
+        false_reject_threshold(np.r_[np.full(11, 0.2), top], 0.05)
