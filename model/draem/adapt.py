@@ -42,8 +42,8 @@ import torch
 from .anomaly import AnomalyConfig, synthesize
 from .detector import Detector
 from .errors import ModelError
-from .metrics import usable_threshold
 from .loss import draem_loss
+from .metrics import usable_threshold
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
 from .variation import combined_score
