@@ -19,10 +19,14 @@ class AdaptSummary:
     record: dict[str, Any]
 
     def describe(self) -> str:
+        from station.evaluation import describe
+
         r = self.record
         return (f"{self.out}: adapted on {r['n_good']} good parts of {r['data']} ({r['scheme']}); threshold "
                 f"{r['threshold']:.4g}, {100 * r['heldout_false_reject']:.1f} % of held-out good parts rejected "
                 f"(target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: {r['frame_statistics']}"
+                + (f"\nleft out {len(r['left_out'])} frames the station would not judge: {describe(r['left_out'])}"
+                   if r.get("left_out") else "")
                 + (f"\nnote: {r['advice']}" if r.get("advice") else ""))
 
     def _networks(self) -> str:
@@ -55,18 +59,19 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     from model.draem.adapt import AdaptConfig, adapt
     from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
     from model.priors.frame_stats import StatisticsRange
-    from station.datasets import manifest_sha256
-    from station.evaluation import model_split
+    from station.datasets import judged_part_of, manifest_sha256
+    from station.evaluation import describe, model_split
 
     if paths(out)[1].resolve() == paths(model)[1].resolve():
         raise UserError(f"--out {out}: the same checkpoint as --model; write the adapted model beside it")
     cfg = AdaptConfig(false_reject=false_reject, fine_tune_steps=fine_tune_steps, seed=seed,
                       keep_networks=keep_networks)
     ck = load_checkpoint(model)
-    sp = model_split(ck, model, good, split, limit)
+    sp, left_out = judged_part_of(model_split(ck, model, good, split, limit))
     keep = (sp.label == 0).nonzero().flatten()
     if len(keep) == 0:
-        raise UserError(f"{good}: split {split!r} has no good parts")
+        raise UserError(f"{good}: split {split!r} has no good parts the station would judge"
+                        + (f" ({describe(left_out)})" if left_out else ""))
     x, obj = sp.priors[keep], sp.object_mask[keep]
     det, res = adapt(ck.detector, x, obj, cfg)
     used = [sp.index[int(k)] for k in keep]
@@ -74,6 +79,7 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     record = {**res.record(), "data": str(good), "split": split, "manifest_sha256": manifest_sha256(good),
               "frames_sha256": frames_sha256(good, used), "date": time.strftime("%Y-%m-%dT%H:%M:%S"),
               "false_reject_target": false_reject, "base_model": str(model),
+              "left_out": {str(i): why for i, why in left_out.items()},
               "base_weights_sha256": ck.meta.get("weights_sha256"), "frame_statistics": stats.describe()}
     train = {**ck.meta.get("train", {}), "adapted": record, "frame_statistics": stats.to_dict()}
     save_checkpoint(out, det, res.threshold.threshold, res.threshold.rule, ck.meta.get("data_manifest_sha256"),

@@ -43,6 +43,29 @@ class SplitTensors:
     mask_known: Any = None
     frame_stats: list[FrameStatistics] = field(default_factory=list)
     object_masks_known: bool = True
+    unjudged: list[str | None] = field(default_factory=list)
+    """Per sample: why the station would not judge its frame ("no part in view", "... % of input pixels invalid":
+    ``unjudged_reason``), None when it would."""
+
+
+def unjudged_reason(priors: Any, n_pixels: int) -> str | None:
+    """Why the station would not judge a frame whose ``model.priors.Priors`` (with DoLP) these are, None when it
+    would: more than ``station.decision.MAX_INVALID_FRACTION`` of its pixels invalid, or no part in view for the
+    presence check at its defaults (``station.presence.PresenceCheck``)."""
+    from station.decision import MAX_INVALID_FRACTION
+    from station.presence import PresenceCheck
+
+    invalid = (priors.n_nonfinite + priors.n_out_of_range) / n_pixels
+    if invalid > MAX_INVALID_FRACTION:
+        return f"{100 * invalid:.2f} % of input pixels invalid"
+    return None if PresenceCheck()(priors).present else "no part in view"
+
+
+def judged_part_of(sp: SplitTensors) -> tuple[SplitTensors, dict[int, str]]:
+    """The samples the station would judge, and the others' reasons by dataset index: a threshold or an
+    adaptation set from frames the station logs as empty or invalid would describe no part it judges."""
+    keep = [i for i, why in enumerate(sp.unjudged) if why is None]
+    return subset(sp, keep), {sp.index[i]: why for i, why in enumerate(sp.unjudged) if why is not None}
 
 
 def manifest_sha256(root: str | Path) -> str:
@@ -87,7 +110,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
 
         names = list(dict.fromkeys(names + list(MAP_NAMES)))
     layout, bit_depth = ds.manifest.get("layout", "imx250mzr"), ds.manifest.get("bit_depth")
-    xs, objs, defs, labels, types, used, known, stats = [], [], [], [], [], [], [], []
+    xs, objs, defs, labels, types, used, known, stats, unjudged = [], [], [], [], [], [], [], [], []
     no_object = 0
     for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
         if limit is not None and len(used) >= limit:
@@ -95,7 +118,8 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         s = ds.load(i)
         if good_only and s.label:
             continue
-        maps = dict(compute_priors(s.raw, layout, priors=names, bit_depth=bit_depth))
+        computed = compute_priors(s.raw, layout, priors=names, bit_depth=bit_depth)
+        maps = dict(computed)
         if "normal" in priors and normals is not None:
             fov = fov_of(s.params)
             if fov is not None and normals.fov_x_deg is not None and abs(fov - normals.fov_x_deg) > 1e-3:
@@ -128,13 +152,14 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         used.append(i)
         known.append(not s.label or s.defect_mask is not None)
         stats.append(frame_statistics(maps, raw=s.raw, bit_depth=bit_depth))
+        unjudged.append(unjudged_reason(computed, s.raw.size))
     if not xs:
         raise UserError(f"{root}: split {split!r} has no usable samples")
     if no_object:
         log.info("%s: %d of %d samples without an object mask: the whole region of interest stands in",
                  root, no_object, len(used))
     return SplitTensors(torch.stack(xs), torch.stack(objs), torch.stack(defs), torch.tensor(labels), types, used,
-                        torch.tensor(known, dtype=torch.bool), stats, no_object == 0)
+                        torch.tensor(known, dtype=torch.bool), stats, no_object == 0, unjudged)
 
 
 def check_trained_on(model: str, data: str) -> str | None:

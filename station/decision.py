@@ -13,7 +13,10 @@ from dataclasses import dataclass
 
 from drivers.line_io import Verdict
 
-__all__ = ["Decision", "Verdict", "decide", "late"]
+__all__ = ["MAX_INVALID_FRACTION", "Decision", "Verdict", "decide", "late"]
+
+MAX_INVALID_FRACTION = 0.01
+"""The share of a frame's pixels that may be invalid (NaN/Inf, out of range) for the part to be judged."""
 
 
 @dataclass(frozen=True)
@@ -33,7 +36,8 @@ def late(elapsed_ms: float, cycle_time_ms: float, when: str = "") -> Decision:
 
 def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = None,
            cycle_time_ms: float | None = None, error: str | None = None,
-           invalid_fraction: float = 0.0, max_invalid_fraction: float = 0.01, empty: str | None = None) -> Decision:
+           invalid_fraction: float = 0.0, max_invalid_fraction: float = MAX_INVALID_FRACTION,
+           empty: str | None = None) -> Decision:
     """Decide one part. In order, each of these rejects with its reason: an ``error`` in an earlier stage;
     more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range). Then ``empty`` (the
     presence check's reason, when it found no part) gives EMPTY with that reason. Then each of these rejects:

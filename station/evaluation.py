@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 from station.errors import UserError
 
@@ -94,7 +96,16 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
     if same_set and split == "train":
         raise UserError(f"{data}: the model was trained on this set's train split; its scores there are not "
                         f"held out: use --split val")
-    ck, _, sp, _, ev = load_and_evaluate(model, data, split)
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.evaluate import EvalData, evaluate
+    from station.datasets import judged_part_of
+
+    ck = load_checkpoint(model)
+    sp, left_out = judged_part_of(model_split(ck, model, data, split))
+    if not sp.index:
+        raise UserError(f"{data}: the station would judge none of split {split!r}'s frames ({describe(left_out)})")
+    ev = evaluate(inference_net(ck, model, "fp32"),
+                  EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known))
     labels = sp.label.numpy()
     n_bad = int(labels.sum())
     if n_bad == len(labels):
@@ -105,12 +116,21 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
     if not same_set:
         train["threshold_set"] = {"data": str(data), "manifest_sha256": data_sha, "split": split,
                                   "n_good": len(labels) - n_bad, "n_defective": n_bad,
+                                  "left_out": {str(i): why for i, why in left_out.items()},
                                   "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
     save_checkpoint(model, ck.detector, choice.threshold, choice.rule, trained_sha, ev.metrics, train)
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else " (no defective parts there)"
     where = "" if same_set else " (not its training set: recorded in the sidecar)"
+    skipped = (f"\nleft out {len(left_out)} frames the station would not judge: {describe(left_out)}"
+               if left_out else "")
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
-            f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}")
+            f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}{skipped}")
+
+
+def describe(left_out: Mapping[Any, str], most: int = 10) -> str:
+    """``judged_part_of``'s left-out samples in one line (the first ``most``)."""
+    text = "; ".join(f"sample {i}: {why}" for i, why in list(left_out.items())[:most])
+    return text + (f"; and {len(left_out) - most} more" if len(left_out) > most else "")
 
 
 def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_good_flagged: float, key: str,

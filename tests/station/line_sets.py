@@ -24,7 +24,8 @@ W, H = 96, 64
 def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8, seed: int = 0,
                   defective: Callable[[int], bool] = lambda i: i % 10 == 1, object_masks: bool = True,
                   kind: Callable[[int], str] = lambda i: "stain", heldout: bool = False,
-                  validation: bool = False) -> Path:
+                  validation: bool = False, blank: Callable[[int], bool] = lambda i: False) -> Path:
+    """``blank`` samples are all-black good frames (a camera not ready, no part in view)."""
     spec = DatasetSpec(width=W, height=H, seed=seed, sensor=SensorConfig(bit_depth=bit_depth), heldout=heldout,
                        validation=validation)
     init_dataset(root, spec, n)
@@ -35,6 +36,8 @@ def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8
     for i in range(n):
         frame = ideal + rng.normal(0.0, 0.01, ideal.shape)
         raw = np.clip(np.round(frame * full), 0, full).astype(np.uint8 if bit_depth <= 8 else np.uint16)
+        if blank(i):
+            raw[:] = 0
         mask = np.zeros((H, W), bool)
         if defective(i):
             mask[20:30, 40:50] = True

@@ -161,3 +161,23 @@ def test_networks_out_of_their_domain_leave_the_decision_to_the_variation_model(
     assert "as the model did" in said and "out of their domain" not in said
     rec = json.loads((tmp_path / "alone-in").with_suffix(".json").read_text())["train"]["adapted"]
     assert rec["decision"] == "variation" and rec["decision_changed"] is False
+
+
+def test_adapt_leaves_out_frames_the_station_would_not_judge(line, tmp_path: Path, capsys) -> None:
+    """Black frames (no part in view) among a line's good parts used to count as good parts: their held-out
+    scores set the threshold, and defective parts passed."""
+    model, _, _ = line
+    from sim.dataset import open_dataset
+
+    good = make_line_set(tmp_path / "good", 80, gain=1.6, bit_depth=12, seed=20, defective=lambda i: False,
+                         blank=lambda i: i < 12)
+    train = open_dataset(good).indices("train")
+    blank = [i for i in train if i < 12]
+    assert len(blank) >= 3
+    out = tmp_path / "adapted"
+    assert main(["adapt", "--model", str(model), "--good", str(good), "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert f"left out {len(blank)} frames the station would not judge: sample {blank[0]}: no part in view" in text
+    record = load_checkpoint(out).meta["train"]["adapted"]
+    assert record["left_out"] == {str(i): "no part in view" for i in blank}
+    assert record["n_good"] == len(train) - len(blank)

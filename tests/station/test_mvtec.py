@@ -92,7 +92,8 @@ def test_a_set_without_masks_evaluates_image_level_only_and_sets_a_threshold(tmp
     assert main(["threshold", "--model", str(model), "--data", str(tmp_path / "ds"), "--split", "train"]) == 0
     assert "no defective parts there" in capsys.readouterr().out
     side = json.loads(model.with_suffix(".json").read_text())
-    assert side["train"]["threshold_set"]["n_good"] == 11 and side["threshold"] != 0.5
+    used = side["train"]["threshold_set"]  # noise frames: the presence check calls some of them empty
+    assert used["n_good"] + len(used["left_out"]) == 11 and used["n_good"] >= 5 and side["threshold"] != 0.5
 
 
 def test_masks_for_some_defects_restrict_pixel_metrics_to_those(tmp_path: Path) -> None:

@@ -49,3 +49,22 @@ def test_threshold_takes_good_parts_only_and_other_sets_but_not_the_training_spl
     save_checkpoint(model, ck.detector, 0.5, "test", data_manifest_sha256=manifest_sha256(data))
     assert main(["threshold", "--model", str(model), "--data", str(data), "--split", "train"]) == 2
     assert "not held out" in capsys.readouterr().err
+
+
+def test_frames_the_station_would_not_judge_set_no_threshold(tmp_path: Path, capsys) -> None:
+    """A black frame among the good parts (no part in view: the station logs it empty) used to count as a good
+    part, and its high score set the threshold: every defective part passed."""
+    from line_sets import make_line_set
+
+    from sim.dataset import open_dataset
+
+    data = make_line_set(tmp_path / "ds", 60, defective=lambda i: False, blank=lambda i: i in (2, 12))
+    val = open_dataset(data).indices("val")
+    assert {2, 12} <= set(val)
+    model = make_model(tmp_path / "m" / "last", ("intensity", "aolp"))
+    assert main(["threshold", "--model", str(model), "--data", str(data)]) == 0
+    out = capsys.readouterr().out
+    assert "left out 2 frames the station would not judge" in out and "sample 2: no part in view" in out
+    meta = load_checkpoint(model).meta
+    assert meta["train"]["threshold_set"]["n_good"] == len(val) - 2
+    assert meta["train"]["threshold_set"]["left_out"] == {"2": "no part in view", "12": "no part in view"}
