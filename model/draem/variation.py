@@ -155,6 +155,12 @@ with DoLP, 0.831 without; caught at 1 % of good parts rejected 49.6 % and 44.3 %
 DoLP changes, now also seen through their Stokes components); on the 8-spp and brighter lines image AUROC 0.751
 and 0.687 with, 0.745 and 0.755 without. Old checkpoints keep reading it (``LATER_BUFFERS``)."""
 
+MAX_SPREAD = 1e3
+"""Largest scale or spread ``check`` accepts: the shipped model's reach 5.5; dividing by 1e30 hides any defect."""
+
+MIN_REGION = 0.01
+"""Smallest share of the frame the part region may cover for ``check``: the shipped model's covers 54 %."""
+
 WINDOW_QUANTILE = 95.0
 """``window_spread`` is the good parts' WINDOW_QUANTILE-th percentile of the window statistic above its median, per
 pixel (module docstring: position): a tail, because places where good parts run high run heavy-tailed too, and a
@@ -406,13 +412,20 @@ class VariationModel(nn.Module):
         self.calibration.copy_(torch.tensor([*loc_spread(network_scores), *loc_spread(variation_scores)]))
 
     def check(self) -> None:
-        """ModelError unless every buffer is finite and every spread > 0 (a NaN would pass every part)."""
+        """ModelError unless every buffer is finite, every scale and spread in (0, ``MAX_SPREAD``] and the part
+        region at least ``MIN_REGION`` of the frame: a NaN, an empty region or a huge spread would pass every part."""
         for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *LATER_BUFFERS):
             if not bool(torch.isfinite(getattr(self, name)).all()):
                 raise ModelError(f"variation model: {name} has NaN or Inf values")
-        if (not bool((self.scale > 0).all()) or not bool((self.window_spread > 0).all())
-                or float(self.calibration[1]) <= 0 or float(self.calibration[3]) <= 0):
-            raise ModelError("variation model: a scale or calibration spread is not > 0")
+        spreads = {"channel_scale": self.channel_scale, "scale": self.scale, "window_spread": self.window_spread,
+                   "calibration": self.calibration[1::2]}
+        for name, value in spreads.items():
+            if not (bool((value > 0).all()) and bool((value <= MAX_SPREAD).all())):
+                raise ModelError(f"variation model: {name} has values outside (0, {MAX_SPREAD:g}] "
+                                 f"({float(value.min()):.3g} .. {float(value.max()):.3g})")
+        if float(self.region.float().mean()) < MIN_REGION:
+            raise ModelError(f"variation model: region covers {100 * float(self.region.float().mean()):.2f} % of "
+                             f"the frame, under {100 * MIN_REGION:g} %: no part to judge")
 
     # --- scoring ---
 
@@ -443,7 +456,8 @@ class VariationModel(nn.Module):
                 signed_all.append(self.signed_z(r, judged, level))
                 judged_all.append(judged)
             z = np.maximum((w - location) / spread, 0.0)
-            maps.append(np.where(region & judged, np.nan_to_num(z, nan=0.0, posinf=1e6), 0.0).astype(np.float32))
+            # a NaN here is a number the model could not make: fail closed (it used to read as 0, a pass)
+            maps.append(np.where(region & judged, np.nan_to_num(z, nan=1e6, posinf=1e6), 0.0).astype(np.float32))
         m = torch.from_numpy(np.stack(maps)).to(x.device)
         return VariationOutput(m, m.flatten(1).amax(1), torch.tensor(highlights, dtype=torch.float32),
                                torch.tensor(noise, dtype=torch.float32),

@@ -207,6 +207,37 @@ def test_too_few_parts_and_bad_buffers_are_errors() -> None:
         vm.check()
 
 
+@pytest.mark.parametrize(("name", "value"), [("region", False), ("channel_scale", 0.0), ("window_spread", 1e30),
+                                           ("calibration", 1e30)])
+def test_buffers_that_would_pass_every_part_are_refused(name: str, value: float) -> None:
+    """Finite but degenerate buffers (an empty part region, a spread of 1e30, a channel scale of 0, whose NaN
+    features were read as 0) scored a missing stud 0.05: a model file with them loaded and passed every part."""
+    vm = fitted()
+    buf = getattr(vm, name)
+    if name == "calibration":
+        buf[3] = value
+    else:
+        buf[...] = value
+    with pytest.raises(ModelError, match=name):
+        vm.check()
+
+
+def test_a_model_file_with_an_empty_part_region_does_not_load(tmp_path: Path) -> None:
+    det, path = detector_with_variation(tmp_path)
+    det.variation.region[...] = False
+    save_checkpoint(path, det, threshold=0.5, threshold_rule="test")  # hashes consistent: a crafted file
+    with pytest.raises(CheckpointError, match="region covers 0.00 %"):
+        load_checkpoint(path)
+
+
+@pytest.mark.filterwarnings("ignore:divide by zero:RuntimeWarning", "ignore:invalid value:RuntimeWarning")
+def test_a_score_map_that_turns_nan_rejects_rather_than_passes() -> None:
+    vm = fitted()
+    good = float(vm.zmaps(parts(3, 7)).scores.max())
+    vm.channel_scale[0] = 0.0  # features 0/0 = NaN everywhere in that channel
+    assert float(vm.zmaps(parts(3, 7)).scores.min()) > 100 * max(good, 1.0)
+
+
 def detector_with_variation(tmp_path: Path) -> tuple[Detector, Path]:
     det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
     det.init_weights(torch.Generator().manual_seed(0))
