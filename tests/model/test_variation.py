@@ -226,7 +226,7 @@ def test_a_model_file_with_an_empty_part_region_does_not_load(tmp_path: Path) ->
     det, path = detector_with_variation(tmp_path)
     det.variation.region[...] = False
     save_checkpoint(path, det, threshold=0.5, threshold_rule="test")  # hashes consistent: a crafted file
-    with pytest.raises(CheckpointError, match="region covers 0.00 %"):
+    with pytest.raises(CheckpointError, match=r"region covers 0\.00 %"):
         load_checkpoint(path)
 
 
