@@ -26,6 +26,7 @@ REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("station stopping", ("station stopping",)),
     ("not judged in time", ("not judged in time",)),
     ("camera missed trigger pulse", ("missed its trigger pulse",)),
+    ("no part in view", ("no part in view",)),
     ("frame lost", ("lost in transport", "lost before reaching the host")),
     ("no frame", ("no frame", "camera error", "no usable frame")),
     ("model busy or failed", ("model busy", "failed:", "model score is")),

@@ -10,10 +10,10 @@ configured backpressure. A part's time counts from when its trigger reached the 
   threshold, over the cycle time, a trigger older than the cycle before acquisition took it, a row that could not
   be written): ``reject`` with the reason, and the PLC is told REJECT (fail closed);
 - dropped by backpressure: ``not_inspected`` with the reason, and the PLC is told REJECT;
-- no part in view (``station.presence``, before the model runs): ``empty`` with the check's value as reason.
-  When the PLC announced a part (triggered), the PLC is told REJECT: a part was expected and not seen (missing,
-  misplaced, or a part the check cannot see), and an unseen part must never pass. Trigger-free, an empty frame
-  is the gap between parts: the PLC is told nothing and no image is kept.
+- no part in view (``station.presence``, before the model runs): ``empty`` with the check's value as reason,
+  trigger-free, where an empty frame is the gap between parts: the PLC is told nothing and no image is kept. When
+  the PLC announced a part (triggered), a part was expected and not seen (missing, misplaced, or a part the check
+  cannot see), and an unseen part must never pass: ``reject`` with the check's reason, at the PLC and in the row.
 
 ``stop()`` (or SIGINT/SIGTERM through ``run_until_signal``) ends acquisition and drains the queue; then every
 part announced until the PLC link closes is recorded and rejected ("station stopping"), the PLC's last
@@ -444,6 +444,8 @@ class Station:
             decision = decide(inspection.score, self.threshold, elapsed_ms=1e3 * (t - part.t_trigger),
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
                               invalid_fraction=inspection.invalid_fraction, empty=empty)
+            if decision.decision == Verdict.EMPTY and self.link.triggered:  # an announced part not seen: rejected,
+                decision = Decision(Verdict.REJECT, decision.reason)  # at the PLC and in its row
             inspection.timings_ms["decision"] = 1e3 * (time.perf_counter() - t)
             if self.drift is not None and inspection.frame_stats is not None and inspection.present:
                 change = self.drift.update(inspection.frame_stats)

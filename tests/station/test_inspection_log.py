@@ -328,6 +328,7 @@ REASONS = {  # a reject reason as the station words it -> the cause the report c
     "not answered in time: the PASS was not delivered before the part's deadline": "PLC link",
     "not judged: station stopping": "station stopping",
     "dropped: processing queue full (drop_oldest)": "queue full",
+    "no part in view: DoLP contrast 0.012 < 0.100": "no part in view",
     "something new": "other",
 }
 

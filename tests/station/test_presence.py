@@ -182,9 +182,10 @@ def test_empty_frames_are_logged_empty_and_the_model_does_not_run(tmp_path) -> N
     assert summarize(rows).confusion == stats.confusion
 
 
-def test_an_announced_part_not_in_view_is_rejected_at_the_plc(tmp_path) -> None:
+def test_an_announced_part_not_in_view_is_rejected_at_the_plc_and_in_its_row(tmp_path) -> None:
+    """Its row said "empty" while the PLC was told REJECT: an export of the rejects left it out."""
     rows, detector, link, _ = run_station(tmp_path, ["part", "empty", "part"], triggered=True)
-    assert [r["decision"] for r in rows] == ["pass", "empty", "pass"] and detector.calls == 2
+    assert [r["decision"] for r in rows] == ["pass", "reject", "pass"] and detector.calls == 2
     assert [(p, d) for p, d, _ in link.reports] == [("T0", "pass"), ("T1", "reject"), ("T2", "pass")]
     assert link.reports[1][2] == rows[1]["reason"] and "no part in view" in rows[1]["reason"]
     assert rows[1]["io_delivered"] and rows[1]["image_path"]  # kept, to see what was in front of the camera
