@@ -8,6 +8,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from station.commands.export_log import parse_time
+from station.errors import UserError
 from station.inspection_log import InspectionLog
 from station.log_report import format_summary, plot_summary, summarize
 
@@ -26,10 +27,13 @@ def run(args: argparse.Namespace) -> int:
         summary = summarize(log.rows(args.since, args.until))
         thresholds = {r["threshold"] for r in log.rows(args.since, args.until) if r["threshold"] is not None}
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "report.json").write_text(json.dumps(asdict(summary), indent=2))
     threshold = thresholds.pop() if len(thresholds) == 1 else None
-    png = plot_summary(summary, threshold, out / "report.png")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "report.json").write_text(json.dumps(asdict(summary), indent=2))
+        png = plot_summary(summary, threshold, out / "report.png")
+    except OSError as exc:
+        raise UserError(f"--out {out}: cannot write the report there: {exc.strerror or exc}") from None
     print(format_summary(summary))
     print(f"wrote {out / 'report.json'} and {png}")
     return 0

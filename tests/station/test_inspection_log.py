@@ -354,3 +354,25 @@ def test_each_reject_cause_matches_a_wording_the_station_uses():
                        if p.name != "log_report.py")
     for cause, needles in REJECT_CAUSES:
         assert any(n in source for n in needles), f"no reason in the code reads like {cause!r}: {needles}"
+
+
+def test_report_to_an_unwritable_out_is_one_line(tmp_path):
+    db = tmp_path / "log.sqlite"
+    with InspectionLog(db) as log:
+        log.append([rec(0)])
+    (tmp_path / "taken").write_text("a file, not a folder")
+    r = subprocess.run([sys.executable, "-m", "station.cli", "report", "--db", str(db), "--out",
+                        str(tmp_path / "taken")], capture_output=True, text=True)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert r.stderr.strip().startswith("station report: error: --out") and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_any_command_that_cannot_write_its_output_says_so_in_one_line(tmp_path):
+    db = tmp_path / "log.sqlite"
+    with InspectionLog(db) as log:
+        log.append([rec(0)])
+    (tmp_path / "taken").write_text("a file, not a folder")
+    r = subprocess.run([sys.executable, "-m", "station.cli", "export-log", "--db", str(db), "--out",
+                        str(tmp_path / "taken" / "x.csv")], capture_output=True, text=True)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert r.stderr.strip() == f"station export-log: error: {tmp_path / 'taken' / 'x.csv.partial'}: Not a directory"
