@@ -1,7 +1,8 @@
 """Attach a viewer to a station that is already running, through its inspection log.
 
 The station writes every part to SQLite in WAL mode, so another process can read the log while it is written.
-``LogFollower`` polls for rows newer than the last one seen and turns each into a ``ViewFrame``: rejected parts
+``LogFollower`` polls for rows newer than the last one seen (and for recent rows whose decision was amended) and turns
+each into a ``ViewFrame``: rejected parts
 whose raw mosaic and heatmap were saved (``[log] save_rejects``, ``station.reject_store``) show their images
 (priors recomputed from the mosaic); other parts show the decision and statistics over a blank image, since
 the station keeps no image of them. Statistics come from the log: counts, reject rate, latency p50/p99 of the
@@ -29,6 +30,9 @@ log = logging.getLogger(__name__)
 class LogFollower:
     """Tail ``db`` into ``feed``; ``from_start=False`` shows only parts logged after attaching."""
 
+    RECHECK = 256
+    """The newest rows read again at every poll for amended decisions (an amendment comes within seconds)."""
+
     def __init__(self, db: str | Path, feed: ViewerFeed, *, layout: str = "imx250mzr", from_start: bool = False,
                  window: int = 200) -> None:
         self.log = InspectionLog(db, readonly=True)
@@ -38,15 +42,27 @@ class LogFollower:
         self.latencies: deque[float] = deque(maxlen=window)
         self.blank = np.zeros((64, 64), np.float32)
         self.shown_images = 0
+        self.shown: dict[int, str] = {}  # row id -> decision shown, the newest RECHECK rows
 
     def poll(self) -> int:
-        """Put a ViewFrame for every new row on the feed; returns how many rows were new."""
+        """Put a ViewFrame for every new row on the feed, and again for each of the last ``RECHECK`` rows whose
+        decision changed since it was shown (a PASS the PLC link sent late as a REJECT is amended after its row was
+        written); returns how many rows were new or changed."""
         n = 0
-        for row in list(self.log.rows(after_id=self.last_id)):
-            self.last_id = max(self.last_id, row["id"])
+        for row in list(self.log.rows(after_id=max(0, self.last_id - self.RECHECK))):
+            before = self.shown.get(row["id"])
+            if row["id"] <= self.last_id and before in (None, row["decision"]):
+                continue  # seen and unchanged, or shown before this follower attached
+            if before is not None:
+                self.counts[before] -= 1
+            else:
+                self.last_id = max(self.last_id, row["id"])
+                if row["total_ms"] is not None:
+                    self.latencies.append(row["total_ms"])
             self.counts[row["decision"]] += 1
-            if row["total_ms"] is not None:
-                self.latencies.append(row["total_ms"])
+            self.shown[row["id"]] = row["decision"]
+            while len(self.shown) > self.RECHECK:
+                self.shown.pop(next(iter(self.shown)))
             self.feed.put(self._frame(row))
             n += 1
         return n

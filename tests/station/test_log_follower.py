@@ -61,3 +61,21 @@ def test_view_command_runs_offscreen_and_names_a_missing_log(tmp_path: Path, mon
     assert main(["view", "--db", str(tmp_path / "log.sqlite"), "--seconds", "0.5"]) == 0
     assert main(["view", "--db", str(tmp_path / "nope.sqlite"), "--seconds", "0.5"]) == 2
     assert "nope.sqlite" in capsys.readouterr().err
+
+
+def test_a_row_amended_after_it_was_shown_is_shown_again_as_amended(tmp_path: Path) -> None:
+    """A PASS that went out late as a REJECT is amended in the log after the viewer showed it: the viewer kept
+    showing it as passed."""
+    station_log = InspectionLog(tmp_path / "log.sqlite")
+    feed = ViewerFeed(maxsize=8)
+    follower = LogFollower(tmp_path / "log.sqlite", feed)
+    station_log.append([record("pass", "P1", score=0.1, threshold=0.5), record("pass", "P2", score=0.2,
+                                                                                threshold=0.5)])
+    assert follower.poll() == 2 and follower.stats()["rejects"] == 0
+    row_id = station_log.last_id()
+    station_log.amend_decision(row_id, "reject", "not answered in time: the PASS was not delivered")
+    assert follower.poll() == 1
+    assert follower.stats()["rejects"] == 1 and follower.stats()["parts"] == 2
+    shown = feed.latest()
+    assert (shown.part_id, shown.decision) == ("P2", "reject") and "not answered in time" in shown.reason
+    assert follower.poll() == 0
