@@ -1,11 +1,10 @@
 """Attach a viewer to a station that is already running, through its inspection log.
 
 The station writes every part to SQLite in WAL mode, so another process can read the log while it is written.
-``LogFollower`` polls for rows newer than the last one seen (and for recent rows whose decision was amended) and turns
-each into a ``ViewFrame``: rejected parts
-whose raw mosaic and heatmap were saved (``[log] save_rejects``, ``station.reject_store``) show their images
-(priors recomputed from the mosaic); other parts show the decision and statistics over a blank image, since
-the station keeps no image of them. Statistics come from the log: counts, reject rate, latency p50/p99 of the
+``LogFollower`` polls for rows newer than the last one seen (and for recent rows whose decision was amended) and
+turns each into a ``ViewFrame``: rejected parts whose raw mosaic and heatmap were saved (``[log] save_rejects``,
+``station.reject_store``) show their images (priors recomputed from the mosaic); other parts show the decision and
+statistics over a blank image, since the station keeps no image of them. Statistics come from the log: counts, reject rate, latency p50/p99 of the
 last ``window`` parts.
 """
 
