@@ -73,7 +73,7 @@ A model that is merely slower than the cycle answers between parts and never rea
 
 class FramesLost(Exception):
     """Line trigger: the part being grabbed has no frame: it was lost in transport (a gap in frame ids), or the camera
-    never saw its pulse (the next frame completed too long after its TRIG)."""
+    never saw its pulse (the next frame was exposed too long after its TRIG)."""
 
 
 class TransferClock:
@@ -238,9 +238,9 @@ class Station:
         self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         self.settle_timeout_s = settle_timeout_s
         self.max_frame_delay_ms = cycle_time_ms if max_frame_delay_ms is None else max_frame_delay_ms
-        """Line trigger: a frame completed later than this after a part's TRIG reached the host is the next part's
-        (the camera missed this part's pulse): this part is rejected and the frame kept for the next. Default: the
-        cycle time (such a frame could only make its part late)."""
+        """Line trigger: a frame exposed later than this after a part's TRIG reached the host (``TransferClock``) is
+        the next part's (the camera missed this part's pulse): this part is rejected and the frame kept for the next.
+        Default: the cycle time (such a frame could only make its part late)."""
         self.drift = drift
         """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
         logged when it starts and stops, kept in every row while it lasts, and shown in the viewer."""
@@ -323,7 +323,7 @@ class Station:
         Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host.
         Line trigger: frames are the parts' in order, so a gap in frame ids means the frames of this part and of
         the parts after it were lost in transport: FramesLost for this part, the owed parts are rejected without a
-        grab, and the frame is held for its own part (``MAX_HELD_GAP``). A frame completed more than
+        grab, and the frame is held for its own part (``MAX_HELD_GAP``). A frame that would have completed more than
         ``max_frame_delay_ms`` after the part's TRIG, had its transfer been as quick as the quickest lately
         (``TransferClock``), is a later part's (the camera missed this part's pulse, which spends no frame id):
         FramesLost for this part, and the frame is held for the next. A frame late only in transfer stays its own
