@@ -4,8 +4,8 @@ The station writes every part to SQLite in WAL mode, so another process can read
 ``LogFollower`` polls for rows newer than the last one seen (and for recent rows whose decision was amended) and
 turns each into a ``ViewFrame``: rejected parts whose raw mosaic and heatmap were saved (``[log] save_rejects``,
 ``station.reject_store``) show their images (priors recomputed from the mosaic); other parts show the decision and
-statistics over a blank image, since the station keeps no image of them. Statistics come from the log: counts, reject rate, latency p50/p99 of the
-last ``window`` parts.
+statistics over a blank image, since the station keeps no image of them. Statistics come from the log: counts,
+reject rate, latency p50/p99 of the last ``window`` parts.
 """
 
 from __future__ import annotations

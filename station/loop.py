@@ -238,6 +238,10 @@ class Station:
         self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         self.settle_timeout_s = settle_timeout_s
         self.max_frame_delay_ms = cycle_time_ms if max_frame_delay_ms is None else max_frame_delay_ms
+        if max_frame_delay_ms is None and link.triggered and camera.config.trigger.startswith("line"):
+            log.warning("line trigger without [acquisition] max_frame_delay_ms: a pulse the camera misses is caught "
+                        "only when parts come more than the cycle time (%.0f ms) apart; set it below the part spacing "
+                        "(docs/bring-up.md, step 8)", cycle_time_ms)
         """Line trigger: a frame exposed later than this after a part's TRIG reached the host (``TransferClock``) is
         the next part's (the camera missed this part's pulse): this part is rejected and the frame kept for the next.
         Default: the cycle time (such a frame could only make its part late)."""

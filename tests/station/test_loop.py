@@ -789,3 +789,13 @@ def test_the_transfer_clock_takes_out_slow_transfers_and_starts_over_when_the_ca
     assert clock.fastest(frame(100.1), 5.160) == pytest.approx(5.110)  # 50 ms slower in transfer: taken out
     assert clock.fastest(frame(0.5), 5.620) == pytest.approx(5.620)  # the camera's clock restarted: no history
     assert clock.fastest(Frame(np.zeros((2, 2), np.uint8), "Mono8", 8, 1, 0, 1), 7.0) == 7.0  # no timestamp
+
+
+def test_a_line_trigger_without_a_frame_delay_limit_is_warned_about(tmp_path, caplog):
+    make_station(tmp_path, ScriptedCamera([], trigger="line0"), BrightnessDetector(), ScriptedLink(0))
+    assert any("max_frame_delay_ms" in r.message for r in caplog.records)
+    caplog.clear()
+    make_station(tmp_path, ScriptedCamera([], trigger="line0"), BrightnessDetector(), ScriptedLink(0),
+                 max_frame_delay_ms=40.0)
+    make_station(tmp_path, ScriptedCamera([], trigger="software"), BrightnessDetector(), ScriptedLink(0))
+    assert not any("max_frame_delay_ms" in r.message for r in caplog.records)
