@@ -43,6 +43,7 @@ from __future__ import annotations
 import collections
 import dataclasses
 import logging
+import math
 import re
 import threading
 import time
@@ -113,6 +114,9 @@ class LineIOConfig:
     reconnect_backoff_s: float = 0.2
     reconnect_backoff_max_s: float = 5.0
     duplicate_window: int = 4096
+    duplicate_window_s: float = 10.0
+    """A TRIG id seen again within this many seconds (and among the last ``duplicate_window`` ids) is the same part
+    announced again (ERR duplicate id); later, it is a new part: a PLC whose counter restarted or wrapped."""
     max_line_bytes: int = MAX_LINE_BYTES
 
 
@@ -187,7 +191,7 @@ class LineIO:
         self._outbox: collections.deque[_Pending] = collections.deque()  # not yet written
         self._inflight: dict[str, _Pending] = {}  # written, waiting for ACK
         self._undelivered: list[tuple[str, str]] = []
-        self._seen: collections.OrderedDict[str, None] = collections.OrderedDict()
+        self._seen: collections.OrderedDict[str, float] = collections.OrderedDict()  # TRIG id -> arrival
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._link_up = threading.Event()
@@ -367,12 +371,13 @@ class LineIO:
         elif cmd == Command.TRIG:
             if not PART_ID.fullmatch(arg):
                 self._refuse("garbage", "bad part id", line)
-            elif arg in self._seen:
+            elif t_arrival - self._seen.get(arg, -math.inf) < self.config.duplicate_window_s:
                 self.stats.duplicates += 1
                 log.warning("PLC link %s: duplicate trigger id %r ignored", self.config.port, arg)
                 self._write(f"{Command.ERR} duplicate id {arg}\n".encode())
             else:
-                self._seen[arg] = None
+                self._seen.pop(arg, None)
+                self._seen[arg] = t_arrival
                 if len(self._seen) > self.config.duplicate_window:
                     self._seen.popitem(last=False)
                 self.stats.triggers += 1

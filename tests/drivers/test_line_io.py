@@ -299,3 +299,19 @@ def test_a_pass_in_flight_when_the_link_drops_is_not_resent_as_a_pass_after_its_
         assert io.flush(2.0)
         assert [(p, ok, sent) for p, ok, _, sent in io.outcomes()] == [("12", True, "reject")]
     peer.close()
+
+
+def test_an_id_reused_after_the_duplicate_window_is_a_new_part(pair: Socat) -> None:
+    """A PLC whose counter restarted (a power cycle) announces ids it used before: each is a new part, answered and
+    logged. Every such part used to get "ERR duplicate id" and no row, until 4096 other ids had passed."""
+    peer = Peer(pair.b)
+    with LineIO(cfg(pair.a, duplicate_window_s=0.3)) as io:
+        peer.send(b"TRIG 1\n")
+        assert io.next_trigger(2.0).part_id == "1"
+        peer.send(b"TRIG 1\n")  # at once: the same part announced again
+        assert peer.lines(1) == ["ERR duplicate id 1"] and io.next_trigger(0.1) is None
+        time.sleep(0.4)
+        peer.send(b"TRIG 1\n")  # later: another part with the same id
+        assert io.next_trigger(2.0).part_id == "1"
+    assert (io.stats.triggers, io.stats.duplicates) == (2, 1)
+    peer.close()
