@@ -195,6 +195,23 @@ def _check_layout(cfg: StationConfig, source: str) -> None:
                           f"got {angles!r}")
 
 
+GRAB_MARGIN_MS = 50.0
+"""What ``[camera] timeout_ms`` must allow beyond the exposure for readout and transfer (``_check_timing``)."""
+
+
+def _check_timing(cfg: StationConfig, source: str) -> None:
+    """Key combinations under which a part would be judged on another part's frame."""
+    if cfg.camera.trigger == "free_run" and cfg.io.mode != "none":
+        raise ConfigError(f"{source}: [camera] trigger: 'free_run' with [io] mode {cfg.io.mode!r}: the PLC announces "
+                          "parts, but a free-running camera's frames are not taken for them (a part would be judged "
+                          "on a frame taken before it arrived); use 'software' or a line trigger, or [io] mode 'none'")
+    exposure_ms = cfg.camera.exposure_us / 1e3
+    if cfg.camera.timeout_ms < exposure_ms + GRAB_MARGIN_MS:
+        raise ConfigError(f"{source}: [camera] timeout_ms: {cfg.camera.timeout_ms} ms does not cover the exposure "
+                          f"({exposure_ms:g} ms) plus {GRAB_MARGIN_MS:g} ms for readout and transfer: a grab that "
+                          "gives up before its frame arrives leaves that frame to be taken for the next part")
+
+
 def parse_config(text: str, source: str = "<string>") -> StationConfig:
     """Parse TOML ``text`` into a validated StationConfig; errors name ``source``."""
     try:
@@ -203,6 +220,7 @@ def parse_config(text: str, source: str = "<string>") -> StationConfig:
         raise ConfigError(f"{source}: not valid TOML: {exc}") from None
     cfg = _build_table(StationConfig, data, f"{source}: ")
     _check_layout(cfg, source)
+    _check_timing(cfg, source)
     return dataclasses.replace(cfg, source=source)
 
 

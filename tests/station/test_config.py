@@ -51,6 +51,12 @@ def test_values_are_typed():
     ("[decision]\nthreshold = 2", r"threshold: 2.0 is out of range \[0, 1\]"),
     ("camera = 3", "camera: expected a table"),
     ("[camera\n", "not valid TOML.*line 1"),
+    # a free-running camera's frames are not tied to the parts the PLC announces: each part was judged on a frame
+    # taken before it arrived (an earlier part's)
+    ('[camera]\ntrigger = "free_run"', r"\[camera\] trigger: 'free_run' with \[io\] mode 'sim_plc'"),
+    ('[camera]\ntrigger = "free_run"\n[io]\nmode = "serial"\nport = "/dev/ttyS0"', r"trigger: 'free_run' with"),
+    # a grab that gives up before the exposure is over takes that frame for the next part
+    ("[camera]\nexposure_us = 50000\ntimeout_ms = 20", r"\[camera\] timeout_ms: 20 ms does not cover"),
 ])
 def test_bad_config_names_the_key_and_reason(text, message):
     with pytest.raises(ConfigError, match=message):
