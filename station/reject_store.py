@@ -1,7 +1,8 @@
 """Raw mosaic and anomaly heatmap of rejected parts, one ``.npz`` per part, referenced from the log row.
 
-Files go to ``<image_dir>/<YYYY-MM-DD>/<part id>_f<frame id>.npz`` with arrays ``raw`` (the camera's mosaic,
-its own dtype) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the model did
+Files go to ``<image_dir>/<YYYY-MM-DD>/<part id>_f<frame id>_<ns>.npz`` (``ns``: the host's clock at saving, so that
+two rejects never share a file when part and frame ids repeat, as after a restart) with arrays ``raw`` (the
+camera's mosaic, its own dtype) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the model did
 not run). Written to a temporary name, then renamed, so a crash leaves no half file under the final name.
 A failed write (full or read-only disk) is logged and the part's row keeps ``image_path`` NULL: the decision
 and its log row never depend on the image. Images are not written when less than ``reserve_bytes`` would stay free
@@ -29,7 +30,7 @@ RESERVE_BYTES = 16 * 2**20
 
 class RejectStore:
     def __init__(self, image_dir: str | Path, reserve_bytes: int = RESERVE_BYTES) -> None:
-        self.root = Path(image_dir)
+        self.root = Path(image_dir).absolute()  # rows keep absolute paths: the log outlives the working directory
         self.reserve_bytes = reserve_bytes
         self.failures = 0
 
@@ -48,8 +49,8 @@ class RejectStore:
     def save(self, part_id: str, frame_id: int | None, raw: np.ndarray, heatmap: np.ndarray | None) -> str | None:
         """Write one rejected part; returns the file path, or None when it could not be written (logged)."""
         day = time.strftime("%Y-%m-%d")
-        name = f"{_UNSAFE.sub('_', part_id)[:64]}_f{frame_id if frame_id is not None else 'none'}.npz"
-        path = self.root / day / name
+        name = f"{_UNSAFE.sub('_', part_id)[:64]}_f{frame_id if frame_id is not None else 'none'}_{time.time_ns()}"
+        path = self.root / day / f"{name}.npz"
         arrays = {"raw": raw}
         if heatmap is not None:
             arrays["heatmap"] = heatmap.astype(np.float16)
@@ -75,11 +76,17 @@ class RejectStore:
         return str(path)
 
     def delete(self, paths: list[str]) -> int:
-        """Remove image files (retention); returns how many were removed."""
+        """Remove image files (retention); returns how many were removed. Only ``.npz`` files inside the image
+        folder are removed: a row's path elsewhere (another tool's log, a path written by hand) is left alone."""
         removed = 0
+        root = self.root.resolve()
         for p in paths:
+            target = Path(p).resolve()
+            if target.suffix != ".npz" or not target.is_relative_to(root):
+                log.warning("retention: %s is not an image of %s; left alone", p, self.root)
+                continue
             try:
-                Path(p).unlink()
+                target.unlink()
                 removed += 1
             except FileNotFoundError:
                 pass
