@@ -1,9 +1,9 @@
 """Raw mosaic and anomaly heatmap of rejected parts, one ``.npz`` per part, referenced from the log row.
 
-Files go to ``<image_dir>/<YYYY-MM-DD>/<part id>_f<frame id>_<ns>.npz`` (``ns``: the host's clock at saving, so that
-two rejects never share a file when part and frame ids repeat, as after a restart) with arrays ``raw`` (the
-camera's mosaic, its own dtype) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the model did
-not run). Written to a temporary name, then renamed, so a crash leaves no half file under the final name.
+Files go to ``<image_dir>/<YYYY-MM-DD>/<part id>_f<frame id>_<ns>.npz`` (``ns``: the host's clock at saving, so
+that two rejects never share a file when part and frame ids repeat, as after a restart) with arrays ``raw`` (the
+camera's mosaic, its own dtype) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the
+model did not run). Written to a temporary name, then renamed, so a crash leaves no half file under the final name.
 A failed write (full or read-only disk) is logged and the part's row keeps ``image_path`` NULL: the decision
 and its log row never depend on the image. Images are not written when less than ``reserve_bytes`` would stay free
 on their file system, so that images never take the room the log's rows need when both share a disk.
