@@ -40,6 +40,11 @@ from drivers.frame import Frame
 
 log = logging.getLogger(__name__)
 
+NEUTRAL_FEATURES: tuple[tuple[str, int | bool], ...] = (
+    ("DecimationHorizontal", 1), ("DecimationVertical", 1), ("ReverseX", False), ("ReverseY", False))
+"""GenICam features set to these values where a camera has them (besides binning 1x1): each would change which
+polarizer angle a pixel of the mosaic holds."""
+
 GVCP_PORT = 3956
 _OPEN: weakref.WeakSet[AravisCamera] = weakref.WeakSet()
 
@@ -312,6 +317,16 @@ class AravisCamera(CameraBase):
                 self._format = pixel_formats.lookup(cfg.pixel_format)
             except PixelFormatError as exc:
                 raise CameraConfigError(f"camera {self.name}: pixel_format {cfg.pixel_format!r}: {exc}") from None
+        # the polarizer mosaic only survives whole: undo binning, decimation and mirroring another tool left set
+        if cam.is_binning_available():
+            step("binning", "1x1", cam.set_binning, 1, 1)
+            if tuple(cam.get_binning()) != (1, 1):
+                raise CameraConfigError(f"camera {self.name}: binning stays {tuple(cam.get_binning())}; the "
+                                        "polarizer mosaic needs 1x1")
+        for feature, value in NEUTRAL_FEATURES:
+            if cam.is_feature_available(feature):
+                setter = cam.set_boolean if isinstance(value, bool) else cam.set_integer
+                step(feature, value, setter, feature, value)
         sensor_w, sensor_h = cam.get_sensor_size()
         _, _, w, h = sensor_region(cfg, sensor_w, sensor_h)
         step("region", (cfg.offset_x, cfg.offset_y, w, h), cam.set_region, cfg.offset_x, cfg.offset_y, w, h)

@@ -121,6 +121,20 @@ def test_software_trigger(fake: FakeGv) -> None:
     assert stats.timeouts == 2 and stats.completed == 4
 
 
+def test_binning_another_tool_left_is_undone(fake: FakeGv) -> None:
+    """A vendor viewer or a saved user set left the camera binned 2x2: the driver streamed a mosaic whose
+    polarizer angles were mixed, as if it were raw."""
+    with AravisCamera(cfg(trigger="software")) as other:
+        other._camera.set_integer("BinningHorizontal", 2)
+        other._camera.set_integer("BinningVertical", 2)
+    with AravisCamera(cfg(trigger="software")) as cam:
+        assert (cam._camera.get_integer("BinningHorizontal"), cam._camera.get_integer("BinningVertical")) == (1, 1)
+        cam.start()
+        cam.trigger()
+        assert cam.grab(2000).raw.shape == (48, 64)
+        cam.stop()
+
+
 def test_trigger_in_free_run_is_an_error(fake: FakeGv) -> None:
     with AravisCamera(cfg()) as cam:
         cam.start()
