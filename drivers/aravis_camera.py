@@ -35,7 +35,15 @@ from typing import Any
 
 from drivers import pixel_formats
 from drivers.camera import CameraBase, CameraConfig, FrameIdTracker, backoff_delays_s, sensor_region
-from drivers.errors import CameraConfigError, CameraError, CameraLost, CameraNotFound, CameraTimeout, PixelFormatError
+from drivers.errors import (
+    CameraConfigError,
+    CameraError,
+    CameraLost,
+    CameraNotFound,
+    CameraTimeout,
+    PixelFormatError,
+    TriggerFailed,
+)
 from drivers.frame import Frame
 
 log = logging.getLogger(__name__)
@@ -179,7 +187,11 @@ class AravisCamera(CameraBase):
             self._camera.software_trigger()
         except GLib.Error as exc:
             self._handle_loss(f"software trigger failed: {exc.message}")
-            self._camera.software_trigger()
+            try:
+                self._camera.software_trigger()
+            except GLib.Error as again:
+                raise TriggerFailed(f"camera {self.name}: software trigger failed after a reconnect: "
+                                    f"{again.message}") from None
 
     def stop(self) -> None:
         with self._lock:

@@ -30,6 +30,11 @@ class CameraLost(CameraError):
     Statistics stay readable; ``close()`` is still safe to call."""
 
 
+class TriggerFailed(DriverError):
+    """The software trigger command failed again after the camera answered a reconnect: this part has no frame. Not
+    a ``CameraError``: the station rejects the part and goes on (``station.loop.MAX_UNUSABLE_FRAMES``)."""
+
+
 class PixelFormatError(DriverError):
     """A pixel format code or name the decoder does not know, or a buffer whose size does not fit it."""
 

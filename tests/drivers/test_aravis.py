@@ -30,3 +30,23 @@ def test_aravis_driver_over_gige_vision_in_private_namespace() -> None:
     print(r.stdout[-5000:])
     assert r.returncode == 0, r.stdout[-8000:] + r.stderr[-3000:]
     assert " passed" in r.stdout and "skipped" not in r.stdout
+
+
+def test_a_software_trigger_that_fails_again_after_a_reconnect_is_a_driver_error(monkeypatch) -> None:
+    """The retry after a reconnect let GLib.Error escape (a traceback in station capture). No device is opened."""
+    pytest.importorskip("gi")
+    from drivers.aravis_camera import AravisCamera, _aravis
+    from drivers.camera import CameraConfig
+    from drivers.errors import TriggerFailed
+
+    _, GLib, _ = _aravis()
+
+    class Flaky:  # answers the reconnect, then times out on the command again
+        def software_trigger(self) -> None:
+            raise GLib.Error("GVCP timeout")
+
+    cam = AravisCamera(CameraConfig(device="127.0.0.1", trigger="software"))
+    cam._camera, cam._started = Flaky(), True
+    monkeypatch.setattr(cam, "_handle_loss", lambda why: setattr(cam, "_camera", Flaky()))
+    with pytest.raises(TriggerFailed, match="software trigger"):
+        cam.trigger()
