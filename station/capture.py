@@ -6,11 +6,12 @@ Files under ``OUT``::
 
     OUT/<split>/<label>/<NNNNNN>.png   raw mosaic as the camera gave it (8-bit, or 16-bit holding bit_depth bits)
     OUT/capture.jsonl                  one line per frame: file, ids, timestamps, pixel format, bit depth,
-                                       camera settings, frame statistics
+                                       camera settings, frame statistics, ground truth where known
     OUT/polar_ano.json                 bit depth and layout (station import reads them)
 
 Numbering continues after the files already in the label's folder: a second ``station capture`` into the same
-``OUT`` adds frames (same bit depth and layout required).
+``OUT`` adds frames (same bit depth and layout required). A frame whose ground truth (the virtual camera's) says it
+is not a ``--label`` part is left out and counted (``contradiction``); ``capture.jsonl`` then records it.
 """
 
 from __future__ import annotations
@@ -41,15 +42,37 @@ class CaptureReport:
     stats: list[FrameStatistics] = field(default_factory=list)
     seconds: float = 0.0
     bit_depth: int = 8
+    left_out: int = 0
+    """Frames not written: the camera's ground truth (the virtual camera's) contradicted ``--label``."""
 
     def describe(self) -> str:
         if not self.stats:
             return f"no frames written to {self.folder}"
         r = StatisticsRange.from_frames(self.stats)
         med = r.median
+        skipped = (f"; left out {self.left_out} frames whose ground truth contradicted the label" if self.left_out
+                   else "")
         return (f"wrote {len(self.files)} frames ({self.bit_depth}-bit) to {self.folder} in {self.seconds:.1f} s; "
                 f"medians: level {med['median_level']:.3f}, p95 level {med['high_level']:.3f}, clipped "
-                f"{100 * med['clipped_fraction']:.2f} %, DoLP {med['dolp_level']:.3f}")
+                f"{100 * med['clipped_fraction']:.2f} %, DoLP {med['dolp_level']:.3f}{skipped}")
+
+
+MAX_GRABS_PER_FRAME = 20
+"""``capture`` gives up after this many grabs per frame asked for when the ground truth keeps contradicting the
+label (a virtual camera whose set has no parts of that kind)."""
+
+
+def contradiction(frame: Frame, label: str) -> str | None:
+    """Why ``frame``'s ground truth (the virtual camera's; a real camera has none) says it is not a ``label`` part,
+    None when it agrees or is unknown."""
+    gt = frame.ground_truth
+    if gt is None:
+        return None
+    if not gt.present:
+        return "no part in view"
+    if (label == "good") == bool(gt.label):
+        return f"a {'defective' if gt.label else 'good'} part"
+    return None
 
 
 def label_folder(out: Path, label: str, split: str | None) -> Path:
@@ -99,10 +122,19 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
     try:
         with open(out / "capture.jsonl", "a") as log, tqdm(total=frames, unit="frame", disable=not progress,
                                                            dynamic_ncols=True) as bar:
-            for n in range(frames):
+            grabs = 0
+            while len(report.files) < frames:
+                grabs += 1
+                if grabs > MAX_GRABS_PER_FRAME * frames:
+                    raise UserError(f"{report.left_out} of {grabs - 1} frames contradicted --label {label} (the "
+                                    "virtual camera's ground truth): its set has too few such parts")
+                n = len(report.files)
                 if software_trigger:
                     camera.trigger()
                 frame: Frame = camera.grab(timeout_ms) if timeout_ms else camera.grab()
+                if contradiction(frame, label):
+                    report.left_out += 1
+                    continue
                 if n == 0:
                     _check_info(out, frame.bit_depth, layout)
                     report.bit_depth = frame.bit_depth
@@ -119,7 +151,8 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                     "file": rel, "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
                     "timestamp_ns": frame.timestamp_ns, "host_timestamp_ns": frame.host_timestamp_ns,
                     "pixel_format": frame.pixel_format, "bit_depth": frame.bit_depth, "label": label,
-                    "camera": settings or {}, "statistics": stats.as_dict()}) + "\n")
+                    "camera": settings or {}, "statistics": stats.as_dict(),
+                    **({"ground_truth": frame.ground_truth.label} if frame.ground_truth is not None else {})}) + "\n")
                 log.flush()
                 report.files.append(rel)
                 report.stats.append(stats)

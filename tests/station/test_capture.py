@@ -51,3 +51,17 @@ def test_capture_compares_with_the_models_trained_range(tmp_path: Path, capsys) 
                  str(tmp_path / "cap"), "--model", str(tmp_path / "m" / "adapted")]) == 0
     out = capsys.readouterr().out
     assert "was trained on: median_level" in out and "raise [camera] exposure_us" in out
+
+
+def test_capture_keeps_only_frames_the_virtual_cameras_ground_truth_agrees_with(tmp_path: Path, capsys) -> None:
+    """Capturing "good" parts from the virtual camera stored its defective parts (drawn at [sim] defect_rate) as
+    good: they became a model's good parts."""
+    ds = make_line_set(tmp_path / "ds", 20, defective=lambda i: i % 2 == 1)
+    cfg = write_config(tmp_path, make_model(tmp_path / "m" / "best"), ds)  # [sim] defect_rate 0.5
+    out = tmp_path / "cap"
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "8", "--out", str(out)]) == 0
+    assert "left out" in capsys.readouterr().out
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "4", "--out", str(out),
+                 "--label", "stain"]) == 0
+    lines = [json.loads(x) for x in (out / "capture.jsonl").read_text().splitlines()]
+    assert len(lines) == 12 and [x["ground_truth"] for x in lines] == [0] * 8 + [1] * 4
