@@ -31,7 +31,7 @@ from drivers.frame import Frame
 from model.priors import compute_priors
 from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
 from station.errors import UserError
-from station.mvtec import INFO_FILE
+from station.mvtec import INFO_FILE, read_info
 
 
 @dataclass
@@ -93,7 +93,7 @@ def _next_number(folder: Path) -> int:
 def _check_info(out: Path, bit_depth: int, layout: str) -> None:
     p = out / INFO_FILE
     if p.is_file():
-        old = json.loads(p.read_text())
+        old = read_info(out)
         if old.get("bit_depth") != bit_depth or old.get("layout") != layout:
             raise UserError(f"{p}: this folder holds {old.get('bit_depth')}-bit {old.get('layout')} frames, the camera "
                             f"gives {bit_depth}-bit {layout}: capture into another folder")

@@ -127,14 +127,23 @@ def scan_mvtec(root: str | Path) -> list[MvtecItem]:
 
 
 def read_info(root: str | Path) -> dict:
-    """``polar_ano.json`` of an MVTec-layout folder ({} when absent)."""
+    """``polar_ano.json`` of an MVTec-layout folder ({} when absent); UserError naming the file and key unless it is
+    an object whose ``bit_depth`` (when present) is an integer in 1..16 and ``layout`` a string."""
     p = Path(root) / INFO_FILE
     if not p.is_file():
         return {}
     try:
-        return json.loads(p.read_text())
-    except (OSError, json.JSONDecodeError) as exc:
+        info = json.loads(p.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise UserError(f"{p}: unreadable ({exc})") from None
+    if not isinstance(info, dict):
+        raise UserError(f"{p}: expected a JSON object with bit_depth and layout, got {type(info).__name__}")
+    depth = info.get("bit_depth")
+    if depth is not None and (isinstance(depth, bool) or not isinstance(depth, int) or not 1 <= depth <= 16):
+        raise UserError(f"{p}: bit_depth: expected an integer in 1..16, got {depth!r}")
+    if info.get("layout") is not None and not isinstance(info["layout"], str):
+        raise UserError(f"{p}: layout: expected a string, got {info['layout']!r}")
+    return info
 
 
 def read_mosaic(path: Path, bit_depth: int) -> np.ndarray:

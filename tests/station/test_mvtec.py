@@ -4,6 +4,8 @@ commands that read an imported set (eval, threshold)."""
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 from pathlib import Path
 
 import cv2
@@ -13,6 +15,7 @@ from line_sets import make_line_set, make_model  # same folder (pytest puts it o
 
 from sim.dataset import open_dataset
 from station.cli import main
+from station.errors import UserError
 
 
 def _by_source(root: Path) -> dict[str, object]:
@@ -125,3 +128,22 @@ def test_train_reads_an_imported_set_and_records_its_frame_statistics(tmp_path: 
     for name in ("best", "last"):
         stats = json.loads((out / f"{name}.json").read_text())["train"]["frame_statistics"]
         assert stats["n_frames"] == 11 and 0.0 < stats["median"]["median_level"] < 1.0 and "q1" in stats
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("[]", "expected a JSON object"),
+    ('{"layout": ["imx250mzr"]}', "layout: expected a string"),
+    ('{"bit_depth": "12"}', "bit_depth: expected an integer"),
+    ('{"bit_depth": 12', "unreadable"),
+])
+def test_a_bad_polar_ano_json_is_one_line_naming_it(tmp_path: Path, text: str, message: str) -> None:
+    """A list, a truncated file or a key of the wrong type printed a traceback (import and capture)."""
+    from station.mvtec import read_info
+
+    src = _write_mvtec(tmp_path / "mv", dtype=np.uint8, top=200)
+    (src / "polar_ano.json").write_text(text)
+    with pytest.raises(UserError, match=rf"polar_ano.json: .*{message}"):
+        read_info(src)
+    r = subprocess.run([sys.executable, "-m", "station.cli", "import", "--from", str(src), "--out",
+                        str(tmp_path / "ds")], capture_output=True, text=True)
+    assert r.returncode == 2 and "Traceback" not in r.stderr and "polar_ano.json" in r.stderr
