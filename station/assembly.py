@@ -163,7 +163,7 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
     drift = drift_monitor(detector)
     inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
                           display_priors=("intensity", "dolp", "aolp") if viewer else (),
-                          presence=presence_check(cfg), statistics=drift is not None)
+                          presence=presence_check(cfg), statistics=drift is not None, bit_depth=cfg.priors.bit_depth)
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
                    grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,

@@ -105,9 +105,11 @@ def _check_info(out: Path, bit_depth: int, layout: str) -> None:
 def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", split: str | None = None,
             settings: dict[str, Any] | None = None, layout: str = "imx250mzr", software_trigger: bool = True,
             timeout_ms: int | None = None, progress: bool = True,
-            on_frame: Callable[[int, FrameStatistics], None] | None = None) -> CaptureReport:
+            on_frame: Callable[[int, FrameStatistics], None] | None = None,
+            bit_depth: int | None = None) -> CaptureReport:
     """Grab ``frames`` frames from the open ``camera`` (started and stopped here) into ``out`` (module docstring).
-    ``settings``: the camera settings to record with each frame; ``on_frame(n, stats)`` after each frame."""
+    ``settings``: the camera settings to record with each frame; ``on_frame(n, stats)`` after each frame;
+    ``bit_depth``: ``[priors] bit_depth``, the significant bits when the pixel format's are wider."""
     from tqdm import tqdm
 
     if frames < 1:
@@ -135,22 +137,26 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                 if contradiction(frame, label):
                     report.left_out += 1
                     continue
+                bits = frame.bit_depth if bit_depth is None else bit_depth
+                if bits > frame.bit_depth:
+                    raise UserError(f"[priors] bit_depth {bits}: more than the frame's {frame.bit_depth} bits "
+                                    f"({frame.pixel_format})")
                 if n == 0:
-                    _check_info(out, frame.bit_depth, layout)
-                    report.bit_depth = frame.bit_depth
-                elif frame.bit_depth != report.bit_depth:
-                    raise UserError(f"frame {frame.frame_id}: {frame.bit_depth}-bit after {report.bit_depth}-bit "
+                    _check_info(out, bits, layout)
+                    report.bit_depth = bits
+                elif bits != report.bit_depth:
+                    raise UserError(f"frame {frame.frame_id}: {bits}-bit after {report.bit_depth}-bit "
                                     f"frames; one capture, one pixel format")
                 name = f"{number:06d}.png"
                 if not cv2.imwrite(str(folder / name), np.ascontiguousarray(frame.raw)):
                     raise UserError(f"could not write {folder / name}")
-                priors = compute_priors(frame.raw, layout, priors=("intensity", "dolp"), bit_depth=frame.bit_depth)
-                stats = frame_statistics(priors, raw=frame.raw, bit_depth=frame.bit_depth)
+                priors = compute_priors(frame.raw, layout, priors=("intensity", "dolp"), bit_depth=bits)
+                stats = frame_statistics(priors, raw=frame.raw, bit_depth=bits)
                 rel = str((folder / name).relative_to(out))
                 log.write(json.dumps({
                     "file": rel, "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
                     "timestamp_ns": frame.timestamp_ns, "host_timestamp_ns": frame.host_timestamp_ns,
-                    "pixel_format": frame.pixel_format, "bit_depth": frame.bit_depth, "label": label,
+                    "pixel_format": frame.pixel_format, "bit_depth": bits, "label": label,
                     "camera": settings or {}, "statistics": stats.as_dict(),
                     **({"ground_truth": frame.ground_truth.label} if frame.ground_truth is not None else {})}) + "\n")
                 log.flush()

@@ -79,8 +79,11 @@ class Inspector:
 
     def __init__(self, detector: Detector, layout: MosaicLayout, method: str = "bilinear",
                  display_priors: tuple[str, ...] = (), presence: PresenceCheck | None = None,
-                 statistics: bool = False) -> None:
+                 statistics: bool = False, bit_depth: int | None = None) -> None:
         self.detector = detector
+        self.bit_depth = bit_depth
+        """``[priors] bit_depth``: significant bits of the codes when the pixel format's are wider (a Mono16 camera
+        carrying 12-bit codes); None: the frame's own."""
         self.layout = layout
         self.method = method
         self.presence = presence
@@ -93,7 +96,11 @@ class Inspector:
         result = Inspection()
         t = time.perf_counter()
         try:
-            norm = normalize_mosaic(frame.raw, frame.bit_depth)
+            bits = frame.bit_depth if self.bit_depth is None else self.bit_depth
+            if bits > frame.bit_depth:
+                raise ValueError(f"[priors] bit_depth {bits} is more than the frame's {frame.bit_depth} bits "
+                                 f"({frame.pixel_format})")
+            norm = normalize_mosaic(frame.raw, bits)
             s0, s1, s2 = mosaic_to_stokes(norm.data, self.layout, self.method, self.polarization)
             t_demosaic = time.perf_counter()
             result.timings_ms["demosaic"] = 1e3 * (t_demosaic - t)
@@ -103,7 +110,7 @@ class Inspector:
             if self.statistics:
                 k = self.STATS_STRIDE
                 result.frame_stats = frame_statistics({n: result.priors[n][::k, ::k] for n in ("intensity", "dolp")},
-                                                      raw=frame.raw[::k, ::k], bit_depth=frame.bit_depth)
+                                                      raw=frame.raw[::k, ::k], bit_depth=bits)
             t_priors = time.perf_counter()
             result.timings_ms["priors"] = 1e3 * (t_priors - t_demosaic)
         except Exception as exc:  # any failure here is a part we cannot judge

@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     camera = open_camera(cfg)
     try:
         report = capture(camera, args.frames, args.out, args.label, args.split, settings, cfg.priors.layout,
-                         software_trigger=cfg.camera.trigger == "software",
+                         software_trigger=cfg.camera.trigger == "software", bit_depth=cfg.priors.bit_depth,
                          on_frame=(lambda _n, s: _warn(monitor.update(s))) if monitor else None)
     finally:
         camera.close()

@@ -799,3 +799,27 @@ def test_a_line_trigger_without_a_frame_delay_limit_is_warned_about(tmp_path, ca
                  max_frame_delay_ms=40.0)
     make_station(tmp_path, ScriptedCamera([], trigger="software"), BrightnessDetector(), ScriptedLink(0))
     assert not any("max_frame_delay_ms" in r.message for r in caplog.records)
+
+
+def test_priors_bit_depth_sets_the_significant_bits_of_a_wider_pixel_format(tmp_path):
+    """[priors] bit_depth = 12 for a Mono16 camera carrying 12-bit codes was documented and ignored: full-scale codes
+    read 16x too dark."""
+    seen = []
+
+    class Recording(BrightnessDetector):
+        def infer(self, priors):
+            seen.append(float(priors["intensity"].max()))
+            return super().infer(priors)
+
+    class Mono16(ScriptedCamera):
+        def grab(self, timeout_ms=None):
+            f = super().grab(timeout_ms)
+            return Frame(np.full((8, 8), 4095, np.uint16), "Mono16", 16, f.frame_id, 0, f.host_timestamp_ns)
+
+    log = InspectionLog(tmp_path / "log.sqlite")
+    inspector = Inspector(Recording(), IMX250MZR, bit_depth=12)
+    Station(Mono16([0]), inspector, NoLink(), log, cycle_time_ms=10_000.0, threshold=0.5).run(max_parts=1)
+    assert seen and seen[0] > 0.9
+    too_wide = Inspector(Recording(), IMX250MZR, bit_depth=12).inspect(
+        Frame(np.full((8, 8), 200, np.uint8), "Mono8", 8, 1, 0, 1))
+    assert too_wide.error and "[priors] bit_depth 12" in too_wide.error
