@@ -19,14 +19,14 @@ class AdaptSummary:
     record: dict[str, Any]
 
     def describe(self) -> str:
-        from station.evaluation import describe
+        from station.evaluation import describe_left_out
 
         r = self.record
         return (f"{self.out}: adapted on {r['n_good']} good parts of {r['data']} ({r['scheme']}); threshold "
                 f"{r['threshold']:.4g}, {100 * r['heldout_false_reject']:.1f} % of held-out good parts rejected "
                 f"(target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: {r['frame_statistics']}"
-                + (f"\nleft out {len(r['left_out'])} frames the station would not judge: {describe(r['left_out'])}"
-                   if r.get("left_out") else "")
+                + (f"\nleft out {len(r['left_out'])} frames the station would not judge: "
+                   f"{describe_left_out(r['left_out'])}" if r.get("left_out") else "")
                 + (f"\nnote: {r['advice']}" if r.get("advice") else ""))
 
     def _networks(self) -> str:
@@ -60,7 +60,7 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
     from model.priors.frame_stats import StatisticsRange
     from station.datasets import judged_part_of, manifest_sha256
-    from station.evaluation import describe, model_split
+    from station.evaluation import describe_left_out, model_split
 
     if paths(out)[1].resolve() == paths(model)[1].resolve():
         raise UserError(f"--out {out}: the same checkpoint as --model; write the adapted model beside it")
@@ -71,7 +71,7 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     keep = (sp.label == 0).nonzero().flatten()
     if len(keep) == 0:
         raise UserError(f"{good}: split {split!r} has no good parts the station would judge"
-                        + (f" ({describe(left_out)})" if left_out else ""))
+                        + (f" ({describe_left_out(left_out)})" if left_out else ""))
     x, obj = sp.priors[keep], sp.object_mask[keep]
     det, res = adapt(ck.detector, x, obj, cfg)
     used = [sp.index[int(k)] for k in keep]

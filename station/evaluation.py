@@ -103,7 +103,8 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
     ck = load_checkpoint(model)
     sp, left_out = judged_part_of(model_split(ck, model, data, split))
     if not sp.index:
-        raise UserError(f"{data}: the station would judge none of split {split!r}'s frames ({describe(left_out)})")
+        raise UserError(f"{data}: the station would judge none of split {split!r}'s frames "
+                        f"({describe_left_out(left_out)})")
     ev = evaluate(inference_net(ck, model, "fp32"),
                   EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known))
     labels = sp.label.numpy()
@@ -121,13 +122,13 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
     save_checkpoint(model, ck.detector, choice.threshold, choice.rule, trained_sha, ev.metrics, train)
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else " (no defective parts there)"
     where = "" if same_set else " (not its training set: recorded in the sidecar)"
-    skipped = (f"\nleft out {len(left_out)} frames the station would not judge: {describe(left_out)}"
+    skipped = (f"\nleft out {len(left_out)} frames the station would not judge: {describe_left_out(left_out)}"
                if left_out else "")
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
             f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}{skipped}")
 
 
-def describe(left_out: Mapping[Any, str], most: int = 10) -> str:
+def describe_left_out(left_out: Mapping[Any, str], most: int = 10) -> str:
     """``judged_part_of``'s left-out samples in one line (the first ``most``)."""
     text = "; ".join(f"sample {i}: {why}" for i, why in list(left_out.items())[:most])
     return text + (f"; and {len(left_out) - most} more" if len(left_out) > most else "")

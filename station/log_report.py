@@ -20,7 +20,7 @@ NOISY_LINE_LEVEL = 1.5
 (``OWN_RENDERS_NOISE_LEVEL_MAX``)."""
 
 REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
-    ("score over threshold", ("score ",)),
+    ("score over threshold", ("> threshold",)),
     ("log not writable", ("not recorded:",)),
     ("PLC link", ("the PASS was not",)),
     ("station stopping", ("station stopping",)),
@@ -42,7 +42,7 @@ def reject_cause(reason: str | None) -> str:
     """The ``REJECT_CAUSES`` name of a reject's or a not-inspected row's ``reason``."""
     text = reason or ""
     for cause, needles in REJECT_CAUSES:
-        if any(text.startswith(n) if n == "score " else n in text for n in needles):
+        if any(n in text for n in needles):
             return cause
     return "other"
 
