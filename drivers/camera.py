@@ -227,7 +227,10 @@ class FrameIdTracker:
 
     def update(self, device_id: int) -> tuple[int, int]:
         """(unwrapped id, frames lost since the previous id) for the next complete or failed frame. The count is
-        -1 for a late frame that was counted lost before, 0 for a repeated id."""
+        -1 for a late frame that was counted lost before, 0 for a repeated id. Id 0 (never a camera's: Aravis's for
+        a buffer whose leader was lost, so its id is unknown) changes nothing and comes back as repeated."""
+        if device_id == 0:
+            return self._unwrapped, 0
         if device_id > self.WRAP:
             self._wide = True
         if self._last_device is None:

@@ -43,6 +43,16 @@ def test_frame_id_gaps_count_lost_frames_across_the_wrap() -> None:
     assert t.update(100) == (5, 0)  # after a restart: no gap counted, still monotonic
 
 
+def test_frame_id_0_is_unknown_and_moves_nothing() -> None:
+    """Aravis gives id 0 to a buffer whose leader was lost. Taken as the first id, it made the camera's real ids (the
+    fake camera's ran from 65402) look 133 frames behind it: every frame was late, none delivered, and a grab timed
+    out (the packet-loss case failed about 1 run in 20)."""
+    t = FrameIdTracker()
+    assert t.update(0) == (0, 0)  # not counted, not delivered (0 is never a new id)
+    assert [t.update(i) for i in (65402, 65403, 65405)] == [(1, 0), (2, 0), (4, 1)]
+    assert t.update(0) == (4, 0) and t.update(65406) == (5, 0)
+
+
 def test_reordered_frame_ids_are_late_frames_not_a_wrap() -> None:
     """Packet loss with resends completes frames out of order: an id just behind the last one is a late frame that
     was counted lost when its gap was seen (it was taken as a 16-bit wrap: 65534 lost frames each time)."""
