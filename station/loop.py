@@ -77,18 +77,23 @@ class FramesLost(Exception):
 
 
 class TransferClock:
-    """Line trigger: when a frame would have reached the host had its transfer been as quick as the quickest of the
-    last ``WINDOW`` frames; it tells a frame exposed late (a later part's, after a missed pulse) from one that was
-    exposed on time and came slowly (packet resends). Uses the camera's timestamp (its own clock, in ns): the host
-    time of a frame minus it is the clock offset plus that frame's transfer time; the smallest over recent frames
-    is the offset plus the quickest transfer. Camera timestamps that go backwards (a reconnect resets the camera's
-    clock) start over; a camera without timestamps (0) leaves the host's completion time as it is."""
+    """Triggered frames: when a frame would have reached the host had its transfer been as quick as the quickest of
+    the last ``WINDOW`` frames. It tells a frame taken late (a later part's, after a missed pulse) from one taken on
+    time that came slowly (packet resends, a network stall), and a frame taken before a part's trigger from one taken
+    after it. Uses the camera's timestamp (its own clock, in ns): the host time of a frame minus it is the clock
+    offset plus that frame's transfer time; the smallest over recent frames is the offset plus the quickest transfer.
+    Camera timestamps that go backwards (a reconnect resets the camera's clock) start over. The host's completion
+    time is used as it is for a camera without timestamps (0), and for one whose clock does not run at the host's
+    rate within ``MAX_RATE_ERROR`` over the window (a wrong tick frequency would shift every frame)."""
 
     WINDOW = 64
+    MAX_RATE_ERROR = 0.01
 
     def __init__(self) -> None:
-        self._offsets: deque[float] = deque(maxlen=self.WINDOW)
+        self._seen: deque[tuple[float, float]] = deque(maxlen=self.WINDOW)  # (camera s, host completion s)
         self._last_ns = 0
+        self.untrusted = False
+        """The camera's clock did not keep the host's rate: its timestamps are not used."""
 
     def fastest(self, frame: Frame, completed: float) -> float:
         """``completed`` (``time.perf_counter()`` clock, s) less the part of the frame's transfer time above the
@@ -96,11 +101,23 @@ class TransferClock:
         if frame.timestamp_ns <= 0:
             return completed
         if frame.timestamp_ns < self._last_ns:
-            self._offsets.clear()
+            self._seen.clear()
         self._last_ns = frame.timestamp_ns
         camera_s = frame.timestamp_ns / 1e9
-        self._offsets.append(completed - camera_s)
-        return camera_s + min(self._offsets)
+        self._seen.append((camera_s, completed))
+        offsets = [h - c for c, h in self._seen]
+        span = self._seen[-1][1] - self._seen[0][1]
+        half = len(offsets) // 2
+        # the quickest transfer is the same early and late in the window unless the clocks' rates differ (a slow
+        # transfer raises one offset, never the smallest)
+        if span > 2.0 and abs(min(offsets[half:]) - min(offsets[:half])) > self.MAX_RATE_ERROR * span / 2:
+            if not self.untrusted:
+                log.warning("camera timestamps drift from the host clock (%.0f ms over %.1f s): not used to time "
+                            "frames", 1e3 * (min(offsets[half:]) - min(offsets[:half])), span)
+            self.untrusted = True
+        if self.untrusted:
+            return completed
+        return camera_s + min(offsets)
 
 
 class LineLink(Protocol):
@@ -325,6 +342,9 @@ class Station:
         """The frame of ``part``: triggered, frames completed before the part could have been imaged are an earlier
         part's (one that arrived after its own part timed out) and are skipped, never judged for this part.
         Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host.
+        "Completed" is on the host, less any transfer time above the quickest lately (``TransferClock``, from the
+        camera's timestamps): a frame held up by a network stall past its grab's timeout, arriving after the next
+        part's trigger, was still taken before it.
         Line trigger: frames are the parts' in order, so a gap in frame ids means the frames of this part and of
         the parts after it were lost in transport: FramesLost for this part, the owed parts are rejected without a
         grab, and the frame is held for its own part (``MAX_HELD_GAP``). A frame that would have completed more than
@@ -351,17 +371,18 @@ class Station:
             if not self.link.triggered or frame.host_timestamp_ns <= 0:
                 return frame
             completed = time.perf_counter() - (time.time_ns() - frame.host_timestamp_ns) / 1e9
-            delay_ms = 1e3 * (self._transfer.fastest(frame, completed) - part.t_trigger) if line else 0.0
+            exposed = self._transfer.fastest(frame, completed)  # less a slow transfer: when it was taken
+            delay_ms = 1e3 * (exposed - part.t_trigger) if line else 0.0
             if delay_ms > self.max_frame_delay_ms:
                 self._held = frame
                 raise FramesLost(f"the camera missed its trigger pulse: the next frame ({frame.frame_id}) was "
                                  f"exposed {delay_ms:.0f} ms after its TRIG, over [acquisition] max_frame_delay_ms "
                                  f"({self.max_frame_delay_ms:.0f} ms); the frame is kept for the next part")
-            if completed >= earliest:
+            if exposed >= earliest:
                 return frame
             self.stale_frames += 1
-            log.warning("frame %d completed %.0f ms before part %s could be imaged: an earlier part's, skipped",
-                        frame.frame_id, 1e3 * (earliest - completed), part.part_id)
+            log.warning("frame %d was taken %.0f ms before part %s could be imaged: an earlier part's, skipped",
+                        frame.frame_id, 1e3 * (earliest - exposed), part.part_id)
             if time.perf_counter() >= deadline:
                 raise CameraTimeout(f"no frame of its own within {self.grab_timeout_ms} ms (only earlier parts')")
 

@@ -823,3 +823,74 @@ def test_priors_bit_depth_sets_the_significant_bits_of_a_wider_pixel_format(tmp_
     too_wide = Inspector(Recording(), IMX250MZR, bit_depth=12).inspect(
         Frame(np.full((8, 8), 200, np.uint8), "Mono8", 8, 1, 0, 1))
     assert too_wide.error and "[priors] bit_depth 12" in too_wide.error
+
+
+class StalledTransferCamera(ScriptedCamera):
+    """Software-triggered: each trigger's frame is exposed 10 ms later (its camera timestamp) and reaches the host 2 ms
+    after that, in order; a network stall of ``stall_s`` holds up the frames of the triggers in ``stalled`` and every
+    frame behind them."""
+
+    def __init__(self, labels, stalled, stall_s):
+        super().__init__([], trigger="software")
+        self.labels, self.stalled, self.stall_s = list(labels), stalled, stall_s
+        self.k = 0
+        self.last_arrival = 0.0
+        self.frames = deque()
+        self.ready = threading.Condition()
+
+    def trigger(self):
+        k, label = self.k, self.labels[self.k]
+        self.k += 1
+        self.frame_id += 1
+        frame_id, now = self.frame_id, time.monotonic()
+        arrival = max(now + 0.012 + (self.stall_s if k in self.stalled else 0.0), self.last_arrival + 0.001)
+        self.last_arrival = arrival
+        exposed_ns = int(1e9 * (now + 0.010))
+
+        def arrive():
+            with self.ready:
+                raw = np.full((8, 8), 200 if label == 1 else 20, np.uint8)
+                self.frames.append(Frame(raw, "Mono8", 8, frame_id, exposed_ns, time.time_ns(),
+                                         ground_truth=GroundTruth(label=label)))
+                self.ready.notify_all()
+
+        threading.Timer(arrival - now, arrive).start()
+
+    def grab(self, timeout_ms=None):
+        with self.ready:
+            if not self.ready.wait_for(lambda: self.frames, timeout=(timeout_ms or 1000) / 1e3):
+                raise CameraTimeout("no frame")
+            return self.frames.popleft()
+
+
+def test_a_frame_stalled_past_its_grab_timeout_is_not_taken_for_the_next_part(tmp_path):
+    """Software trigger: a stall held T2's frame past its grab's timeout, and T3's behind it; T3 (defective) was
+    judged on T2's frame, which reached the host after T3's trigger, and passed. The camera's timestamp says it was
+    exposed before T3's trigger."""
+    labels = [0, 0, 0, 1, 0]
+    link = ScriptedLink(len(labels))
+    camera = StalledTransferCamera(labels, stalled={2}, stall_s=0.15)
+    station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block",
+                                grab_timeout_ms=100, cycle_time_ms=5000.0)
+    station.run(max_parts=len(labels))
+    rows = {r["part_id"]: r for r in log.rows()}
+    assert rows["T2"]["decision"] == "reject" and "no frame" in rows["T2"]["reason"]
+    assert rows["T3"]["decision"] == "reject" and rows["T3"]["ground_truth_label"] == 1
+    assert [rows[p]["ground_truth_label"] for p in ("T0", "T1", "T4")] == [0, 0, 0]
+
+
+def test_the_transfer_clock_ignores_a_camera_clock_that_runs_at_another_rate():
+    from station.loop import TransferClock
+
+    clock = TransferClock()
+    for k in range(40):  # a tick frequency read wrong: the camera's seconds are half the host's
+        host = 10.0 + 0.1 * k
+        got = clock.fastest(Frame(np.zeros((2, 2), np.uint8), "Mono8", 8, k + 1, int(1e9 * (50.0 + 0.05 * k)), 1),
+                            host)
+    assert clock.untrusted and got == host
+    steady = TransferClock()
+    for k in range(40):  # the right rate, and every fifth frame 150 ms late in transfer: trusted
+        late = 0.15 if k % 5 == 4 else 0.0
+        got = steady.fastest(Frame(np.zeros((2, 2), np.uint8), "Mono8", 8, k + 1, int(1e9 * (50.0 + 0.1 * k)), 1),
+                             10.0 + 0.1 * k + 0.01 + late)
+    assert not steady.untrusted and got == pytest.approx(10.0 + 0.1 * 39 + 0.01)
