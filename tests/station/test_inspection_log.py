@@ -356,23 +356,17 @@ def test_each_reject_cause_matches_a_wording_the_station_uses():
         assert any(n in source for n in needles), f"no reason in the code reads like {cause!r}: {needles}"
 
 
-def test_report_to_an_unwritable_out_is_one_line(tmp_path):
+def test_a_command_that_cannot_write_its_output_says_so_in_one_line(tmp_path):
+    """station report --out onto a file, and an export into a "folder" that is a file, printed tracebacks."""
     db = tmp_path / "log.sqlite"
     with InspectionLog(db) as log:
         log.append([rec(0)])
-    (tmp_path / "taken").write_text("a file, not a folder")
-    r = subprocess.run([sys.executable, "-m", "station.cli", "report", "--db", str(db), "--out",
-                        str(tmp_path / "taken")], capture_output=True, text=True)
-    assert r.returncode == 2 and "Traceback" not in r.stderr
-    assert r.stderr.strip().startswith("station report: error: --out") and len(r.stderr.strip().splitlines()) == 1
-
-
-def test_any_command_that_cannot_write_its_output_says_so_in_one_line(tmp_path):
-    db = tmp_path / "log.sqlite"
-    with InspectionLog(db) as log:
-        log.append([rec(0)])
-    (tmp_path / "taken").write_text("a file, not a folder")
-    r = subprocess.run([sys.executable, "-m", "station.cli", "export-log", "--db", str(db), "--out",
-                        str(tmp_path / "taken" / "x.csv")], capture_output=True, text=True)
-    assert r.returncode == 2 and "Traceback" not in r.stderr
-    assert r.stderr.strip() == f"station export-log: error: {tmp_path / 'taken' / 'x.csv.partial'}: Not a directory"
+    taken = tmp_path / "taken"
+    taken.write_text("a file, not a folder")
+    for argv, first_line in ((["report", "--out", str(taken)], "station report: error: --out"),
+                             (["export-log", "--out", str(taken / "x.csv")],
+                              f"station export-log: error: {taken / 'x.csv.partial'}: Not a directory")):
+        r = subprocess.run([sys.executable, "-m", "station.cli", *argv, "--db", str(db)], capture_output=True,
+                           text=True)
+        assert r.returncode == 2 and "Traceback" not in r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1 and r.stderr.startswith(first_line)
