@@ -70,26 +70,16 @@ def test_capture_keeps_only_frames_the_virtual_cameras_ground_truth_agrees_with(
 def test_capture_records_priors_bit_depth_for_a_wider_pixel_format(tmp_path: Path) -> None:
     import time
 
-    from drivers.camera import CameraBase, CameraConfig
+    from test_loop import ScriptedCamera
+
     from drivers.frame import Frame
     from station.capture import capture
 
-    class Mono16(CameraBase):  # 12-bit codes in a 16-bit container
-        def __init__(self) -> None:
-            super().__init__(CameraConfig(trigger="software"))
-            self.n = 0
-
-        def open(self) -> None: ...
-        def close(self) -> None: ...
-        def start(self) -> None: ...
-        def stop(self) -> None: ...
-        def configure(self, config: CameraConfig) -> None: ...
-        def trigger(self) -> None: ...
-
+    class Mono16(ScriptedCamera):  # 12-bit codes in a 16-bit container
         def grab(self, timeout_ms: int | None = None) -> Frame:
-            self.n += 1
-            return Frame(np.full((8, 8), 4000, np.uint16), "Mono16", 16, self.n, 0, time.time_ns())
+            self.frame_id += 1
+            return Frame(np.full((8, 8), 4000, np.uint16), "Mono16", 16, self.frame_id, 0, time.time_ns())
 
-    report = capture(Mono16(), 2, tmp_path / "cap", progress=False, bit_depth=12)
+    report = capture(Mono16([], trigger="software"), 2, tmp_path / "cap", progress=False, bit_depth=12)
     assert report.bit_depth == 12 and report.stats[0].median_level > 0.9
     assert json.loads((tmp_path / "cap" / "polar_ano.json").read_text())["bit_depth"] == 12
