@@ -137,7 +137,8 @@ class InspectionLog:
             if readonly:
                 if not self.path.exists():
                     raise LogError(f"inspection log {self.path}: no such file")
-                self._db = sqlite3.connect(f"file:{self.path}?mode=ro", uri=True)
+                # opened where a reader is built, read from its thread (station view's follower): handed over
+                self._db = sqlite3.connect(f"file:{self.path}?mode=ro", uri=True, check_same_thread=False)
             else:
                 self.path.parent.mkdir(parents=True, exist_ok=True)
                 self._db = sqlite3.connect(self.path, check_same_thread=False)  # handed over, never shared

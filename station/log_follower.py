@@ -42,6 +42,7 @@ class LogFollower:
         self.blank = np.zeros((64, 64), np.float32)
         self.shown_images = 0
         self.shown: dict[int, str] = {}  # row id -> decision shown, the newest RECHECK rows
+        self.warned: set[str] = set()  # kinds of error already logged by ``run``
 
     def poll(self) -> int:
         """Put a ViewFrame for every new row on the feed, and again for each of the last ``RECHECK`` rows whose
@@ -110,7 +111,9 @@ class LogFollower:
             try:
                 self.poll()
             except Exception as exc:  # a viewer must not die of one bad row; say it once per kind
-                log.warning("log follower: %s: %s", type(exc).__name__, exc)
+                if type(exc).__name__ not in self.warned:
+                    self.warned.add(type(exc).__name__)
+                    log.warning("log follower: %s: %s", type(exc).__name__, exc)
             stop.wait(poll_s)
 
     def close(self) -> None:

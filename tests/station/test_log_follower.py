@@ -79,3 +79,24 @@ def test_a_row_amended_after_it_was_shown_is_shown_again_as_amended(tmp_path: Pa
     shown = feed.latest()
     assert (shown.part_id, shown.decision) == ("P2", "reject") and "not answered in time" in shown.reason
     assert follower.poll() == 0
+
+
+def test_the_follower_reads_the_log_from_its_own_thread(tmp_path: Path) -> None:
+    """`station view` opens the follower in the main thread and polls from another: every poll raised SQLite's
+    "objects created in a thread can only be used in that same thread", and the viewer showed nothing."""
+    import threading
+
+    station_log = InspectionLog(tmp_path / "log.sqlite")
+    feed = ViewerFeed(maxsize=8)
+    follower = LogFollower(tmp_path / "log.sqlite", feed, from_start=True)
+    station_log.append(record("pass", "P1", score=0.1, threshold=0.5))
+    stop = threading.Event()
+    thread = threading.Thread(target=follower.run, args=(stop, 0.02))
+    thread.start()
+    deadline, shown = time.monotonic() + 5, None
+    while shown is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+        shown = feed.latest()  # takes what is queued
+    stop.set()
+    thread.join()
+    assert shown is not None and shown.part_id == "P1"
