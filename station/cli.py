@@ -9,6 +9,7 @@ import argparse
 import importlib
 import logging
 import sys
+from typing import NoReturn
 
 from station import __version__
 from station.errors import USER_ERRORS
@@ -51,8 +52,16 @@ def _use_formatter(parser: argparse.ArgumentParser) -> None:
                 _use_formatter(sub)
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """A bad argument is one line naming it (``station <command>: error: ...``), without the usage block: ``-h``
+    gives the usage."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message} (-h for the usage)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="station",
         description="Polar-Ano Station: polarization surface inspection (sim, model, drivers, station).",
     )

@@ -120,3 +120,10 @@ def test_every_option_with_a_default_shows_it_in_help_and_bench_help_is_whole_se
     bench = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)).choices["bench"]
     helps = [c.help for a in bench._actions if isinstance(a, argparse._SubParsersAction) for c in a._choices_actions]
     assert helps and all(h.endswith((".", ")")) or "." not in h for h in helps), helps
+
+
+def test_a_bad_argument_is_one_line_without_the_usage_block():
+    r = subprocess.run([sys.executable, "-m", "station.cli", "render", "--out", "x", "--shard", "3/2"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert r.stderr.startswith("station render: error:") and "--shard" in r.stderr
