@@ -1,0 +1,35 @@
+"""A dataset's manifest.json that is not the renderer's is one error naming the file and key (every command that
+reads a set: train, eval, threshold, adapt, run, export, serve-camera), never a traceback."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from sim.dataset import DatasetSpec, init_dataset, open_dataset
+from sim.errors import SimError
+
+
+@pytest.mark.parametrize(("content", "message"), [
+    (b"\xff\xfe\x00", "unreadable manifest"),
+    (b"[1, 2]", "expected a JSON object"),
+    (None, "bit_depth: 99"),
+    (None, "layout: 'bogus'"),
+])
+def test_a_foreign_or_damaged_manifest_is_one_error_naming_it(tmp_path: Path, content: bytes | None,
+                                                             message: str) -> None:
+    root = tmp_path / "set"
+    init_dataset(root, DatasetSpec(width=16, height=8), 2)
+    path = root / "manifest.json"
+    if content is None:
+        manifest = json.loads(path.read_text())
+        manifest.update({"bit_depth": 99} if "bit_depth" in message else {"layout": "bogus"})
+        content = json.dumps(manifest).encode()
+    path.write_bytes(content)
+    with pytest.raises(SimError, match=rf"manifest.json: .*{message}"):
+        open_dataset(root)
+    if message in ("unreadable manifest", "expected a JSON object"):  # resuming a render reads it too
+        with pytest.raises(SimError, match=rf"manifest.json: .*{message}"):
+            init_dataset(root, DatasetSpec(width=16, height=8), 2)
