@@ -388,10 +388,7 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
     manifest = manifest_for(spec, count, spp_choice)
     path = root / "manifest.json"
     if path.exists():
-        try:
-            old = json.loads(path.read_text())
-        except (OSError, json.JSONDecodeError) as exc:
-            raise SimError(f"{path}: unreadable manifest ({exc})") from None
+        old = read_manifest(path)
         old_renderer = old.get("renderer_version", 1)  # sets from before the key existed are version 1
         if old_renderer != RENDERER_VERSION:
             raise SimError(f"{path}: the set was rendered by renderer version {old_renderer}, this code renders "
@@ -482,6 +479,26 @@ def write_visibility_summary(root: str | Path) -> dict[str, Any]:
     return manifest
 
 
+def read_manifest(path: Path) -> dict[str, Any]:
+    """A set's ``manifest.json``; SimError naming the file (and key) unless it is a JSON object whose ``bit_depth``
+    (when present) is an integer in 1..16 and ``layout`` a known mosaic layout."""
+    from model.priors import LAYOUTS
+
+    try:
+        manifest = json.loads(path.read_text())
+    except (OSError, ValueError) as exc:  # ValueError: not JSON, or not UTF-8
+        raise SimError(f"{path}: unreadable manifest ({exc})") from None
+    if not isinstance(manifest, dict):
+        raise SimError(f"{path}: expected a JSON object, got {type(manifest).__name__}")
+    depth = manifest.get("bit_depth")
+    if depth is not None and (isinstance(depth, bool) or not isinstance(depth, int) or not 1 <= depth <= 16):
+        raise SimError(f"{path}: bit_depth: {depth!r} is not an integer in 1..16")
+    layout = manifest.get("layout")
+    if layout is not None and layout not in LAYOUTS:
+        raise SimError(f"{path}: layout: {layout!r} is not one of {', '.join(LAYOUTS)}")
+    return manifest
+
+
 class Dataset:
     """A rendered set on disk (read only). ``len`` counts complete samples."""
 
@@ -490,10 +507,7 @@ class Dataset:
         path = self.root / "manifest.json"
         if not path.is_file():
             raise SimError(f"{self.root} is not a rendered dataset: {path} is missing (run station render)")
-        try:
-            self.manifest = json.loads(path.read_text())
-        except (OSError, json.JSONDecodeError) as exc:
-            raise SimError(f"{path}: unreadable manifest ({exc})") from None
+        self.manifest = read_manifest(path)
         if self.manifest.get("format") != FORMAT or self.manifest.get("version") != VERSION:
             raise SimError(f"{path}: not a {FORMAT} version {VERSION} manifest")
         if self.manifest.get("convention_version") != CONVENTION_VERSION:

@@ -62,6 +62,8 @@ class Checkpoint:
 def paths(path: str | Path) -> tuple[Path, Path]:
     """(weights .pt, sidecar .json) for ``path`` given with either suffix or none."""
     p = Path(path)
+    if p.name in ("", ".", ".."):
+        raise CheckpointError(f"model path {str(path)!r} names no checkpoint file (give e.g. runs/train/best)")
     stem = p.with_suffix("") if p.suffix in (".pt", ".json") else p
     return stem.with_name(stem.name + ".pt"), stem.with_name(stem.name + ".json")
 

@@ -124,3 +124,14 @@ def test_the_training_module_re_exports_neither_evaluation_nor_runtime():
     moved = ("EvalData", "EvalResult", "evaluate", "synthetic_eval_data", "resolve_device", "resolve_precision",
              "autocast")
     assert [n for n in moved if hasattr(T, n)] == []
+
+
+@pytest.mark.parametrize("given", ["", ".", "/", ".."])
+def test_a_model_path_that_names_no_file_is_a_checkpoint_error(given: str) -> None:
+    """`--model ""` (or `--out ""`, `--init ""`) raised ValueError "PosixPath('.') has an empty name": a traceback
+    in threshold, eval, variation, residual, quantize, adapt, ensemble and train."""
+    from model.draem.checkpoint import paths
+    from model.draem.errors import CheckpointError
+
+    with pytest.raises(CheckpointError, match="names no checkpoint"):
+        paths(given)
