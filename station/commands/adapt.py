@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import argparse
 
+from station.commands.arguments import seed
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("adapt", help="adapt a model to a line from good parts (normalisation, threshold)")
@@ -20,7 +22,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--limit", type=int, default=None, help="use at most N parts of the split (default all)")
     p.add_argument("--fine-tune-steps", type=int, default=0,
                    help="also fine-tune this many steps with synthetic anomalies (default 0: off)")
-    p.add_argument("--seed", type=int, default=0, help="fold assignment and fine-tune randomness (default 0)")
+    p.add_argument("--seed", type=seed, default=0, help="fold assignment and fine-tune randomness (default 0)")
     p.add_argument("--keep-networks", action="store_true",
                    help="keep the networks in the decision even when their good-part scores on this line are out of "
                         "their domain (default: the adapted model then decides on the variation model alone)")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from datetime import datetime
 
 from station.errors import UserError
@@ -12,9 +13,13 @@ from station.inspection_log import DECISIONS, EXPORT_FORMATS, InspectionLog, exp
 def parse_time(text: str) -> float:
     """Unix seconds from a number or an ISO 8601 time (without a zone: local time)."""
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         pass
+    else:
+        if not math.isfinite(value):  # nan compares false with every time: the slice would be silently empty
+            raise argparse.ArgumentTypeError(f"{text!r}: not a time")
+        return value
     try:
         return datetime.fromisoformat(text).timestamp()
     except ValueError:

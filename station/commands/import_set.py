@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import argparse
 
+from station.commands.arguments import seed
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("import", help="import raw mosaics in the MVTec AD layout (train/good, test/<type>, "
@@ -20,7 +22,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="on-chip polarizer layout (default: DIR/polar_ano.json's, else imx250mzr)")
     p.add_argument("--val-fraction", type=float, default=0.1,
                    help="without a val/ folder: share of train/good held out as the validation split (default 0.1)")
-    p.add_argument("--seed", type=int, default=0, help="which train/good images go to val (default 0)")
+    p.add_argument("--seed", type=seed, default=0, help="which train/good images go to val (default 0)")
     p.add_argument("--allow-dark", action="store_true",
                    help="accept a 16-bit set whose codes all fit fewer bits (default: refused as a wrong bit depth)")
     p.set_defaults(func=run)

@@ -17,6 +17,7 @@ import argparse
 import logging
 from pathlib import Path
 
+from station.commands.arguments import seed
 from station.errors import UserError
 
 log = logging.getLogger(__name__)
@@ -40,7 +41,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--levels", type=int, default=3, help="U-Net poolings")
     p.add_argument("--batch-size", type=int, default=8)
     p.add_argument("--lr", type=float, default=2e-3)
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=seed, default=0)
     p.add_argument("--device", default="auto", help="auto (CUDA if available), cpu, cuda, ...")
     p.add_argument("--threads", type=int, default=None, help="torch CPU threads (default: torch's)")
     p.add_argument("--ior", type=float, default=1.5, help="refractive index for the SfP baseline")

@@ -6,6 +6,8 @@ import argparse
 import json
 import logging
 
+from station.commands.arguments import seed
+
 log = logging.getLogger(__name__)
 
 
@@ -38,7 +40,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "station's presence check; any split; training and evaluation skip them); default 0")
     p.add_argument("--shard", type=parse_shard, default=(0, 1), metavar="K/N",
                    help="render only indices i with i %% N == K (0 <= K < N), for parallel jobs")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=seed, default=0)
     p.add_argument("--width", type=int, default=640, help="pixels (even); the sensor's native size is 2448x2048")
     p.add_argument("--height", type=int, default=480)
     quality = p.add_mutually_exclusive_group()

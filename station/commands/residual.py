@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import argparse
 
+from station.commands.arguments import seed
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("residual", help="add residual networks (trained on the variation model's residuals) to a "
@@ -25,7 +27,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--members", type=int, default=3, help="networks, each with its own seed; their scores averaged")
     p.add_argument("--steps", type=int, default=3000, help="training steps per network (about 0.15 s each on 2 "
                                                            "cores)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the first network (the next ones count up)")
+    p.add_argument("--seed", type=seed, default=0, help="seed of the first network (the next ones count up)")
     p.add_argument("--holdout-type", default=None, metavar="TYPE",
                    help="leave this defect type's rendered parts out of training, to measure a kind of defect the "
                         "networks never saw (default: none left out)")

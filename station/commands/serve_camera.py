@@ -16,6 +16,8 @@ import signal
 import threading
 import time
 
+from station.commands.arguments import seed
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("serve-camera", help="serve the virtual camera as a GigE Vision device on loopback",
@@ -29,7 +31,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--empty-rate", type=float, default=0.0, metavar="R",
                    help="fraction of frames showing no part (the set needs empty samples: station render "
                         "--empty-rate; default 0)")
-    p.add_argument("--seed", type=int, default=0, help="draw order of the parts (default 0)")
+    p.add_argument("--seed", type=seed, default=0, help="draw order of the parts (default 0)")
     p.add_argument("--serial", default="POLARSIM1", help="device serial number (default POLARSIM1)")
     p.add_argument("--truth", default=None, metavar="FILE",
                    help="append each served frame's ground truth to this JSON Lines file")

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 from model.draem.config import ROIS
 from model.draem.runtime import TRAIN_PRECISIONS
+from station.commands.arguments import seed
 from station.datasets import (
     fov_of,
     good_part_of,
@@ -60,7 +61,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--steps", type=int, default=2000, help="optimiser steps")
     p.add_argument("--batch-size", type=int, default=8)
     p.add_argument("--eval-every", type=int, default=250, help="steps between held-out evaluation + checkpoint")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=seed, default=0)
     p.add_argument("--device", default="auto", help="auto (CUDA if available), cpu, cuda, cuda:1, ...")
     p.add_argument("--precision", default="auto", choices=TRAIN_PRECISIONS,
                    help="auto: fp32 on CPU (bf16 measured slower on AVX2 CPUs), bf16 autocast on CUDA")

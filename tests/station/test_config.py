@@ -127,3 +127,20 @@ def test_a_bad_argument_is_one_line_without_the_usage_block():
                        capture_output=True, text=True)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
     assert r.stderr.startswith("station render: error:") and "--shard" in r.stderr
+
+
+def test_a_seed_out_of_range_is_one_line_in_every_command():
+    """-1 and 2**80 gave tracebacks from numpy and torch (residual, adapt, serve-camera, train)."""
+    for command in ("residual", "adapt", "serve-camera", "train", "render", "normals", "import"):
+        for bad in ("-1", str(2**80), "x"):
+            r = subprocess.run([sys.executable, "-m", "station.cli", command, "--seed", bad],
+                               capture_output=True, text=True)
+            assert r.returncode == 2 and "Traceback" not in r.stderr, (command, bad, r.stderr)
+            assert "--seed" in r.stderr and len(r.stderr.strip().splitlines()) == 1, (command, bad, r.stderr)
+
+
+def test_a_time_that_is_not_a_number_is_refused():
+    """--since nan exported 0 rows and said nothing."""
+    r = subprocess.run([sys.executable, "-m", "station.cli", "export-log", "--since", "nan", "--out", "x.csv"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "--since" in r.stderr and "not a time" in r.stderr

@@ -1,0 +1,19 @@
+"""Argument types shared by the commands: each turns a bad value into argparse's one-line error naming the flag."""
+
+from __future__ import annotations
+
+import argparse
+
+MAX_SEED = 2**63 - 1
+"""The largest seed every generator takes (torch's is a signed 64-bit integer); the same as ``[sim] seed``."""
+
+
+def seed(text: str) -> int:
+    """A seed: an integer in 0..``MAX_SEED``."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if not 0 <= value <= MAX_SEED:
+        raise argparse.ArgumentTypeError(f"{value} is outside 0..2**63-1")
+    return value
