@@ -123,6 +123,10 @@ def list_cameras(*, gige_discovery: bool = False, addresses: tuple[str, ...] = (
 
 
 def _open_gv_device(address: str) -> Any:
+    ip = ipaddress.IPv4Address(address)
+    if ip.is_multicast or ip.is_unspecified or ip == ipaddress.IPv4Address("255.255.255.255"):
+        raise CameraConfigError(f"camera at {address}: not a single camera's address (broadcast, multicast or "
+                                "unspecified: that is discovery, which needs --gige-discovery)")
     Aravis, GLib, Gio = _aravis()
     try:
         local = local_address_for(address)

@@ -50,3 +50,15 @@ def test_a_software_trigger_that_fails_again_after_a_reconnect_is_a_driver_error
     monkeypatch.setattr(cam, "_handle_loss", lambda why: setattr(cam, "_camera", Flaky()))
     with pytest.raises(TriggerFailed, match="software trigger"):
         cam.trigger()
+
+
+@pytest.mark.parametrize("address", ["255.255.255.255", "224.0.0.1", "0.0.0.0", "239.255.255.250"])
+def test_a_broadcast_or_multicast_camera_address_is_refused_before_anything_is_sent(address: str) -> None:
+    """`station cameras --address 255.255.255.255` tried to send (the sandbox refused it): a broadcast or multicast
+    address is discovery by another name, which the network rule keeps off every interface."""
+    pytest.importorskip("gi")
+    from drivers.aravis_camera import _open_gv_device
+    from drivers.errors import CameraConfigError
+
+    with pytest.raises(CameraConfigError, match="not a single camera's address"):
+        _open_gv_device(address)
