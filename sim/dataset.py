@@ -44,6 +44,7 @@ has no ``empty_rate`` key, so sets rendered before it existed resume unchanged.
 from __future__ import annotations
 
 import json
+import math
 import os
 import shutil
 import zipfile
@@ -127,8 +128,8 @@ class DatasetSpec:
             raise SimError(f"empty rate must be in [0, 1], got {self.empty_rate}")
         if self.seed < 0:
             raise SimError(f"seed must be >= 0, got {self.seed}")
-        if self.mesh_scale <= 0:
-            raise SimError(f"mesh_scale must be > 0, got {self.mesh_scale}")
+        if not (math.isfinite(self.mesh_scale) and self.mesh_scale > 0):
+            raise SimError(f"mesh_scale must be a number > 0, got {self.mesh_scale}")
         if self.heldout and self.validation:
             raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
         self.render_settings()  # checks size and spp

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+from pathlib import Path
 
 from station.commands.arguments import seed
 
@@ -20,6 +21,10 @@ def parse_shard(text: str) -> tuple[int, int]:
     if n < 1 or not 0 <= k < n:
         raise argparse.ArgumentTypeError(f"--shard K/N needs 0 <= K < N, got {text!r}")
     return k, n
+
+
+MAX_COUNT = 10_000_000
+"""The most samples one set may hold (its index list is built whole)."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -115,8 +120,14 @@ def run(args: argparse.Namespace) -> int:
     from sim.dataset import render_set
     from sim.errors import SimError
 
-    if args.count < 1:
-        raise SimError(f"--count must be >= 1, got {args.count}")
+    if not 1 <= args.count <= MAX_COUNT:
+        raise SimError(f"--count must be in 1..{MAX_COUNT:,}, got {args.count}")
+    out = Path(args.out)
+    if not args.out.strip():
+        raise SimError("--out: empty; name the data set's folder")
+    if out.is_dir() and any(out.iterdir()) and not (out / "manifest.json").exists():
+        raise SimError(f"--out {out}: holds other files and no manifest.json: not a data set; render into a new "
+                       "folder (an existing set is resumed)")
     spp, choice = choose_spp(args)
     render_set(args.out, build_spec(args, spp), args.count, args.shard, choice.to_dict() if choice else None)
     return 0

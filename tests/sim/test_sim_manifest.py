@@ -33,3 +33,23 @@ def test_a_foreign_or_damaged_manifest_is_one_error_naming_it(tmp_path: Path, co
     if message in ("unreadable manifest", "expected a JSON object"):  # resuming a render reads it too
         with pytest.raises(SimError, match=rf"manifest.json: .*{message}"):
             init_dataset(root, DatasetSpec(width=16, height=8), 2)
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["--out", "", "--count", "2"], "--out: empty"),
+    (["--out", "{tmp}/model", "--count", "2"], "not a data set"),
+    (["--out", "{tmp}/set", "--count", "99999999999999999999"], "--count"),
+    (["--out", "{tmp}/set", "--count", "2", "--mesh-scale", "nan"], "mesh_scale"),
+])
+def test_render_refuses_an_output_it_would_spoil_and_numbers_it_cannot_render(tmp_path: Path, capsys, monkeypatch,
+                                                                              argv, message):
+    """`--out ""` rendered into the working directory, a model folder got a manifest.json and samples/ written into
+    it, a huge --count hung building its index list, and --mesh-scale nan was written into the manifest."""
+    from station.cli import main
+
+    monkeypatch.chdir(tmp_path)  # where `--out ""` rendered
+    (tmp_path / "model").mkdir()
+    (tmp_path / "model" / "best.pt").write_bytes(b"weights")
+    assert main(["render", *[a.format(tmp=tmp_path) for a in argv]]) == 2
+    assert message in capsys.readouterr().err
+    assert sorted(p.name for p in (tmp_path / "model").iterdir()) == ["best.pt"]
