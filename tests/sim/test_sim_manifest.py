@@ -1,5 +1,6 @@
 """A dataset's manifest.json that is not the renderer's is one error naming the file and key (every command that
-reads a set: train, eval, threshold, adapt, run, export, serve-camera), never a traceback."""
+reads a set: train, eval, threshold, adapt, run, export, serve-camera), never a traceback; and station render refuses
+an output folder it would spoil."""
 
 from __future__ import annotations
 
