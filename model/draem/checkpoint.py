@@ -170,7 +170,8 @@ def load_weights(js: Path, meta: dict[str, Any], map_location: str | torch.devic
     try:
         state = torch.load(pt, map_location=map_location, weights_only=True)
     except Exception as exc:  # torch raises several types for corrupt or pickled files
-        raise error(f"{pt}: cannot load weights safely ({type(exc).__name__}: {exc})") from None
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else ""  # torch's explanation runs 6 lines
+        raise error(f"{pt}: cannot load weights safely ({type(exc).__name__}: {first})") from None
     if not isinstance(state, dict):
         raise error(f"{pt}: not a state_dict")
     return state

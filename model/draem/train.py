@@ -276,7 +276,16 @@ def _load_last(out: Path, config: ModelConfig, device: torch.device) -> tuple[De
     if ck.detector.config != config:
         raise CheckpointError(f"{paths(out / 'last')[1]}: resuming a different model ({ck.meta['model']}); "
                               f"use another output folder or resume=False")
-    return ck.detector.to(device), torch.load(out / "last.state.pt", map_location="cpu", weights_only=True)
+    state_path = out / "last.state.pt"
+    try:
+        state = torch.load(state_path, map_location="cpu", weights_only=True)
+    except Exception as exc:  # torch raises several types for a damaged file
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        raise CheckpointError(f"{state_path}: cannot resume from it ({type(exc).__name__}: {first}); delete it and "
+                              "last.* to start over") from None
+    if not isinstance(state, dict):
+        raise CheckpointError(f"{state_path}: not a training state; delete it and last.* to start over")
+    return ck.detector.to(device), state
 
 
 def _load_init(init: str | Path, config: ModelConfig, device: torch.device) -> Detector:

@@ -42,6 +42,10 @@ def test_resume_continues_exactly(tmp_path, toy):
     assert lb == pytest.approx(la, rel=1e-5)
     with pytest.raises(CheckpointError, match="resuming a different model"):
         train(_cfg("fused"), data, tmp_path / "b", TrainConfig(steps=8, **tc), progress=False)
+    for damage in (b"garbage", (tmp_path / "b" / "last.state.pt").read_bytes()[:100]):  # an UnpicklingError
+        (tmp_path / "b" / "last.state.pt").write_bytes(damage)  # traceback; a truncated one named no file
+        with pytest.raises(CheckpointError, match=r"last\.state\.pt: cannot resume from it"):
+            train(_cfg("ensemble"), data, tmp_path / "b", TrainConfig(steps=8, **tc), progress=False)
 
 
 def test_checkpoint_round_trip_and_mismatch_errors(tmp_path, toy):
