@@ -26,7 +26,7 @@ def read_report(folder: str | Path) -> dict[str, Any]:
     path = Path(folder) / "eval.json"
     try:
         report = json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError) as exc:
+    except (OSError, ValueError) as exc:  # ValueError: not JSON, or not UTF-8
         raise UserError(f"{path}: not a station eval report ({exc})") from None
     if not isinstance(report, dict):
         raise UserError(f"{path}: not a station eval report (a JSON {type(report).__name__})")

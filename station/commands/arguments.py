@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 MAX_SEED = 2**63 - 1
 """The largest seed every generator takes (torch's is a signed 64-bit integer); the same as ``[sim] seed``."""
@@ -16,4 +17,15 @@ def seed(text: str) -> int:
         raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
     if not 0 <= value <= MAX_SEED:
         raise argparse.ArgumentTypeError(f"{value} is outside 0..2**63-1")
+    return value
+
+
+def positive_seconds(text: str) -> float:
+    """A duration in seconds: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: a number of seconds > 0")
     return value

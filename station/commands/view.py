@@ -9,14 +9,19 @@ from __future__ import annotations
 
 import argparse
 
+from model.priors import LAYOUTS
+from station.commands.arguments import positive_seconds
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("view", help="live viewer attached to a running station (follows its inspection log)",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--db", default="runs/inspection.sqlite", help="the station's inspection log ([log] path)")
-    p.add_argument("--layout", default="imx250mzr", help="mosaic layout of the saved raw images ([priors] layout)")
+    p.add_argument("--layout", default="imx250mzr", choices=tuple(LAYOUTS),
+                   help="mosaic layout of the saved raw images ([priors] layout)")
     p.add_argument("--from-start", action="store_true", help="replay the whole log, not only new parts")
-    p.add_argument("--seconds", type=float, default=None, help="close after this many seconds (default: never)")
+    p.add_argument("--seconds", type=positive_seconds, default=None,
+                   help="close after this many seconds (default: never)")
     p.set_defaults(func=run)
 
 

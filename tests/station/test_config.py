@@ -144,3 +144,14 @@ def test_a_time_that_is_not_a_number_is_refused():
     r = subprocess.run([sys.executable, "-m", "station.cli", "export-log", "--since", "nan", "--out", "x.csv"],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "--since" in r.stderr and "not a time" in r.stderr
+
+
+def test_view_and_compare_refuse_what_they_cannot_use(tmp_path):
+    """`station view --seconds nan` never closed, `--layout bogus` was accepted; `station compare` on a binary
+    eval.json printed a UnicodeDecodeError traceback."""
+    (tmp_path / "ev").mkdir()
+    (tmp_path / "ev" / "eval.json").write_bytes(b"\xff\xfe\x00")
+    for argv, needle in ((["view", "--seconds", "nan"], "--seconds"), (["view", "--layout", "bogus"], "--layout"),
+                         (["compare", str(tmp_path / "ev"), "--out", str(tmp_path / "c")], "eval.json")):
+        r = subprocess.run([sys.executable, "-m", "station.cli", *argv], capture_output=True, text=True)
+        assert r.returncode == 2 and "Traceback" not in r.stderr and needle in r.stderr, (argv, r.stderr)
