@@ -115,6 +115,9 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
     if frames < 1:
         raise UserError(f"--frames must be >= 1, got {frames}")
     out = Path(out)
+    if (out / "manifest.json").exists() or any(out.glob("*.pt")):
+        raise UserError(f"--out {out}: a rendered data set or a model folder, not a capture folder; capture into "
+                        "a folder of its own (station import turns it into a data set)")
     folder = label_folder(out, label, split)
     folder.mkdir(parents=True, exist_ok=True)
     report = CaptureReport(out, folder)

@@ -83,3 +83,19 @@ def test_capture_records_priors_bit_depth_for_a_wider_pixel_format(tmp_path: Pat
     report = capture(Mono16([], trigger="software"), 2, tmp_path / "cap", progress=False, bit_depth=12)
     assert report.bit_depth == 12 and report.stats[0].median_level > 0.9
     assert json.loads((tmp_path / "cap" / "polar_ano.json").read_text())["bit_depth"] == 12
+
+
+def test_capture_refuses_to_write_into_a_data_set_or_a_model_folder(tmp_path: Path) -> None:
+    """`--out` naming a rendered set or a model folder got train/good written inside it."""
+    import pytest
+
+    from station.capture import capture
+    from station.errors import UserError
+    from test_loop import ScriptedCamera
+
+    ds = make_line_set(tmp_path / "ds", 4)
+    model = make_model(tmp_path / "m" / "best").parent
+    for out in (ds, model):
+        with pytest.raises(UserError, match="not a capture folder"):
+            capture(ScriptedCamera([0, 0], trigger="software"), 1, out, progress=False)
+        assert not (out / "train").exists()
