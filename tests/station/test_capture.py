@@ -88,10 +88,10 @@ def test_capture_records_priors_bit_depth_for_a_wider_pixel_format(tmp_path: Pat
 def test_capture_refuses_to_write_into_a_data_set_or_a_model_folder(tmp_path: Path) -> None:
     """`--out` naming a rendered set or a model folder got train/good written inside it."""
     import pytest
+    from test_loop import ScriptedCamera
 
     from station.capture import capture
     from station.errors import UserError
-    from test_loop import ScriptedCamera
 
     ds = make_line_set(tmp_path / "ds", 4)
     model = make_model(tmp_path / "m" / "best").parent
