@@ -32,6 +32,9 @@ def _opt(default: Any, *, choices: tuple[Any, ...] | None = None, range: tuple[f
 
 TRIGGERS = ("free_run", "software", "line0", "line1", "line2", "line3")
 
+MAX_SEED = 2**63 - 1
+"""The largest seed every generator takes (torch's is a signed 64-bit integer): ``[sim] seed`` and ``--seed``."""
+
 
 @dataclass(frozen=True)
 class CameraConfig:
@@ -117,7 +120,7 @@ class SimConfig:
     dataset: str = ""
     defect_rate: float = _opt(0.2, range=(0.0, 1.0))
     empty_rate: float = _opt(0.0, range=(0.0, 1.0))
-    seed: int = _opt(0, range=(0, 2**63 - 1))
+    seed: int = _opt(0, range=(0, MAX_SEED))
 
 
 @dataclass(frozen=True)

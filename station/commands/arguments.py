@@ -5,8 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-MAX_SEED = 2**63 - 1
-"""The largest seed every generator takes (torch's is a signed 64-bit integer); the same as ``[sim] seed``."""
+from station.config import MAX_SEED
 
 
 def seed(text: str) -> int:
