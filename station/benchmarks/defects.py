@@ -26,6 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
+from station.commands.arguments import positive_int
+
 PRIORS = ("intensity", "dolp", "aolp", "normal")
 VISIBLE = 2.0
 """z above which a defect counts as visible: its pixels stray twice as far as the neighbourhood's own (a piece of
@@ -36,7 +38,7 @@ MAPS = ("intensity", "dolp", "aolp_cos", "aolp_sin")
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--data", default="data/brick-v2", help="rendered set with ground truth")
     p.add_argument("--splits", default="test", help="comma-separated splits whose defective samples are measured")
-    p.add_argument("--size", type=int, default=128, help="the network's input size (px)")
+    p.add_argument("--size", type=positive_int, default=128, help="the network's input size (px)")
     p.add_argument("--ring", type=float, default=0.05, help="ring width as a fraction of the square's side")
 
 

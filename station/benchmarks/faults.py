@@ -34,6 +34,7 @@ from typing import Any
 
 from drivers.line_io import Command
 from station.benchmarks.report import markdown_table, write_report
+from station.commands.arguments import positive_int
 from station.decision import Verdict
 
 CASES = ("baseline", "hostile_files", "camera_stall", "packet_loss", "plc_silent", "full_disk", "sigterm",
@@ -44,7 +45,7 @@ SLACK_MS = 50.0
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--cases", default=",".join(CASES), help="comma-separated subset of: " + ", ".join(CASES))
-    p.add_argument("--parts", type=int, default=150, help="parts the PLC announces per case")
+    p.add_argument("--parts", type=positive_int, default=150, help="parts the PLC announces per case")
     p.add_argument("--loss-parts", type=int, default=1000, help="parts in the packet_loss case (2 %% loss)")
     p.add_argument("--trigger-period-ms", type=float, default=150.0, help="time between the PLC's triggers")
     p.add_argument("--cycle-time-ms", type=float, default=300.0, help="[acquisition] cycle_time_ms")

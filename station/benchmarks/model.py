@@ -19,6 +19,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from station.commands.arguments import positive_int
+
 PRIORS = ("intensity", "dolp", "aolp", "normal")
 
 
@@ -29,7 +31,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="fp32, bf16 (CPU autocast), onnx (ONNX Runtime fp32), int8 (ONNX Runtime, quantized as "
                         "station quantize does)")
     p.add_argument("--fusions", default="ensemble,fused")
-    p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--repeats", type=positive_int, default=5)
     p.add_argument("--threads", type=int, default=2, help="torch / ONNX Runtime intra-op threads")
     p.add_argument("--no-baseline", action="store_true", help="skip the paper-size baseline (~3 s per run on CPU)")
     p.add_argument("--max-seconds", type=float, default=20.0,

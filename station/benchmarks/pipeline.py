@@ -32,6 +32,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from station.commands.arguments import positive_int
+
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--data", default="data/brick-v2", help="rendered set; its test split is inspected")
@@ -47,7 +49,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "members the model lacks are skipped); fused models run their own priors")
     p.add_argument("--presence", default="on", help="presence check before the model: on, off, or on,off "
                    "(thresholds as [presence] in station.toml's defaults)")
-    p.add_argument("--parts", type=int, default=200, help="frames per configuration")
+    p.add_argument("--parts", type=positive_int, default=200, help="frames per configuration")
     p.add_argument("--defect-rate", type=float, default=0.5, help="fraction of the parts shown that are defective")
     p.add_argument("--empty-rate", type=float, default=0.0,
                    help="fraction of frames with no part in view (the set's test split needs empty samples)")

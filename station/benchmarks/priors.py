@@ -18,6 +18,7 @@ import numpy as np
 
 from model.priors import METHODS, compute_priors, stokes_to_mosaic
 from station.benchmarks.report import markdown_table, write_report
+from station.commands.arguments import even_size, positive_int
 
 BORDER_PX = 4
 AOLP_MIN_DOLP = 0.1
@@ -70,10 +71,11 @@ def median_seconds(fn: Callable[[], Any], repeats: int) -> float:
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--width", type=int, default=2448, help="mosaic width in pixels (default: IMX250MZR native)")
-    p.add_argument("--height", type=int, default=2048)
-    p.add_argument("--frames", type=int, default=2, help="distinct scenes (seeds)")
-    p.add_argument("--repeats", type=int, default=5, help="timed runs per frame and method (median is reported)")
+    p.add_argument("--width", type=even_size, default=2448, help="mosaic width in pixels (default: IMX250MZR native)")
+    p.add_argument("--height", type=even_size, default=2048)
+    p.add_argument("--frames", type=positive_int, default=2, help="distinct scenes (seeds)")
+    p.add_argument("--repeats", type=positive_int, default=5,
+                   help="timed runs per frame and method (median is reported)")
     p.add_argument("--bits", default="8,12", help="ADC bit depths to test, comma-separated")
 
 

@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from station.benchmarks.report import markdown_table, write_report
+from station.commands.arguments import even_size, positive_int
 
 AOLP_MIN_DOLP = 0.05
 
@@ -40,9 +41,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--spp", default="1,2,4,8,16,30,64",
                    help="comma-separated samples per pixel (rounded up as the sampler does: 32 -> 35)")
     p.add_argument("--ref-spp", type=int, default=256, help="reference spp (same scene, two seeds)")
-    p.add_argument("--scenes", type=int, default=2)
-    p.add_argument("--width", type=int, default=640)
-    p.add_argument("--height", type=int, default=480)
+    p.add_argument("--scenes", type=positive_int, default=2)
+    p.add_argument("--width", type=even_size, default=640)
+    p.add_argument("--height", type=even_size, default=480)
     p.add_argument("--variants", default="best",
                    help="'best', 'all' (adds scalar_spectral_polarized: ~17x slower) or a comma-separated list")
     p.add_argument("--pipeline-spp", default="16,8", help="spp values at which whole samples are timed ('' = none)")

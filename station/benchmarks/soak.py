@@ -15,11 +15,13 @@ import threading
 import time
 from pathlib import Path
 
+from station.commands.arguments import positive_int, positive_seconds
+
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--config", default="station.toml")
-    p.add_argument("--parts", type=int, default=5000)
-    p.add_argument("--sample-s", type=float, default=2.0, help="seconds between samples")
+    p.add_argument("--parts", type=positive_int, default=5000)
+    p.add_argument("--sample-s", type=positive_seconds, default=2.0, help="seconds between samples")
     p.add_argument("--frame-rate-hz", type=float, default=None, help="override [camera] frame_rate_hz")
 
 

@@ -21,6 +21,8 @@ from typing import Any
 
 import numpy as np
 
+from station.commands.arguments import even_size, positive_int
+
 COLUMNS = ["preset", "type", "n", "visible", "median_intensity", "median_dolp", "median_aolp", "median_normal",
            "above_intensity", "above_polarization", "polarization_only", "above_any"]
 
@@ -35,9 +37,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--count", type=int, default=400,
                    help="sample indices scanned for --per-type defects of each type (the first ones of each type)")
     p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--width", type=int, default=640)
-    p.add_argument("--height", type=int, default=480)
-    p.add_argument("--spp", type=int, default=8, help="spp of each of the oracle's four renders per defect")
+    p.add_argument("--width", type=even_size, default=640)
+    p.add_argument("--height", type=even_size, default=480)
+    p.add_argument("--spp", type=positive_int, default=8, help="spp of each of the oracle's four renders per defect")
     p.add_argument("--threshold", type=float, default=5.0, help="SNR above which a defect counts as visible")
 
 

@@ -28,3 +28,22 @@ def positive_seconds(text: str) -> float:
     if not (math.isfinite(value) and value > 0):
         raise argparse.ArgumentTypeError(f"{text!r}: a number of seconds > 0")
     return value
+
+
+def positive_int(text: str) -> int:
+    """A count or size: an integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value}: must be >= 1")
+    return value
+
+
+def even_size(text: str) -> int:
+    """An image side in pixels: an even integer >= 2 (whole 2x2 polarizer superpixels)."""
+    value = positive_int(text)
+    if value % 2:
+        raise argparse.ArgumentTypeError(f"{value}: must be even (whole 2x2 polarizer superpixels)")
+    return value

@@ -155,3 +155,13 @@ def test_view_and_compare_refuse_what_they_cannot_use(tmp_path):
                          (["compare", str(tmp_path / "ev"), "--out", str(tmp_path / "c")], "eval.json")):
         r = subprocess.run([sys.executable, "-m", "station.cli", *argv], capture_output=True, text=True)
         assert r.returncode == 2 and "Traceback" not in r.stderr and needle in r.stderr, (argv, r.stderr)
+
+
+def test_benchmark_sizes_and_counts_that_cannot_run_are_one_line():
+    """bench priors --width 63, model --repeats 0, pipeline --parts 0, defects --size 0, render --scenes 0 gave
+    tracebacks; soak --parts 0 exited 0 and --sample-s 0 spun."""
+    for argv in (["priors", "--width", "63"], ["model", "--repeats", "0"], ["pipeline", "--parts", "0"],
+                 ["defects", "--size", "0"], ["render", "--scenes", "0"], ["soak", "--parts", "0"],
+                 ["soak", "--sample-s", "0"]):
+        r = subprocess.run([sys.executable, "-m", "station.cli", "bench", *argv], capture_output=True, text=True)
+        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and argv[1] in r.stderr, (argv, r.stderr)
