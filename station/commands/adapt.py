@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import argparse
 
-from station.commands.arguments import seed
+from station.commands.arguments import positive_int, seed
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -19,7 +19,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="share of good parts the threshold may reject (default 0.01)")
     p.add_argument("--split", default="train", choices=("train", "val", "test"),
                    help="split whose good parts are used (default train: an imported train/good)")
-    p.add_argument("--limit", type=int, default=None, help="use at most N parts of the split (default all)")
+    p.add_argument("--limit", type=positive_int, default=None, help="use at most N parts of the split (default all)")
     p.add_argument("--fine-tune-steps", type=int, default=0,
                    help="also fine-tune this many steps with synthetic anomalies (default 0: off)")
     p.add_argument("--seed", type=seed, default=0, help="fold assignment and fine-tune randomness (default 0)")

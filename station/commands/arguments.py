@@ -19,15 +19,19 @@ def seed(text: str) -> int:
     return value
 
 
-def positive_seconds(text: str) -> float:
-    """A duration in seconds: a finite number > 0."""
+def _positive_number(text: str, unit: str) -> float:
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
     if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"{text!r}: a number of seconds > 0")
+        raise argparse.ArgumentTypeError(f"{text!r}: a number of {unit} > 0")
     return value
+
+
+def positive_seconds(text: str) -> float:
+    """A duration in seconds: a finite number > 0."""
+    return _positive_number(text, "seconds")
 
 
 def positive_int(text: str) -> int:
@@ -47,3 +51,8 @@ def even_size(text: str) -> int:
     if value % 2:
         raise argparse.ArgumentTypeError(f"{value}: must be even (whole 2x2 polarizer superpixels)")
     return value
+
+
+def positive_minutes(text: str) -> float:
+    """A time budget in minutes: a finite number > 0."""
+    return _positive_number(text, "minutes")

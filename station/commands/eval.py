@@ -15,6 +15,7 @@ import math
 from pathlib import Path
 
 from model.draem.runtime import EVAL_PRECISIONS
+from station.commands.arguments import positive_int
 from station.errors import UserError
 from station.evaluation import ABLATION, evaluate_split, load_and_evaluate, normal_prior_record
 
@@ -26,7 +27,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "with --ablation also several fused checkpoints, comma-separated, one per prior set")
     p.add_argument("--data", required=True, help="dataset folder (rendered, or imported by station import)")
     p.add_argument("--split", default="test", choices=("train", "val", "test"))
-    p.add_argument("--limit", type=int, default=None, help="at most N samples (smoke runs)")
+    p.add_argument("--limit", type=positive_int, default=None, help="at most N samples (smoke runs)")
     p.add_argument("--no-synthetic", action="store_true", help="skip the synthetic-anomaly evaluation")
     p.add_argument("--ablation", action="store_true",
                    help="the paper's ablation (R, R+AoLP, R+AoLP+DoLP, all): an ensemble's members averaged, or "

@@ -17,7 +17,7 @@ import argparse
 import logging
 from pathlib import Path
 
-from station.commands.arguments import seed
+from station.commands.arguments import positive_int, seed
 from station.errors import UserError
 
 log = logging.getLogger(__name__)
@@ -31,10 +31,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("normals", help="train the normal estimator; angular error of it and of physics SfP on test")
     p.add_argument("--data", required=True, help="rendered dataset folder with ground truth (station render --out)")
     p.add_argument("--train-minutes", type=float, default=10.0, help="training time limit in minutes")
-    p.add_argument("--steps", type=int, default=None, help="optimiser steps (default: until --train-minutes)")
+    p.add_argument("--steps", type=positive_int, default=None, help="optimiser steps (default: until --train-minutes)")
     p.add_argument("--out", default="runs/normals", help="output folder")
     p.add_argument("--model", default=None, help="evaluate this checkpoint (path without suffix) instead of training")
-    p.add_argument("--size", type=int, default=128, help="network input side in pixels (DRAEM fast preset: 128)")
+    p.add_argument("--size", type=positive_int, default=128,
+                   help="network input side in pixels (DRAEM fast preset: 128)")
     p.add_argument("--roi", default="center", choices=("center", "object"),
                    help="square the network sees: center (the station's) or object (around the rendered mask)")
     p.add_argument("--base-width", type=int, default=16)
@@ -43,9 +44,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--lr", type=float, default=2e-3)
     p.add_argument("--seed", type=seed, default=0)
     p.add_argument("--device", default="auto", help="auto (CUDA if available), cpu, cuda, ...")
-    p.add_argument("--threads", type=int, default=None, help="torch CPU threads (default: torch's)")
+    p.add_argument("--threads", type=positive_int, default=None, help="torch CPU threads (default: torch's)")
     p.add_argument("--ior", type=float, default=1.5, help="refractive index for the SfP baseline")
-    p.add_argument("--limit", type=int, default=None, help="at most N samples per split (smoke runs)")
+    p.add_argument("--limit", type=positive_int, default=None, help="at most N samples per split (smoke runs)")
     p.add_argument("--no-plots", action="store_true")
     p.set_defaults(func=run)
 

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 from model.draem.config import ROIS
 from model.draem.runtime import TRAIN_PRECISIONS
-from station.commands.arguments import seed
+from station.commands.arguments import positive_int, positive_minutes, seed
 from station.datasets import (
     fov_of,
     good_part_of,
@@ -57,8 +57,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--normal-net", default=None,
                    help="learned normal estimator (station normals --out .../normal_net) for the normal prior; "
                         "without it the rendered ground-truth normals are used (research only: a station refuses)")
-    p.add_argument("--size", type=int, default=None, help="input size in pixels (multiple of 32; default: preset's)")
-    p.add_argument("--steps", type=int, default=2000, help="optimiser steps")
+    p.add_argument("--size", type=positive_int, default=None,
+                   help="input size in pixels (multiple of 32; default: preset's)")
+    p.add_argument("--steps", type=positive_int, default=2000, help="optimiser steps")
     p.add_argument("--batch-size", type=int, default=8)
     p.add_argument("--eval-every", type=int, default=250, help="steps between held-out evaluation + checkpoint")
     p.add_argument("--seed", type=seed, default=0)
@@ -83,8 +84,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--stop-at-step", type=int, default=None, metavar="N",
                    help="stop after step N of the --steps schedule (a checkpoint is written); rerun with a later N, "
                         "or without, to go on with the same schedule")
-    p.add_argument("--max-minutes", type=float, default=None, help="stop after this much training time")
-    p.add_argument("--limit", type=int, default=None, help="use at most N samples per split (smoke runs)")
+    p.add_argument("--max-minutes", type=positive_minutes, default=None, help="stop after this much training time")
+    p.add_argument("--limit", type=positive_int, default=None, help="use at most N samples per split (smoke runs)")
     p.add_argument("--out", default=None, help="output folder (default runs/train/<preset>-<fusion>)")
     p.add_argument("--no-resume", action="store_true", help="start over even if the output folder has a checkpoint")
     p.set_defaults(func=run)

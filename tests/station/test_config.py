@@ -165,3 +165,12 @@ def test_benchmark_sizes_and_counts_that_cannot_run_are_one_line():
                  ["soak", "--sample-s", "0"]):
         r = subprocess.run([sys.executable, "-m", "station.cli", "bench", *argv], capture_output=True, text=True)
         assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and argv[1] in r.stderr, (argv, r.stderr)
+
+
+def test_counts_and_budgets_of_the_model_commands_are_checked():
+    """train --max-minutes nan was ignored, --size 0 became the preset's; normals --limit 0 meant all samples and
+    --threads 0 was ignored; eval/adapt --limit 0 said "no usable samples" instead of naming the flag."""
+    for argv in (["train", "--max-minutes", "nan"], ["train", "--size", "0"], ["normals", "--limit", "0"],
+                 ["normals", "--threads", "0"], ["eval", "--limit", "-3"], ["adapt", "--limit", "0"]):
+        r = subprocess.run([sys.executable, "-m", "station.cli", *argv], capture_output=True, text=True)
+        assert r.returncode == 2 and argv[1] in r.stderr and len(r.stderr.strip().splitlines()) == 1, (argv, r.stderr)
