@@ -97,6 +97,9 @@ class SceneConfig:
                 if bad or not v:
                     raise SimError(f"scene.backgrounds: unknown {bad or v}; choose from {', '.join(BACKGROUNDS)}")
                 continue
+            numbers = v if isinstance(v, tuple) else (v,)
+            if not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in numbers):
+                raise SimError(f"scene.{f.name}: expected numbers, got {v!r}")
             if isinstance(v, tuple):
                 if len(v) != 2 or not all(np.isfinite(x) for x in v) or v[0] > v[1]:
                     raise SimError(f"scene.{f.name}: need a range (lo, hi) with lo <= hi, got {v}")

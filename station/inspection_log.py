@@ -133,6 +133,8 @@ class InspectionLog:
 
     def __init__(self, path: str | Path, *, readonly: bool = False) -> None:
         self.path = Path(path)
+        if self.path.is_dir():
+            raise LogError(f"inspection log {self.path}: a folder, not a file (give the .sqlite file)")
         try:
             if readonly:
                 if not self.path.exists():

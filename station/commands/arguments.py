@@ -56,3 +56,10 @@ def even_size(text: str) -> int:
 def positive_minutes(text: str) -> float:
     """A time budget in minutes: a finite number > 0."""
     return _positive_number(text, "minutes")
+
+
+def path_text(text: str) -> str:
+    """A file or folder path: not empty (an empty path means the working directory to most code, never meant)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("empty: give a path")
+    return text

@@ -17,7 +17,7 @@ import argparse
 import logging
 from pathlib import Path
 
-from station.commands.arguments import positive_int, seed
+from station.commands.arguments import path_text, positive_int, seed
 from station.errors import UserError
 
 log = logging.getLogger(__name__)
@@ -33,7 +33,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--train-minutes", type=float, default=10.0, help="training time limit in minutes")
     p.add_argument("--steps", type=positive_int, default=None, help="optimiser steps (default: until --train-minutes)")
     p.add_argument("--out", default="runs/normals", help="output folder")
-    p.add_argument("--model", default=None, help="evaluate this checkpoint (path without suffix) instead of training")
+    p.add_argument("--model", type=path_text, default=None,
+                   help="evaluate this checkpoint (path without suffix) instead of training")
     p.add_argument("--size", type=positive_int, default=128,
                    help="network input side in pixels (DRAEM fast preset: 128)")
     p.add_argument("--roi", default="center", choices=("center", "object"),

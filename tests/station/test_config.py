@@ -174,3 +174,18 @@ def test_counts_and_budgets_of_the_model_commands_are_checked():
                  ["normals", "--threads", "0"], ["eval", "--limit", "-3"], ["adapt", "--limit", "0"]):
         r = subprocess.run([sys.executable, "-m", "station.cli", *argv], capture_output=True, text=True)
         assert r.returncode == 2 and argv[1] in r.stderr and len(r.stderr.strip().splitlines()) == 1, (argv, r.stderr)
+
+
+def test_the_last_bad_inputs_of_the_cli_audit_are_one_line(tmp_path):
+    """normals --model "" started a training; a scene config value of the wrong type raised TypeError; an
+    inspection log path that is a folder said "disk I/O error"."""
+    scene = tmp_path / "scene.toml"
+    scene.write_text('[scene]\ncamera_radius_m = "abc"\n')
+    (tmp_path / "folder").mkdir()
+    for argv, needle in ((["normals", "--model", ""], "--model"),
+                         (["render", "--out", str(tmp_path / "s"), "--count", "1", "--config", str(scene)],
+                          "camera_radius_m"),
+                         (["report", "--db", str(tmp_path / "folder"), "--out", str(tmp_path / "r")], "folder")):
+        r = subprocess.run([sys.executable, "-m", "station.cli", *argv], capture_output=True, text=True, timeout=60)
+        assert r.returncode == 2 and "Traceback" not in r.stderr and needle in r.stderr, (argv, r.stderr)
+        assert len(r.stderr.strip().splitlines()) == 1, (argv, r.stderr)
