@@ -12,6 +12,7 @@ import json
 import logging
 import threading
 from contextlib import ExitStack
+from pathlib import Path
 
 log = logging.getLogger(__name__)
 
@@ -45,7 +46,7 @@ def confusion_table(confusion: dict[str, int]) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from station.assembly import build_station, load_detector, open_camera, open_link
-    from station.config import load_config
+    from station.config import ConfigError, load_config
     from station.errors import UserError
     from station.inspection_log import InspectionLog
     from station.reject_store import RejectStore
@@ -61,6 +62,8 @@ def run(args: argparse.Namespace) -> int:
     if detector.threshold >= 1.0:  # scores lie in [0, 1] and reject when above the threshold
         log.warning("threshold %.4g rejects no part on its score: only parts that cannot be judged are rejected "
                     "([decision] threshold or the model's own)", detector.threshold)
+    if cfg.log.save_rejects and Path(cfg.log.image_dir).exists() and not Path(cfg.log.image_dir).is_dir():
+        raise ConfigError(f"{cfg.source}: [log] image_dir: {cfg.log.image_dir} is a file, not a folder")
     with ExitStack() as stack:
         inspection_log = stack.enter_context(InspectionLog(cfg.log.path))
         rejects = RejectStore(cfg.log.image_dir) if cfg.log.save_rejects else None

@@ -180,3 +180,12 @@ def test_a_threshold_of_one_is_warned_about(setup, caplog) -> None:
     cfg = write_config(tmp, model, ds, "[decision]\nthreshold = 1.0\n")
     assert main(["run", "--config", str(cfg), "--frames", "1"]) == 0
     assert any("rejects no part on its score" in r.message for r in caplog.records)
+
+
+def test_an_image_folder_that_is_a_file_stops_the_station_before_the_first_part(setup, capsys) -> None:
+    """`[log] image_dir` naming a file: the station ran and logged one error per reject, keeping no image."""
+    tmp, model, ds = setup
+    (tmp / "rejects").write_text("a file")
+    cfg = write_config(tmp, model, ds)  # image_dir = tmp/rejects
+    assert main(["run", "--config", str(cfg), "--frames", "2"]) == 2
+    assert "[log] image_dir" in capsys.readouterr().err
