@@ -484,6 +484,7 @@ def read_manifest(path: Path) -> dict[str, Any]:
     """A set's ``manifest.json``; SimError naming the file (and key) unless it is a JSON object whose ``bit_depth``
     (when present) is an integer in 1..16 and ``layout`` a known mosaic layout."""
     from model.priors import LAYOUTS
+    from model.priors.conventions import is_bit_depth
 
     try:
         manifest = json.loads(path.read_text())
@@ -492,7 +493,7 @@ def read_manifest(path: Path) -> dict[str, Any]:
     if not isinstance(manifest, dict):
         raise SimError(f"{path}: expected a JSON object, got {type(manifest).__name__}")
     depth = manifest.get("bit_depth")
-    if depth is not None and (isinstance(depth, bool) or not isinstance(depth, int) or not 1 <= depth <= 16):
+    if depth is not None and not is_bit_depth(depth):
         raise SimError(f"{path}: bit_depth: {depth!r} is not an integer in 1..16")
     layout = manifest.get("layout")
     if layout is not None and layout not in LAYOUTS:

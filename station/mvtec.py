@@ -34,7 +34,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from model.priors.conventions import CONVENTION_VERSION, LAYOUTS
+from model.priors.conventions import CONVENTION_VERSION, LAYOUTS, is_bit_depth
 from sim.dataset import FOLDER_SPLIT_RULE, FORMAT, VERSION, Sample, open_dataset, write_sample
 from station.errors import UserError
 
@@ -139,7 +139,7 @@ def read_info(root: str | Path) -> dict:
     if not isinstance(info, dict):
         raise UserError(f"{p}: expected a JSON object with bit_depth and layout, got {type(info).__name__}")
     depth = info.get("bit_depth")
-    if depth is not None and (isinstance(depth, bool) or not isinstance(depth, int) or not 1 <= depth <= 16):
+    if depth is not None and not is_bit_depth(depth):
         raise UserError(f"{p}: bit_depth: expected an integer in 1..16, got {depth!r}")
     if info.get("layout") is not None and not isinstance(info["layout"], str):
         raise UserError(f"{p}: layout: expected a string, got {info['layout']!r}")

@@ -95,6 +95,16 @@ def get_layout(layout: str | MosaicLayout) -> MosaicLayout:
         raise ValueError(f"unknown mosaic layout {layout!r}; known: {', '.join(LAYOUTS)}") from None
 
 
+MAX_BIT_DEPTH = 16
+"""The most significant bits a raw code may have: the widest raw mosaic is uint16."""
+
+
+def is_bit_depth(value: object) -> bool:
+    """Whether ``value`` (read from a file: any JSON value) is a bit depth a raw mosaic can have: an int in
+    1..``MAX_BIT_DEPTH`` (not a bool)."""
+    return isinstance(value, int) and not isinstance(value, bool) and 1 <= value <= MAX_BIT_DEPTH
+
+
 def full_scale(dtype: np.dtype, bit_depth: int | None = None) -> float:
     """Largest code of a raw mosaic: ``2**bit_depth - 1`` for integers (bit depth defaults to the dtype's
     width), 1.0 for floats (already in full-scale units)."""
