@@ -11,7 +11,7 @@ Files under ``OUT``::
 
 Numbering continues after the files already in the label's folder: a second ``station capture`` into the same
 ``OUT`` adds frames (same bit depth and layout required). A frame whose ground truth (the virtual camera's) says it
-is not a ``--label`` part is left out and counted (``contradiction``); ``capture.jsonl`` then records it.
+is not a ``--label`` part is left out and counted (``contradicts``); ``capture.jsonl`` then records it.
 """
 
 from __future__ import annotations
@@ -31,6 +31,7 @@ from drivers.frame import Frame
 from model.priors import compute_priors
 from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
 from station.errors import UserError
+from station.inspector import significant_bits
 from station.mvtec import INFO_FILE, read_info
 
 
@@ -62,17 +63,11 @@ MAX_GRABS_PER_FRAME = 20
 label (a virtual camera whose set has no parts of that kind)."""
 
 
-def contradiction(frame: Frame, label: str) -> str | None:
-    """Why ``frame``'s ground truth (the virtual camera's; a real camera has none) says it is not a ``label`` part,
-    None when it agrees or is unknown."""
+def contradicts(frame: Frame, label: str) -> bool:
+    """Whether ``frame``'s ground truth (the virtual camera's; a real camera has none) says it is not a ``label``
+    part: no part in view, a defective part for "good", a good one for a defect type."""
     gt = frame.ground_truth
-    if gt is None:
-        return None
-    if not gt.present:
-        return "no part in view"
-    if (label == "good") == bool(gt.label):
-        return f"a {'defective' if gt.label else 'good'} part"
-    return None
+    return gt is not None and (not gt.present or (label == "good") == bool(gt.label))
 
 
 def label_folder(out: Path, label: str, split: str | None) -> Path:
@@ -137,13 +132,13 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                 if software_trigger:
                     camera.trigger()
                 frame: Frame = camera.grab(timeout_ms) if timeout_ms else camera.grab()
-                if contradiction(frame, label):
+                if contradicts(frame, label):
                     report.left_out += 1
                     continue
-                bits = frame.bit_depth if bit_depth is None else bit_depth
-                if bits > frame.bit_depth:
-                    raise UserError(f"[priors] bit_depth {bits}: more than the frame's {frame.bit_depth} bits "
-                                    f"({frame.pixel_format})")
+                try:
+                    bits = significant_bits(frame, bit_depth)
+                except ValueError as exc:
+                    raise UserError(str(exc)) from None
                 if n == 0:
                     _check_info(out, bits, layout)
                     report.bit_depth = bits

@@ -48,6 +48,18 @@ class Detector(Protocol):
     def infer(self, priors: Mapping[str, np.ndarray]) -> Inference: ...
 
 
+def significant_bits(frame: Frame, bit_depth: int | None) -> int:
+    """The bits of ``frame``'s codes that carry the signal: ``bit_depth`` (``[priors] bit_depth``, for a pixel format
+    wider than its codes, such as Mono16 carrying 12-bit codes) or the frame's own; ValueError naming the key when it
+    asks for more bits than the frame has."""
+    if bit_depth is None:
+        return frame.bit_depth
+    if bit_depth > frame.bit_depth:
+        raise ValueError(f"[priors] bit_depth {bit_depth} is more than the frame's {frame.bit_depth} bits "
+                         f"({frame.pixel_format})")
+    return bit_depth
+
+
 @dataclass
 class Inspection:
     score: float | None = None
@@ -96,10 +108,7 @@ class Inspector:
         result = Inspection()
         t = time.perf_counter()
         try:
-            bits = frame.bit_depth if self.bit_depth is None else self.bit_depth
-            if bits > frame.bit_depth:
-                raise ValueError(f"[priors] bit_depth {bits} is more than the frame's {frame.bit_depth} bits "
-                                 f"({frame.pixel_format})")
+            bits = significant_bits(frame, self.bit_depth)
             norm = normalize_mosaic(frame.raw, bits)
             s0, s1, s2 = mosaic_to_stokes(norm.data, self.layout, self.method, self.polarization)
             t_demosaic = time.perf_counter()
