@@ -69,11 +69,16 @@ def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | Non
 def evaluate_split(ck, net, model: str, data: str | Path, split: str, limit: int | None = None):
     """A loaded checkpoint ``ck`` (from ``model``) and the network that runs it on another split of ``data``:
     (split tensors, EvalData, evaluation), without loading the model again."""
+    sp = model_split(ck, model, data, split, limit)
+    return sp, *evaluate_tensors(net, sp)
+
+
+def evaluate_tensors(net, sp):
+    """Split tensors ``sp`` (``station.datasets.SplitTensors``) run through ``net``: (EvalData, evaluation)."""
     from model.draem.evaluate import EvalData, evaluate
 
-    sp = model_split(ck, model, data, split, limit)
     tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)
-    return sp, tensors, evaluate(net, tensors)
+    return tensors, evaluate(net, tensors)
 
 
 def check_max_good_flagged(value: float) -> None:
@@ -97,7 +102,6 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
         raise UserError(f"{data}: the model was trained on this set's train split; its scores there are not "
                         f"held out: use --split val")
     from model.draem.checkpoint import load_checkpoint
-    from model.draem.evaluate import EvalData, evaluate
     from station.datasets import judged_part_of
 
     ck = load_checkpoint(model)
@@ -105,8 +109,7 @@ def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: 
     if not sp.index:
         raise UserError(f"{data}: the station would judge none of split {split!r}'s frames "
                         f"({describe_left_out(left_out)})")
-    ev = evaluate(inference_net(ck, model, "fp32"),
-                  EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known))
+    _, ev = evaluate_tensors(inference_net(ck, model, "fp32"), sp)
     labels = sp.label.numpy()
     n_bad = int(labels.sum())
     if n_bad == len(labels):
@@ -141,11 +144,10 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
     ``train.<key>`` = ``record`` plus the calibration set, its manifest hash and good parts, the date and ``model``.
     Returns (the threshold choice, the evaluation, the val labels)."""
     from model.draem.checkpoint import save_checkpoint
-    from model.draem.evaluate import EvalData, evaluate
     from model.draem.metrics import choose_threshold
     from station.datasets import manifest_sha256
 
-    ev = evaluate(det, EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known))
+    _, ev = evaluate_tensors(det, va)
     labels = va.label.numpy()
     choice = choose_threshold(labels, ev.scores, max_good_flagged)
     train = {**ck.meta.get("train", {}), key: {
