@@ -8,12 +8,16 @@ import math
 from station.config import MAX_SEED
 
 
-def seed(text: str) -> int:
-    """A seed: an integer in 0..``MAX_SEED``."""
+def _integer(text: str) -> int:
     try:
-        value = int(text)
+        return int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+
+
+def seed(text: str) -> int:
+    """A seed: an integer in 0..``MAX_SEED``."""
+    value = _integer(text)
     if not 0 <= value <= MAX_SEED:
         raise argparse.ArgumentTypeError(f"{value} is outside 0..2**63-1")
     return value
@@ -36,10 +40,7 @@ def positive_seconds(text: str) -> float:
 
 def positive_int(text: str) -> int:
     """A count or size: an integer >= 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    value = _integer(text)
     if value < 1:
         raise argparse.ArgumentTypeError(f"{value}: must be >= 1")
     return value
