@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from model.priors.frame_stats import centre_square
+
 from .errors import ModelError
 
 
@@ -28,15 +30,15 @@ def object_box(object_mask: np.ndarray, margin: float = 0.1) -> tuple[int, int, 
 
 
 def center_box(height: int, width: int) -> tuple[int, int, int, int]:
-    """The centre square (top, left, side, side) of a height x width frame; top and left even, so a crop of the
-    raw mosaic keeps its 2x2 polarizer layout."""
-    side = min(height, width)
-    return ((height - side) // 2) & ~1, ((width - side) // 2) & ~1, side, side
+    """The centre square (top, left, side, side) of a height x width frame: ``model.priors.frame_stats.centre_square``
+    (the 4:3 frame's square for a frame taller than 4:3, so the part keeps its size; top and left even, so a crop of
+    the raw mosaic keeps its 2x2 polarizer layout)."""
+    return centre_square(height, width)
 
 
 def band_box(height: int, width: int) -> tuple[int, int, int, int]:
-    """The middle half (in height) of the centre square: (top, left, side // 2, side) of a height x width frame,
-    side = min(height, width); top and left even (the mosaic's 2x2 layout kept), height even. For 640 x 480:
+    """The middle half (in height) of the centre square (``center_box``): (top, left, side // 2, side) of a height x
+    width frame; top and left even (the mosaic's 2x2 layout kept), height even. For 640 x 480:
     rows 120-359, columns 80-559, which hold the shipped line's part wherever the fixture's jitter puts it."""
     top, left, side, _ = center_box(height, width)
     band = (side // 2) & ~1

@@ -5,7 +5,7 @@ model never saw, and its scores (and false rejects) move although no part change
 visible: the model records the range of its training (or adaptation) frames, ``station capture`` prints them per
 frame, and ``station.drift.DriftMonitor`` compares a rolling window of live frames with the recorded range.
 
-Statistics over the station's region of interest (the centre square of the frame, ``model.draem.roi.center_box``;
+Statistics over the station's region of interest (the centre square of the frame, ``centre_square``;
 no object mask is needed, so a station can compute them on every frame):
 
     median_level      median unpolarized intensity (S0/2, full-scale units 0..1): the exposure knob
@@ -45,9 +45,21 @@ class FrameStatistics:
                 f"{100 * self.clipped_fraction:.2f} %, DoLP median {self.dolp_level:.3f}")
 
 
+FRAME_ASPECT = (4, 3)
+"""Width : height of the frames the regions are laid out for: the renders' 640 x 480, a crop of the sensor's full
+width. The lens's field of view runs along the width (the renders' ``fov_axis`` x, ``sim.scene``), so a frame of
+the same width and another height (the whole IMX250MZR sensor is 2448 x 2048) shows the same scene at the same
+scale, with more above and below. ``centre_square`` keeps to the part of the view a 4:3 frame's centre square
+covers, so a model sees the part at the size it was trained at."""
+
+
 def centre_square(height: int, width: int) -> tuple[int, int, int, int]:
-    """(top, left, side, side) of the centre square (the station's region; as ``model.draem.roi.center_box``)."""
-    side = min(height, width)
+    """(top, left, side, side) of the centre square: the station's region, the model's (``model.draem.roi``) and
+    these statistics'. Its side is the height of the ``FRAME_ASPECT`` frame of the same width, or the frame's
+    height when that is less (a frame wider than 4:3 has no more); top, left and side even, so a crop of the raw
+    mosaic keeps its 2x2 polarizer layout. 640 x 480 -> (0, 80, 480, 480); 2448 x 2048 -> (106, 306, 1836, 1836)
+    (before 2026-11-26 the side was min(height, width): 2048, and the part looked 0.9 times its trained size)."""
+    side = min(height, width * FRAME_ASPECT[1] // FRAME_ASPECT[0]) & ~1
     return ((height - side) // 2) & ~1, ((width - side) // 2) & ~1, side, side
 
 
