@@ -54,7 +54,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     quality.add_argument("--dolp-error", type=float, default=None, metavar="RMSE",
                          help="choose the smallest spp whose DoLP RMSE (curve measured by station bench render, "
                               "sim/spp_table.json) is at most RMSE, e.g. 0.03")
-    p.add_argument("--bit-depth", type=int, default=8, choices=(8, 10, 12, 14, 16))
+    p.add_argument("--bit-depth", type=int, default=None, choices=(8, 10, 12, 14, 16),
+                   help="ADC bits of the raw mosaic; wins over a --config file's [sensor] bit_depth "
+                        "(default: that, else 8)")
     p.add_argument("--no-ground-truth", action="store_true",
                    help="raw mosaics only: no AOV pass, no gt.npz (labels still from a shape-index pass)")
     p.add_argument("--mesh", default="", help="PLY/OBJ instead of the built-in USB brick")
@@ -102,7 +104,9 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
             raise SimError(f"--materials: not JSON ({exc})") from None
         if not isinstance(materials, dict):
             raise SimError("--materials must be a JSON object part -> material")
-    sensor = {"bit_depth": args.bit_depth, **extra.get("sensor", {})}
+    sensor = {"bit_depth": 8, **extra.get("sensor", {})}
+    if args.bit_depth is not None:  # the command line wins over the layered files (it used to lose silently)
+        sensor["bit_depth"] = args.bit_depth
     return DatasetSpec.from_dict({
         "seed": args.seed, "width": args.width, "height": args.height, "spp": spp,
         "ground_truth": not args.no_ground_truth, "defect_fraction": args.defects,

@@ -54,3 +54,15 @@ def test_render_refuses_an_output_it_would_spoil_and_numbers_it_cannot_render(tm
     assert main(["render", *[a.format(tmp=tmp_path) for a in argv]]) == 2
     assert message in capsys.readouterr().err
     assert sorted(p.name for p in (tmp_path / "model").iterdir()) == ["best.pt"]
+
+
+@pytest.mark.parametrize(("flag", "expected"), [([], 12), (["--bit-depth", "8"], 8), (["--bit-depth", "16"], 16)])
+def test_a_bit_depth_on_the_command_line_wins_over_the_presets(tmp_path: Path, flag: list[str], expected: int) -> None:
+    """sim/presets/line-polar.toml sets [sensor] bit_depth = 12; `--bit-depth 8` was silently ignored beside it (the
+    set was rendered at 12 bits, its manifest said so, and nothing told the user)."""
+    from station.cli import main
+
+    out = tmp_path / "set"
+    assert main(["render", "--out", str(out), "--count", "1", "--width", "32", "--height", "24", "--spp", "1",
+                 "--no-ground-truth", "--config", "sim/presets/line-polar.toml", *flag]) == 0
+    assert json.loads((out / "manifest.json").read_text())["bit_depth"] == expected
