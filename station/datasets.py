@@ -72,6 +72,16 @@ def manifest_sha256(root: str | Path) -> str:
     return hashlib.sha256((Path(root) / "manifest.json").read_bytes()).hexdigest()
 
 
+def frame_aspect_of(root: str | Path) -> float:
+    """Width / height of a set's frames from its manifest (``ModelConfig.frame_aspect``); 0 when it does not say."""
+    from sim.dataset import open_dataset
+
+    m = open_dataset(root).manifest
+    w, h = m.get("width"), m.get("height")
+    ok = all(isinstance(v, int) and not isinstance(v, bool) and v > 0 for v in (w, h))
+    return w / h if ok else 0.0
+
+
 def fov_of(params: dict) -> float | None:
     """A sample's horizontal field of view in degrees (rendered sets), None when unknown (imported sets)."""
     return (params.get("scene", {}).get("camera") or {}).get("fov_x_deg")
@@ -83,9 +93,10 @@ def defect_type_of(params: dict) -> str:
 
 def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int | tuple[int, int],
                limit: int | None = None, good_only: bool = False, progress: bool = True, roi: str = "center",
-               normals: NormalEstimator | None = None) -> SplitTensors:
+               normals: NormalEstimator | None = None, frame_aspect: float = 0.0) -> SplitTensors:
     """Read one split of a set into tensors at the network input size (``size_px``: (height, width) or a square's
-    side), cropped to ``roi`` (see ``model.draem.config.ModelConfig.roi``). Object and defect masks come along (for
+    side), cropped to ``roi`` (see ``model.draem.config.ModelConfig.roi``) as a model trained on frames of
+    ``frame_aspect`` (``ModelConfig.frame_aspect``) crops them. Object and defect masks come along (for
     anomaly synthesis and the pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field
     of view must be the set's), or from the rendered ground truth when it is None."""
     import numpy as np
@@ -142,7 +153,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         if x.shape[1:] != obj_mask.shape:
             raise UserError(f"{root}: sample {i}: priors {x.shape[1:]} and object mask {obj_mask.shape} differ")
         defect = s.defect_mask if s.defect_mask is not None else np.zeros_like(obj_mask)
-        box = roi_box(roi, obj_mask.shape, obj_mask)
+        box = roi_box(roi, obj_mask.shape, obj_mask, frame_aspect)
         xt, (obj, dm) = crop_resize(x, box, size_px, priors, (obj_mask, defect))
         xs.append(xt)
         objs.append(obj)

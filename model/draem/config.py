@@ -9,6 +9,7 @@ How a network sees each prior (values before normalisation; conventions in ``mod
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
@@ -110,7 +111,10 @@ class ModelConfig:
     still computes and reports the networks, the station skips them): set by ``station variation --decision``, and
     by ``station adapt`` when the networks are out of their domain on a line (``model.draem.adapt.DOMAIN_SHIFT_SD``);
     "residual" (the residual networks' finding alone, ``model.draem.residual``: set by ``station residual``).
-    ``residual_members``: how many residual networks read the variation model's signed z maps (0: none)."""
+    ``residual_members``: how many residual networks read the variation model's signed z maps (0: none).
+    ``frame_aspect``: width / height of the frames the model was trained on (``station train`` reads it from the
+    set's manifest; 0: not recorded). On a frame taller than those (the whole sensor, against 4:3 renders) the
+    region keeps to the same part of the view (``model.draem.roi``); 0 lays it out on each frame's own shape."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -123,6 +127,7 @@ class ModelConfig:
     variation: bool = False
     decision: str = "combined"
     residual_members: int = 0
+    frame_aspect: float = 0.0
     extra: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -144,6 +149,10 @@ class ModelConfig:
                              f"{self.residual_members}")
         if self.decision == "residual" and not self.residual_members:
             raise ModelError("decision 'residual' needs residual networks (residual_members >= 1)")
+        if not (isinstance(self.frame_aspect, int | float) and math.isfinite(self.frame_aspect)
+                and 0 <= self.frame_aspect <= 100):
+            raise ModelError(f"frame_aspect must be 0 (not recorded) or a frame's width / height, got "
+                             f"{self.frame_aspect!r}")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 

@@ -133,7 +133,7 @@ class Predictor:
         from .runtime import autocast
 
         shape = next(iter(maps.values())).shape[:2]
-        top, left, h, w = roi_box(self.config.roi, shape)
+        top, left, h, w = roi_box(self.config.roi, shape, frame_aspect=self.config.frame_aspect)
         # stack only the region the network sees, not whole frames (the same values crop_resize would cut out)
         cut = {k: v[top:top + h, left:left + w] for k, v in maps.items()}
         if self.normals is not None:  # same square as the DRAEM's: both read roi "center" ("frame" has no normal)

@@ -29,28 +29,29 @@ def object_box(object_mask: np.ndarray, margin: float = 0.1) -> tuple[int, int, 
     return top, left, side, side
 
 
-def center_box(height: int, width: int) -> tuple[int, int, int, int]:
-    """The centre square (top, left, side, side) of a height x width frame: ``model.priors.frame_stats.centre_square``
-    (the 4:3 frame's square for a frame taller than 4:3, so the part keeps its size; top and left even, so a crop of
-    the raw mosaic keeps its 2x2 polarizer layout)."""
-    return centre_square(height, width)
+def center_box(height: int, width: int, frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
+    """The centre square (top, left, side, side) of a height x width frame, for a model trained on frames of
+    ``frame_aspect`` (width / height; 0: the frame's own square): ``model.priors.frame_stats.centre_square``."""
+    return centre_square(height, width, frame_aspect)
 
 
-def band_box(height: int, width: int) -> tuple[int, int, int, int]:
+def band_box(height: int, width: int, frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
     """The middle half (in height) of the centre square (``center_box``): (top, left, side // 2, side) of a height x
     width frame; top and left even (the mosaic's 2x2 layout kept), height even. For 640 x 480:
     rows 120-359, columns 80-559, which hold the shipped line's part wherever the fixture's jitter puts it."""
-    top, left, side, _ = center_box(height, width)
+    top, left, side, _ = center_box(height, width, frame_aspect)
     band = (side // 2) & ~1
     return (top + (side - band) // 2) & ~1, left, band, side
 
 
-def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None) -> tuple[int, int, int, int]:
-    """The region a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W)."""
+def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None,
+            frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
+    """The region a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W), for a model
+    trained on frames of ``frame_aspect`` (``ModelConfig.frame_aspect``; 0: laid out on the frame's own shape)."""
     if roi == "center":
-        return center_box(*shape)
+        return center_box(*shape, frame_aspect)
     if roi == "band":
-        return band_box(*shape)
+        return band_box(*shape, frame_aspect)
     if roi == "frame":
         return 0, 0, shape[0], shape[1]
     if roi == "object":

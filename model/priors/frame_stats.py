@@ -45,21 +45,21 @@ class FrameStatistics:
                 f"{100 * self.clipped_fraction:.2f} %, DoLP median {self.dolp_level:.3f}")
 
 
-FRAME_ASPECT = (4, 3)
-"""Width : height of the frames the regions are laid out for: the renders' 640 x 480, a crop of the sensor's full
-width. The lens's field of view runs along the width (the renders' ``fov_axis`` x, ``sim.scene``), so a frame of
-the same width and another height (the whole IMX250MZR sensor is 2448 x 2048) shows the same scene at the same
-scale, with more above and below. ``centre_square`` keeps to the part of the view a 4:3 frame's centre square
-covers, so a model sees the part at the size it was trained at."""
-
-
-def centre_square(height: int, width: int) -> tuple[int, int, int, int]:
+def centre_square(height: int, width: int, frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
     """(top, left, side, side) of the centre square: the station's region, the model's (``model.draem.roi``) and
-    these statistics'. Its side is the height of the ``FRAME_ASPECT`` frame of the same width, or the frame's
-    height when that is less (a frame wider than 4:3 has no more); top, left and side even, so a crop of the raw
-    mosaic keeps its 2x2 polarizer layout. 640 x 480 -> (0, 80, 480, 480); 2448 x 2048 -> (106, 306, 1836, 1836)
-    (before 2026-11-26 the side was min(height, width): 2048, and the part looked 0.9 times its trained size)."""
-    side = min(height, width * FRAME_ASPECT[1] // FRAME_ASPECT[0]) & ~1
+    these statistics'; top, left and side even, so a crop of the raw mosaic keeps its 2x2 polarizer layout.
+
+    ``frame_aspect``: width / height of the frames a model was trained on (0: not known). The lens's field of view
+    runs along the width (the renders' ``fov_axis`` x, ``sim.scene``), so a frame of the same width and another
+    height shows the same scene at the same scale, with more above and below. On a frame taller than the training
+    frames (the whole IMX250MZR sensor, 2448 x 2048, against 640 x 480 renders: 4:3 crops of its width) the square
+    is that of the training shape's frame of the same width (a 1836 px square instead of 2048), so the part keeps
+    the size the model was trained at (docs/results/2026-11-26-frame-shape.md). Otherwise the side is
+    min(height, width)."""
+    side = min(height, width)
+    if frame_aspect > 0 and width < frame_aspect * height:
+        side = min(side, int(width / frame_aspect))
+    side &= ~1
     return ((height - side) // 2) & ~1, ((width - side) // 2) & ~1, side, side
 
 

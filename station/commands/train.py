@@ -22,6 +22,7 @@ from model.draem.runtime import TRAIN_PRECISIONS
 from station.commands.arguments import positive_int, positive_minutes, seed
 from station.datasets import (
     fov_of,
+    frame_aspect_of,
     good_part_of,
     load_split,
     manifest_sha256,
@@ -160,6 +161,7 @@ def run(args: argparse.Namespace) -> int:
 
     priors = check_priors(args.priors)
     config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size, args.roi)
+    config = config.with_(frame_aspect=frame_aspect_of(args.data))
     out = Path(args.out or f"runs/train/{args.preset}-{args.fusion}")
     size = config.input_shape
     normals = normal_estimator(args.normal_net, args.data, out) if "normal" in priors else None
@@ -169,11 +171,12 @@ def run(args: argparse.Namespace) -> int:
         raise UserError("--holdout-type leaves a type out of the rendered training defects: it needs "
                         "--rendered-fraction > 0")
     tr = load_split(args.data, "train", priors, size, args.limit, good_only=not mixed, roi=config.roi,
-                    normals=normals)
+                    normals=normals, frame_aspect=config.frame_aspect)
     defects = rendered_defects(tr, args.holdout_type, args.data) if mixed else None
     if mixed:
         tr = good_part_of(tr)
-    va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals)
+    va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals,
+                    frame_aspect=config.frame_aspect)
     if args.holdout_type:  # keep-best and the threshold must not see the type held out either
         va = subset(va, [i for i, t in enumerate(va.defect_type) if t != args.holdout_type])
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",

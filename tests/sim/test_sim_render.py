@@ -225,8 +225,8 @@ def test_user_mesh_with_material_map_renders(tmp_path, variant: str) -> None:
 @pytest.mark.parametrize("roi", ["center", "band"])
 def test_a_frame_of_the_whole_sensor_shows_the_model_the_part_at_its_trained_size(variant: str, roi: str) -> None:
     """The renders are 4:3 crops of the sensor's width (the field of view runs along x); the whole IMX250MZR sensor
-    is 2448 x 2048, taller. The same scene at the sensor's shape must fill the model's region as in the 4:3 frame it
-    was trained on (the old min(height, width) square made the part 0.9 times as large there)."""
+    is 2448 x 2048, taller. The same scene at the sensor's shape must fill the region of a model trained on 4:3
+    frames as the 4:3 frame does (the frame's own min(height, width) square made the part 0.9 times as large)."""
     import cv2
 
     from model.draem.roi import roi_box
@@ -236,9 +236,9 @@ def test_a_frame_of_the_whole_sensor_shows_the_model_the_part_at_its_trained_siz
                       yaw_deg=(-5.0, 5.0), rest_pose=0)
     params = sample_scene(np.random.default_rng(5), cfg, model)
     masks = {}
-    for h in (96, 108):  # 128 x 96 (4:3) and 128 x 108 (the sensor's 1.19)
+    for h in (96, 108):  # 128 x 96 (4:3, as trained) and 128 x 108 (the sensor's 1.19)
         mask = render_sample(model, params, None, RenderSettings(width=128, height=h, spp=1), seed=1).object_mask
-        top, left, bh, bw = roi_box(roi, mask.shape)
+        top, left, bh, bw = roi_box(roi, mask.shape, frame_aspect=128 / 96)
         masks[h] = cv2.resize(mask[top:top + bh, left:left + bw].astype(np.float32), (64, 64 * bh // bw),
                               interpolation=cv2.INTER_AREA)
     assert 50 < masks[96].sum() < 0.9 * masks[96].size

@@ -79,3 +79,20 @@ def test_roi_band_sees_the_middle_half_of_the_centre_square_at_twice_its_resolut
     assert not heat[:16].any() and not heat[48:].any() and not heat[:, :16].any() and not heat[:, 80:].any()
     with pytest.raises(ModelError, match="centre square"):
         ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "band")
+
+
+def test_the_region_keeps_to_the_training_frames_view_on_a_taller_frame() -> None:
+    """A model trained on 4:3 frames (frame_aspect 4/3) sees the same part of the view on the whole 2448 x 2048
+    sensor; a model that records no aspect, or was trained on square frames (an imported MVTec set), keeps the
+    frame's own square, as before."""
+    from model.draem.checkpoint import load_checkpoint
+
+    assert roi_box("band", (480, 640), frame_aspect=4 / 3) == roi_box("band", (480, 640)) == (120, 80, 240, 480)
+    assert roi_box("band", (2048, 2448), frame_aspect=4 / 3) == (564, 306, 918, 1836)
+    assert roi_box("center", (2048, 2448), frame_aspect=4 / 3) == (106, 306, 1836, 1836)
+    assert roi_box("center", (2048, 2448)) == roi_box("center", (2048, 2448), frame_aspect=1.0) == (0, 200, 2048, 2048)
+    assert roi_box("center", (64, 64), frame_aspect=1.0) == (0, 0, 64, 64)
+    assert roi_box("center", (64, 96), frame_aspect=4 / 3) == (0, 16, 64, 64)  # wider than trained: as before
+    assert load_checkpoint("model/weights/default").detector.config.frame_aspect == pytest.approx(4 / 3)
+    with pytest.raises(ModelError, match="frame_aspect"):
+        ModelConfig.from_preset("tiny", ("intensity",), "fused", 32).with_(frame_aspect=float("nan"))

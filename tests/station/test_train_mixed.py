@@ -18,7 +18,10 @@ def test_rendered_defects_of_the_train_split_join_every_batch_and_are_recorded(t
     data = make_line_set(tmp_path / "ds", n=30, defective=lambda i: i % 3 == 1)
     out = tmp_path / "train"
     assert main(["train", "--data", str(data), *BASE, "--rendered-fraction", "0.25", "--out", str(out)]) == 0
-    meta = json.loads((out / "best.json").read_text())["train"]
+    side = json.loads((out / "best.json").read_text())
+    meta = side["train"]
+    manifest = json.loads((data / "manifest.json").read_text())
+    assert side["model"]["frame_aspect"] == manifest["width"] / manifest["height"]  # the region's view (roi.py)
     assert meta["rendered_defects"]["fraction"] == 0.25 and meta["rendered_defects"]["parts"] > 0
     assert meta["rendered_defects"]["holdout_type"] is None
     assert meta["train_config"]["rendered_fraction"] == 0.25

@@ -25,12 +25,14 @@ def spy(*args, **kwargs):
 
 
 cv2.findTransformECC = spy
-model = load_checkpoint("model/weights/default").detector.variation
+detector = load_checkpoint("model/weights/default").detector
+model = detector.variation
 result = {}
 for arg in sys.argv[2:]:
     name, root = arg.split("=", 1)
     root, split = root.split(":") if ":" in root else (root, "test")
-    s = load_split(root, split, ("intensity", "dolp", "aolp"), (96, 192), roi="band", progress=False)
+    s = load_split(root, split, ("intensity", "dolp", "aolp"), (96, 192), roi="band", progress=False,
+                   frame_aspect=detector.config.frame_aspect)
     scores, scale, shift = [], [], []
     for i in range(len(s.label)):
         ECC.clear()
