@@ -290,10 +290,11 @@ def _load_last(out: Path, config: ModelConfig, device: torch.device) -> tuple[De
 
 def _load_init(init: str | Path, config: ModelConfig, device: torch.device) -> Detector:
     """The weights and normalisation of checkpoint ``init`` to start from (same model config required, except the
-    region of interest and the input size: the networks are convolutional, so a model trained on the centre square
-    at 128 px can start one that sees the band at 96 x 192)."""
+    region of interest, the input size and the frames' shape: the networks are convolutional, so a model trained on
+    the centre square at 128 px can start one that sees the band at 96 x 192)."""
     ck = load_checkpoint(init, map_location=device)
-    if ck.detector.config.with_(roi=config.roi, input_size_px=config.input_size_px) != config:
+    if ck.detector.config.with_(roi=config.roi, input_size_px=config.input_size_px,
+                                frame_aspect=config.frame_aspect) != config:
         raise CheckpointError(f"{paths(init)[1]}: init from a different model ({ck.meta['model']}); it "
                               f"must have the trained model's priors, fusion and preset")
     log.info("starting from %s (step %s, roi %s)", paths(init)[0], (ck.meta.get("train") or {}).get("step"),
