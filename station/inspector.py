@@ -10,6 +10,7 @@ part with its reason (fail closed) and keep running.
 
 from __future__ import annotations
 
+import logging
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -24,6 +25,8 @@ from model.priors.demosaic import mosaic_to_stokes
 from model.priors.frame_stats import FrameStatistics, frame_statistics
 from model.priors.mosaic import normalize_mosaic
 from station.presence import Presence, PresenceCheck
+
+log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -103,6 +106,10 @@ class Inspector:
         extra = (presence.priors if presence is not None else ()) + (("intensity", "dolp") if statistics else ())
         self.names = check_prior_names(tuple(dict.fromkeys(detector.priors + display_priors + extra)))
         self.polarization = needs_polarization(self.names)
+        self.slow_priors_ms: float | None = None
+        """Demosaic and priors time (ms) from which the first frame is named once, with the keys that help
+        (``station.loop.SLOW_PRIORS_SHARE`` of the cycle, set by the station); None: never."""
+        self._named_slow = False
 
     def inspect(self, frame: Frame) -> Inspection:
         result = Inspection()
@@ -122,6 +129,7 @@ class Inspector:
                                                       raw=frame.raw[::k, ::k], bit_depth=bits)
             t_priors = time.perf_counter()
             result.timings_ms["priors"] = 1e3 * (t_priors - t_demosaic)
+            self._name_slow_priors(frame, 1e3 * (t_priors - t))
         except Exception as exc:  # any failure here is a part we cannot judge
             result.error = f"frame {frame.frame_id}: priors failed: {type(exc).__name__}: {exc}"
             return result
@@ -145,3 +153,14 @@ class Inspector:
                             f"{type(exc).__name__}: {exc}")
         result.timings_ms["model"] = 1e3 * (time.perf_counter() - t_priors)
         return result
+
+    def _name_slow_priors(self, frame: Frame, ms: float) -> None:
+        """Warn once when a frame's demosaic and priors take ``slow_priors_ms`` or more: the parts are then rejected
+        as late (at its deadline, before the model answers), and no row says why."""
+        if self.slow_priors_ms is None or self._named_slow or ms < self.slow_priors_ms:
+            return
+        self._named_slow = True
+        h, w = frame.raw.shape[:2]
+        log.warning("demosaic and priors took %.0f ms on a %d x %d frame (%s): parts will be rejected as late; set "
+                    "[priors] demosaic = \"superpixel\" or a smaller [camera] region (docs/bring-up.md, step 5)",
+                    ms, w, h, self.method)

@@ -70,6 +70,12 @@ MAX_MODEL_BUSY_PARTS = 50
 before the station stops as for a lost camera: a model that never returns must not keep the line running on rejects.
 A model that is merely slower than the cycle answers between parts and never reaches this."""
 
+SLOW_PRIORS_SHARE = 0.5
+"""Share of ``[acquisition] cycle_time_ms`` that a frame's demosaic and priors may take before the station warns once
+(``Inspector.slow_priors_ms``), naming the keys that help: on the whole 2448 x 2048 sensor they take 95 ms of a
+100 ms cycle on 2 cores with the bilinear demosaic (38 ms with superpixel; docs/results/2026-11-26-frame-shape.md).
+Every part is then rejected as late, each row saying so but nothing saying why."""
+
 
 class FramesLost(Exception):
     """Line trigger: the part being grabbed has no frame: it was lost in transport (a gap in frame ids), or the camera
@@ -253,6 +259,7 @@ class Station:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold = inspector.detector.threshold if threshold is None else threshold
         self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
+        inspector.slow_priors_ms = SLOW_PRIORS_SHARE * cycle_time_ms
         self.settle_timeout_s = settle_timeout_s
         self.max_frame_delay_ms = cycle_time_ms if max_frame_delay_ms is None else max_frame_delay_ms
         if max_frame_delay_ms is None and link.triggered and camera.config.trigger.startswith("line"):

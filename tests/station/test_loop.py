@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 import time
 from collections import deque
@@ -894,3 +895,32 @@ def test_the_transfer_clock_ignores_a_camera_clock_that_runs_at_another_rate():
         got = steady.fastest(Frame(np.zeros((2, 2), np.uint8), "Mono8", 8, k + 1, int(1e9 * (50.0 + 0.1 * k)), 1),
                              10.0 + 0.1 * k + 0.01 + late)
     assert not steady.untrusted and got == pytest.approx(10.0 + 0.1 * 39 + 0.01)
+
+
+class BigFrameCamera(ScriptedCamera):
+    """The whole sensor's frames (2448 x 2048), as a camera left at its full region sends them."""
+
+    def grab(self, timeout_ms=None):
+        f = super().grab(timeout_ms)
+        return dataclasses.replace(f, raw=np.full((2048, 2448), f.raw[0, 0], np.uint8))
+
+
+def test_priors_that_take_most_of_the_cycle_are_named_once_with_the_keys_that_help(tmp_path, caplog):
+    """On the whole sensor the bilinear demosaic and priors took 95 ms of a 100 ms cycle: every part was rejected as
+    late, and nothing said why. A frame whose priors take SLOW_PRIORS_SHARE of the cycle or more is named once."""
+    from station.loop import SLOW_PRIORS_SHARE
+
+    station, _ = make_station(tmp_path / "slow", BigFrameCamera([0, 0, 0]), BrightnessDetector(), queue_size=8,
+                              backpressure="block", cycle_time_ms=100.0)
+    assert station.inspector.slow_priors_ms == SLOW_PRIORS_SHARE * 100.0
+    station.inspector.slow_priors_ms = 1.0  # this machine's speed aside: a full frame's demosaic takes longer
+    station.cycle_time_ms = 10_000.0  # and every part is judged, so the test waits for each
+    with caplog.at_level("WARNING", logger="station.inspector"):
+        station.run(max_parts=3)
+    said = [r.getMessage() for r in caplog.records if "demosaic and priors took" in r.getMessage()]
+    assert len(said) == 1 and "2448 x 2048" in said[0] and '[priors] demosaic = "superpixel"' in said[0]
+    caplog.clear()
+    station, _ = make_station(tmp_path / "fast", ScriptedCamera([0, 0]), BrightnessDetector())
+    with caplog.at_level("WARNING", logger="station.inspector"):
+        station.run(max_parts=2)
+    assert not [r for r in caplog.records if "demosaic and priors took" in r.getMessage()]
