@@ -910,8 +910,8 @@ def test_priors_that_take_most_of_the_cycle_are_named_once_with_the_keys_that_he
     late, and nothing said why. A frame whose priors take SLOW_PRIORS_SHARE of the cycle or more is named once."""
     from station.loop import SLOW_PRIORS_SHARE
 
-    station, _ = make_station(tmp_path / "slow", BigFrameCamera([0, 0, 0]), BrightnessDetector(), queue_size=8,
-                              backpressure="block", cycle_time_ms=100.0)
+    station, log = make_station(tmp_path / "slow", BigFrameCamera([0, 0, 0]), BrightnessDetector(), queue_size=8,
+                                backpressure="block", cycle_time_ms=100.0)
     assert station.inspector.slow_priors_ms == SLOW_PRIORS_SHARE * 100.0
     station.inspector.slow_priors_ms = 1.0  # this machine's speed aside: a full frame's demosaic takes longer
     station.cycle_time_ms = 10_000.0  # and every part is judged, so the test waits for each
@@ -919,6 +919,7 @@ def test_priors_that_take_most_of_the_cycle_are_named_once_with_the_keys_that_he
         station.run(max_parts=3)
     said = [r.getMessage() for r in caplog.records if "demosaic and priors took" in r.getMessage()]
     assert len(said) == 1 and "2448 x 2048" in said[0] and '[priors] demosaic = "superpixel"' in said[0]
+    assert [r["decision"] for r in log.rows()] == ["pass"] * 3  # the warning changes no part's answer or row
     caplog.clear()
     station, _ = make_station(tmp_path / "fast", ScriptedCamera([0, 0]), BrightnessDetector())
     with caplog.at_level("WARNING", logger="station.inspector"):
