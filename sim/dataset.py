@@ -5,6 +5,8 @@ Format (contract with drivers' virtual camera and the station's train/eval comma
                                      bit_depth, seed, count, split_rule, config (everything that defines the set),
                                      spp_choice (null, or how ``--dolp-error`` chose ``config.spp``)
   DIR/samples/<index:06d>/raw.png    raw mosaic, uint8 or uint16 PNG, codes of ``bit_depth`` bits
+  DIR/samples/<index:06d>/raw-K.png  a dome-segment set's (``config.dome_segments``) frame K >= 1 of the part, one
+                                     per segment in that order (raw.png is the first)
   DIR/samples/<index:06d>/gt.npz     float32 s0, s1, s2 (noiseless, full-scale units: exposed scene Stokes),
                                      normal (H, W, 3) camera coords (x right, y up, z toward the camera), unit;
                                      object_mask, defect_mask (bool); part_index (uint8); depth (float32, m)
@@ -49,7 +51,7 @@ import os
 import shutil
 import zipfile
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -118,6 +120,11 @@ class DatasetSpec:
     defects: DefectConfig = field(default_factory=DefectConfig)
     sensor: SensorConfig = field(default_factory=SensorConfig)
     variation: LineVariation = field(default_factory=LineVariation)
+    dome_segments: tuple[float, ...] = ()
+    """Photometric stereo: one frame per segment of a segmented dome, lit in turn, for every sample. Each entry is
+    the lit segment's azimuth (``scene.ambient_gradient_azimuth_deg``: degrees from world +x toward +y, image right
+    on the line presets); the scene's ``ambient_gradient`` sets how much brighter the lit side is. Empty (default):
+    one frame per sample under the scene's dome. See ``generate_sample`` for what the frames share."""
 
     def __post_init__(self) -> None:
         # the config states the spp that is rendered: the sampler rounds some counts up (32 -> 35)
@@ -132,6 +139,14 @@ class DatasetSpec:
             raise SimError(f"mesh_scale must be a number > 0, got {self.mesh_scale}")
         if self.heldout and self.validation:
             raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
+        object.__setattr__(self, "dome_segments", tuple(float(a) for a in self.dome_segments))
+        if self.dome_segments:
+            segs = self.dome_segments
+            if len(segs) < 2 or len(set(segs)) != len(segs) or not all(0 <= a < 360 for a in segs):
+                raise SimError(f"dome_segments {list(segs)}: two or more distinct azimuths in [0, 360) degrees")
+            if not self.scene.ambient_gradient:
+                raise SimError("dome_segments need scene.ambient_gradient > 0 (how much brighter the lit segment "
+                               "is): under a uniform dome every segment's frame is the same")
         self.render_settings()  # checks size and spp
 
     @property
@@ -154,7 +169,7 @@ class DatasetSpec:
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
-        for key in ("visibility", "heldout", "validation"):
+        for key in ("visibility", "heldout", "validation", "dome_segments"):
             if not d[key]:
                 d.pop(key)  # likewise for sets without the detectability oracle or a whole-set split
         if not self.variation.active:
@@ -196,6 +211,13 @@ class Sample:
     defect_mask: np.ndarray | None = None
     part_index: np.ndarray | None = None
     depth: np.ndarray | None = None
+    segment_raws: tuple[np.ndarray, ...] = ()
+    """A dome-segment set's frames (``DatasetSpec.dome_segments`` order; the first is ``raw``); empty otherwise."""
+
+    @property
+    def raws(self) -> tuple[np.ndarray, ...]:
+        """Every frame of the part: one per dome segment, or ``(raw,)``."""
+        return self.segment_raws or (self.raw,)
 
 
 OVERRIDE_SECTIONS = ("scene", "defects", "sensor", "variation")
@@ -303,17 +325,45 @@ def oracle_record(result: DefectSNR) -> dict[str, Any]:
             "snr_oracle": {"pixels": d["pixels"], "spp": d["spp"], "seconds": d["seconds"]}}
 
 
+def segment_seeds(spec: DatasetSpec, index: int, mitsuba_seed: int) -> list[int]:
+    """The Mitsuba seed of each dome segment's frame of sample ``index``: the sample's own for the first (so a
+    segment set's first frames are the one-frame set rendered under that segment), then independent draws: two
+    exposures of a part have independent noise, and correlated noise would flatter their difference."""
+    return [mitsuba_seed] + [int(np.random.default_rng([spec.seed, index, 2, k]).integers(2**32))
+                             for k in range(1, len(spec.dome_segments))]
+
+
 def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample:
     """Render sample ``index`` in memory (deterministic in ``spec.seed`` and ``index``); with
-    ``spec.visibility`` also measure its defect's detectability (``sim.oracle``)."""
+    ``spec.visibility`` also measure its defect's detectability (``sim.oracle``).
+
+    With ``spec.dome_segments`` the part is rendered once per segment: the same draws (part, pose, defect, camera,
+    stray light, exposure and gain), the dome lit on that segment's side, independent render and sensor noise
+    (``segment_seeds``; the sensor's rng ``[seed, index, 1, k]``, the first frame's ``[seed, index, 1]``). The
+    ground-truth Stokes are the frames' mean (the uniform dome's); masks and normals are the first frame's (the
+    geometry is the same)."""
     draw = draw_sample(spec, model, index)
     params, defect, mi_seed, split, empty = draw.params, draw.defect, draw.mitsuba_seed, draw.split, draw.empty
-    out = render_sample(model, params, defect, spec.render_settings(), mi_seed, empty=empty)
-    frame = simulate(out.s0, out.s1, out.s2, draw.sensor, np.random.default_rng([spec.seed, index, 1]))
+    settings = spec.render_settings()
+    segments: tuple[float | None, ...] = spec.dome_segments or (None,)
+    seeds = segment_seeds(spec, index, mi_seed)
+    outs, frames = [], []
+    for k, azimuth in enumerate(segments):
+        lit = params if azimuth is None else {**params, "ambient_gradient_azimuth_deg": azimuth}
+        out_k = render_sample(model, lit, defect, settings if k == 0 else replace(settings, ground_truth=False),
+                              seeds[k], empty=empty)
+        noise = np.random.default_rng([spec.seed, index, 1] if k == 0 else [spec.seed, index, 1, k])
+        outs.append(out_k)
+        frames.append(simulate(out_k.s0, out_k.s1, out_k.s2, draw.sensor, noise))
+    out, frame = outs[0], frames[0]
     label = int(out.defect_mask is not None and bool(out.defect_mask.any()))
     record = {"index": index, "split": split, "label": label, "defect": defect.info if defect else None,
               "mitsuba_seed": mi_seed, "scene": params, "render_seconds": out.seconds,
               "n_saturated": frame.n_saturated}
+    if spec.dome_segments:
+        record["dome_segments"] = [{"azimuth_deg": a, "mitsuba_seed": sd, "n_saturated": f.n_saturated,
+                                    "render_seconds": o.seconds}
+                                   for a, sd, f, o in zip(spec.dome_segments, seeds, frames, outs, strict=True)]
     if draw.sensor_record:
         record["sensor"] = draw.sensor_record
     if empty:
@@ -325,12 +375,19 @@ def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample
                                    out.defect_mask)
             record["defect"].update(oracle_record(result))
             record["render_seconds"] = {**out.seconds, "oracle_s": result.seconds}
-    sample = Sample(index, frame.raw, record, label, split)
+    sample = Sample(index, frame.raw, record, label, split,
+                    segment_raws=tuple(f.raw for f in frames) if spec.dome_segments else ())
     if spec.ground_truth:
-        sample.s0, sample.s1, sample.s2 = frame.s0, frame.s1, frame.s2
+        sample.s0, sample.s1, sample.s2 = (np.mean([getattr(f, c) for f in frames], 0).astype(np.float32)
+                                           for c in ("s0", "s1", "s2"))
         sample.normal, sample.object_mask, sample.defect_mask = out.normal, out.object_mask, out.defect_mask
         sample.part_index, sample.depth = out.part_index, out.depth_m
     return sample
+
+
+def frame_file(k: int) -> str:
+    """File of a sample's frame ``k``: ``raw.png``, then ``raw-1.png``... for a dome-segment set's later frames."""
+    return "raw.png" if k == 0 else f"raw-{k}.png"
 
 
 def sample_dir(root: str | Path, index: int) -> Path:
@@ -344,8 +401,10 @@ def write_sample(root: str | Path, sample: Sample) -> Path:
     if tmp.exists():
         shutil.rmtree(tmp)
     tmp.mkdir(parents=True)
-    if not cv2.imwrite(str(tmp / "raw.png"), sample.raw):
-        raise SimError(f"could not write {tmp / 'raw.png'}")
+    for k, raw in enumerate(sample.raws):
+        name = frame_file(k)
+        if not cv2.imwrite(str(tmp / name), raw):
+            raise SimError(f"could not write {tmp / name}")
     gt = {k: getattr(sample, k) for k in GT_KEYS if getattr(sample, k) is not None}
     if gt:
         save_npz(tmp / "gt.npz", gt)
@@ -526,6 +585,9 @@ class Dataset:
                 raise SimError(f"{path}: split rule {FOLDER_SPLIT_RULE!r} without a valid sample_splits map "
                                f"({exc})") from None
         config = self.manifest.get("config") or {}
+        self.dome_segments = tuple(float(a) for a in config.get("dome_segments") or ())
+        """Azimuths of the dome segments each part was imaged under, one frame each (``DatasetSpec.dome_segments``);
+        empty: one frame per part."""
         self.empty_rate = float(config.get("empty_rate", 0.0))
         """Fraction of samples rendered without the part (0 for sets from before the key)."""
         seed = int(config.get("seed", self.manifest.get("seed", 0)))
@@ -559,7 +621,15 @@ class Dataset:
             params = json.loads((d / "params.json").read_text())
         except (OSError, json.JSONDecodeError) as exc:
             raise SimError(f"{d / 'params.json'}: unreadable ({exc})") from None
-        sample = Sample(index, raw, params, int(params["label"]), params["split"])
+        later = []
+        for k in range(1, len(self.dome_segments)):
+            more = cv2.imread(str(d / frame_file(k)), cv2.IMREAD_UNCHANGED)
+            if more is None or more.shape != raw.shape:
+                raise SimError(f"{d / frame_file(k)}: missing or not the shape of raw.png (a set of "
+                               f"{len(self.dome_segments)} frames per part: manifest dome_segments)")
+            later.append(more)
+        sample = Sample(index, raw, params, int(params["label"]), params["split"],
+                        segment_raws=(raw, *later) if later else ())
         if ground_truth and (d / "gt.npz").is_file():
             try:
                 with np.load(d / "gt.npz") as gt:

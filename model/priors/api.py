@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -10,10 +10,12 @@ import numpy as np
 from .conventions import MosaicLayout
 from .demosaic import mosaic_to_stokes
 from .mosaic import normalize_mosaic
+from .photometric import DOME_PAIRS, check_tilts, mean_stokes, tilt_maps
 from .stokes import aolp, aolp_vector, dolp, unpolarized_intensity
 
-PRIOR_KEYS = ("intensity", "dolp", "aolp", "aolp_cos", "aolp_sin", "s0", "s1", "s2")
-"""Everything ``compute_priors`` can return; meanings and units in ``conventions.py``."""
+PRIOR_KEYS = ("intensity", "dolp", "aolp", "aolp_cos", "aolp_sin", "s0", "s1", "s2", "tilt_x", "tilt_y")
+"""Everything ``compute_priors`` can return; meanings and units in ``conventions.py``; the tilts
+(``photometric.DOME_PAIRS``) only from a frame per dome segment (``compute_set_priors``)."""
 
 
 @dataclass(frozen=True)
@@ -68,15 +70,40 @@ def compute_priors(raw: np.ndarray, layout: str | MosaicLayout = "imx250mzr", me
         Inf; dolp in [0, 1], aolp in [0, pi). Conventions: ``model.priors.conventions``.
     """
     names = check_prior_names(priors)
+    check_tilts(names, ())
     norm = normalize_mosaic(raw, bit_depth)
     s0, s1, s2 = mosaic_to_stokes(norm.data, layout, method, needs_polarization(names))
     return Priors(priors_from_stokes(names, s0, s1, s2), norm.n_nonfinite, norm.n_out_of_range, norm.n_saturated,
                   norm.invalid)
 
 
+def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float], layout: str | MosaicLayout = "imx250mzr",
+                       method: str = "bilinear", priors: Iterable[str] = ("intensity", "dolp", "aolp"),
+                       bit_depth: int | None = None) -> Priors:
+    """``compute_priors`` for one part imaged once per dome segment (``model.priors.photometric``): ``raws`` in the
+    order of ``segments`` (azimuths, degrees). Intensity and polarization come from the frames' mean Stokes (the
+    uniform dome's frame), the tilts from the pairs' S0. One frame with no segments is ``compute_priors``.
+    The report is the worst frame's: the largest counts of invalid and saturated pixels (so a fraction of one
+    frame's pixels), and every frame's invalid pixels."""
+    names = check_prior_names(priors)
+    if len(raws) != max(1, len(segments)):
+        raise ValueError(f"{len(raws)} frames for {len(segments)} dome segments")
+    check_tilts(names, segments)
+    norms = [normalize_mosaic(raw, bit_depth) for raw in raws]
+    if len({n.data.shape for n in norms}) != 1:
+        raise ValueError(f"the frames differ in shape: {sorted({n.data.shape for n in norms})}")
+    polar = needs_polarization(names)
+    stokes = [mosaic_to_stokes(n.data, layout, method, polar) for n in norms]
+    arrays = priors_from_stokes(names, *mean_stokes(stokes))
+    arrays.update(tilt_maps(names, segments, [s[0] for s in stokes]))
+    invalid = [n.invalid for n in norms if n.invalid is not None]
+    return Priors(arrays, max(n.n_nonfinite for n in norms), max(n.n_out_of_range for n in norms),
+                  max(n.n_saturated for n in norms), np.logical_or.reduce(invalid) if invalid else None)
+
+
 def needs_polarization(names: Iterable[str]) -> bool:
-    """Whether any of the prior ``names`` needs S1, S2 (everything but intensity and S0 does)."""
-    return any(n not in ("intensity", "s0") for n in names)
+    """Whether any of the prior ``names`` needs S1, S2 (everything but intensity, S0 and the tilts does)."""
+    return any(n not in ("intensity", "s0", *DOME_PAIRS) for n in names)
 
 
 def priors_from_stokes(names: Iterable[str], s0: np.ndarray, s1: np.ndarray | None, s2: np.ndarray | None

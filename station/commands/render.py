@@ -23,6 +23,15 @@ def parse_shard(text: str) -> tuple[int, int]:
     return k, n
 
 
+def azimuths(text: str) -> tuple[float, ...]:
+    """``0,180`` -> (0.0, 180.0): ``--dome-segments``."""
+    try:
+        return tuple(float(x) for x in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--dome-segments must be degrees separated by commas (e.g. 0,180), "
+                                         f"got {text!r}") from None
+
+
 MAX_COUNT = 10_000_000
 """The most samples one set may hold (its index list is built whole)."""
 
@@ -67,6 +76,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="detectability oracle: render each defective sample's scene again without the defect (two "
                         "pairs at half the spp, around the defect only) and store the defect's SNR per prior in "
                         "params.json (defect.snr, defect.snr_best) and a summary in the manifest")
+    p.add_argument("--dome-segments", type=azimuths, default=(), metavar="DEG,DEG[,...]",
+                   help="photometric stereo: render each part once per segment of a segmented dome lit in turn, "
+                        "at these azimuths of the lit side (degrees from world +x toward +y, e.g. 0,180); needs a "
+                        "--config with [scene] ambient_gradient > 0 (how much brighter the lit side is)")
     p.add_argument("--config", action="append", default=[],
                    help="JSON or TOML file with [scene], [defects], [sensor], [variation] overrides; repeat it to "
                         "layer files (a later file's keys win), e.g. a line preset and sim/presets/variation.toml")
@@ -116,7 +129,7 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "materials": materials,
         "mesh_scale": args.mesh_scale, "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
-        "variation": extra.get("variation", {}),
+        "variation": extra.get("variation", {}), "dome_segments": getattr(args, "dome_segments", ()),
     })
 
 

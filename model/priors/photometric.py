@@ -1,0 +1,81 @@
+"""Photometric stereo with a segmented dome: the priors of one part imaged once per dome segment, lit in turn.
+
+Convention (``CONVENTION_VERSION`` unchanged: frame sets are new, single frames read as before):
+    segments   azimuths in degrees of each frame's lit side, from world +x toward +y (``sim.scene``'s
+               ``ambient_gradient_azimuth_deg``; image right is +x on the line presets), in the order the frames
+               were taken; ``DOME_PAIRS`` names the opposite pairs a tilt is read from
+    uniform    the mean of the frames' Stokes vectors (S0, S1, S2): light adds, so the mean over segments that
+               cover the dome is the frame under the whole dome; intensity, DoLP and AoLP come from it as from
+               one frame (``model.priors.api.priors_from_stokes``)
+    tilt       ``(I_a - I_b) / (I_a + I_b)`` of a pair's frames (a, b opposite, I = S0 / 2), in [-1, 1]: the
+               surface's tilt toward segment a. Albedo, colour, exposure and gain are a factor on both frames
+               and divide out; 0 where both frames are dark (``DARK_S0``), so never NaN or Inf. Measured on
+               renders (docs/results/2026-11-25-photometric-stereo.md): under a dome 9x brighter on its lit side
+               than on the other (``ambient_gradient`` 0.8) a 3 deg dent flank moves it by about 0.03
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from .conventions import DARK_S0
+
+DOME_PAIRS: dict[str, tuple[float, float]] = {"tilt_x": (0.0, 180.0), "tilt_y": (90.0, 270.0)}
+"""Tilt prior -> the azimuths (degrees) of the frames it compares: toward +x (0) against -x (180), toward +y (90)
+against -y (270)."""
+
+
+def tilt(s0_a: np.ndarray, s0_b: np.ndarray) -> np.ndarray:
+    """``(S0_a - S0_b) / (S0_a + S0_b)`` (the same ratio of intensities), float32 in [-1, 1]; 0 where the sum is
+    at or below ``2 * DARK_S0`` or not finite."""
+    a = np.asarray(s0_a, dtype=np.float32)
+    b = np.asarray(s0_b, dtype=np.float32)
+    total = a + b
+    ok = np.isfinite(total) & (total > 2 * DARK_S0)
+    out = np.divide(a - b, total, out=np.zeros_like(total), where=ok)
+    return np.clip(np.nan_to_num(out, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
+
+
+def segment_index(segments: Sequence[float], azimuth: float) -> int | None:
+    """Position of ``azimuth`` (degrees) in ``segments`` (to 0.01 deg, modulo 360), None when not imaged."""
+    for k, a in enumerate(segments):
+        if abs((float(a) - azimuth + 180.0) % 360.0 - 180.0) < 0.01:
+            return k
+    return None
+
+
+def check_tilts(names: Sequence[str], segments: Sequence[float]) -> None:
+    """ValueError naming the tilt priors in ``names`` that ``segments`` cannot give (a pair's frame missing)."""
+    missing = [n for n in names if n in DOME_PAIRS
+               and any(segment_index(segments, a) is None for a in DOME_PAIRS[n])]
+    if missing:
+        need = "; ".join(f"{n} needs frames at {DOME_PAIRS[n][0]:g} and {DOME_PAIRS[n][1]:g} deg" for n in missing)
+        got = f"frames at {', '.join(f'{a:g}' for a in segments)} deg" if segments else "one frame per part"
+        raise ValueError(f"{need}; there are {got}")
+
+
+def mean_stokes(stokes: Sequence[tuple[np.ndarray, np.ndarray | None, np.ndarray | None]]
+                ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """The uniform dome's (S0, S1, S2): the mean of the frames' (S1, S2 None when a frame lacks them)."""
+    if not stokes:
+        raise ValueError("no frames")
+    s0 = np.mean([s[0] for s in stokes], 0, dtype=np.float32)
+    if any(s[1] is None or s[2] is None for s in stokes):
+        return s0, None, None
+    return (s0, np.mean([s[1] for s in stokes], 0, dtype=np.float32),
+            np.mean([s[2] for s in stokes], 0, dtype=np.float32))
+
+
+def tilt_maps(names: Sequence[str], segments: Sequence[float], s0s: Sequence[np.ndarray]) -> dict[str, np.ndarray]:
+    """The tilt priors among ``names`` from each frame's S0 (``segments`` order); ValueError when a pair's frame
+    is missing (``check_tilts``)."""
+    check_tilts(names, segments)
+    out = {}
+    for n in names:
+        if n in DOME_PAIRS:
+            a, b = (segment_index(segments, az) for az in DOME_PAIRS[n])
+            assert a is not None and b is not None
+            out[n] = tilt(s0s[a], s0s[b])
+    return out
