@@ -82,6 +82,20 @@ def frame_aspect_of(root: str | Path) -> float:
     return w / h if ok else 0.0
 
 
+def dome_segments_of(root: str | Path) -> tuple[float, ...]:
+    """The dome segments a set's parts were imaged under, one frame each (``ModelConfig.dome_segments``); () for
+    one frame per part."""
+    from sim.dataset import open_dataset
+
+    return open_dataset(root).dome_segments
+
+
+def segments_text(segments: tuple[float, ...]) -> str:
+    """``(0.0, 180.0)`` -> "a frame per dome segment at 0, 180 deg"; () -> "one frame per part"."""
+    return f"a frame per dome segment at {', '.join(f'{a:g}' for a in segments)} deg" if segments else \
+        "one frame per part"
+
+
 def fov_of(params: dict) -> float | None:
     """A sample's horizontal field of view in degrees (rendered sets), None when unknown (imported sets)."""
     return (params.get("scene", {}).get("camera") or {}).get("fov_x_deg")
@@ -93,23 +107,29 @@ def defect_type_of(params: dict) -> str:
 
 def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int | tuple[int, int],
                limit: int | None = None, good_only: bool = False, progress: bool = True, roi: str = "center",
-               normals: NormalEstimator | None = None, frame_aspect: float = 0.0) -> SplitTensors:
+               normals: NormalEstimator | None = None, frame_aspect: float = 0.0,
+               dome_segments: tuple[float, ...] = ()) -> SplitTensors:
     """Read one split of a set into tensors at the network input size (``size_px``: (height, width) or a square's
     side), cropped to ``roi`` (see ``model.draem.config.ModelConfig.roi``) as a model trained on frames of
     ``frame_aspect`` (``ModelConfig.frame_aspect``) crops them. Object and defect masks come along (for
     anomaly synthesis and the pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field
-    of view must be the set's), or from the rendered ground truth when it is None."""
+    of view must be the set's), or from the rendered ground truth when it is None. ``dome_segments``: the model's
+    (``ModelConfig.dome_segments``); the set's parts must have been imaged under the same (UserError otherwise), and
+    each part's frames give one set of priors (``model.priors.api.compute_set_priors``)."""
     import numpy as np
     import torch
     from tqdm import tqdm
 
     from model.draem.preprocess import crop_resize, stack_priors
     from model.draem.roi import roi_box
-    from model.priors import compute_priors
+    from model.priors.api import compute_set_priors
     from model.priors.frame_stats import frame_statistics
     from sim.dataset import open_dataset
 
     ds = open_dataset(root)
+    if tuple(dome_segments) != ds.dome_segments:
+        raise UserError(f"{root}: {segments_text(ds.dome_segments)}, the model reads "
+                        f"{segments_text(tuple(dome_segments))}")
     idx = ds.indices(split)
     if not idx:
         raise UserError(f"{root}: no complete samples in split {split!r}")
@@ -129,7 +149,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         s = ds.load(i)
         if good_only and s.label:
             continue
-        computed = compute_priors(s.raw, layout, priors=names, bit_depth=bit_depth)
+        computed = compute_set_priors(s.raws, ds.dome_segments, layout, priors=names, bit_depth=bit_depth)
         maps = dict(computed)
         if "normal" in priors and normals is not None:
             fov = fov_of(s.params)

@@ -41,7 +41,7 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
     return load_split(data, split, cfg.priors, cfg.input_shape, limit, good_only=good_only, roi=cfg.roi,
-                      normals=normals, frame_aspect=cfg.frame_aspect)
+                      normals=normals, frame_aspect=cfg.frame_aspect, dome_segments=cfg.dome_segments)
 
 
 def inference_net(ck, model: str, precision: str):

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import torch
 
-from .config import PRIOR_CHANNELS, UNIT_VECTOR_PRIORS, channel_slices
+from .config import PRIOR_CHANNELS, SIGNED_PRIORS, UNIT_VECTOR_PRIORS, channel_slices, value_range
 from .errors import ModelError
 from .perlin import fractal_noise, perlin_masks
 from .vectors import unit_vectors
@@ -115,7 +115,7 @@ def _patches(x: torch.Tensor, priors: tuple[str, ...], g: torch.Generator) -> to
                 torch.sin(rot) * c + torch.cos(rot) * s
         elif p not in UNIT_VECTOR_PRIORS:
             gain = _uniform(b, 0.5, 1.5, g).view(b, 1, 1, 1)
-            out[:, sl] = (src[:, sl] * gain + _uniform(b, -0.2, 0.2, g).view(b, 1, 1, 1)).clamp(0, 1)
+            out[:, sl] = (src[:, sl] * gain + _uniform(b, -0.2, 0.2, g).view(b, 1, 1, 1)).clamp(*value_range(p))
     return out
 
 
@@ -126,7 +126,9 @@ def anomaly_sources(x: torch.Tensor, priors: tuple[str, ...], generator: torch.G
     tex = []
     for p in priors:
         tex.append(_texture_aolp(b, h, w, generator) if p == "aolp" else
-                   _texture_normal(b, h, w, generator) if p == "normal" else _texture_scalar(b, h, w, generator))
+                   _texture_normal(b, h, w, generator) if p == "normal" else
+                   _texture_scalar(b, h, w, generator) * 2 - 1 if p in SIGNED_PRIORS else
+                   _texture_scalar(b, h, w, generator))
     texture = torch.cat(tex, dim=1).to(x.dtype)
     if b < 2 or patch_fraction <= 0:
         return texture
@@ -164,7 +166,7 @@ def synthesize(x: torch.Tensor, priors: tuple[str, ...], generator: torch.Genera
     for p, sl in channel_slices(priors).items():
         xs, src = x[:, sl], source[:, sl]
         blend = (1 - beta) * src + beta * xs
-        blend = _normalise(blend, src) if p in UNIT_VECTOR_PRIORS else blend.clamp(0, 1)
+        blend = _normalise(blend, src) if p in UNIT_VECTOR_PRIORS else blend.clamp(*value_range(p))
         out[:, sl] = xs * (1 - m) + blend * m
     maskf = mask.to(x.dtype)
     return SyntheticBatch(out, maskf, (maskf.flatten(1).amax(1) > 0).to(x.dtype))

@@ -18,7 +18,7 @@ from model.draem.detector import Detector
 from model.draem.errors import ModelError
 
 CHANNEL_NAMES = {"intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin"),
-                 "normal": ("normal_x", "normal_y", "normal_z")}
+                 "normal": ("normal_x", "normal_y", "normal_z"), "tilt_x": ("tilt_x",), "tilt_y": ("tilt_y",)}
 """Names of each prior's channels, in stacking order (``model.draem.preprocess.stack_priors``)."""
 
 

@@ -5,6 +5,8 @@ How a network sees each prior (values before normalisation; conventions in ``mod
     dolp       1 channel, degree of linear polarization in [0, 1]
     aolp       2 channels (cos 2*aolp, sin 2*aolp), a unit vector: AoLP has period pi, so never the raw angle
     normal     3 channels, unit surface normal in camera coordinates (x right, y up, z toward the camera)
+    tilt_x     1 channel, the surface's tilt toward the dome's +x segment in [-1, 1], from a frame per segment
+    tilt_y     likewise toward +y (``model.priors.photometric``; the model's ``dome_segments`` must give the pair)
 """
 
 from __future__ import annotations
@@ -13,9 +15,11 @@ import math
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
+from model.priors.photometric import check_tilts
+
 from .errors import ModelError
 
-PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3}
+PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3, "tilt_x": 1, "tilt_y": 1}
 """Input channels per prior, in the order the station stacks them for the fused network."""
 
 ROIS = ("center", "band", "frame", "object")
@@ -23,6 +27,14 @@ ROIS = ("center", "band", "frame", "object")
 
 UNIT_VECTOR_PRIORS = ("aolp", "normal")
 """Priors whose channels form a unit vector per pixel: blended and renormalised as vectors, never clipped."""
+
+SIGNED_PRIORS = ("tilt_x", "tilt_y")
+"""Scalar priors in [-1, 1]; the other scalar priors lie in [0, 1] (``value_range``)."""
+
+
+def value_range(prior: str) -> tuple[float, float]:
+    """The values a scalar prior's channel takes: (-1, 1) for ``SIGNED_PRIORS``, else (0, 1)."""
+    return (-1.0, 1.0) if prior in SIGNED_PRIORS else (0.0, 1.0)
 
 
 def check_priors(priors: str | tuple[str, ...] | list[str]) -> tuple[str, ...]:
@@ -114,7 +126,11 @@ class ModelConfig:
     ``residual_members``: how many residual networks read the variation model's signed z maps (0: none).
     ``frame_aspect``: width / height of the frames the model was trained on (``station train`` reads it from the
     set's manifest; 0: not recorded). On a frame taller than those (the whole sensor, against 4:3 renders) the
-    region keeps to the same part of the view (``model.draem.roi``); 0 lays it out on each frame's own shape."""
+    region keeps to the same part of the view (``model.draem.roi``); 0 lays it out on each frame's own shape.
+    ``dome_segments``: the azimuths (degrees) of the dome segments the model's frames were taken under, one frame
+    per segment per part, in order (photometric stereo, ``model.priors.photometric``; ``station train`` reads them
+    from the set's manifest); empty: one frame per part. Intensity and polarization are read from the frames' mean
+    (the uniform dome), so a model with segments but no tilt prior still needs its frames."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -128,6 +144,7 @@ class ModelConfig:
     decision: str = "combined"
     residual_members: int = 0
     frame_aspect: float = 0.0
+    dome_segments: tuple[float, ...] = ()
     extra: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -153,17 +170,25 @@ class ModelConfig:
                 and 0 <= self.frame_aspect <= 100):
             raise ModelError(f"frame_aspect must be 0 (not recorded) or a frame's width / height, got "
                              f"{self.frame_aspect!r}")
+        object.__setattr__(self, "dome_segments", tuple(float(a) for a in self.dome_segments))
+        try:
+            check_tilts(self.priors, self.dome_segments)
+        except ValueError as exc:
+            raise ModelError(f"priors {list(self.priors)}: {exc}") from None
+        if "normal" in self.priors and self.dome_segments:
+            raise ModelError("the normal prior's estimator reads one frame; a model of dome segments cannot take it")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 
     @classmethod
     def from_preset(cls, preset: str, priors: tuple[str, ...] | str = ("intensity", "dolp", "aolp", "normal"),
-                    fusion: str = "ensemble", input_size_px: int | None = None, roi: str = "center") -> ModelConfig:
+                    fusion: str = "ensemble", input_size_px: int | None = None, roi: str = "center",
+                    dome_segments: tuple[float, ...] = ()) -> ModelConfig:
         if preset not in PRESETS:
             raise ModelError(f"unknown preset {preset!r}; known: {', '.join(PRESETS)}")
         p = PRESETS[preset]
         return cls(check_priors(priors), fusion, preset, p.reconstructive_width, p.discriminative_width,
-                   input_size_px or p.input_size_px, roi=roi)
+                   input_size_px or p.input_size_px, roi=roi, dome_segments=dome_segments)
 
     @property
     def score_window(self) -> int:
@@ -205,11 +230,15 @@ class ModelConfig:
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
         d["priors"] = list(self.priors)
+        if self.dome_segments:
+            d["dome_segments"] = list(self.dome_segments)
+        else:
+            d.pop("dome_segments")  # sidecars of one-frame models stay as they were before the key
         return d
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> ModelConfig:
         try:
-            return cls(**{**d, "priors": tuple(d["priors"])})
+            return cls(**{**d, "priors": tuple(d["priors"]), "dome_segments": tuple(d.get("dome_segments") or ())})
         except (TypeError, KeyError) as exc:
             raise ModelError(f"model config {d}: {exc}") from None

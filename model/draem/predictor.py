@@ -37,7 +37,7 @@ log = logging.getLogger(__name__)
 
 PRIOR_MAPS: dict[str, tuple[str, ...]] = {
     "intensity": ("intensity",), "dolp": ("dolp",), "aolp": ("aolp_cos", "aolp_sin"),
-    "normal": ("intensity", "dolp", "aolp_cos", "aolp_sin")}
+    "normal": ("intensity", "dolp", "aolp_cos", "aolp_sin"), "tilt_x": ("tilt_x",), "tilt_y": ("tilt_y",)}
 """Model prior -> the ``model.priors`` maps it is built from ("normal": the inputs of the learned normal
 estimator, ``model.normals.estimator.MAP_NAMES``; a test keeps the two equal)."""
 

@@ -52,8 +52,9 @@ def check_tilts(names: Sequence[str], segments: Sequence[float]) -> None:
                and any(segment_index(segments, a) is None for a in DOME_PAIRS[n])]
     if missing:
         need = "; ".join(f"{n} needs frames at {DOME_PAIRS[n][0]:g} and {DOME_PAIRS[n][1]:g} deg" for n in missing)
-        got = f"frames at {', '.join(f'{a:g}' for a in segments)} deg" if segments else "one frame per part"
-        raise ValueError(f"{need}; there are {got}")
+        got = f"the frames are at {', '.join(f'{a:g}' for a in segments)} deg" if segments else \
+            "there is one frame per part"
+        raise ValueError(f"{need}; {got}")
 
 
 def mean_stokes(stokes: Sequence[tuple[np.ndarray, np.ndarray | None, np.ndarray | None]]

@@ -21,6 +21,7 @@ from model.draem.config import ROIS
 from model.draem.runtime import TRAIN_PRECISIONS
 from station.commands.arguments import positive_int, positive_minutes, seed
 from station.datasets import (
+    dome_segments_of,
     fov_of,
     frame_aspect_of,
     good_part_of,
@@ -153,15 +154,18 @@ def check_init_holds_out(record: dict[str, Any] | None, holdout_type: str | None
 def run(args: argparse.Namespace) -> int:
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.config import ModelConfig, check_priors
-    from model.draem.errors import ConfigError
+    from model.draem.errors import ConfigError, ModelError
     from model.draem.evaluate import EvalData, evaluate, synthetic_eval_data
     from model.draem.metrics import choose_threshold
     from model.draem.train import TensorData, TrainConfig, train
     from model.priors.frame_stats import StatisticsRange
 
     priors = check_priors(args.priors)
-    config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size, args.roi)
-    config = config.with_(frame_aspect=frame_aspect_of(args.data))
+    try:
+        config = ModelConfig.from_preset(args.preset, priors, args.fusion, args.size, args.roi,
+                                         dome_segments_of(args.data)).with_(frame_aspect=frame_aspect_of(args.data))
+    except ModelError as exc:
+        raise UserError(f"--priors {args.priors} with --data {args.data}: {exc}") from None
     out = Path(args.out or f"runs/train/{args.preset}-{args.fusion}")
     size = config.input_shape
     normals = normal_estimator(args.normal_net, args.data, out) if "normal" in priors else None
@@ -171,12 +175,13 @@ def run(args: argparse.Namespace) -> int:
         raise UserError("--holdout-type leaves a type out of the rendered training defects: it needs "
                         "--rendered-fraction > 0")
     tr = load_split(args.data, "train", priors, size, args.limit, good_only=not mixed, roi=config.roi,
-                    normals=normals, frame_aspect=config.frame_aspect)
+                    normals=normals, frame_aspect=config.frame_aspect,
+                    dome_segments=config.dome_segments)
     defects = rendered_defects(tr, args.holdout_type, args.data) if mixed else None
     if mixed:
         tr = good_part_of(tr)
     va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals,
-                    frame_aspect=config.frame_aspect)
+                    frame_aspect=config.frame_aspect, dome_segments=config.dome_segments)
     if args.holdout_type:  # keep-best and the threshold must not see the type held out either
         va = subset(va, [i for i, t in enumerate(va.defect_type) if t != args.holdout_type])
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",

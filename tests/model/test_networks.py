@@ -31,13 +31,22 @@ def test_train_and_eval_outputs_are_typed_and_shaped():
 
 def test_config_channels_and_presets():
     cfg = ModelConfig.from_preset("paper", "intensity,dolp,aolp,normal", "fused")
-    assert cfg.in_channels == sum(PRIOR_CHANNELS.values()) == 7
+    assert cfg.in_channels == sum(PRIOR_CHANNELS[p] for p in cfg.priors) == 7
     assert (cfg.reconstructive_width, cfg.discriminative_width, cfg.input_size_px) == (128, 64, 256)
     assert cfg.score_window == 21
     ens = ModelConfig.from_preset("fast", ("aolp", "normal"))
     assert {k: v.in_channels for k, v in ens.networks().items()} == {"aolp": 2, "normal": 3}
     with pytest.raises(ModelError, match="unknown"):
         ModelConfig.from_preset("fast", ("intensity", "colour"))
+    # the tilt priors need their dome segments; the sidecar keeps one-frame models as they were
+    pair = ModelConfig.from_preset("fast", "intensity,tilt_x", "fused", dome_segments=(180, 0))
+    assert pair.in_channels == 2 and pair.dome_segments == (180.0, 0.0)
+    assert ModelConfig.from_dict(pair.to_dict()) == pair and pair.to_dict()["dome_segments"] == [180.0, 0.0]
+    assert "dome_segments" not in cfg.to_dict() and ModelConfig.from_dict(cfg.to_dict()) == cfg
+    with pytest.raises(ModelError, match="tilt_y needs frames at 90 and 270 deg"):
+        ModelConfig.from_preset("fast", "intensity,tilt_y", dome_segments=(0, 180))
+    with pytest.raises(ModelError, match="normal prior"):
+        ModelConfig.from_preset("fast", "intensity,normal", dome_segments=(0, 180))
     with pytest.raises(ModelError, match="multiple of 32"):
         ModelConfig.from_preset("fast", ("dolp",), input_size_px=100)
 

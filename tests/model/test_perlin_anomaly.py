@@ -55,3 +55,14 @@ def test_half_of_the_samples_stay_clean_and_normals_stay_unit():
     assert 0.25 < float((syn.label == 0).float().mean()) < 0.8
     norm = torch.linalg.vector_norm(syn.augmented, dim=1)
     assert torch.allclose(norm, torch.ones_like(norm), atol=1e-5)
+
+
+def test_a_signed_prior_keeps_its_negative_values_and_its_anomalies_span_minus_one_to_one():
+    """The tilt priors lie in [-1, 1]: synthesis must not clip them to [0, 1] like intensity."""
+    g = torch.Generator().manual_seed(0)
+    x = torch.full((8, 2, 32, 32), -0.4)
+    x[:, 0] = 0.5  # intensity
+    out = synthesize(x, ("intensity", "tilt_x"), g, AnomalyConfig(anomaly_fraction=1.0))
+    tilt, m = out.augmented[:, 1], out.mask.bool()
+    assert torch.equal(tilt[~m], x[:, 1][~m])  # untouched outside the anomalies, negative values kept
+    assert float(tilt.min()) >= -1.0 and float(tilt.max()) <= 1.0 and float(tilt[m].min()) < -0.4

@@ -55,3 +55,33 @@ def make_model(path: Path, priors: tuple[str, ...] = ("intensity", "aolp"), seed
     det.init_weights(torch.Generator().manual_seed(seed))
     save_checkpoint(path, det, threshold=0.5, threshold_rule="test")
     return path
+
+
+def make_segment_set(root: Path, n: int = 40, seed: int = 0, defective: Callable[[int], bool] = lambda i: i % 3 == 1,
+                     validation: bool = False) -> Path:
+    """A line set imaged as photometric stereo: two frames per part, the dome's +x and -x halves lit in turn
+    (``DatasetSpec.dome_segments`` (0, 180)). Every part leans the same way (a tilt along x of +-0.3); a defective
+    part has a "dent": a 10 x 10 px patch leaning 0.2 further toward +x. The two frames' mean is the same for every
+    part, dent or not, so only the tilt prior (``model.priors.photometric``) can see it; noise is per frame."""
+    from sim.scene import SceneConfig
+
+    spec = DatasetSpec(width=W, height=H, seed=seed, validation=validation, dome_segments=(0.0, 180.0),
+                       scene=SceneConfig(ambient_gradient=0.8))
+    init_dataset(root, spec, n)
+    s0, s1, s2 = detailed_stokes(H, W)
+    ideal = stokes_to_mosaic(s0, s1, s2) * 0.6
+    lean = np.tile(np.linspace(-0.3, 0.3, W, dtype=np.float32), (H, 1))
+    rng = np.random.default_rng(seed)
+    for i in range(n):
+        mask = np.zeros((H, W), bool)
+        if defective(i):
+            mask[24:34, 40:50] = True
+        t = lean + 0.2 * mask
+        raws = tuple(np.clip(np.round((ideal * (1 + sign * t) + rng.normal(0.0, 0.01, ideal.shape)) * 255), 0,
+                             255).astype(np.uint8) for sign in (1, -1))
+        label = int(mask.any())
+        split = split_of(i, spec.whole_split)
+        write_sample(root, Sample(i, raws[0], {"index": i, "split": split, "label": label,
+                                               "defect": {"type": "dent"} if label else None}, label, split,
+                                  defect_mask=mask, object_mask=np.ones((H, W), bool), segment_raws=raws))
+    return root

@@ -1,0 +1,68 @@
+"""Photometric stereo end to end on a set of two frames per part (the dome's halves): ``station train`` records the
+segments, ``station variation`` and ``station eval`` read each part's frames as one, a dent seen only in the tilt is
+found with the tilt prior and not without; a model and a set that disagree on frames per part are refused in one
+line, and so are a segment model and a segment set at the station, which takes one frame per part."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from line_sets import make_line_set, make_segment_set  # same folder (pytest puts it on sys.path)
+
+from station.cli import main
+
+BASE = ["--preset", "tiny", "--fusion", "fused", "--size", "32", "--steps", "2", "--batch-size", "4",
+        "--eval-every", "2", "--device", "cpu", "--roi", "band"]
+
+
+def variation_auroc(tmp_path: Path, capsys, data: Path, val: Path, priors: str, name: str) -> tuple[float, Path]:
+    """Train for 2 steps with ``priors``, add the variation model (it decides), evaluate on ``val``'s parts."""
+    assert main(["train", "--data", str(data), "--priors", priors, *BASE, "--out", str(tmp_path / name)]) == 0
+    model = tmp_path / f"{name}-v"
+    assert main(["variation", "--model", str(tmp_path / name / "last"), "--data", str(data),
+                 "--out", str(model)]) == 0
+    assert main(["eval", "--model", str(model), "--data", str(val), "--split", "val", "--no-plots",
+                 "--no-synthetic", "--out", str(tmp_path / f"{name}-ev")]) == 0
+    capsys.readouterr()
+    report = json.loads((tmp_path / f"{name}-ev" / "eval.json").read_text())
+    return next(r["variation"] for r in report["detectors"] if r["type"] == "all"), model
+
+
+def test_the_tilt_prior_finds_a_dent_the_uniform_dome_cannot_see(tmp_path: Path, capsys) -> None:
+    data = make_segment_set(tmp_path / "ds", n=40, defective=lambda i: False)
+    val = make_segment_set(tmp_path / "val", n=30, seed=5, validation=True)
+    with_tilt, model = variation_auroc(tmp_path, capsys, data, val, "intensity,dolp,aolp,tilt_x", "tilt")
+    without, _ = variation_auroc(tmp_path, capsys, data, val, "intensity,dolp,aolp", "uniform")
+    assert with_tilt >= 0.95 and without <= 0.75, (with_tilt, without)
+    meta = json.loads(model.with_suffix(".json").read_text())
+    assert meta["model"]["dome_segments"] == [0.0, 180.0]
+    # the station takes one frame per part: such a model is refused at start in one line naming it
+    from station.model_detector import DraemDetector, ModelLoadError
+
+    with pytest.raises(ModelLoadError, match="a frame per dome segment"):
+        DraemDetector(model, device="cpu")
+    # a model of one frame per part does not read a set of two, and the other way round
+    one = make_line_set(tmp_path / "one", n=30, seed=2, validation=True)
+    assert main(["eval", "--model", str(model), "--data", str(one), "--split", "val", "--no-plots",
+                 "--no-synthetic", "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "one frame per part, the model reads a frame per dome segment at 0, 180 deg" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_a_tilt_prior_without_its_pair_and_a_segment_set_in_the_virtual_camera_are_refused(tmp_path: Path,
+                                                                                          capsys) -> None:
+    one = make_line_set(tmp_path / "one", n=20)
+    assert main(["train", "--data", str(one), "--priors", "intensity,tilt_x", *BASE, "--out", str(tmp_path / "t")]) == 2
+    err = capsys.readouterr().err
+    assert "tilt_x needs frames at 0 and 180 deg; there is one frame per part" in err
+    assert len(err.strip().splitlines()) == 1
+    from drivers.camera import CameraConfig
+    from drivers.errors import CameraConfigError
+    from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
+
+    pair = make_segment_set(tmp_path / "pair", n=4)
+    with pytest.raises(CameraConfigError, match="a frame per dome segment"):
+        VirtualCamera(CameraConfig(), VirtualCameraConfig(dataset=str(pair))).open()
