@@ -128,6 +128,21 @@ FALSE_REJECTS = (0.01, 0.05)
 """The industrial pair's fixed shares of good parts rejected."""
 
 
+def write_scores(path: Path, sp, ev) -> None:
+    """One row per part of the evaluated split: its dataset index, label, defect type ("" for good parts), the
+    model's decision score, and each member's image score (``ev.member_scores``, e.g. "variation"), so two models
+    on the same parts can be compared part by part (a paired bootstrap) and any row audited."""
+    import csv
+
+    members = sorted(ev.member_scores)
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["index", "label", "defect_type", "score", *members])
+        for k, (i, y, t) in enumerate(zip(sp.index, sp.label.tolist(), sp.defect_type, strict=True)):
+            w.writerow([i, y, t, f"{float(ev.scores[k]):.6g}", *(f"{float(ev.member_scores[m][k]):.6g}"
+                                                                for m in members)])
+
+
 def detector_rows(ev, label, types: list[str]) -> list[dict]:
     """Image AUROC of a model with the variation member, all defects and per type: the networks alone, the
     variation model alone, the residual networks alone when the model has them, and the model's decision score
@@ -339,8 +354,10 @@ def run(args: argparse.Namespace) -> int:
                                    f"{100 * fr:g} % -> {t:.4g}, observed here {100 * rep.false_reject_observed[fr]:.1f}"
                                    " %" for fr, t in rep.thresholds.items())
                                + f"; val split of {val_data}, {int((vsp.label == 0).sum())} good parts):")
+    write_scores(out / "scores.csv", sp, ev)
     manifest_ok = ck.meta.get("data_manifest_sha256")
-    payload = {"model": str(args.model), "precision": args.precision, "model_config": cfg.to_dict(), "threshold": thr,
+    payload = {"scores": "scores.csv", "model": str(args.model), "precision": args.precision,
+               "model_config": cfg.to_dict(), "threshold": thr,
                "threshold_rule": ck.meta.get("threshold_rule"), "data": str(args.data), "split": args.split,
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": normal_prior_record(ck), "rows": rows,

@@ -5,6 +5,7 @@ line, and so are a segment model and a segment set at the station, which takes o
 
 from __future__ import annotations
 
+import csv
 import json
 from pathlib import Path
 
@@ -38,6 +39,14 @@ def test_the_tilt_prior_finds_a_dent_the_uniform_dome_cannot_see(tmp_path: Path,
     assert with_tilt >= 0.95 and without <= 0.75, (with_tilt, without)
     meta = json.loads(model.with_suffix(".json").read_text())
     assert meta["model"]["dome_segments"] == [0.0, 180.0]
+    # station eval writes each part's scores, for part-by-part comparisons: the variation model decides here
+    with open(tmp_path / "tilt-ev" / "scores.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == 30 and {r["label"] for r in rows} == {"0", "1"}
+    assert {r["defect_type"] for r in rows if r["label"] == "1"} == {"dent"}
+    assert sorted(int(r["index"]) for r in rows) == list(range(30))
+    good = [float(r["variation"]) for r in rows if r["label"] == "0"]
+    assert min(float(r["variation"]) for r in rows if r["label"] == "1") > sorted(good)[len(good) // 2]
     # the station takes one frame per part: such a model is refused at start in one line naming it
     from station.model_detector import DraemDetector, ModelLoadError
 
