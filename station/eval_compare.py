@@ -98,3 +98,49 @@ def compare(folders: list[str], out: str | Path, plots: bool = True) -> tuple[li
     if plots:
         plot(rows, out / "compare.png")
     return rows, table
+
+
+def read_scores(folder: str | Path) -> dict[int, tuple[int, str, float]]:
+    """``scores.csv`` of a ``station eval --out`` folder: dataset index -> (label, defect type, decision score);
+    UserError naming the file when it is missing or unreadable (reports from before 2026-11-27 lack it)."""
+    import csv
+
+    path = Path(folder) / "scores.csv"
+    try:
+        with open(path, newline="") as fh:
+            return {int(r["index"]): (int(r["label"]), r["defect_type"], float(r["score"]))
+                    for r in csv.DictReader(fh)}
+    except (OSError, KeyError, ValueError) as exc:
+        raise UserError(f"{path}: no per-part scores ({exc}); run station eval again to write them") from None
+
+
+def paired(folders: list[str], out: str | Path, resamples: int = 1000) -> tuple[list[dict[str, Any]], str]:
+    """Each report after the first against the first, on the same parts (``model.draem.metrics.paired_auroc_gains``):
+    image AUROC overall and per type, the gain and its paired bootstrap standard error. Writes ``paired.json`` and
+    ``paired.md`` into ``out``; UserError when the reports are not on the same parts."""
+    import numpy as np
+
+    from model.draem.metrics import paired_auroc_gains
+    from station.benchmarks.report import markdown_table
+
+    if len(folders) < 2:
+        raise UserError("--paired compares reports with the first: give two or more")
+    scores = {str(f): read_scores(f) for f in folders}
+    base_name, base = next(iter(scores.items()))
+    idx = sorted(base)
+    rows: list[dict[str, Any]] = []
+    for name, s in list(scores.items())[1:]:
+        if sorted(s) != idx or any(s[i][:2] != base[i][:2] for i in idx):
+            raise UserError(f"{name} and {base_name}: not the same parts (indices, labels or types differ); a paired "
+                            f"comparison needs both models evaluated on one split of one set")
+        gains = paired_auroc_gains(np.array([base[i][0] for i in idx]), [base[i][1] for i in idx],
+                                   np.array([base[i][2] for i in idx]), np.array([s[i][2] for i in idx]), resamples)
+        rows += [{"model": name, **g} for g in gains]
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    table = (f"Image AUROC on the same parts against {base_name} (base), overall and per defect type (its defective "
+             f"parts against all good parts); gain = model - base, se = paired bootstrap over parts "
+             f"({resamples} resamples):\n\n" + markdown_table(rows, list(rows[0])))
+    (out / "paired.json").write_text(json.dumps({"base": base_name, "reports": list(scores), "rows": rows}, indent=1))
+    (out / "paired.md").write_text(table + "\n")
+    return rows, table

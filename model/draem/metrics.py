@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import ndimage
+from scipy.stats import rankdata
 from sklearn.metrics import average_precision_score, precision_recall_curve, roc_auc_score
 
 from .errors import ModelError
@@ -300,3 +301,46 @@ def detection_by_type(labels: np.ndarray, scores: np.ndarray, types: np.ndarray 
     per_type = {n: one(n, y & (ty.astype(str) == n)) for n in names}
     return DetectionReport(thresholds, "evaluated set" if validation is None else "validation", observed,
                            int(good.size), one("all", y), per_type)
+
+
+def rank_auroc(labels: np.ndarray, scores: np.ndarray) -> float:
+    """``auroc`` of 1-D arrays by the Mann-Whitney rank sum (ties count half, as ``roc_auc_score``), without its
+    input checks: a hundred times quicker, for bootstraps. NaN if one class."""
+    y = labels.astype(bool)
+    n1 = int(y.sum())
+    n0 = y.size - n1
+    if not n1 or not n0:
+        return math.nan
+    r = rankdata(scores)
+    return float((r[y].sum() - n1 * (n1 + 1) / 2) / (n1 * n0))
+
+
+def paired_auroc_gains(labels: np.ndarray, types: np.ndarray | list[str], base: np.ndarray, other: np.ndarray,
+                       resamples: int = 1000, seed: int = 0) -> list[dict[str, float | int | str]]:
+    """Image AUROC of ``other``'s scores minus ``base``'s on the same parts, over all parts and per defect type (that
+    type's defective parts against every good part), with the standard error of a paired bootstrap: parts resampled
+    with replacement, good and defective apart, each part's two scores kept together (so what the parts share does
+    not count as noise). Rows: type, defective, base, other, gain, se. ``types``: "" for good parts."""
+    y = np.asarray(labels).astype(bool)
+    t = np.asarray(types, dtype=str)
+    a, b = (np.asarray(s, dtype=np.float64) for s in (base, other))
+    if not (y.shape == t.shape == a.shape == b.shape) or y.ndim != 1:
+        raise ModelError(f"paired scores: labels {y.shape}, types {t.shape}, scores {a.shape} and {b.shape} differ")
+    if not (_two_classes(y) and np.isfinite(a).all() and np.isfinite(b).all()):
+        raise ModelError("paired scores need good and defective parts and finite scores")
+    groups = {"all": np.ones(y.size, bool), **{k: ~y | (t == k) for k in sorted(set(t[y].tolist()))}}
+    rng = np.random.default_rng(seed)
+    good, bad = np.flatnonzero(~y), np.flatnonzero(y)
+    draws: dict[str, list[float]] = {g: [] for g in groups}
+    for _ in range(resamples):
+        k = np.concatenate([rng.choice(good, good.size), rng.choice(bad, bad.size)])
+        for g, sel in groups.items():
+            s = k[sel[k]]
+            draws[g].append(rank_auroc(y[s], b[s]) - rank_auroc(y[s], a[s]))
+    rows: list[dict[str, float | int | str]] = []
+    for g, sel in groups.items():
+        ra, rb = auroc(y[sel], a[sel]), auroc(y[sel], b[sel])
+        se = np.asarray(draws[g])
+        rows.append({"type": g, "defective": int(y[sel].sum()), "base": ra, "other": rb, "gain": rb - ra,
+                     "se": float(np.nanstd(se)) if np.isfinite(se).any() else math.nan})
+    return rows

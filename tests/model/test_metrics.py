@@ -94,3 +94,14 @@ def test_no_threshold_is_chosen_that_no_part_can_exceed(top):
         M.choose_threshold(np.r_[np.zeros(25, int), 1], np.r_[good, 1.0])
     with pytest.raises(ModelError, match="cannot reject"):
         false_reject_threshold(np.r_[np.full(11, 0.2), top], 0.05)
+
+
+def test_rank_auroc_is_auroc_with_ties_and_nan_for_one_class():
+    from model.draem.metrics import auroc, rank_auroc
+
+    rng = np.random.default_rng(1)
+    for _ in range(5):
+        y = rng.integers(0, 2, 120)
+        s = np.round(rng.normal(0, 1, 120) + y, 1)  # many ties
+        assert rank_auroc(y, s) == pytest.approx(auroc(y, s), abs=1e-12)
+    assert np.isnan(rank_auroc(np.zeros(5, int), np.arange(5.0)))
