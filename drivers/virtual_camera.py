@@ -83,13 +83,14 @@ class VirtualCamera(CameraBase):
         if self._opened:
             return
         self._check_config(self.config)
+        from model.priors.photometric import describe_segments
         from sim.dataset import open_dataset
 
         ds = open_dataset(self.sim.dataset)
         if ds.dome_segments:  # the station takes one frame per part; playing only the first would mislead the model
-            raise CameraConfigError(f"virtual camera: {self.sim.dataset} holds a frame per dome segment (at "
-                                    f"{', '.join(f'{a:g}' for a in ds.dome_segments)} deg) for each part; the camera "
-                                    "delivers one frame per part: play a set rendered without --dome-segments")
+            raise CameraConfigError(f"virtual camera: {self.sim.dataset} holds {describe_segments(ds.dome_segments)} "
+                                    "for each part; the camera delivers one frame per part: play a set rendered "
+                                    "without --dome-segments")
         indices = ds.indices(self.sim.split, empty=None)
         if not indices:
             raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no complete samples"

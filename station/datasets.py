@@ -90,12 +90,6 @@ def dome_segments_of(root: str | Path) -> tuple[float, ...]:
     return open_dataset(root).dome_segments
 
 
-def segments_text(segments: tuple[float, ...]) -> str:
-    """``(0.0, 180.0)`` -> "a frame per dome segment at 0, 180 deg"; () -> "one frame per part"."""
-    return f"a frame per dome segment at {', '.join(f'{a:g}' for a in segments)} deg" if segments else \
-        "one frame per part"
-
-
 def fov_of(params: dict) -> float | None:
     """A sample's horizontal field of view in degrees (rendered sets), None when unknown (imported sets)."""
     return (params.get("scene", {}).get("camera") or {}).get("fov_x_deg")
@@ -124,12 +118,13 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     from model.draem.roi import roi_box
     from model.priors.api import compute_set_priors
     from model.priors.frame_stats import frame_statistics
+    from model.priors.photometric import describe_segments
     from sim.dataset import open_dataset
 
     ds = open_dataset(root)
     if tuple(dome_segments) != ds.dome_segments:
-        raise UserError(f"{root}: {segments_text(ds.dome_segments)}, the model reads "
-                        f"{segments_text(tuple(dome_segments))}")
+        raise UserError(f"{root}: {describe_segments(ds.dome_segments)}, the model reads "
+                        f"{describe_segments(dome_segments)}")
     idx = ds.indices(split)
     if not idx:
         raise UserError(f"{root}: no complete samples in split {split!r}")

@@ -48,9 +48,10 @@ class DraemDetector:
             raise ModelLoadError(str(exc)) from None
         segments = self.predictor.config.dome_segments
         if segments:  # photometric stereo: `station eval` reads such a model; the loop takes one frame per part
-            raise ModelLoadError(f"{path}: the model reads a frame per dome segment (at "
-                                 f"{', '.join(f'{a:g}' for a in segments)} deg) for each part; the station takes "
-                                 "one frame per part (docs/model.md, photometric stereo): use a one-frame model")
+            from model.priors.photometric import describe_segments
+
+            raise ModelLoadError(f"{path}: the model reads {describe_segments(segments)} for each part; the station "
+                                 "takes one frame per part (docs/model.md, photometric stereo): use a one-frame model")
 
     def infer(self, priors: Mapping[str, np.ndarray]) -> Inference:
         """Score one frame's prior maps; the heatmap is frame-sized (zero outside the region of interest)."""

@@ -46,15 +46,19 @@ def segment_index(segments: Sequence[float], azimuth: float) -> int | None:
     return None
 
 
+def describe_segments(segments: Sequence[float]) -> str:
+    """``(0.0, 180.0)`` -> "a frame per dome segment at 0, 180 deg"; () -> "one frame per part" (for messages)."""
+    return f"a frame per dome segment at {', '.join(f'{a:g}' for a in segments)} deg" if segments else \
+        "one frame per part"
+
+
 def check_tilts(names: Sequence[str], segments: Sequence[float]) -> None:
     """ValueError naming the tilt priors in ``names`` that ``segments`` cannot give (a pair's frame missing)."""
     missing = [n for n in names if n in DOME_PAIRS
                and any(segment_index(segments, a) is None for a in DOME_PAIRS[n])]
     if missing:
         need = "; ".join(f"{n} needs frames at {DOME_PAIRS[n][0]:g} and {DOME_PAIRS[n][1]:g} deg" for n in missing)
-        got = f"the frames are at {', '.join(f'{a:g}' for a in segments)} deg" if segments else \
-            "there is one frame per part"
-        raise ValueError(f"{need}; {got}")
+        raise ValueError(f"{need}; there is {describe_segments(segments)}")
 
 
 def mean_stokes(stokes: Sequence[tuple[np.ndarray, np.ndarray | None, np.ndarray | None]]

@@ -31,9 +31,9 @@ def test_tilt_divides_out_albedo_and_exposure() -> None:
 def test_segments_match_modulo_360_and_a_missing_pair_is_named() -> None:
     assert segment_index((0.0, 180.0), 360.0) == 0 and segment_index((0.0, 180.0), 90.0) is None
     check_tilts(("intensity", "tilt_x"), (180.0, 0.0))
-    with pytest.raises(ValueError, match="tilt_y needs frames at 90 and 270 deg; the frames are at 0, 180 deg"):
+    with pytest.raises(ValueError, match="tilt_y needs frames at 90 and 270 deg; there is a frame per dome segment"):
         check_tilts(("tilt_y",), (0.0, 180.0))
-    with pytest.raises(ValueError, match="one frame per part"):
+    with pytest.raises(ValueError, match="there is one frame per part"):
         compute_priors(np.zeros((8, 8), np.uint8), priors=("tilt_x",))
 
 
