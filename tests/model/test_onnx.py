@@ -19,7 +19,7 @@ def test_onnx_detector_matches_torch_for_an_ensemble(tmp_path) -> None:
     det.eval()
     files = export_onnx(det, tmp_path / "x")
     assert sorted(files) == ["aolp", "intensity"] and all(f.stat().st_size > 1000 for f in files.values())
-    onnx = OnnxDetector.from_detector(det, tmp_path / "y")
+    onnx = OnnxDetector.from_files(det, files)  # the files just written (from_detector: the band test below)
     x = torch.rand(3, 3, 64, 64, generator=torch.Generator().manual_seed(2))  # batch of 3: dynamic batch axis
     a, b = onnx.predict(x), det.predict(x)
     assert a.anomaly_map.shape == (3, 64, 64)
