@@ -59,6 +59,7 @@ import cv2
 import numpy as np
 
 from model.priors.conventions import CONVENTION_VERSION
+from model.priors.photometric import mean_stokes
 
 from .defects import DefectConfig, DefectResult, apply_defect
 from .errors import SimError
@@ -378,8 +379,7 @@ def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample
     sample = Sample(index, frame.raw, record, label, split,
                     segment_raws=tuple(f.raw for f in frames) if spec.dome_segments else ())
     if spec.ground_truth:
-        sample.s0, sample.s1, sample.s2 = (np.mean([getattr(f, c) for f in frames], 0).astype(np.float32)
-                                           for c in ("s0", "s1", "s2"))
+        sample.s0, sample.s1, sample.s2 = mean_stokes([(f.s0, f.s1, f.s2) for f in frames])
         sample.normal, sample.object_mask, sample.defect_mask = out.normal, out.object_mask, out.defect_mask
         sample.part_index, sample.depth = out.part_index, out.depth_m
     return sample

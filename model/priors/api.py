@@ -69,12 +69,7 @@ def compute_priors(raw: np.ndarray, layout: str | MosaicLayout = "imx250mzr", me
     Priors : mapping of float32 (H', W') arrays (H' = H, or H/2 for half-resolution methods); never NaN or
         Inf; dolp in [0, 1], aolp in [0, pi). Conventions: ``model.priors.conventions``.
     """
-    names = check_prior_names(priors)
-    check_tilts(names, ())
-    norm = normalize_mosaic(raw, bit_depth)
-    s0, s1, s2 = mosaic_to_stokes(norm.data, layout, method, needs_polarization(names))
-    return Priors(priors_from_stokes(names, s0, s1, s2), norm.n_nonfinite, norm.n_out_of_range, norm.n_saturated,
-                  norm.invalid)
+    return compute_set_priors((raw,), (), layout, method, priors, bit_depth)
 
 
 def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float], layout: str | MosaicLayout = "imx250mzr",
@@ -82,7 +77,8 @@ def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float], la
                        bit_depth: int | None = None) -> Priors:
     """``compute_priors`` for one part imaged once per dome segment (``model.priors.photometric``): ``raws`` in the
     order of ``segments`` (azimuths, degrees). Intensity and polarization come from the frames' mean Stokes (the
-    uniform dome's frame), the tilts from the pairs' S0. One frame with no segments is ``compute_priors``.
+    uniform dome's frame), the tilts from the pairs' S0. One frame with no segments is ``compute_priors`` (which
+    calls this).
     The report is the worst frame's: the largest counts of invalid and saturated pixels (so a fraction of one
     frame's pixels), and every frame's invalid pixels."""
     names = check_prior_names(priors)
@@ -98,7 +94,8 @@ def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float], la
     arrays.update(tilt_maps(names, segments, [s[0] for s in stokes]))
     invalid = [n.invalid for n in norms if n.invalid is not None]
     return Priors(arrays, max(n.n_nonfinite for n in norms), max(n.n_out_of_range for n in norms),
-                  max(n.n_saturated for n in norms), np.logical_or.reduce(invalid) if invalid else None)
+                  max(n.n_saturated for n in norms),
+                  invalid[0] if len(invalid) == 1 else np.logical_or.reduce(invalid) if invalid else None)
 
 
 def needs_polarization(names: Iterable[str]) -> bool:

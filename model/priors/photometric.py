@@ -63,9 +63,12 @@ def check_tilts(names: Sequence[str], segments: Sequence[float]) -> None:
 
 def mean_stokes(stokes: Sequence[tuple[np.ndarray, np.ndarray | None, np.ndarray | None]]
                 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
-    """The uniform dome's (S0, S1, S2): the mean of the frames' (S1, S2 None when a frame lacks them)."""
+    """The uniform dome's (S0, S1, S2): the mean of the frames' (S1, S2 None when a frame lacks them); one frame's
+    own arrays, not copied."""
     if not stokes:
         raise ValueError("no frames")
+    if len(stokes) == 1:
+        return stokes[0][0], stokes[0][1], stokes[0][2]
     s0 = np.mean([s[0] for s in stokes], 0, dtype=np.float32)
     if any(s[1] is None or s[2] is None for s in stokes):
         return s0, None, None
