@@ -69,6 +69,11 @@ class CameraConfig:
     reconnect       reconnect with back-off when the camera is lost (``reconnect_attempts`` tries, waiting
                     ``reconnect_backoff_s`` doubled after each failure up to ``reconnect_backoff_max_s``).
     n_buffers       stream buffer pool size.
+    frames_per_part frames that make one part (photometric stereo: one per dome segment, lit in turn by a light
+                    sequencer stepped by the camera's exposure output, reset by the PLC with each part); more than
+                    one needs ``trigger = "software"``: the station triggers each frame of a part's set itself
+                    (``station.loop``). The virtual camera plays a set rendered with ``station render
+                    --dome-segments`` frame by frame.
     """
 
     device: str = ""
@@ -88,6 +93,7 @@ class CameraConfig:
     reconnect_backoff_s: float = 0.5
     reconnect_backoff_max_s: float = 8.0
     n_buffers: int = 8
+    frames_per_part: int = 1
 
     def __post_init__(self) -> None:
         if self.trigger not in TRIGGERS:
@@ -96,9 +102,13 @@ class CameraConfig:
             value = getattr(self, name)
             if value < 0 or value % 2:
                 raise CameraConfigError(f"camera {name} = {value}: must be even and >= 0 (whole 2x2 superpixels)")
-        for name in ("exposure_us", "frame_rate_hz", "timeout_ms", "n_buffers"):
+        for name in ("exposure_us", "frame_rate_hz", "timeout_ms", "n_buffers", "frames_per_part"):
             if getattr(self, name) <= 0:
                 raise CameraConfigError(f"camera {name} = {getattr(self, name)}: must be > 0")
+        if self.frames_per_part > 1 and self.trigger != "software":
+            raise CameraConfigError(f"camera frames_per_part = {self.frames_per_part} needs trigger = "
+                                    f"'software', not {self.trigger!r}: the station triggers each frame of a part's "
+                                    "set (a burst on a line trigger is not supported)")
         if self.gain_db < 0 or self.packet_size < 0 or self.reconnect_attempts < 0:
             raise CameraConfigError("camera gain_db, packet_size and reconnect_attempts must be >= 0")
 

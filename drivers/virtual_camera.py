@@ -10,6 +10,10 @@ Keeping up with the frame rate: samples are decoded once into an in-memory pool 
 defect mask only; the float ground truth is not loaded), stratified over good and defective samples and capped at
 ``cache_mb``; grabs then cost no I/O. Pool arrays are read-only and shared between frames (no copy per frame).
 
+A set rendered with one frame per dome segment (``station render --dome-segments``) is played frame by frame:
+``[camera] frames_per_part`` must equal its number of segments, and each part's frames come in the segments' order,
+one per ``trigger()``, before the next part is drawn.
+
 Timing follows the camera config: ``free_run`` paces frames at ``frame_rate_hz``; ``software`` delivers one
 frame per ``trigger()`` (at most ``frame_rate_hz``); hardware line triggers do not exist here (config error).
 Dataset errors are ``sim.errors.SimError`` naming the file; a dataset unfit for the config is a
@@ -55,7 +59,8 @@ class VirtualCameraConfig:
 @dataclass(frozen=True)
 class _Cached:
     index: int
-    raw: np.ndarray
+    raws: tuple[np.ndarray, ...]
+    """The part's frames: one, or one per dome segment."""
     ground_truth: GroundTruth
 
 
@@ -75,6 +80,8 @@ class VirtualCamera(CameraBase):
         self._cond = threading.Condition()
         self._next_due = 0.0
         self._frame_id = 0
+        self._playing: list[np.ndarray] = []  # the current part's frames still to deliver (a dome-segment set)
+        self._truth: GroundTruth | None = None  # the current part's
         self._t0_ns = 0
         self.pixel_format = "Mono8"
         self.bit_depth = 8
@@ -87,10 +94,13 @@ class VirtualCamera(CameraBase):
         from sim.dataset import open_dataset
 
         ds = open_dataset(self.sim.dataset)
-        if ds.dome_segments:  # the station takes one frame per part; playing only the first would mislead the model
-            raise CameraConfigError(f"virtual camera: {self.sim.dataset} holds {describe_segments(ds.dome_segments)} "
-                                    "for each part; the camera delivers one frame per part: play a set rendered "
-                                    "without --dome-segments")
+        frames = max(1, len(ds.dome_segments))
+        if frames != self.config.frames_per_part:  # playing another number of frames would mislead the model
+            raise CameraConfigError(f"virtual camera: {self.sim.dataset} holds {describe_segments(ds.dome_segments)}"
+                                    + (" for each part" if ds.dome_segments else "") + ", the camera's "
+                                    f"frames_per_part is {self.config.frames_per_part}: set [camera] frames_per_part "
+                                    f"= {frames}" + (" or play a set rendered with --dome-segments"
+                                                     if not ds.dome_segments else ""))
         indices = ds.indices(self.sim.split, empty=None)
         if not indices:
             raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no complete samples"
@@ -101,7 +111,7 @@ class VirtualCamera(CameraBase):
             raise CameraConfigError(f"virtual camera: camera region {self.config.width}x{self.config.height} but "
                                     f"{self.sim.dataset} holds {w}x{h} frames (set width = height = 0)")
         self.pixel_format = "Mono8" if self.bit_depth <= 8 else "Mono16"
-        self._load_pool(ds, indices, w * h * (1 if self.bit_depth <= 8 else 2))
+        self._load_pool(ds, indices, frames * w * h * (1 if self.bit_depth <= 8 else 2))
         self._opened = True
         self._t0_ns = time.monotonic_ns()
 
@@ -122,7 +132,7 @@ class VirtualCamera(CameraBase):
                                         f"has no sample with a defect (label 1)")
             if self.sim.defect_rate < 1 and not good:
                 raise CameraConfigError(f"virtual camera: {where} has no good sample (label 0)")
-        budget = max(3, int(self.sim.cache_mb * 2**20 // (2 * frame_bytes)))  # raw + mask (1 B/px) per sample
+        budget = max(3, int(self.sim.cache_mb * 2**20 // (2 * frame_bytes)))  # raws + mask per sample
         n_empty = min(len(empty), max(1 if empty and self.sim.empty_rate else 0, round(budget * self.sim.empty_rate)))
         parts_budget = budget - n_empty
         n_bad = min(len(bad), max(1 if bad else 0, round(parts_budget * self.sim.defect_rate)))
@@ -163,9 +173,10 @@ class VirtualCamera(CameraBase):
                 if "defect_mask" in gt:
                     mask = np.ascontiguousarray(gt["defect_mask"], dtype=bool)
                     mask.flags.writeable = False
-        raw = np.ascontiguousarray(sample.raw)
-        raw.flags.writeable = False
-        return _Cached(index, raw, GroundTruth(sample.label, mask, index, sample.split, sample.params,
+        raws = tuple(np.ascontiguousarray(r) for r in sample.raws)
+        for raw in raws:
+            raw.flags.writeable = False
+        return _Cached(index, raws, GroundTruth(sample.label, mask, index, sample.split, sample.params,
                                                present=not sample.params.get("empty", False)))
 
     def _check_config(self, config: CameraConfig) -> None:
@@ -215,22 +226,29 @@ class VirtualCamera(CameraBase):
             time.sleep(wait_s)
         now = time.monotonic()
         self._next_due = max(self._next_due + 1.0 / self.config.frame_rate_hz, now - 1.0 / self.config.frame_rate_hz)
+        if not self._playing:  # the next part: its frames come one per grab
+            part = self._draw()
+            self._playing, self._truth = list(part.raws), part.ground_truth
+        raw = self._playing.pop(0)
+        self._frame_id += 1
+        self._stats.completed += 1
+        return Frame(raw=raw, pixel_format=self.pixel_format, bit_depth=self.bit_depth, frame_id=self._frame_id,
+                     timestamp_ns=time.monotonic_ns() - self._t0_ns, host_timestamp_ns=time.time_ns(),
+                     device_frame_id=self._frame_id, ground_truth=self._truth)
+
+    def _draw(self) -> _Cached:
+        """A part at random: an empty view at ``empty_rate``, else defective at ``defect_rate``."""
         if self._empty and (not (self._good or self._bad) or self._rng.random() < self.sim.empty_rate):
             pool = self._empty
         else:
             pool = self._bad if (self._bad and (not self._good or self._rng.random() < self.sim.defect_rate)) \
                 else self._good
-        part = pool[int(self._rng.integers(len(pool)))]
-        self._frame_id += 1
-        self._stats.completed += 1
-        return Frame(raw=part.raw, pixel_format=self.pixel_format, bit_depth=self.bit_depth, frame_id=self._frame_id,
-                     timestamp_ns=time.monotonic_ns() - self._t0_ns, host_timestamp_ns=time.time_ns(),
-                     device_frame_id=self._frame_id, ground_truth=part.ground_truth)
+        return pool[int(self._rng.integers(len(pool)))]
 
     def stop(self) -> None:
         self._started = False
 
     def close(self) -> None:
         self.stop()
-        self._good, self._bad, self._empty = [], [], []
+        self._good, self._bad, self._empty, self._playing = [], [], [], []
         self._opened = False

@@ -144,9 +144,18 @@ def open_link(cfg: StationConfig, stack: ExitStack, max_parts: int | None = None
 
 
 def load_detector(cfg: StationConfig) -> DraemDetector:
-    """The model ``[model]`` names, with ``[decision] threshold`` overriding its own."""
-    return DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold,
-                         cfg.model.early_exit_margin, cfg.model.fov_x_deg)
+    """The model ``[model]`` names, with ``[decision] threshold`` overriding its own; ConfigError when it reads
+    another number of frames per part than ``[camera] frames_per_part`` gives (photometric stereo)."""
+    detector = DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold,
+                             cfg.model.early_exit_margin, cfg.model.fov_x_deg)
+    frames = max(1, len(detector.dome_segments))
+    if cfg.camera.frames_per_part != frames:
+        from model.priors.photometric import describe_segments
+
+        raise ConfigError(f"{cfg.source}: [camera] frames_per_part = {cfg.camera.frames_per_part}, but the model "
+                          f"{cfg.model.path} reads {describe_segments(detector.dome_segments)}: set "
+                          f"frames_per_part = {frames}")
+    return detector
 
 
 def presence_check(cfg: StationConfig) -> PresenceCheck | None:
@@ -163,7 +172,8 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
     drift = drift_monitor(detector)
     inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
                           display_priors=("intensity", "dolp", "aolp") if viewer else (),
-                          presence=presence_check(cfg), statistics=drift is not None, bit_depth=cfg.priors.bit_depth)
+                          presence=presence_check(cfg), statistics=drift is not None, bit_depth=cfg.priors.bit_depth,
+                          segments=detector.dome_segments)
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
                    grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,

@@ -52,6 +52,7 @@ class CameraConfig:
     trigger: str = _opt("software", choices=TRIGGERS)
     timeout_ms: int = _opt(1000, range=(1, 600000))
     reconnect: bool = True
+    frames_per_part: int = _opt(1, range=(1, 16))
 
 
 @dataclass(frozen=True)
@@ -208,7 +209,15 @@ def _check_timing(cfg: StationConfig, source: str) -> None:
         raise ConfigError(f"{source}: [camera] trigger: 'free_run' with [io] mode {cfg.io.mode!r}: the PLC announces "
                           "parts, but a free-running camera's frames are not taken for them (a part would be judged "
                           "on a frame taken before it arrived); use 'software' or a line trigger, or [io] mode 'none'")
+    frames = cfg.camera.frames_per_part
+    if frames > 1 and cfg.camera.trigger != "software":
+        raise ConfigError(f"{source}: [camera] frames_per_part: {frames} frames per part need trigger = 'software' "
+                          f"(the station triggers each frame of a part's set), not {cfg.camera.trigger!r}")
     exposure_ms = cfg.camera.exposure_us / 1e3
+    if frames > 1 and frames * exposure_ms >= cfg.acquisition.cycle_time_ms:
+        raise ConfigError(f"{source}: [camera] frames_per_part: {frames} exposures of {exposure_ms:g} ms take "
+                          f"{frames * exposure_ms:g} ms, the whole [acquisition] cycle_time_ms "
+                          f"({cfg.acquisition.cycle_time_ms:g} ms): no part could be judged in time")
     if cfg.camera.timeout_ms < exposure_ms + GRAB_MARGIN_MS:
         raise ConfigError(f"{source}: [camera] timeout_ms: {cfg.camera.timeout_ms} ms does not cover the exposure "
                           f"({exposure_ms:g} ms) plus {GRAB_MARGIN_MS:g} ms for readout and transfer: a grab that "

@@ -1,4 +1,8 @@
-"""One frame -> score and heatmap: demosaic, the priors the detector needs (and no others), the detector.
+"""One part's frame -> score and heatmap: demosaic, the priors the detector needs (and no others), the detector.
+
+A model that reads a frame per dome segment (photometric stereo, ``model.priors.photometric``) gets the part's
+frames in the segments' order: intensity and polarization from their mean Stokes, the tilts from opposite pairs,
+as ``model.priors.api.compute_set_priors`` computes them for training and evaluation.
 
 With a presence check (``station.presence``), it runs on the priors before the detector; a frame with no part
 in view comes back with ``present`` False and no score: the detector does not run. Its priors (DoLP) are
@@ -12,7 +16,7 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Protocol
 
@@ -24,6 +28,7 @@ from model.priors.api import check_prior_names, needs_polarization, priors_from_
 from model.priors.demosaic import mosaic_to_stokes
 from model.priors.frame_stats import FrameStatistics, frame_statistics
 from model.priors.mosaic import normalize_mosaic
+from model.priors.photometric import check_tilts, describe_segments, mean_stokes, tilt_maps
 from station.presence import Presence, PresenceCheck
 
 log = logging.getLogger(__name__)
@@ -86,7 +91,9 @@ class Inspection:
 
 
 class Inspector:
-    """Frames -> ``Inspection``s for one detector, layout and demosaic method."""
+    """Parts' frames -> ``Inspection``s for one detector, layout and demosaic method; ``segments``: the dome
+    segments' azimuths (degrees) the detector's model reads a frame of each (``ModelConfig.dome_segments``; () for
+    one frame per part)."""
 
     STATS_STRIDE = 3
     """Frame statistics read every 3rd pixel of every 3rd row: 0.9 ms instead of 6.4 ms on a 640 x 480 frame (odd,
@@ -94,7 +101,8 @@ class Inspector:
 
     def __init__(self, detector: Detector, layout: MosaicLayout, method: str = "bilinear",
                  display_priors: tuple[str, ...] = (), presence: PresenceCheck | None = None,
-                 statistics: bool = False, bit_depth: int | None = None) -> None:
+                 statistics: bool = False, bit_depth: int | None = None,
+                 segments: Sequence[float] = ()) -> None:
         self.detector = detector
         self.bit_depth = bit_depth
         """``[priors] bit_depth``: significant bits of the codes when the pixel format's are wider (a Mono16 camera
@@ -105,24 +113,33 @@ class Inspector:
         self.statistics = statistics
         extra = (presence.priors if presence is not None else ()) + (("intensity", "dolp") if statistics else ())
         self.names = check_prior_names(tuple(dict.fromkeys(detector.priors + display_priors + extra)))
+        self.segments = tuple(float(a) for a in segments)
+        check_tilts(self.names, self.segments)
         self.polarization = needs_polarization(self.names)
         self.slow_priors_ms: float | None = None
         """Demosaic and priors time (ms) from which the first frame is named once, with the keys that help
         (``station.loop.SLOW_PRIORS_SHARE`` of the cycle, set by the station); None: never."""
         self._named_slow = False
 
-    def inspect(self, frame: Frame) -> Inspection:
+    def inspect(self, frames: Frame | Sequence[Frame]) -> Inspection:
+        """Judge one part: its frame, or its frames in the order of ``segments``."""
+        frames = (frames,) if isinstance(frames, Frame) else tuple(frames)
+        frame = frames[0]
         result = Inspection()
         t = time.perf_counter()
         try:
+            if len(frames) != max(1, len(self.segments)):
+                raise ValueError(f"{len(frames)} frame(s) for a model that reads {describe_segments(self.segments)}")
             bits = significant_bits(frame, self.bit_depth)
-            norm = normalize_mosaic(frame.raw, bits)
-            s0, s1, s2 = mosaic_to_stokes(norm.data, self.layout, self.method, self.polarization)
+            norms = [normalize_mosaic(f.raw, bits) for f in frames]
+            stokes = [mosaic_to_stokes(n.data, self.layout, self.method, self.polarization) for n in norms]
             t_demosaic = time.perf_counter()
             result.timings_ms["demosaic"] = 1e3 * (t_demosaic - t)
-            result.priors = priors_from_stokes(self.names, s0, s1, s2)
-            result.invalid_fraction = (norm.n_nonfinite + norm.n_out_of_range) / frame.raw.size
-            result.n_saturated = norm.n_saturated
+            result.priors = priors_from_stokes(self.names, *mean_stokes(stokes))
+            if self.segments:
+                result.priors.update(tilt_maps(self.names, self.segments, [s[0] for s in stokes]))
+            result.invalid_fraction = max(n.n_nonfinite + n.n_out_of_range for n in norms) / frame.raw.size
+            result.n_saturated = max(n.n_saturated for n in norms)
             if self.statistics:
                 k = self.STATS_STRIDE
                 result.frame_stats = frame_statistics({n: result.priors[n][::k, ::k] for n in ("intensity", "dolp")},

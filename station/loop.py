@@ -77,6 +77,11 @@ SLOW_PRIORS_SHARE = 0.5
 Every part is then rejected as late, each row saying so but nothing saying why."""
 
 
+class SetIncomplete(Exception):
+    """``[camera] frames_per_part`` > 1: a frame after the first of a part's set did not come (the grab timed out);
+    the part cannot be judged on fewer frames than the model reads."""
+
+
 class FramesLost(Exception):
     """Line trigger: the part being grabbed has no frame: it was lost in transport (a gap in frame ids), or the camera
     never saw its pulse (the next frame was exposed too long after its TRIG)."""
@@ -203,6 +208,9 @@ class Part:
     """``time.perf_counter()`` when the part arrived: when its TRIG line reached the host (``Trigger.t_arrival``),
     or the grab's start when trigger-free. Every latency of the part counts from here."""
     frame: Frame | None = None
+    frames: tuple[Frame, ...] = ()
+    """All of the part's frames when it is imaged more than once (``[camera] frames_per_part``, one per dome segment),
+    the first being ``frame``; empty for one frame per part."""
     grab_ms: float | None = None
     error: str | None = None
     announced: bool = True
@@ -258,6 +266,8 @@ class Station:
                  drift: DriftMonitor | None = None, max_frame_delay_ms: float | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold = inspector.detector.threshold if threshold is None else threshold
+        self.frames_per_part = camera.config.frames_per_part
+        """Frames that make one part (``[camera] frames_per_part``): the station triggers each (software trigger)."""
         self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         inspector.slow_priors_ms = SLOW_PRIORS_SHARE * cycle_time_ms
         self.settle_timeout_s = settle_timeout_s
@@ -316,8 +326,12 @@ class Station:
             return part
         try:
             part.frame = self._grab_for(part)
+            if self.frames_per_part > 1:
+                part.frames = self._grab_set(part, part.frame)
         except FramesLost as exc:
             part.error = f"no frame for part {part.part_id}: {exc}"
+        except SetIncomplete as exc:
+            part.error = f"frame set incomplete for part {part.part_id}: {exc}"
         except CameraTimeout as exc:
             if not self.link.triggered:  # free run: no part was announced, nothing to judge
                 log.warning("grab timeout without a trigger: %s", exc)
@@ -345,6 +359,18 @@ class Station:
         part.grab_ms = 1e3 * (time.perf_counter() - part.t_trigger)
         return part
 
+    def _grab_set(self, part: Part, first: Frame) -> tuple[Frame, ...]:
+        """``first`` and the rest of ``part``'s frames (``frames_per_part``), each triggered and taken as
+        ``_grab_for`` takes the first, never a frame completed before its own trigger; SetIncomplete when one does
+        not come within the grab timeout (a frame arriving after that is taken before the next trigger, skipped)."""
+        frames = [first]
+        for k in range(1, self.frames_per_part):
+            try:
+                frames.append(self._grab_for(part))
+            except CameraTimeout as exc:
+                raise SetIncomplete(f"frame {k + 1} of {self.frames_per_part} did not come: {exc}") from None
+        return tuple(frames)
+
     def _grab_for(self, part: Part) -> Frame:
         """The frame of ``part``: triggered, frames completed before the part could have been imaged are an earlier
         part's (one that arrived after its own part timed out) and are skipped, never judged for this part.
@@ -358,7 +384,8 @@ class Station:
         ``max_frame_delay_ms`` after the part's TRIG, had its transfer been as quick as the quickest lately
         (``TransferClock``), is a later part's (the camera missed this part's pulse, which spends no frame id):
         FramesLost for this part, and the frame is held for the next. A frame late only in transfer stays its own
-        part's."""
+        part's. With more than one frame per part (``_grab_set``) every frame is checked so, triggered by the PLC or
+        not: a set must not mix two parts' frames, nor one frame twice."""
         software = self.camera.config.trigger == "software"
         line = self.link.triggered and self.camera.config.trigger.startswith("line")
         if software:
@@ -375,7 +402,7 @@ class Station:
                 frame = self.camera.grab(remaining_ms)
                 if line:
                     self._check_line_frame(frame)
-            if not self.link.triggered or frame.host_timestamp_ns <= 0:
+            if (not self.link.triggered and self.frames_per_part == 1) or frame.host_timestamp_ns <= 0:
                 return frame
             completed = time.perf_counter() - (time.time_ns() - frame.host_timestamp_ns) / 1e9
             exposed = self._transfer.fastest(frame, completed)  # less a slow transfer: when it was taken
@@ -415,15 +442,16 @@ class Station:
         if part.frame is None:
             return
         now = time.perf_counter()
-        fid = part.frame.frame_id
+        fid = part.frame.frame_id  # the first of its set; the set's last is the newest
         if self._last_frame is not None and not self.link.triggered:
             last_id, last_t = self._last_frame
             possible = int((now - last_t) * self.camera.config.frame_rate_hz * 1.5) + 1
             for missing in range(last_id + 1, min(fid, last_id + 1 + possible, last_id + 1 + MAX_LOST_ROWS)):
                 self._dropped.append(Part(f"frame-{missing}", part.t_trigger, announced=False,
                                           error=f"frame {missing} lost before reaching the host"))
-        if self._last_frame is None or fid > self._last_frame[0]:
-            self._last_frame = (fid, now)
+        newest = (part.frames or (part.frame,))[-1].frame_id
+        if self._last_frame is None or newest > self._last_frame[0]:
+            self._last_frame = (newest, now)
 
     def _acquire(self, max_parts: int | None) -> None:
         try:
@@ -465,7 +493,8 @@ class Station:
         late_ms = part.late_ms if part.late_ms is not None else 1e3 * (time.perf_counter() - part.t_trigger)
         if part.error is None and part.frame is not None and late_ms <= self.cycle_time_ms:
             assert self._model is not None
-            answer = self._model.inspect(part.part_id, part.frame, part.t_trigger + self.cycle_time_ms / 1e3)
+            answer = self._model.inspect(part.part_id, part.frames or (part.frame,),
+                                         part.t_trigger + self.cycle_time_ms / 1e3)
             if isinstance(answer, NoAnswer):
                 self._no_answer(part, answer)
                 return
@@ -521,7 +550,8 @@ class Station:
         if (self.rejects is not None and frame is not None and decision.decision != Verdict.PASS
                 and (not empty or tell_plc)):
             image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
-                                           inspection.heatmap if inspection else None)
+                                           inspection.heatmap if inspection else None,
+                                           later=tuple(f.raw for f in part.frames[1:]))
         record = InspectionRecord(
             decision=Verdict.NOT_INSPECTED if not_inspected else decision.decision, time_unix_s=time.time(),
             part_id=part.part_id, camera_frame_id=frame.frame_id if frame else None,

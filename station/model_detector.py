@@ -46,12 +46,6 @@ class DraemDetector:
                                                        fov_x_deg, members)
         except PredictorError as exc:
             raise ModelLoadError(str(exc)) from None
-        segments = self.predictor.config.dome_segments
-        if segments:  # photometric stereo: `station eval` reads such a model; the loop takes one frame per part
-            from model.priors.photometric import describe_segments
-
-            raise ModelLoadError(f"{path}: the model reads {describe_segments(segments)} for each part; the station "
-                                 "takes one frame per part (docs/model.md, photometric stereo): use a one-frame model")
 
     def infer(self, priors: Mapping[str, np.ndarray]) -> Inference:
         """Score one frame's prior maps; the heatmap is frame-sized (zero outside the region of interest)."""
@@ -75,6 +69,12 @@ class DraemDetector:
     def priors(self) -> tuple[str, ...]:
         """The ``model.priors`` maps the model reads; nothing else is computed."""
         return self.predictor.priors
+
+    @property
+    def dome_segments(self) -> tuple[float, ...]:
+        """Azimuths (degrees) of the dome segments the model reads a frame of each, in order (photometric stereo,
+        ``model.priors.photometric``); () for one frame per part."""
+        return tuple(self.predictor.config.dome_segments)
 
     @property
     def used_priors(self) -> tuple[str, ...]:

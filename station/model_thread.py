@@ -15,7 +15,7 @@ import logging
 import queue
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from drivers.frame import Frame
@@ -33,11 +33,11 @@ class NoAnswer:
 
 
 class ModelThread:
-    """Runs ``inspect`` (``Inspector.inspect``) on its own thread, one frame at a time; one caller thread."""
+    """Runs ``inspect`` (``Inspector.inspect``) on its own thread, one part's frames at a time; one caller thread."""
 
-    def __init__(self, inspect: Callable[[Frame], Inspection]) -> None:
+    def __init__(self, inspect: Callable[[Sequence[Frame]], Inspection]) -> None:
         self._inspect = inspect
-        self._jobs: queue.SimpleQueue[tuple[str, Frame] | None] = queue.SimpleQueue()
+        self._jobs: queue.SimpleQueue[tuple[str, Sequence[Frame]] | None] = queue.SimpleQueue()
         self._idle = threading.Event()
         self._idle.set()
         self._result: Inspection | None = None
@@ -45,9 +45,10 @@ class ModelThread:
         self._abandoned = False  # the caller stopped waiting for the current part
         threading.Thread(target=self._serve, name="model", daemon=True).start()
 
-    def inspect(self, part_id: str, frame: Frame, deadline: float) -> Inspection | NoAnswer:
-        """The inspection of ``frame`` if the model returns by ``deadline`` (``time.perf_counter()``), else why not.
-        A frame is not handed over while the model is still on an earlier one."""
+    def inspect(self, part_id: str, frames: Sequence[Frame], deadline: float) -> Inspection | NoAnswer:
+        """The inspection of a part's ``frames`` (one, or one per dome segment) if the model returns by ``deadline``
+        (``time.perf_counter()``), else why not. A part is not handed over while the model is still on an earlier
+        one."""
         if not self._idle.is_set():
             busy_id, since = self._current
             return NoAnswer(f"model busy: still on part {busy_id} after "
@@ -55,7 +56,7 @@ class ModelThread:
         self._idle.clear()
         self._abandoned = False
         self._current = (part_id, time.perf_counter())
-        self._jobs.put((part_id, frame))
+        self._jobs.put((part_id, frames))
         if self._idle.wait(max(0.0, deadline - time.perf_counter())):
             result, self._result = self._result, None
             assert result is not None
@@ -70,12 +71,13 @@ class ModelThread:
 
     def _serve(self) -> None:
         while (job := self._jobs.get()) is not None:
-            part_id, frame = job
+            part_id, frames = job
             t = time.perf_counter()
             try:
-                result = self._inspect(frame)
+                result = self._inspect(frames)
             except BaseException as exc:  # inspect reports its own errors; anything else must not kill the thread
-                result = Inspection(error=f"frame {frame.frame_id}: inspection failed: {type(exc).__name__}: {exc}")
+                result = Inspection(error=f"frame {frames[0].frame_id}: inspection failed: {type(exc).__name__}: "
+                                          f"{exc}")
             if self._abandoned:
                 log.warning("model answered part %s after %.0f ms, past its deadline: answer dropped (the part "
                             "was rejected)", part_id, 1e3 * (time.perf_counter() - t))

@@ -2,7 +2,8 @@
 
 Files go to ``<image_dir>/<YYYY-MM-DD>/<part id>_f<frame id>_<ns>.npz`` (``ns``: the host's clock at saving, so
 that two rejects never share a file when part and frame ids repeat, as after a restart) with arrays ``raw`` (the
-camera's mosaic, its own dtype) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the
+camera's mosaic, its own dtype; a part imaged once per dome segment adds ``raw_1``, ``raw_2``... for its later
+frames, in the order taken) and ``heatmap`` (float16 anomaly probability in [0, 1], frame-sized; absent when the
 model did not run). Written to a temporary name, then renamed, so a crash leaves no half file under the final name.
 A failed write (full or read-only disk) is logged and the part's row keeps ``image_path`` NULL: the decision
 and its log row never depend on the image. Images are not written when less than ``reserve_bytes`` would stay free
@@ -46,12 +47,14 @@ class RejectStore:
         except OSError:
             return 0
 
-    def save(self, part_id: str, frame_id: int | None, raw: np.ndarray, heatmap: np.ndarray | None) -> str | None:
-        """Write one rejected part; returns the file path, or None when it could not be written (logged)."""
+    def save(self, part_id: str, frame_id: int | None, raw: np.ndarray, heatmap: np.ndarray | None,
+             later: tuple[np.ndarray, ...] = ()) -> str | None:
+        """Write one rejected part (``later``: the frames after ``raw`` of a part imaged more than once); returns the
+        file path, or None when it could not be written (logged)."""
         day = time.strftime("%Y-%m-%d")
         name = f"{_UNSAFE.sub('_', part_id)[:64]}_f{frame_id if frame_id is not None else 'none'}_{time.time_ns()}"
         path = self.root / day / f"{name}.npz"
-        arrays = {"raw": raw}
+        arrays = {"raw": raw, **{f"raw_{k}": r for k, r in enumerate(later, 1)}}
         if heatmap is not None:
             arrays["heatmap"] = heatmap.astype(np.float16)
         tmp = path.with_name(path.name + ".tmp")

@@ -1,14 +1,17 @@
 """Photometric stereo end to end on a set of two frames per part (the dome's halves): ``station train`` records the
 segments, ``station variation`` and ``station eval`` read each part's frames as one (the uniform dome's priors and
 the tilt), and a dent seen only in the tilt is found; a model and a set that disagree on frames per part are
-refused in one line, and so are a segment model and a segment set at the station, which takes one frame per part."""
+refused in one line. At the station (``[camera] frames_per_part``) the virtual camera plays each part's frames in
+order and the station judges them as ``station eval`` does."""
 
 from __future__ import annotations
 
 import csv
 import json
+import sqlite3
 from pathlib import Path
 
+import numpy as np
 import pytest
 from line_sets import make_line_set, make_segment_set  # same folder (pytest puts it on sys.path)
 
@@ -46,11 +49,59 @@ def test_train_variation_and_eval_find_a_dent_seen_only_in_the_tilt(tmp_path: Pa
     assert sorted(int(r["index"]) for r in rows) == list(range(30))
     good = [float(r["variation"]) for r in rows if r["label"] == "0"]
     assert min(float(r["variation"]) for r in rows if r["label"] == "1") > sorted(good)[len(good) // 2]
-    # the station takes one frame per part: such a model is refused at start in one line naming it
-    from station.model_detector import DraemDetector, ModelLoadError
+    # the station judges a part on its frames as station eval does; the frames in the other order are another part
+    from drivers.frame import Frame
+    from model.priors import IMX250MZR
+    from sim.dataset import open_dataset
+    from station.inspector import Inspector
+    from station.model_detector import DraemDetector
 
-    with pytest.raises(ModelLoadError, match="a frame per dome segment"):
-        DraemDetector(model, device="cpu")
+    detector = DraemDetector(model, device="cpu")
+    assert detector.dome_segments == (0.0, 180.0)
+    inspector = Inspector(detector, IMX250MZR, segments=detector.dome_segments)
+    scores = {int(r["index"]): float(r["score"]) for r in rows}
+    ds = open_dataset(val)
+    for i in (0, 1):  # a good part and a dented one
+        frames = [Frame(raw, "Mono8", 8, k + 1, 0, 0) for k, raw in enumerate(ds.load(i, ground_truth=False).raws)]
+        assert inspector.inspect(frames).score == pytest.approx(scores[i], abs=1e-3)
+    # a good part's frames in the other order: the tilt's sign flips, and it scores above every good part
+    good_scores = [scores[int(r["index"])] for r in rows if r["label"] == "0"]
+    frames = [Frame(raw, "Mono8", 8, k + 1, 0, 0) for k, raw in enumerate(ds.load(0, ground_truth=False).raws)]
+    assert inspector.inspect(frames[::-1]).score > max(good_scores)
+    # station run: the virtual camera plays each part's two frames, the station triggers and judges them as one
+    cfg = tmp_path / "station.toml"
+    toml = f"""
+[camera]
+frame_rate_hz = 50.0
+frames_per_part = 2
+[acquisition]
+cycle_time_ms = 60000.0
+backpressure = "block"
+[model]
+path = "{model}"
+[sim]
+dataset = "{val}"
+defect_rate = 0.5
+[log]
+path = "{tmp_path / 'log.sqlite'}"
+image_dir = "{tmp_path / 'rejects'}"
+"""
+    cfg.write_text(toml)
+    assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "6"]) == 0
+    logged = sqlite3.connect(tmp_path / "log.sqlite").execute(
+        "SELECT decision, camera_frame_id, image_path FROM inspections ORDER BY id").fetchall()
+    assert [r[1] for r in logged] == [1, 3, 5, 7, 9, 11]  # a row per part, naming its first frame
+    assert {r[0] for r in logged} <= {"pass", "reject"}
+    for _, _, image in logged:
+        if image:
+            with np.load(image) as f:
+                assert f["raw"].shape == f["raw_1"].shape
+    capsys.readouterr()
+    cfg.write_text(toml.replace("frames_per_part = 2", "frames_per_part = 1"))
+    assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "6"]) == 2
+    err = capsys.readouterr().err
+    assert "[camera] frames_per_part = 1, but the model" in err and "set frames_per_part = 2" in err
+    assert len(err.strip().splitlines()) == 1
     # a model of one frame per part does not read a set of two, and the other way round
     one = make_line_set(tmp_path / "one", n=30, seed=2, validation=True)
     assert main(["eval", "--model", str(model), "--data", str(one), "--split", "val", "--no-plots",
@@ -93,5 +144,30 @@ def test_a_tilt_prior_without_its_pair_and_a_segment_set_in_the_virtual_camera_a
     from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
 
     pair = make_segment_set(tmp_path / "pair", n=4)
-    with pytest.raises(CameraConfigError, match="a frame per dome segment"):
+    with pytest.raises(CameraConfigError, match="a frame per dome segment at 0, 180 deg for each part, the camera's "
+                                                "frames_per_part is 1: set"):
         VirtualCamera(CameraConfig(), VirtualCameraConfig(dataset=str(pair))).open()
+    with pytest.raises(CameraConfigError, match="holds one frame per part, the camera's frames_per_part is 2"):
+        VirtualCamera(CameraConfig(frames_per_part=2), VirtualCameraConfig(dataset=str(one))).open()
+
+
+def test_the_virtual_camera_plays_a_parts_frames_in_the_segments_order(tmp_path: Path) -> None:
+    from drivers.camera import CameraConfig
+    from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
+    from sim.dataset import open_dataset
+
+    pair = make_segment_set(tmp_path / "pair", n=4)
+    ds = open_dataset(pair)
+    with VirtualCamera(CameraConfig(frames_per_part=2), VirtualCameraConfig(str(pair), defect_rate=0.5)) as cam:
+        cam.start()
+        for _ in range(3):
+            frames = []
+            for _ in range(2):
+                cam.trigger()
+                frames.append(cam.grab())
+            first, second = frames
+            index = first.ground_truth.sample_index
+            assert second.ground_truth is first.ground_truth and second.frame_id == first.frame_id + 1
+            raws = ds.load(index, ground_truth=False).raws
+            assert np.array_equal(first.raw, raws[0]) and np.array_equal(second.raw, raws[1])
+            assert not np.array_equal(first.raw, second.raw)

@@ -1,0 +1,134 @@
+"""A part imaged once per dome segment (``[camera] frames_per_part``): the station triggers each frame, judges the
+part on its frames in the order taken, keeps them all with a reject, and rejects a part whose set lacks a frame;
+a frame that comes after its part gave up on it is never taken for the next part's set."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+from test_loop import ScriptedLink  # same folder (pytest puts it on sys.path)
+
+from drivers.camera import CameraBase, CameraConfig
+from drivers.errors import CameraConfigError, CameraTimeout
+from drivers.frame import Frame, GroundTruth
+from model.priors import IMX250MZR
+from station.inspection_log import InspectionLog
+from station.inspector import Inference, Inspector
+from station.loop import NoLink, Station
+from station.reject_store import RejectStore
+
+BRIGHT, DARK = 200, 20
+
+
+class SetCamera(CameraBase):
+    """Software-triggered frames of two per part: each ``script`` entry is a frame's brightness, a CameraTimeout to
+    raise, or ("stale", brightness): a frame completed a second ago (before the trigger it is grabbed after)."""
+
+    def __init__(self, script, frames_per_part=2):
+        super().__init__(CameraConfig(trigger="software", frames_per_part=frames_per_part))
+        self.script = list(script)
+        self.triggers = 0
+        self.frame_id = 0
+
+    def open(self): ...
+    def close(self): ...
+    def start(self): ...
+    def stop(self): ...
+    def configure(self, config): ...
+
+    def trigger(self):
+        self.triggers += 1
+
+    def grab(self, timeout_ms=None):
+        if not self.script:
+            raise CameraTimeout("script exhausted")
+        item = self.script.pop(0)
+        if isinstance(item, Exception):
+            raise item
+        stale = isinstance(item, tuple)
+        level = item[1] if stale else item
+        self.frame_id += 1
+        self._stats.completed += 1
+        return Frame(np.full((8, 8), level, np.uint8), "Mono8", 8, self.frame_id, 0,
+                     time.time_ns() - (10**9 if stale else 0), ground_truth=GroundTruth(label=0))
+
+
+class TiltDetector:
+    """Score = the mean tilt toward the first segment, at least 0: a part whose first frame is the brighter scores
+    high, the same frames in the other order score 0."""
+
+    model_id = "test-tilt"
+    threshold = 0.5
+    priors = ("intensity", "tilt_x")
+
+    def infer(self, priors):
+        return Inference(max(0.0, float(priors["tilt_x"].mean())))
+
+
+def make_station(tmp_path, camera, link=None, rejects=None):
+    log = InspectionLog(tmp_path / "log.sqlite")
+    inspector = Inspector(TiltDetector(), IMX250MZR, segments=(0.0, 180.0))
+    return Station(camera, inspector, link or NoLink(), log, cycle_time_ms=10_000.0, queue_size=8,
+                   backpressure="block", rejects=rejects), log
+
+
+def test_each_part_is_judged_on_its_frames_in_the_order_taken_and_a_reject_keeps_them_all(tmp_path):
+    link = ScriptedLink(3)
+    camera = SetCamera([BRIGHT, DARK, DARK, DARK, DARK, BRIGHT])
+    station, log = make_station(tmp_path, camera, link, RejectStore(tmp_path / "rejects"))
+    station.run(max_parts=3)
+    rows = list(log.rows())
+    # lit from the first segment's side only: tilt 180/220; evenly: 0; from the other side: negative
+    assert [(r["part_id"], r["decision"]) for r in rows] == [("T0", "reject"), ("T1", "pass"), ("T2", "pass")]
+    assert rows[0]["score"] == pytest.approx(180 / 220, abs=0.01)
+    assert [r["camera_frame_id"] for r in rows] == [1, 3, 5]  # a row names its part's first frame
+    assert camera.triggers == 6  # the station triggered every frame
+    with np.load(rows[0]["image_path"]) as f:
+        assert f["raw"].max() == BRIGHT and f["raw_1"].max() == DARK
+    assert dict(link.reports) == {"T0": "reject", "T1": "pass", "T2": "pass"}
+    log.close()
+
+
+def test_a_set_without_its_second_frame_is_rejected_and_a_late_frame_is_not_the_next_parts(tmp_path):
+    link = ScriptedLink(3)
+    camera = SetCamera([BRIGHT, CameraTimeout("no frame in 1000 ms"),  # T0: its second frame does not come
+                        ("stale", DARK),  # ...it comes late: taken before T1's trigger, so not T1's first frame
+                        BRIGHT, DARK,  # T1
+                        DARK, DARK])  # T2
+    station, log = make_station(tmp_path, camera, link)
+    station.run(max_parts=3)
+    rows = {r["part_id"]: r for r in log.rows()}
+    assert len(rows) == 3
+    assert rows["T0"]["decision"] == "reject"
+    assert "frame set incomplete for part T0: frame 2 of 2 did not come" in rows["T0"]["reason"]
+    assert rows["T1"]["decision"] == "reject" and rows["T1"]["camera_frame_id"] == 3
+    assert rows["T1"]["score"] == pytest.approx(180 / 220, abs=0.01)
+    assert rows["T2"]["decision"] == "pass"
+    assert station.stale_frames == 1
+    assert dict(link.reports) == {"T0": "reject", "T1": "reject", "T2": "pass"}
+    log.close()
+
+
+def test_without_a_plc_a_set_is_one_part_and_one_row(tmp_path):
+    """Trigger-free, frames missing between two ids are lost frames: a set's second frame is not one."""
+    station, log = make_station(tmp_path, SetCamera([BRIGHT, DARK, DARK, DARK]))
+    station.run(max_parts=2)
+    assert [r["decision"] for r in log.rows()] == ["reject", "pass"]
+    log.close()
+
+
+def test_a_set_the_model_does_not_read_is_rejected_with_its_reason(tmp_path):
+    """Three frames for a model of two segments: the part cannot be judged (the station refuses such a config at
+    start; this is the inspector's own guard)."""
+    station, log = make_station(tmp_path, SetCamera([BRIGHT, DARK, DARK], frames_per_part=3))
+    station.run(max_parts=1)
+    (row,) = log.rows()
+    assert row["decision"] == "reject" and "3 frame(s) for a model that reads a frame per dome segment" in row["reason"]
+    log.close()
+
+
+def test_more_than_one_frame_per_part_needs_a_software_trigger():
+    with pytest.raises(CameraConfigError, match="frames_per_part = 2 needs trigger = 'software'"):
+        CameraConfig(trigger="line0", frames_per_part=2)
