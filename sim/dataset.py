@@ -59,7 +59,7 @@ import cv2
 import numpy as np
 
 from model.priors.conventions import CONVENTION_VERSION
-from model.priors.photometric import mean_stokes
+from model.priors.photometric import check_segments, mean_stokes
 
 from .defects import DefectConfig, DefectResult, apply_defect
 from .errors import SimError
@@ -140,11 +140,11 @@ class DatasetSpec:
             raise SimError(f"mesh_scale must be a number > 0, got {self.mesh_scale}")
         if self.heldout and self.validation:
             raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
-        object.__setattr__(self, "dome_segments", tuple(float(a) for a in self.dome_segments))
+        try:
+            object.__setattr__(self, "dome_segments", check_segments(self.dome_segments))
+        except ValueError as exc:
+            raise SimError(f"dome_segments {exc}") from None
         if self.dome_segments:
-            segs = self.dome_segments
-            if len(segs) < 2 or len(set(segs)) != len(segs) or not all(0 <= a < 360 for a in segs):
-                raise SimError(f"dome_segments {list(segs)}: two or more distinct azimuths in [0, 360) degrees")
             if not self.scene.ambient_gradient:
                 raise SimError("dome_segments need scene.ambient_gradient > 0 (how much brighter the lit segment "
                                "is): under a uniform dome every segment's frame is the same")

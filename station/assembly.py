@@ -43,7 +43,8 @@ DEMO_EMPTY_RATE = 0.25
 def driver_camera_config(cfg: StationConfig) -> DriverCameraConfig:
     """``[camera]`` -> the drivers' ``CameraConfig`` (same names and units; ``kind`` picks the driver)."""
     names = {f.name for f in dataclasses.fields(DriverCameraConfig)}
-    return DriverCameraConfig(**{k: v for k, v in dataclasses.asdict(cfg.camera).items() if k in names})
+    return DriverCameraConfig(**{k: v for k, v in dataclasses.asdict(cfg.camera).items() if k in names},
+                              frames_per_part=cfg.camera.frames_per_part)
 
 
 def ensure_sim_dataset(cfg: StationConfig) -> str:
@@ -99,8 +100,11 @@ def open_camera(cfg: StationConfig) -> Camera:
     dcfg = driver_camera_config(cfg)
     if cfg.camera.kind == "sim":
         from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
+        from sim.dataset import open_dataset
 
-        camera: Camera = VirtualCamera(dcfg, VirtualCameraConfig(ensure_sim_dataset(cfg), cfg.sim.defect_rate,
+        dataset = ensure_sim_dataset(cfg)
+        check_line_segments(cfg, open_dataset(dataset).dome_segments, f"the set {dataset} holds")
+        camera: Camera = VirtualCamera(dcfg, VirtualCameraConfig(dataset, cfg.sim.defect_rate,
                                                                  seed=cfg.sim.seed, empty_rate=cfg.sim.empty_rate))
     else:
         from drivers.aravis_camera import AravisCamera
@@ -122,9 +126,9 @@ def open_link(cfg: StationConfig, stack: ExitStack, max_parts: int | None = None
     if cfg.io.mode == "sim_plc":
         from drivers.plc_sim import SimulatedPLC
 
-        # One part per camera frame period: the PLC paces the line, as on a real one.
-        plc = SimulatedPLC(trigger_period_s=1.0 / cfg.camera.frame_rate_hz, heartbeat_s=cfg.io.heartbeat_s,
-                           max_triggers=max_parts)
+        # One part per camera frame period (per set of frames): the PLC paces the line, as on a real one.
+        plc = SimulatedPLC(trigger_period_s=cfg.camera.frames_per_part / cfg.camera.frame_rate_hz,
+                           heartbeat_s=cfg.io.heartbeat_s, max_triggers=max_parts)
         port = plc.station_port or ""
         stack.callback(plc.close)
     elif not port:
@@ -144,18 +148,24 @@ def open_link(cfg: StationConfig, stack: ExitStack, max_parts: int | None = None
 
 
 def load_detector(cfg: StationConfig) -> DraemDetector:
-    """The model ``[model]`` names, with ``[decision] threshold`` overriding its own; ConfigError when it reads
-    another number of frames per part than ``[camera] frames_per_part`` gives (photometric stereo)."""
+    """The model ``[model]`` names, with ``[decision] threshold`` overriding its own; ConfigError when it reads other
+    frames than ``[camera] dome_segments`` takes (photometric stereo: the same segments in the same order)."""
     detector = DraemDetector(cfg.model.path, cfg.model.device, cfg.model.precision, cfg.decision.threshold,
                              cfg.model.early_exit_margin, cfg.model.fov_x_deg)
-    frames = max(1, len(detector.dome_segments))
-    if cfg.camera.frames_per_part != frames:
-        from model.priors.photometric import describe_segments
-
-        raise ConfigError(f"{cfg.source}: [camera] frames_per_part = {cfg.camera.frames_per_part}, but the model "
-                          f"{cfg.model.path} reads {describe_segments(detector.dome_segments)}: set "
-                          f"frames_per_part = {frames}")
+    check_line_segments(cfg, detector.dome_segments, f"the model {cfg.model.path} reads")
     return detector
+
+
+def check_line_segments(cfg: StationConfig, segments: tuple[float, ...], what: str) -> None:
+    """ConfigError unless ``what`` ("the model M reads", "the set S holds") ``segments``, the frames ``[camera]
+    dome_segments`` takes."""
+    from model.priors.photometric import describe_segments, same_segments
+
+    line = tuple(cfg.camera.dome_segments or ())
+    if not same_segments(line, segments):
+        want = f"[{', '.join(f'{a:g}' for a in segments)}]" if segments else "unset"
+        raise ConfigError(f"{cfg.source}: [camera] dome_segments takes {describe_segments(line)}, but {what} "
+                          f"{describe_segments(segments)}: set dome_segments {'= ' if segments else ''}{want}")
 
 
 def presence_check(cfg: StationConfig) -> PresenceCheck | None:

@@ -18,6 +18,7 @@ from typing import Any
 
 from model.draem.runtime import PRECISIONS
 from model.priors import LAYOUTS, METHODS, MosaicLayout, get_layout
+from model.priors.photometric import check_segments
 from station.errors import UserError
 
 
@@ -52,7 +53,13 @@ class CameraConfig:
     trigger: str = _opt("software", choices=TRIGGERS)
     timeout_ms: int = _opt(1000, range=(1, 600000))
     reconnect: bool = True
-    frames_per_part: int = _opt(1, range=(1, 16))
+    dome_segments: list[float] | None = None
+    """Photometric stereo: azimuths (degrees, ``model.priors.photometric``) of the dome segments lit in turn, one
+    frame each, in the order taken; None: one frame per part under the whole dome."""
+
+    @property
+    def frames_per_part(self) -> int:
+        return len(self.dome_segments or ()) or 1
 
 
 @dataclass(frozen=True)
@@ -210,12 +217,17 @@ def _check_timing(cfg: StationConfig, source: str) -> None:
                           "parts, but a free-running camera's frames are not taken for them (a part would be judged "
                           "on a frame taken before it arrived); use 'software' or a line trigger, or [io] mode 'none'")
     frames = cfg.camera.frames_per_part
+    if cfg.camera.dome_segments is not None:
+        try:
+            check_segments(cfg.camera.dome_segments)
+        except ValueError as exc:
+            raise ConfigError(f"{source}: [camera] dome_segments: {exc}") from None
     if frames > 1 and cfg.camera.trigger != "software":
-        raise ConfigError(f"{source}: [camera] frames_per_part: {frames} frames per part need trigger = 'software' "
-                          f"(the station triggers each frame of a part's set), not {cfg.camera.trigger!r}")
+        raise ConfigError(f"{source}: [camera] dome_segments: a frame per segment needs trigger = 'software' (the "
+                          f"station triggers each frame of a part's set), not {cfg.camera.trigger!r}")
     exposure_ms = cfg.camera.exposure_us / 1e3
     if frames > 1 and frames * exposure_ms >= cfg.acquisition.cycle_time_ms:
-        raise ConfigError(f"{source}: [camera] frames_per_part: {frames} exposures of {exposure_ms:g} ms take "
+        raise ConfigError(f"{source}: [camera] dome_segments: {frames} exposures of {exposure_ms:g} ms take "
                           f"{frames * exposure_ms:g} ms, the whole [acquisition] cycle_time_ms "
                           f"({cfg.acquisition.cycle_time_ms:g} ms): no part could be judged in time")
     if cfg.camera.timeout_ms < exposure_ms + GRAB_MARGIN_MS:

@@ -38,6 +38,20 @@ def tilt(s0_a: np.ndarray, s0_b: np.ndarray) -> np.ndarray:
     return np.clip(np.nan_to_num(out, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 
 
+def check_segments(segments: Sequence[float]) -> tuple[float, ...]:
+    """``segments`` as floats; ValueError unless they are two or more distinct azimuths in [0, 360) degrees, or none
+    (one frame per part, under the whole dome)."""
+    segs = tuple(float(a) for a in segments)
+    if segs and (len(segs) < 2 or len(set(segs)) != len(segs) or not all(0 <= a < 360 for a in segs)):
+        raise ValueError(f"{list(segs)}: two or more distinct azimuths in [0, 360) degrees, one per frame")
+    return segs
+
+
+def same_segments(a: Sequence[float], b: Sequence[float]) -> bool:
+    """Whether two lists of azimuths name the same segments in the same order (to 0.01 deg, modulo 360)."""
+    return len(a) == len(b) and all(segment_index([x], y) == 0 for x, y in zip(a, b, strict=True))
+
+
 def segment_index(segments: Sequence[float], azimuth: float) -> int | None:
     """Position of ``azimuth`` (degrees) in ``segments`` (to 0.01 deg, modulo 360), None when not imaged."""
     for k, a in enumerate(segments):

@@ -1,10 +1,12 @@
 """Run time against error for the whole station: the real loop on held-out rendered parts over a grid of settings.
 
 For each configuration (demosaic method x model checkpoint x precision x presence check on/off x prior set and
-early exit of a per-prior ensemble) a ``station.loop.Station`` inspects ``--parts`` frames from the virtual camera
+early exit of a per-prior ensemble) a ``station.loop.Station`` inspects ``--parts`` parts from the virtual camera
 (the dataset's test split, never trained on; the same frames in the same order for every configuration;
 ``--empty-rate`` of them show no part, which needs a set rendered with ``station render --empty-rate``),
 free-running as fast as processing allows (backpressure ``block``, no PLC), and logs to a temporary SQLite file.
+A model that reads a frame per dome segment (photometric stereo) gets each part's frames, triggered one by one as
+at the station (``[camera] frames_per_part``); its latency counts every frame's grab and demosaic.
 From the log:
 
 - latency per frame = grab + demosaic + priors (+ presence check) + model (+ decision): the work from trigger to
@@ -81,7 +83,9 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     detector.warm_up()
     detector.members_run = 0
     layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
-    camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1000.0, timeout_ms=10000),
+    frames = max(1, len(detector.dome_segments))  # a frame per dome segment: the station triggers each
+    camera = VirtualCamera(CameraConfig(trigger="free_run" if frames == 1 else "software", frame_rate_hz=1000.0,
+                                        timeout_ms=10000, frames_per_part=frames),
                            VirtualCameraConfig(data, defect_rate, split="test", seed=seed, empty_rate=empty_rate))
 
     class TimedCheck(PresenceCheck):
@@ -102,7 +106,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     with tempfile.TemporaryDirectory() as tmp, InspectionLog(Path(tmp) / "log.sqlite") as log:
         camera.open()
         try:
-            inspector = Inspector(detector, layout, method, presence=check)
+            inspector = Inspector(detector, layout, method, presence=check, segments=detector.dome_segments)
             station = Station(camera, inspector, NoLink(), log, cycle_time_ms=1e6, queue_size=1, backpressure="block",
                               grab_timeout_ms=10000)
             t = time.perf_counter()

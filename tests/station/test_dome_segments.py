@@ -1,7 +1,7 @@
 """Photometric stereo end to end on a set of two frames per part (the dome's halves): ``station train`` records the
 segments, ``station variation`` and ``station eval`` read each part's frames as one (the uniform dome's priors and
 the tilt), and a dent seen only in the tilt is found; a model and a set that disagree on frames per part are
-refused in one line. At the station (``[camera] frames_per_part``) the virtual camera plays each part's frames in
+refused in one line. At the station (``[camera] dome_segments``) the virtual camera plays each part's frames in
 order and the station judges them as ``station eval`` does."""
 
 from __future__ import annotations
@@ -73,7 +73,7 @@ def test_train_variation_and_eval_find_a_dent_seen_only_in_the_tilt(tmp_path: Pa
     toml = f"""
 [camera]
 frame_rate_hz = 50.0
-frames_per_part = 2
+dome_segments = [0.0, 180.0]
 [acquisition]
 cycle_time_ms = 60000.0
 backpressure = "block"
@@ -97,11 +97,14 @@ image_dir = "{tmp_path / 'rejects'}"
             with np.load(image) as f:
                 assert f["raw"].shape == f["raw_1"].shape
     capsys.readouterr()
-    cfg.write_text(toml.replace("frames_per_part = 2", "frames_per_part = 1"))
-    assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "6"]) == 2
-    err = capsys.readouterr().err
-    assert "[camera] frames_per_part = 1, but the model" in err and "set frames_per_part = 2" in err
-    assert len(err.strip().splitlines()) == 1
+    for line, message in (("", "takes one frame per part, but the model"),
+                          ("dome_segments = [180.0, 0.0]", "takes a frame per dome segment at 180, 0 deg, but the "
+                                                           "model")):
+        cfg.write_text(toml.replace("dome_segments = [0.0, 180.0]", line))
+        assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "6"]) == 2
+        err = capsys.readouterr().err
+        assert message in err and "reads a frame per dome segment at 0, 180 deg: set dome_segments = [0, 180]" in err
+        assert len(err.strip().splitlines()) == 1
     # a model of one frame per part does not read a set of two, and the other way round
     one = make_line_set(tmp_path / "one", n=30, seed=2, validation=True)
     assert main(["eval", "--model", str(model), "--data", str(one), "--split", "val", "--no-plots",
