@@ -5,9 +5,12 @@ the reject bin) import with ``station import`` without flags.
 Files under ``OUT``::
 
     OUT/<split>/<label>/<NNNNNN>.png   raw mosaic as the camera gave it (8-bit, or 16-bit holding bit_depth bits)
-    OUT/capture.jsonl                  one line per frame: file, ids, timestamps, pixel format, bit depth,
+    OUT/frame-K/<split>/<label>/<NNNNNN>.png  with ``[camera] dome_segments``: the part's frame K >= 1 (a frame per
+                                       segment, in the order taken; the first is the one above, so other tools
+                                       reading OUT see one frame per part)
+    OUT/capture.jsonl                  one line per part: file(s), ids, timestamps, pixel format, bit depth,
                                        camera settings, frame statistics, ground truth where known
-    OUT/polar_ano.json                 bit depth and layout (station import reads them)
+    OUT/polar_ano.json                 bit depth, layout and dome segments (station import reads them)
 
 Numbering continues after the files already in the label's folder: a second ``station capture`` into the same
 ``OUT`` adds frames (same bit depth and layout required). A frame whose ground truth (the virtual camera's) says it
@@ -28,7 +31,7 @@ import numpy as np
 
 from drivers.camera import Camera
 from drivers.frame import Frame
-from model.priors import compute_priors
+from model.priors.api import compute_set_priors
 from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
 from station.errors import UserError
 from station.inspector import significant_bits
@@ -44,16 +47,19 @@ class CaptureReport:
     seconds: float = 0.0
     bit_depth: int = 8
     left_out: int = 0
-    """Frames not written: the camera's ground truth (the virtual camera's) contradicted ``--label``."""
+    """Parts not written: the camera's ground truth (the virtual camera's) contradicted ``--label``."""
+    frames_per_part: int = 1
 
     def describe(self) -> str:
         if not self.stats:
             return f"no frames written to {self.folder}"
         r = StatisticsRange.from_frames(self.stats)
         med = r.median
-        skipped = (f"; left out {self.left_out} frames whose ground truth contradicted the label" if self.left_out
+        skipped = (f"; left out {self.left_out} parts whose ground truth contradicted the label" if self.left_out
                    else "")
-        return (f"wrote {len(self.files)} frames ({self.bit_depth}-bit) to {self.folder} in {self.seconds:.1f} s; "
+        what = (f"{len(self.files)} frames" if self.frames_per_part == 1 else
+                f"{len(self.files)} parts of {self.frames_per_part} frames")
+        return (f"wrote {what} ({self.bit_depth}-bit) to {self.folder} in {self.seconds:.1f} s; "
                 f"medians: level {med['median_level']:.3f}, p95 level {med['high_level']:.3f}, clipped "
                 f"{100 * med['clipped_fraction']:.2f} %, DoLP {med['dolp_level']:.3f}{skipped}")
 
@@ -85,25 +91,36 @@ def _next_number(folder: Path) -> int:
     return max(nums) + 1 if nums else 0
 
 
-def _check_info(out: Path, bit_depth: int, layout: str) -> None:
+def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, ...]) -> None:
+    from model.priors.photometric import describe_segments
+
     p = out / INFO_FILE
     if p.is_file():
         old = read_info(out)
-        if old.get("bit_depth") != bit_depth or old.get("layout") != layout:
-            raise UserError(f"{p}: this folder holds {old.get('bit_depth')}-bit {old.get('layout')} frames, the camera "
-                            f"gives {bit_depth}-bit {layout}: capture into another folder")
+        old_segments = tuple(old.get("dome_segments") or ())
+        if old.get("bit_depth") != bit_depth or old.get("layout") != layout or old_segments != segments:
+            raise UserError(f"{p}: this folder holds {old.get('bit_depth')}-bit {old.get('layout')} frames, "
+                            f"{describe_segments(old_segments)}; the camera gives {bit_depth}-bit {layout}, "
+                            f"{describe_segments(segments)}: capture into another folder")
     else:
-        p.write_text(json.dumps({"bit_depth": bit_depth, "layout": layout, "note": "written by station capture"},
-                                indent=1))
+        p.write_text(json.dumps({"bit_depth": bit_depth, "layout": layout,
+                                 **({"dome_segments": list(segments)} if segments else {}),
+                                 "note": "written by station capture"}, indent=1))
+
+
+def later_frame(out: Path, rel: str | Path, k: int) -> Path:
+    """Where frame ``k`` >= 1 of the part whose first frame is ``out / rel`` is kept (module docstring)."""
+    return out / f"frame-{k}" / rel
 
 
 def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", split: str | None = None,
             settings: dict[str, Any] | None = None, layout: str = "imx250mzr", software_trigger: bool = True,
             timeout_ms: int | None = None, progress: bool = True,
             on_frame: Callable[[int, FrameStatistics], None] | None = None,
-            bit_depth: int | None = None) -> CaptureReport:
-    """Grab ``frames`` frames from the open ``camera`` (started and stopped here) into ``out`` (module docstring).
-    ``settings``: the camera settings to record with each frame; ``on_frame(n, stats)`` after each frame;
+            bit_depth: int | None = None, segments: tuple[float, ...] = ()) -> CaptureReport:
+    """Grab ``frames`` parts from the open ``camera`` (started and stopped here) into ``out`` (module docstring):
+    one frame each, or with ``segments`` (``[camera] dome_segments``) one per segment, each triggered.
+    ``settings``: the camera settings to record with each part; ``on_frame(n, stats)`` after each part;
     ``bit_depth``: ``[priors] bit_depth``, the significant bits when the pixel format's are wider."""
     from tqdm import tqdm
 
@@ -115,7 +132,7 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                         "a folder of its own (station import turns it into a data set)")
     folder = label_folder(out, label, split)
     folder.mkdir(parents=True, exist_ok=True)
-    report = CaptureReport(out, folder)
+    report = CaptureReport(out, folder, frames_per_part=max(1, len(segments)))
     number = _next_number(folder)
     t0 = time.perf_counter()
     camera.start()
@@ -129,9 +146,12 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                     raise UserError(f"{report.left_out} of {grabs - 1} frames contradicted --label {label} (the "
                                     "virtual camera's ground truth): its set has too few such parts")
                 n = len(report.files)
-                if software_trigger:
-                    camera.trigger()
-                frame: Frame = camera.grab(timeout_ms) if timeout_ms else camera.grab()
+                shots: list[Frame] = []
+                for _ in range(max(1, len(segments))):  # a part's frames, in the segments' order
+                    if software_trigger:
+                        camera.trigger()
+                    shots.append(camera.grab(timeout_ms) if timeout_ms else camera.grab())
+                frame = shots[0]
                 if contradicts(frame, label):
                     report.left_out += 1
                     continue
@@ -140,19 +160,24 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                 except ValueError as exc:
                     raise UserError(str(exc)) from None
                 if n == 0:
-                    _check_info(out, bits, layout)
+                    _check_info(out, bits, layout, segments)
                     report.bit_depth = bits
                 elif bits != report.bit_depth:
                     raise UserError(f"frame {frame.frame_id}: {bits}-bit after {report.bit_depth}-bit "
                                     f"frames; one capture, one pixel format")
                 name = f"{number:06d}.png"
-                if not cv2.imwrite(str(folder / name), np.ascontiguousarray(frame.raw)):
-                    raise UserError(f"could not write {folder / name}")
-                priors = compute_priors(frame.raw, layout, priors=("intensity", "dolp"), bit_depth=bits)
-                stats = frame_statistics(priors, raw=frame.raw, bit_depth=bits)
                 rel = str((folder / name).relative_to(out))
+                paths = [folder / name] + [later_frame(out, rel, k) for k in range(1, len(shots))]
+                for path, shot in zip(paths, shots, strict=True):
+                    path.parent.mkdir(parents=True, exist_ok=True)
+                    if not cv2.imwrite(str(path), np.ascontiguousarray(shot.raw)):
+                        raise UserError(f"could not write {path}")
+                priors = compute_set_priors([s.raw for s in shots], segments, layout, priors=("intensity", "dolp"),
+                                            bit_depth=bits)  # the whole dome's, as the station reads a set
+                stats = frame_statistics(priors, raw=frame.raw, bit_depth=bits)
                 log.write(json.dumps({
-                    "file": rel, "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
+                    "file": rel, **({"frame_ids": [s.frame_id for s in shots]} if segments else {}),
+                    "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
                     "timestamp_ns": frame.timestamp_ns, "host_timestamp_ns": frame.host_timestamp_ns,
                     "pixel_format": frame.pixel_format, "bit_depth": bits, "label": label,
                     "camera": settings or {}, "statistics": stats.as_dict(),

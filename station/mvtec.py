@@ -9,7 +9,10 @@ Layout (names of images are free; masks are matched by name)::
     DIR/test/<defect type>/<name>.png             defective test parts
     DIR/ground_truth/<defect type>/<name>_mask.png   optional defect masks (non-zero = defect)
     DIR/object_masks/<split>/<type>/<name>_object.png  optional object masks (our extension)
-    DIR/polar_ano.json                            optional: {"bit_depth", "layout"}, written by export and capture
+    DIR/polar_ano.json                            optional: {"bit_depth", "layout", "dome_segments"}, written by
+                                                  export and capture
+    DIR/frame-K/<split>/<type>/<name>.png         with "dome_segments" (our extension): each part's frame K >= 1,
+                                                  one per dome segment in that order; the image above is the first
 
 Images are raw polarizer mosaics (one channel, even sides) as 8-bit or 16-bit PNG/TIFF; a 16-bit file holds codes
 of ``--bit-depth`` significant bits (12 for a Mono12 camera). A file whose codes do not fit the stated bit depth,
@@ -35,6 +38,7 @@ import cv2
 import numpy as np
 
 from model.priors.conventions import CONVENTION_VERSION, LAYOUTS, is_bit_depth
+from model.priors.photometric import check_segments
 from sim.dataset import FOLDER_SPLIT_RULE, FORMAT, VERSION, Sample, open_dataset, write_sample
 from station.errors import UserError
 
@@ -128,7 +132,8 @@ def scan_mvtec(root: str | Path) -> list[MvtecItem]:
 
 def read_info(root: str | Path) -> dict:
     """``polar_ano.json`` of an MVTec-layout folder ({} when absent); UserError naming the file and key unless it is
-    an object whose ``bit_depth`` (when present) is an integer in 1..16 and ``layout`` a string."""
+    an object whose ``bit_depth`` (when present) is an integer in 1..16, ``layout`` a string and ``dome_segments``
+    azimuths (``model.priors.photometric.check_segments``)."""
     p = Path(root) / INFO_FILE
     if not p.is_file():
         return {}
@@ -143,6 +148,14 @@ def read_info(root: str | Path) -> dict:
         raise UserError(f"{p}: bit_depth: expected an integer in 1..16, got {depth!r}")
     if info.get("layout") is not None and not isinstance(info["layout"], str):
         raise UserError(f"{p}: layout: expected a string, got {info['layout']!r}")
+    segments = info.get("dome_segments")
+    if segments is not None:
+        try:
+            if not isinstance(segments, list) or not all(isinstance(a, int | float) for a in segments):
+                raise ValueError(f"{segments!r}: a list of azimuths in degrees")
+            info["dome_segments"] = list(check_segments(segments))
+        except ValueError as exc:
+            raise UserError(f"{p}: dome_segments: {exc}") from None
     return info
 
 
@@ -213,6 +226,7 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
     src, out = Path(src), Path(out)
     info = read_info(src)
     layout = layout or info.get("layout") or "imx250mzr"
+    segments = info.get("dome_segments") or []
     if layout not in LAYOUTS:
         raise UserError(f"--layout {layout!r}: unknown; known: {', '.join(LAYOUTS)}")
     items = scan_mvtec(src)
@@ -248,7 +262,17 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
                 top, brightest = int(raw.max()), item.path
             split = "val" if item.path in val else item.split
             defect = item.mask is not None and read_mask(item.mask, raw.shape)
-            sample = Sample(index, raw, {}, item.label, split)
+            later = []
+            for k in range(1, len(segments)):  # the part's other frames, one per dome segment
+                path = src / f"frame-{k}" / item.path.relative_to(src)
+                if not path.is_file():
+                    raise UserError(f"{path}: missing; {src / INFO_FILE} names {len(segments)} dome segments, so "
+                                    f"each part has {len(segments)} frames")
+                later.append(read_mosaic(path, bit_depth))
+                if later[-1].shape != raw.shape:
+                    raise UserError(f"{path}: {later[-1].shape[1]}x{later[-1].shape[0]}, its part's first frame "
+                                    f"{item.path.name} is {raw.shape[1]}x{raw.shape[0]}")
+            sample = Sample(index, raw, {}, item.label, split, segment_raws=(raw, *later) if later else ())
             if item.label == 0:
                 sample.defect_mask = np.zeros(raw.shape, bool)  # a good part's mask is known: empty
             elif item.mask is not None:
@@ -273,7 +297,8 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
         manifest = {"format": FORMAT, "version": VERSION, "convention_version": CONVENTION_VERSION,
                     "width": shape[1], "height": shape[0], "layout": layout, "bit_depth": bit_depth,
                     "count": len(items), "split_rule": FOLDER_SPLIT_RULE, "sample_splits": splits,
-                    "config": {}, "source": {"format": "mvtec", "path": str(src.resolve()),
+                    "config": {"dome_segments": segments} if segments else {},
+                    "source": {"format": "mvtec", "path": str(src.resolve()),
                                              "val_fraction": val_fraction if val else 0.0, "seed": seed,
                                              "defect_masks": report.n_defect_masks,
                                              "object_masks": report.n_object_masks}}

@@ -12,7 +12,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--camera", choices=("sim", "aravis"), default=None,
                    help="camera kind (default: [camera] kind in the config)")
     p.add_argument("--config", default="station.toml", help="station configuration (default station.toml)")
-    p.add_argument("--frames", type=int, required=True, metavar="N", help="number of frames to record")
+    p.add_argument("--frames", type=int, required=True, metavar="N",
+                   help="number of parts to record (a frame each, or a frame per [camera] dome_segments entry)")
     p.add_argument("--out", required=True, metavar="DIR", help="MVTec-layout folder (created; frames are added)")
     p.add_argument("--label", default="good",
                    help="good (-> train/good), or a defect type for parts from the reject bin (-> test/<label>); "
@@ -50,11 +51,13 @@ def run(args: argparse.Namespace) -> int:
             print(f"{args.model} was trained on: {trained.describe()}")
             monitor = DriftMonitor(trained, window=min(50, args.frames), min_frames=min(10, args.frames))
     settings = {k: getattr(cfg.camera, k) for k in ("kind", "device", "pixel_format", "exposure_us", "gain_db",
-                                                    "width", "height", "offset_x", "offset_y", "trigger")}
+                                                    "width", "height", "offset_x", "offset_y", "trigger",
+                                                    "dome_segments")}
     camera = open_camera(cfg)
     try:
         report = capture(camera, args.frames, args.out, args.label, args.split, settings, cfg.priors.layout,
                          software_trigger=cfg.camera.trigger == "software", bit_depth=cfg.priors.bit_depth,
+                         segments=tuple(cfg.camera.dome_segments or ()),
                          on_frame=(lambda _n, s: _warn(monitor.update(s))) if monitor else None)
     finally:
         camera.close()

@@ -174,3 +174,31 @@ def test_the_virtual_camera_plays_a_parts_frames_in_the_segments_order(tmp_path:
             raws = ds.load(index, ground_truth=False).raws
             assert np.array_equal(first.raw, raws[0]) and np.array_equal(second.raw, raws[1])
             assert not np.array_equal(first.raw, second.raw)
+
+
+def test_capture_and_import_keep_each_parts_frames(tmp_path: Path, capsys) -> None:
+    """``station capture`` with ``[camera] dome_segments`` triggers and keeps each part's frames, ``station import``
+    makes them a set of the same segments (what ``station adapt`` and ``eval`` read with such a model)."""
+    from sim.dataset import open_dataset
+
+    pair = make_segment_set(tmp_path / "pair", n=8, defective=lambda i: False)
+    cfg = tmp_path / "station.toml"
+    cfg.write_text(f'[camera]\ndome_segments = [0.0, 180.0]\n[sim]\ndataset = "{pair}"\ndefect_rate = 0.0\n')
+    out = tmp_path / "cap"
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "4", "--out", str(out)]) == 0
+    assert "wrote 4 parts of 2 frames" in capsys.readouterr().out
+    assert len(list((out / "frame-1" / "train" / "good").iterdir())) == 4
+    assert json.loads((out / "polar_ano.json").read_text())["dome_segments"] == [0.0, 180.0]
+    assert main(["import", "--from", str(out), "--out", str(tmp_path / "imp"), "--val-fraction", "0"]) == 0
+    imp, src = open_dataset(tmp_path / "imp"), open_dataset(pair)
+    assert imp.dome_segments == (0.0, 180.0)
+    originals = [src.load(i).raws for i in src.indices(None)]
+    for i in imp.indices("train"):
+        raws = imp.load(i).raws
+        assert any(all(np.array_equal(a, b) for a, b in zip(raws, o, strict=True)) for o in originals)
+    # a set whose later frame is missing is refused in one line naming it
+    (out / "frame-1" / "train" / "good" / "000002.png").unlink()
+    capsys.readouterr()
+    assert main(["import", "--from", str(out), "--out", str(tmp_path / "imp2")]) == 2
+    last = capsys.readouterr().err.strip().splitlines()[-1]  # after the progress bar
+    assert "frame-1/train/good/000002.png: missing" in last and "names 2 dome segments" in last
