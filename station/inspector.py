@@ -2,7 +2,10 @@
 
 A model that reads a frame per dome segment (photometric stereo, ``model.priors.photometric``) gets the part's
 frames in the segments' order: intensity and polarization from their mean Stokes, the tilts from opposite pairs,
-as ``model.priors.api.compute_set_priors`` computes them for training and evaluation.
+as ``model.priors.api.compute_set_priors`` computes them for training and evaluation. The tilt compares each pixel
+across the frames, so a part that moved between them reads as tilted at every edge and scores high: when the model
+finds a part over its threshold, the inspector measures that motion (``model.priors.photometric.frame_motion``, about
+10 ms a pair, paid by rejected parts only) and, beyond ``motion_limit``, gives it as the error, so the row says why.
 
 With a presence check (``station.presence``), it runs on the priors before the detector; a frame with no part
 in view comes back with ``present`` False and no score: the detector does not run. Its priors (DoLP) are
@@ -28,7 +31,14 @@ from model.priors.api import check_prior_names, needs_polarization, priors_from_
 from model.priors.demosaic import mosaic_to_stokes
 from model.priors.frame_stats import FrameStatistics, frame_statistics
 from model.priors.mosaic import normalize_mosaic
-from model.priors.photometric import check_tilts, describe_segments, mean_stokes, tilt_maps
+from model.priors.photometric import (
+    check_tilts,
+    describe_segments,
+    frame_motion,
+    mean_stokes,
+    motion_limit,
+    tilt_maps,
+)
 from station.presence import Presence, PresenceCheck
 
 log = logging.getLogger(__name__)
@@ -168,8 +178,23 @@ class Inspector:
         except Exception as exc:
             result.error = (f"frame {frame.frame_id}: model {self.detector.model_id} failed: "
                             f"{type(exc).__name__}: {exc}")
-        result.timings_ms["model"] = 1e3 * (time.perf_counter() - t_priors)
+        if len(frames) > 1 and result.error is None and not result.score <= self.detector.threshold:
+            result.error = self._moved(frames, stokes, result.score)  # why it scored high, when it moved
+        result.timings_ms["model"] = 1e3 * (time.perf_counter() - t_priors)  # with the motion check
         return result
+
+    @staticmethod
+    def _moved(frames: Sequence[Frame], stokes: Sequence[tuple[np.ndarray, ...]], score: float) -> str | None:
+        """Why a part that ``score``s high cannot be judged, when it moved between its frames by more than
+        ``motion_limit``; else None."""
+        limit = motion_limit(frames[0].width)
+        for k in range(1, len(frames)):
+            px = frame_motion(stokes[0][0], stokes[k][0])
+            if px > limit:
+                return (f"frame {frames[0].frame_id}: the part moved {px:.2f} px between frames 1 and {k + 1} of its "
+                        f"set (at most {limit:.2f} px; score {score:.4f}, which the motion raises): it must stay "
+                        "still while the dome's segments are lit in turn")
+        return None
 
     def _name_slow_priors(self, frame: Frame, ms: float) -> None:
         """Warn once when a frame's demosaic and priors take ``slow_priors_ms`` or more: the parts are then rejected

@@ -16,8 +16,11 @@ Convention (``CONVENTION_VERSION`` unchanged: frame sets are new, single frames 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
+from functools import lru_cache
 
+import cv2
 import numpy as np
 
 from .conventions import DARK_S0
@@ -25,6 +28,28 @@ from .conventions import DARK_S0
 DOME_PAIRS: dict[str, tuple[float, float]] = {"tilt_x": (0.0, 180.0), "tilt_y": (90.0, 270.0)}
 """Tilt prior -> the azimuths (degrees) of the frames it compares: toward +x (0) against -x (180), toward +y (90)
 against -y (270)."""
+
+
+MOTION_WIDTH_PX = 640
+"""Frames are compared for motion at most this wide (``frame_motion``; wider ones binned n x n): about 9 ms per pair
+at 640 x 480 on these 2 cores. The whole frame, not its middle: on the middle alone, two frames of a still part read
+up to 0.7 px (stray light that differs between them fills more of it); on the whole frame at most 0.19 px."""
+
+MAX_MOTION = 0.5 / 640
+"""The most a part may move between the frames of its set, as a fraction of the frame's width (0.5 px on a 640 px
+frame). The tilt compares each pixel across frames, so motion reads as tilt at every edge: measured with the
+rule-23 tilt model on 60 good validation parts (docs/results/2026-11-27-frame-sets.md), a shift of 0.25 px rejected
+2 % of them (as many as with none), 0.5 px 12 %, 1 px 98 %."""
+
+MIN_MOTION_PX = 0.35
+"""The limit is never below this (frames narrower than 448 px): about twice what ``frame_motion`` reads for two frames
+of a still part, good or defective (at most 0.19 px over the 200 validation parts of the rule-23 sets)."""
+
+
+def motion_limit(width: int) -> float:
+    """The most a part may move between its frames (px) on frames ``width`` px wide: ``MAX_MOTION`` of the width,
+    at least ``MIN_MOTION_PX``."""
+    return max(MAX_MOTION * width, MIN_MOTION_PX)
 
 
 def tilt(s0_a: np.ndarray, s0_b: np.ndarray) -> np.ndarray:
@@ -50,6 +75,30 @@ def check_segments(segments: Sequence[float]) -> tuple[float, ...]:
 def same_segments(a: Sequence[float], b: Sequence[float]) -> bool:
     """Whether two lists of azimuths name the same segments in the same order (to 0.01 deg, modulo 360)."""
     return len(a) == len(b) and all(segment_index([x], y) == 0 for x, y in zip(a, b, strict=True))
+
+
+@lru_cache(maxsize=4)
+def _window(shape: tuple[int, int]) -> np.ndarray:
+    return cv2.createHanningWindow((shape[1], shape[0]), cv2.CV_32F)
+
+
+def frame_motion(s0_a: np.ndarray, s0_b: np.ndarray) -> float:
+    """How far (px of these frames, any direction) the scene moved from frame a to frame b: phase correlation of
+    their S0, binned to at most ``MOTION_WIDTH_PX`` wide. The segments' different light is a low-frequency change that
+    hardly moves it: two frames of a still part read 0.0-0.2 px at 640 px (rendered sets), a 1 px shift 0.9-1.2 px.
+    0.0 when a frame is flat or not finite (nothing to align; never NaN)."""
+    if np.shape(s0_a) != np.shape(s0_b) or np.ndim(s0_a) != 2 or min(np.shape(s0_a)) < 16:
+        return 0.0
+    a, b = (np.nan_to_num(np.asarray(x, dtype=np.float32), nan=0.0, posinf=0.0, neginf=0.0) for x in (s0_a, s0_b))
+    if not (a.std() > 1e-6 and b.std() > 1e-6):
+        return 0.0
+    n = math.ceil(a.shape[1] / MOTION_WIDTH_PX)  # binned n x n: a resize by another factor misreads shifts
+    if n > 1:
+        a, b = (x[: x.shape[0] // n * n, : x.shape[1] // n * n].reshape(x.shape[0] // n, n, x.shape[1] // n, n)
+                .mean((1, 3)) for x in (a, b))
+    (dx, dy), _ = cv2.phaseCorrelate(a, b, _window(a.shape))
+    moved = n * math.hypot(dx, dy)
+    return moved if math.isfinite(moved) else 0.0
 
 
 def segment_index(segments: Sequence[float], azimuth: float) -> int | None:

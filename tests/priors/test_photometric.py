@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
 import pytest
 
@@ -65,3 +66,20 @@ def test_set_priors_never_leave_nan_and_report_the_worst_frame() -> None:
     assert p.n_nonfinite == 64 and p.n_out_of_range == 32 and p.invalid is not None and p.invalid.sum() == 96
     with pytest.raises(ValueError, match="3 frames for 2 dome segments"):
         compute_set_priors([good, good, good], (0.0, 180.0))
+
+
+def test_frame_motion_reads_a_shift_across_opposite_light_and_is_finite_on_anything() -> None:
+    from model.priors.photometric import frame_motion
+
+    rng = np.random.default_rng(0)
+    texture = cv2.GaussianBlur(rng.random((240, 320)).astype(np.float32), (0, 0), 2.0) + 0.5
+    ramp = np.linspace(0.3, 1.0, 320, dtype=np.float32)[None, :]  # lit from +x, then from -x
+    a, b = texture * ramp, texture * ramp[:, ::-1]
+    assert frame_motion(a, b) < 0.2
+    assert frame_motion(a, np.roll(b, 1, axis=1)) == pytest.approx(1.0, abs=0.2)
+    assert frame_motion(a, np.roll(b, (3, -2), axis=(0, 1))) == pytest.approx(np.hypot(3, 2), abs=0.3)
+    # a frame wider than MOTION_WIDTH_PX is compared smaller, the answer in its own pixels
+    big = cv2.resize(a, None, fx=4, fy=4, interpolation=cv2.INTER_CUBIC)
+    assert frame_motion(big, np.roll(big, 4, axis=1)) == pytest.approx(4.0, abs=0.8)
+    for x, y in ((a, np.zeros_like(a)), (np.full_like(a, np.nan), a), (a, np.full_like(a, np.inf)), (a, a[:100])):
+        assert frame_motion(x, y) == 0.0

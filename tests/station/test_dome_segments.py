@@ -63,11 +63,18 @@ def test_train_variation_and_eval_find_a_dent_seen_only_in_the_tilt(tmp_path: Pa
     ds = open_dataset(val)
     for i in (0, 1):  # a good part and a dented one
         frames = [Frame(raw, "Mono8", 8, k + 1, 0, 0) for k, raw in enumerate(ds.load(i, ground_truth=False).raws)]
-        assert inspector.inspect(frames).score == pytest.approx(scores[i], abs=1e-3)
+        result = inspector.inspect(frames)
+        assert result.score == pytest.approx(scores[i], abs=1e-3)
+        assert result.error is None  # the dented part scores high, and did not move: the score is its reason
     # a good part's frames in the other order: the tilt's sign flips, and it scores above every good part
     good_scores = [scores[int(r["index"])] for r in rows if r["label"] == "0"]
     frames = [Frame(raw, "Mono8", 8, k + 1, 0, 0) for k, raw in enumerate(ds.load(0, ground_truth=False).raws)]
     assert inspector.inspect(frames[::-1]).score > max(good_scores)
+    # the part moved between its frames (2 px, a whole polarizer superpixel): it scores high, and the reason says why
+    moved = [frames[0], Frame(np.ascontiguousarray(np.roll(frames[1].raw, 2, axis=1)), "Mono8", 8, 2, 0, 0)]
+    result = inspector.inspect(moved)
+    assert result.score is not None and result.score > detector.threshold and result.error is not None
+    assert "the part moved 1.9" in result.error and "(at most 0.35 px; score" in result.error
     # station run: the virtual camera plays each part's two frames, the station triggers and judges them as one
     cfg = tmp_path / "station.toml"
     toml = f"""
