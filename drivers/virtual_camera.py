@@ -11,7 +11,7 @@ defect mask only; the float ground truth is not loaded), stratified over good an
 ``cache_mb``; grabs then cost no I/O. Pool arrays are read-only and shared between frames (no copy per frame).
 
 A set rendered with one frame per dome segment (``station render --dome-segments``) is played frame by frame:
-``[camera] frames_per_part`` must equal its number of segments, and each part's frames come in the segments' order,
+the camera's ``frames_per_part`` must equal its number of segments, and each part's frames come in the segments' order,
 one per ``trigger()``, before the next part is drawn.
 
 Timing follows the camera config: ``free_run`` paces frames at ``frame_rate_hz``; ``software`` delivers one
@@ -96,11 +96,11 @@ class VirtualCamera(CameraBase):
         ds = open_dataset(self.sim.dataset)
         frames = max(1, len(ds.dome_segments))
         if frames != self.config.frames_per_part:  # playing another number of frames would mislead the model
+            hint = "" if ds.dome_segments else " or play a set rendered with --dome-segments"
             raise CameraConfigError(f"virtual camera: {self.sim.dataset} holds {describe_segments(ds.dome_segments)}"
                                     + (" for each part" if ds.dome_segments else "") + ", the camera's "
-                                    f"frames_per_part is {self.config.frames_per_part}: set [camera] frames_per_part "
-                                    f"= {frames}" + (" or play a set rendered with --dome-segments"
-                                                     if not ds.dome_segments else ""))
+                                    f"frames_per_part is {self.config.frames_per_part}: set frames_per_part = "
+                                    f"{frames}{hint}")
         indices = ds.indices(self.sim.split, empty=None)
         if not indices:
             raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no complete samples"

@@ -35,7 +35,7 @@ from model.priors.api import compute_set_priors
 from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
 from station.errors import UserError
 from station.inspector import significant_bits
-from station.mvtec import INFO_FILE, read_info
+from station.mvtec import INFO_FILE, later_frame, read_info
 
 
 @dataclass
@@ -107,10 +107,6 @@ def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, .
                                  **({"dome_segments": list(segments)} if segments else {}),
                                  "note": "written by station capture"}, indent=1))
 
-
-def later_frame(out: Path, rel: str | Path, k: int) -> Path:
-    """Where frame ``k`` >= 1 of the part whose first frame is ``out / rel`` is kept (module docstring)."""
-    return out / f"frame-{k}" / rel
 
 
 def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", split: str | None = None,

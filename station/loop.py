@@ -78,8 +78,8 @@ Every part is then rejected as late, each row saying so but nothing saying why."
 
 
 class SetIncomplete(Exception):
-    """``[camera] frames_per_part`` > 1: a frame after the first of a part's set did not come (the grab timed out);
-    the part cannot be judged on fewer frames than the model reads."""
+    """A frame per dome segment (``[camera] dome_segments``): a frame after the first of a part's set did not come (the
+    grab timed out); the part cannot be judged on fewer frames than the model reads."""
 
 
 class FramesLost(Exception):
@@ -209,8 +209,8 @@ class Part:
     or the grab's start when trigger-free. Every latency of the part counts from here."""
     frame: Frame | None = None
     frames: tuple[Frame, ...] = ()
-    """All of the part's frames when it is imaged more than once (``[camera] frames_per_part``, one per dome segment),
-    the first being ``frame``; empty for one frame per part."""
+    """All of the part's frames when it is imaged once per dome segment (``[camera] dome_segments``), the first being
+    ``frame``; empty for one frame per part."""
     grab_ms: float | None = None
     error: str | None = None
     announced: bool = True
@@ -267,7 +267,8 @@ class Station:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold = inspector.detector.threshold if threshold is None else threshold
         self.frames_per_part = camera.config.frames_per_part
-        """Frames that make one part (``[camera] frames_per_part``): the station triggers each (software trigger)."""
+        """Frames that make one part (the camera's ``frames_per_part``, from ``[camera] dome_segments``): the station
+        triggers each (software trigger)."""
         self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         inspector.slow_priors_ms = SLOW_PRIORS_SHARE * cycle_time_ms
         self.settle_timeout_s = settle_timeout_s

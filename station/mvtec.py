@@ -130,6 +130,12 @@ def scan_mvtec(root: str | Path) -> list[MvtecItem]:
     return items
 
 
+def later_frame(root: Path, rel: str | Path, k: int) -> Path:
+    """Where frame ``k`` >= 1 of the part whose first frame is ``root / rel`` is kept (``frame-K/``, module
+    docstring)."""
+    return root / f"frame-{k}" / rel
+
+
 def read_info(root: str | Path) -> dict:
     """``polar_ano.json`` of an MVTec-layout folder ({} when absent); UserError naming the file and key unless it is
     an object whose ``bit_depth`` (when present) is an integer in 1..16, ``layout`` a string and ``dome_segments``
@@ -264,7 +270,7 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
             defect = item.mask is not None and read_mask(item.mask, raw.shape)
             later = []
             for k in range(1, len(segments)):  # the part's other frames, one per dome segment
-                path = src / f"frame-{k}" / item.path.relative_to(src)
+                path = later_frame(src, item.path.relative_to(src), k)
                 if not path.is_file():
                     raise UserError(f"{path}: missing; {src / INFO_FILE} names {len(segments)} dome segments, so "
                                     f"each part has {len(segments)} frames")
