@@ -583,7 +583,8 @@ class Station:
                                       p["intensity"], p.get("dolp"), p.get("aolp"), p.get("normal"),
                                       inspection.heatmap, "\n".join(t for t in (record.reason, record.drift) if t),
                                       self.stats.summary(),
-                                      {k: v for k in FRAME_CHECKS if (v := getattr(record, k)) is not None}))
+                                      {k: v for k in FRAME_CHECKS if (v := getattr(record, k)) is not None},
+                                      tilt=p.get("tilt_x")))
 
     def _refused(self, trigger: Trigger) -> str:
         """A part announced while the station stops: recorded, then rejected (``LineLink.refuse_triggers``)."""

@@ -22,7 +22,8 @@ DISPLAY_HZ = 30.0
 @dataclass(frozen=True)
 class ViewFrame:
     """What one inspected part shows. Arrays are (H, W) float32 in the priors' units (``model.priors``),
-    ``normal`` (H, W, 3) unit vectors, ``heatmap`` anomaly probability in [0, 1]."""
+    ``normal`` (H, W, 3) unit vectors, ``tilt`` the surface's tilt toward +x in [-1, 1] (``tilt_x``, a model that
+    reads a frame per dome segment: shown where the normal would be), ``heatmap`` anomaly probability in [0, 1]."""
 
     part_id: str
     decision: Verdict | str
@@ -34,6 +35,7 @@ class ViewFrame:
     aolp: np.ndarray | None = None
     normal: np.ndarray | None = None
     heatmap: np.ndarray | None = None
+    tilt: np.ndarray | None = None
     reason: str | None = None
     stats: dict[str, float] = field(default_factory=dict)
     """Running statistics shown under the badge, e.g. parts, rejects, parts_per_s, p99_ms."""
@@ -100,6 +102,7 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
             self.graphics = pg.GraphicsLayoutWidget()
             layout.addWidget(self.graphics, 0, 0, 1, 2)
             self.images: dict[str, pg.ImageItem] = {}
+            self.labels: dict[str, pg.TextItem] = {}
             for i, (name, title) in enumerate([("intensity", "intensity + anomaly"), ("dolp", "DoLP [0, 1]"),
                                                ("aolp", "AoLP [0, pi) (cyclic)"), ("normal", "normal (n+1)/2")]):
                 view = self.graphics.addViewBox(row=i // 2, col=i % 2, lockAspect=True, invertY=True)
@@ -110,6 +113,7 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
                 self.images[name] = item
                 label = pg.TextItem(title, color="w", anchor=(0, 0), fill=(0, 0, 0, 160))
                 view.addItem(label, ignoreBounds=True)
+                self.labels[name] = label
                 if name == "intensity":
                     self.heat = pg.ImageItem(axisOrder="row-major")
                     self.heat.setLookupTable(heatmap_lut())
@@ -148,7 +152,13 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
             if f.aolp is not None:
                 self.images["aolp"].setImage(f.aolp, levels=(0.0, np.pi))
             if f.normal is not None:
+                self.images["normal"].setLookupTable(None)
                 self.images["normal"].setImage(normal_to_rgb(f.normal))
+                self.labels["normal"].setText("normal (n+1)/2")
+            elif f.tilt is not None:  # the same panel: a diverging map, leaning toward +x in red
+                self.images["normal"].setColorMap(pg.colormap.get("CET-D1"))
+                self.images["normal"].setImage(f.tilt, levels=(-1.0, 1.0))
+                self.labels["normal"].setText("tilt toward +x [-1, 1]")
             self.badge.setText(f.decision.upper().replace("_", " "))
             self._style_badge(f.decision)
             score = "" if f.score is None else f"score {f.score:.3f}"

@@ -103,3 +103,26 @@ def test_viewer_soak_thousands_of_frames(app):
         window.refresh()
         app.processEvents()
     assert feed.shown == 3000
+
+
+def test_a_segment_models_tilt_shows_where_the_normal_would(app, tmp_path):
+    """A part judged on a frame per dome segment has no normal prior; its tilt shows in that panel, a part leaning
+    toward +x on one side of the map's colours and toward -x on the other, and the label says which it is."""
+    import dataclasses
+
+    feed = ViewerFeed()
+    window = create_window(feed)
+    window.resize(900, 600)
+    window.show()
+    tilted = dataclasses.replace(frame("pass", anomaly=False), normal=None, heatmap=None)
+    shots = []
+    for lean in (0.8, -0.8):
+        feed.put(dataclasses.replace(tilted, tilt=np.full((96, 128), lean, np.float32)))
+        window.refresh()
+        shots.append(grab(app, window, tmp_path, f"tilt{lean}.png"))
+        assert window.labels["normal"].toPlainText() == "tilt toward +x [-1, 1]"
+    # the panel's colours differ between the two leans (the rest of the window is the same)
+    assert np.abs(shots[0].astype(int) - shots[1].astype(int)).sum(-1).astype(bool).sum() > 5000
+    feed.put(frame("pass", anomaly=False))
+    window.refresh()
+    assert window.labels["normal"].toPlainText() == "normal (n+1)/2"
