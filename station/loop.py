@@ -301,6 +301,8 @@ class Station:
         self._count_lock = threading.Lock()
         self._counter = 0
         self._records = RecordKeeper(inspection_log)
+        self._written: tuple[Part, InspectionRecord, bool] | None = None  # the part being processed: its row, PLC
+        self._answered: Part | None = None  # ... and whether the PLC was told (``_process_failed``)
         self.stale_frames = 0
         """Frames skipped because they were completed before their part could have been imaged."""
         self.fatal: str | None = None
@@ -531,10 +533,41 @@ class Station:
                     late(1e3 * (time.perf_counter() - part.t_trigger), self.cycle_time_ms, answer.reason))
         self._finish(part, None, decision)
 
+    def _process_safely(self, part: Part) -> None:
+        """``_process``; an error it does not handle itself (a bug, a failing reject store) rejects the part with the
+        error, in its row and at the PLC (``_process_failed``), and stops the station as a lost camera does."""
+        self._written, self._answered = None, None
+        try:
+            self._process(part)
+        except Exception as exc:
+            self._process_failed(part, exc)
+
+    def _process_failed(self, part: Part, exc: Exception) -> None:
+        """The part gets its one row and its REJECT, whichever step failed: no row yet, a row and the reject; a row not
+        yet told to the PLC, the row amended (a pass) and the reject. Then the station stops; the parts already
+        taken are judged, and later triggers refused, as at any stop."""
+        why = f"station error: {type(exc).__name__}: {exc}"
+        log.exception("part %s: %s; it is rejected and the station stops", part.part_id, why)
+        self.fatal = self.fatal or f"processing part {part.part_id} failed: {why}"
+        self._stop.set()
+        decision = Decision(Verdict.REJECT, f"not judged: {why}")
+        try:
+            if self._written is None or self._written[0] is not part:
+                self._finish(part, None, decision, plain=True)
+            elif self._answered is not part and self._written[2]:
+                record = self._written[1]
+                if record.decision == Verdict.PASS:
+                    record = self._records.amend(record, decision)
+                self.link.report(part.part_id, Verdict.REJECT, record.reason,
+                                 deadline=part.t_trigger + self.cycle_time_ms / 1e3)
+        except Exception:
+            log.exception("part %s could not be answered after that error", part.part_id)
+
     def _finish(self, part: Part, inspection: Inspection | None, decision: Decision,
-                not_inspected: bool = False) -> None:
+                not_inspected: bool = False, plain: bool = False) -> None:
         """Record the part (write-ahead: durable before the PLC hears of it), then tell the PLC, update statistics
-        and the viewer. A row that cannot be written turns the decision into a reject (fail closed)."""
+        and the viewer. A row that cannot be written turns the decision into a reject (fail closed). ``plain``:
+        without the reject's image and the viewer (answering after an error, ``_process_failed``)."""
         t_decided = time.perf_counter()
         empty = decision.decision == Verdict.EMPTY
         # an announced part that is not in view fails closed (REJECT); trigger-free, an empty frame is no part
@@ -548,7 +581,7 @@ class Station:
         if priors_ms is not None and "presence" in timings:
             priors_ms += timings["presence"]  # the log has no column of its own for the check (~0.1 ms)
         image_path = None
-        if (self.rejects is not None and frame is not None and decision.decision != Verdict.PASS
+        if (not plain and self.rejects is not None and frame is not None and decision.decision != Verdict.PASS
                 and (not empty or tell_plc)):
             image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
                                            inspection.heatmap if inspection else None,
@@ -567,24 +600,37 @@ class Station:
             drift=self.drift.warning if self.drift is not None else None,
             **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks})
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
+        self._written = (part, record, tell_plc)
         if tell_plc and record.decision == Verdict.PASS:
             late_ms = 1e3 * (time.perf_counter() - part.t_trigger)
             if late_ms > self.cycle_time_ms:  # writing the row took the rest of the cycle: a late PASS is no PASS
                 record = self._records.amend(record, late(late_ms, self.cycle_time_ms, "with its log row"))
+                self._written = (part, record, tell_plc)
         if tell_plc:
             self.link.report(part.part_id, Verdict.PASS if record.decision == Verdict.PASS else Verdict.REJECT,
                              record.reason,
                              deadline=part.t_trigger + self.cycle_time_ms / 1e3)
+        self._answered = part
         self.stats.add(record.decision, record.total_ms, gt.label if gt is not None else None,
                        gt.present if gt is not None else True)
-        if self.viewer is not None and inspection is not None and "intensity" in inspection.priors:
-            p = inspection.priors
+        if not plain and self.viewer is not None and inspection is not None and "intensity" in inspection.priors:
+            self._show(part, inspection, record)
+
+    def _show(self, part: Part, inspection: Inspection, record: InspectionRecord) -> None:
+        """The part in the viewer. The viewer is a display: an error in it is logged once, and the station goes on
+        without it (it used to end processing, leaving the parts behind without answer or row)."""
+        assert self.viewer is not None
+        p = inspection.priors
+        try:
             self.viewer.put(ViewFrame(part.part_id, record.decision, inspection.score, self.threshold,
                                       p["intensity"], p.get("dolp"), p.get("aolp"), p.get("normal"),
                                       inspection.heatmap, "\n".join(t for t in (record.reason, record.drift) if t),
                                       self.stats.summary(),
                                       {k: v for k in FRAME_CHECKS if (v := getattr(record, k)) is not None},
                                       tilt=p.get("tilt_x")))
+        except Exception:
+            log.exception("the viewer failed on part %s; inspection goes on without it", part.part_id)
+            self.viewer = None
 
     def _refused(self, trigger: Trigger) -> str:
         """A part announced while the station stops: recorded, then rejected (``LineLink.refuse_triggers``)."""
@@ -631,7 +677,7 @@ class Station:
                     break
                 self._finish_dropped()
                 if part is not None:
-                    self._process(part)
+                    self._process_safely(part)
                 self._answer_expired()
                 self._records.settle(self.link.outcomes())
                 if time.perf_counter() - last > progress_every_s:

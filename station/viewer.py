@@ -35,12 +35,12 @@ class ViewFrame:
     aolp: np.ndarray | None = None
     normal: np.ndarray | None = None
     heatmap: np.ndarray | None = None
-    tilt: np.ndarray | None = None
     reason: str | None = None
     stats: dict[str, float] = field(default_factory=dict)
     """Running statistics shown under the badge, e.g. parts, rejects, parts_per_s, p99_ms."""
     checks: dict[str, float] = field(default_factory=dict)
     """The model's frame checks of this part (``model.draem.frame_checks.FRAME_CHECKS``), shown beside its score."""
+    tilt: np.ndarray | None = None
 
 
 class ViewerFeed:

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from line_sets import make_line_set, make_segment_set  # same folder (pytest puts it on sys.path)
+from test_run import write_config
 
 from station.cli import main
 
@@ -76,24 +77,7 @@ def test_train_variation_and_eval_find_a_dent_seen_only_in_the_tilt(tmp_path: Pa
     assert result.score is not None and result.score > detector.threshold and result.error is not None
     assert "the part moved 1.9" in result.error and "(at most 0.35 px; score" in result.error
     # station run: the virtual camera plays each part's two frames, the station triggers and judges them as one
-    cfg = tmp_path / "station.toml"
-    toml = f"""
-[camera]
-frame_rate_hz = 50.0
-dome_segments = [0.0, 180.0]
-[acquisition]
-cycle_time_ms = 60000.0
-backpressure = "block"
-[model]
-path = "{model}"
-[sim]
-dataset = "{val}"
-defect_rate = 0.5
-[log]
-path = "{tmp_path / 'log.sqlite'}"
-image_dir = "{tmp_path / 'rejects'}"
-"""
-    cfg.write_text(toml)
+    cfg = write_config(tmp_path, model, val, camera="dome_segments = [0.0, 180.0]")
     assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "6"]) == 0
     logged = sqlite3.connect(tmp_path / "log.sqlite").execute(
         "SELECT decision, camera_frame_id, image_path FROM inspections ORDER BY id").fetchall()
@@ -107,7 +91,7 @@ image_dir = "{tmp_path / 'rejects'}"
     for line, message in (("", "takes one frame per part, but the model"),
                           ("dome_segments = [180.0, 0.0]", "takes a frame per dome segment at 180, 0 deg, but the "
                                                            "model")):
-        cfg.write_text(toml.replace("dome_segments = [0.0, 180.0]", line))
+        write_config(tmp_path, model, val, camera=line)
         assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "6"]) == 2
         err = capsys.readouterr().err
         assert message in err and "reads a frame per dome segment at 0, 180 deg: set dome_segments = [0, 180]" in err

@@ -8,9 +8,9 @@ import time
 
 import numpy as np
 import pytest
-from test_loop import ScriptedLink  # same folder (pytest puts it on sys.path)
+from test_loop import ScriptedCamera, ScriptedLink  # same folder (pytest puts it on sys.path)
 
-from drivers.camera import CameraBase, CameraConfig
+from drivers.camera import CameraConfig
 from drivers.errors import CameraConfigError, CameraTimeout
 from drivers.frame import Frame, GroundTruth
 from model.priors import IMX250MZR
@@ -22,24 +22,13 @@ from station.reject_store import RejectStore
 BRIGHT, DARK = 200, 20
 
 
-class SetCamera(CameraBase):
+class SetCamera(ScriptedCamera):
     """Software-triggered frames of two per part: each ``script`` entry is a frame's brightness, a CameraTimeout to
     raise, or ("stale", brightness): a frame completed a second ago (before the trigger it is grabbed after)."""
 
     def __init__(self, script, frames_per_part=2):
-        super().__init__(CameraConfig(trigger="software", frames_per_part=frames_per_part))
-        self.script = list(script)
-        self.triggers = 0
-        self.frame_id = 0
-
-    def open(self): ...
-    def close(self): ...
-    def start(self): ...
-    def stop(self): ...
-    def configure(self, config): ...
-
-    def trigger(self):
-        self.triggers += 1
+        super().__init__(script, trigger="software")
+        self.config = CameraConfig(trigger="software", frames_per_part=frames_per_part)
 
     def grab(self, timeout_ms=None):
         if not self.script:

@@ -925,3 +925,45 @@ def test_priors_that_take_most_of_the_cycle_are_named_once_with_the_keys_that_he
     with caplog.at_level("WARNING", logger="station.inspector"):
         station.run(max_parts=2)
     assert not [r for r in caplog.records if "demosaic and priors took" in r.getMessage()]
+
+
+def test_a_failing_viewer_costs_no_part_its_answer_or_row(tmp_path):
+    """The viewer is a display: an error in it (here its feed) must not stop inspection. It used to end the
+    processing thread after the first part's row, leaving the parts behind it without answer or row."""
+    from station.viewer import ViewerFeed
+
+    class BrokenFeed(ViewerFeed):
+        def put(self, frame):
+            raise RuntimeError("display gone")
+
+    link = ScriptedLink(4)
+    station, log = make_station(tmp_path, ScriptedCamera([0, 1, 0, 0], trigger="software"), BrightnessDetector(),
+                                link, queue_size=8, backpressure="block", viewer=BrokenFeed())
+    station.run(max_parts=4)
+    assert [r["decision"] for r in log.rows()] == ["pass", "reject", "pass", "pass"]
+    assert dict(link.reports) == {"T0": "pass", "T1": "reject", "T2": "pass", "T3": "pass"}
+    assert station.fatal is None
+
+
+def test_an_unexpected_error_rejects_its_part_with_a_row_and_stops_the_station(tmp_path):
+    """An error no step handles (here the reject store's, on the second part) used to end processing: that part and
+    the ones taken after it had no answer and no row. Now the part is rejected with the error, in its row and at the
+    PLC, the station stops as for a lost camera, and every other part still gets its answer and row."""
+    from station.reject_store import RejectStore
+
+    class BrokenStore(RejectStore):
+        def save(self, *args, **kwargs):
+            raise ValueError("cannot pickle this heatmap")
+
+    link = ScriptedLink(4)
+    station, log = make_station(tmp_path, ScriptedCamera([0, 1, 0, 0], trigger="software"), BrightnessDetector(),
+                                link, queue_size=8, backpressure="block", rejects=BrokenStore(tmp_path / "img"))
+    station.run(max_parts=4)
+    rows = {r["part_id"]: r for r in log.rows()}
+    reports = dict(link.reports)
+    assert rows["T0"]["decision"] == "pass" and reports["T0"] == "pass"
+    assert rows["T1"]["decision"] == "reject" and reports["T1"] == "reject"
+    assert "not judged: station error: ValueError: cannot pickle this heatmap" in rows["T1"]["reason"]
+    assert "processing part T1 failed" in station.fatal
+    assert set(rows) == set(reports) == {f"T{i}" for i in range(len(rows))}  # each part: one row and one answer
+    assert all(len([r for r in log.rows() if r["part_id"] == p]) == 1 for p in rows)

@@ -47,11 +47,13 @@ def make_model(path: Path, priors: tuple[str, ...] = ("intensity", "dolp", "aolp
     return path
 
 
-def write_config(tmp: Path, model: Path, dataset: Path, extra: str = "") -> Path:
+def write_config(tmp: Path, model: Path, dataset: Path, extra: str = "", camera: str = "") -> Path:
+    """``station.toml`` for a simulated run; ``camera``: more ``[camera]`` lines, ``extra``: more tables."""
     cfg = tmp / "station.toml"
     cfg.write_text(f"""
 [camera]
 frame_rate_hz = 20.0
+{camera}
 [acquisition]
 cycle_time_ms = 60000.0
 backpressure = "block"
