@@ -86,12 +86,22 @@ def run(args: argparse.Namespace) -> int:
         else:
             from station.viewer import run_viewer
 
-            worker = threading.Thread(target=station.run, args=(args.frames,), name="station", daemon=True)
+            failed: list[BaseException] = []  # what ended the station's thread, raised here as without a viewer
+
+            def inspect() -> None:
+                try:
+                    station.run(args.frames)
+                except BaseException as exc:
+                    failed.append(exc)
+
+            worker = threading.Thread(target=inspect, name="station", daemon=True)
             with station.stop_on_signals():  # Ctrl-C / SIGTERM stop the station; the window then closes itself
                 worker.start()
                 run_viewer(viewer, done=lambda: not worker.is_alive())  # until the window closes or the run ends
                 station.stop()
                 worker.join()
+            if failed:
+                raise failed[0]
             stats = station.stats
         camera_stats = camera.statistics().as_dict()
     summary = {**stats.summary(), "confusion": dict(stats.confusion), "camera": camera_stats,

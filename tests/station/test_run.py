@@ -136,6 +136,22 @@ def test_viewer_run_ends_with_the_frames(setup, monkeypatch) -> None:
     assert sqlite3.connect(tmp / "log.sqlite").execute("SELECT COUNT(*) FROM inspections").fetchone()[0] == 4
 
 
+def test_a_viewer_run_whose_station_fails_does_not_exit_as_if_it_had_run(setup, monkeypatch) -> None:
+    """With ``--viewer`` the station runs on a thread of its own; what ended that thread used to vanish, and the
+    command exited 0."""
+    pytest.importorskip("pyqtgraph")
+    monkeypatch.setenv("QT_QPA_PLATFORM", "offscreen")
+    from station.loop import Station
+
+    def broken(self, max_parts=None, progress_every_s=5.0):
+        raise RuntimeError("acquisition thread could not start")
+
+    monkeypatch.setattr(Station, "run", broken)
+    tmp, model, ds = setup
+    with pytest.raises(RuntimeError, match="could not start"):
+        main(["run", "--config", str(write_config(tmp, model, ds)), "--frames", "4", "--viewer"])
+
+
 def test_viewer_run_stops_cleanly_on_sigterm(setup) -> None:
     """With ``--viewer`` the station runs beside the Qt loop; SIGTERM used to kill the process (no summary, parts in
     flight unanswered). Now it stops as without a viewer: every trigger answered and logged, the summary written."""
