@@ -480,7 +480,8 @@ class Station:
         while self._dropped:
             part = self._dropped.popleft()
             reason = part.error or f"dropped: processing queue full ({self.queue.policy})"
-            self._finish(part, None, Decision(Verdict.REJECT, reason), not_inspected=True)
+            self._safely(part, lambda p=part, r=reason: self._finish(p, None, Decision(Verdict.REJECT, r),
+                                                                     not_inspected=True))
 
     def _answer_expired(self) -> None:
         """Parts announced more than a cycle ago that acquisition has not taken (camera stalled or reconnecting,
@@ -488,8 +489,9 @@ class Station:
         for trigger in self.link.expired(time.perf_counter() - self.cycle_time_ms / 1e3):
             self._count_part()
             age_ms = 1e3 * (time.perf_counter() - trigger.t_arrival)
-            self._finish(Part(trigger.part_id, trigger.t_arrival), None,
-                         late(age_ms, self.cycle_time_ms, "no frame taken: camera or acquisition busy"))
+            part = Part(trigger.part_id, trigger.t_arrival)
+            self._safely(part, lambda p=part, a=age_ms: self._finish(
+                p, None, late(a, self.cycle_time_ms, "no frame taken: camera or acquisition busy")))
 
     def _process(self, part: Part) -> None:
         inspection = None
@@ -533,12 +535,13 @@ class Station:
                     late(1e3 * (time.perf_counter() - part.t_trigger), self.cycle_time_ms, answer.reason))
         self._finish(part, None, decision)
 
-    def _process_safely(self, part: Part) -> None:
-        """``_process``; an error it does not handle itself (a bug, a failing reject store) rejects the part with the
-        error, in its row and at the PLC (``_process_failed``), and stops the station as a lost camera does."""
+    def _safely(self, part: Part, step: Callable[[], None]) -> None:
+        """``step`` (judging or answering ``part``); an error it does not handle itself (a bug, a failing reject
+        store) rejects the part with the error, in its row and at the PLC (``_process_failed``), and stops the
+        station as a lost camera does."""
         self._written, self._answered = None, None
         try:
-            self._process(part)
+            step()
         except Exception as exc:
             self._process_failed(part, exc)
 
@@ -677,7 +680,7 @@ class Station:
                     break
                 self._finish_dropped()
                 if part is not None:
-                    self._process_safely(part)
+                    self._safely(part, lambda p=part: self._process(p))
                 self._answer_expired()
                 self._records.settle(self.link.outcomes())
                 if time.perf_counter() - last > progress_every_s:

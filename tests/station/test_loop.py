@@ -967,3 +967,24 @@ def test_an_unexpected_error_rejects_its_part_with_a_row_and_stops_the_station(t
     assert "processing part T1 failed" in station.fatal
     assert set(rows) == set(reports) == {f"T{i}" for i in range(len(rows))}  # each part: one row and one answer
     assert all(len([r for r in log.rows() if r["part_id"] == p]) == 1 for p in rows)
+
+
+def test_an_error_answering_a_dropped_part_costs_no_part_its_row(tmp_path):
+    """The same for parts dropped by backpressure, answered outside the judging step."""
+    from station.reject_store import RejectStore
+
+    class BrokenStore(RejectStore):
+        def save(self, *args, **kwargs):
+            raise ValueError("cannot write")
+
+    n = 12
+    link = ScriptedLink(n)
+    station, log = make_station(tmp_path, ScriptedCamera([0] * n, trigger="software"),
+                                BrightnessDetector(delay_s=0.02), link, queue_size=1, backpressure="drop_oldest",
+                                rejects=BrokenStore(tmp_path / "img"))
+    station.run(max_parts=n)
+    rows = list(log.rows())
+    assert any("station error: ValueError: cannot write" in (r["reason"] or "") for r in rows)
+    assert station.fatal is not None
+    assert sorted(r["part_id"] for r in rows) == sorted(dict(link.reports)) == sorted(set(r["part_id"] for r in rows))
+    assert len(rows) == n  # every part announced: taken and answered, or refused at the stop, each with its row
