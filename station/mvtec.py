@@ -338,7 +338,8 @@ def export_mvtec(data: str | Path, out: str | Path, object_masks: bool = True, p
     """Write the set ``data`` in the MVTec AD layout under ``out``: each sample as ``<split>/<good|type>/<index>.png``
     (raw mosaic, codes unchanged), defect masks as ``ground_truth/<type>/<index>_mask.png`` (0/255), object masks
     (``object_masks=True``, when the set has them) under ``object_masks/``, and ``polar_ano.json`` (bit depth,
-    layout, source). The val split goes to ``val/``; defective train samples to ``test/``."""
+    layout, source). The val split goes to ``val/``; defective train samples to ``test/``. A set with a frame per
+    dome segment writes each part's later frames under ``frame-K/`` and its segments in ``polar_ano.json``."""
     from tqdm import tqdm
 
     ds = open_dataset(data)
@@ -355,6 +356,8 @@ def export_mvtec(data: str | Path, out: str | Path, object_masks: bool = True, p
         kind = (s.params.get("defect") or {}).get("type", "defect") if s.label else "good"
         name = f"{i:06d}"
         _write(out / split / kind / f"{name}.png", s.raw)
+        for k, later in enumerate(s.raws[1:], 1):
+            _write(later_frame(out, Path(split) / kind / f"{name}.png", k), later)
         if s.label and s.defect_mask is not None:
             _write(out / "ground_truth" / kind / f"{name}_mask.png", s.defect_mask.astype(np.uint8) * 255)
         if object_masks and s.object_mask is not None:
@@ -362,6 +365,7 @@ def export_mvtec(data: str | Path, out: str | Path, object_masks: bool = True, p
         counts[split] += 1
     (out / INFO_FILE).write_text(json.dumps({
         "bit_depth": ds.manifest.get("bit_depth") or 8, "layout": ds.manifest.get("layout", "imx250mzr"),
+        **({"dome_segments": list(ds.dome_segments)} if ds.dome_segments else {}),
         "source": str(Path(data).resolve()), "note": "raw polarizer mosaics; codes of bit_depth bits"}, indent=1))
     return ExportReport(out, dict(counts), moved)
 
