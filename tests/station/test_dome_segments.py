@@ -189,7 +189,8 @@ def test_capture_and_import_keep_each_parts_frames(tmp_path: Path, capsys) -> No
         assert any(all(np.array_equal(a, b) for a, b in zip(raws, o, strict=True)) for o in originals)
     # station export writes a segment set the same way, and it imports back with its frames
     assert main(["export", "--data", str(pair), "--out", str(tmp_path / "exp")]) == 0
-    assert main(["import", "--from", str(tmp_path / "exp"), "--out", str(tmp_path / "back"), "--val-fraction", "0"]) == 0
+    assert main(["import", "--from", str(tmp_path / "exp"), "--out", str(tmp_path / "back"),
+                 "--val-fraction", "0"]) == 0
     back = open_dataset(tmp_path / "back")
     assert back.dome_segments == (0.0, 180.0)
     for i in back.indices(None):
