@@ -17,6 +17,11 @@ What the device offers (its GenICam XML is Aravis's fake-camera XML with the Pix
                   little-endian words for 10-16 bits, so the receiver decodes the right full scale).
     trigger       free run at AcquisitionFrameRate, or TriggerMode On + TriggerSource Software (one frame per
                   TriggerSoftware; the device checks for a trigger ``trigger_poll_hz`` times a second).
+    frame sets    a set with a frame per dome segment (``station render --dome-segments``) is served part by part,
+                  its frames in the segments' order, one per frame sent: the station, with ``[camera]
+                  dome_segments`` and a software trigger, triggers each. A trigger the device never sees shifts
+                  every later set by a frame (a real line's light sequencer, reset by the PLC per part, does not):
+                  the station then rejects those parts, whose frames disagree.
     ignored       ExposureTime and Gain (the frames are rendered), binning.
     frame ids     16-bit GigE Vision block ids, wrapping 65535 -> 1; timestamps in nanoseconds since
                   1970 (host clock at microsecond resolution), carried in the GVSP leader.
@@ -281,6 +286,11 @@ class GvCameraServer:
                                   "process or serve inside a private network namespace (unshare -n)")
         _check_gvcp_port_free(interface_address(self.interface))
         try:
+            from sim.dataset import open_dataset
+
+            frames = max(1, len(open_dataset(self._camera.sim.dataset).dome_segments))
+            if frames > 1:  # a part's frames, one per frame sent: each drawn by a trigger of the source
+                self._camera.configure(CameraConfig(trigger="software", frame_rate_hz=1e9, frames_per_part=frames))
             self._camera.open()
             self._camera.start()
             self._up()
@@ -379,6 +389,8 @@ class GvCameraServer:
             return
         w, h = lib.arv_buffer_get_image_width(buffer), lib.arv_buffer_get_image_height(buffer)
         x, y = lib.arv_buffer_get_image_x(buffer), lib.arv_buffer_get_image_y(buffer)
+        if self._camera.config.trigger == "software":  # a set's next frame
+            self._camera.trigger()
         frame = self._camera.grab(timeout_ms=1000)
         region = frame.raw[y:y + h, x:x + w]
         if region.shape != (h, w):  # a region past the sensor edge: the rest stays black

@@ -250,3 +250,95 @@ image_dir = "{tmp_path / 'rejects'}"
     assert all(ts in served for _, ts in rows)  # every inspected part is scored against its ground truth
     assert len(served) == len(truth.read_text().splitlines()) >= 6
     assert all(json.loads(line)["sample_index"] in range(10) for line in truth.read_text().splitlines())
+
+
+def test_a_segment_set_is_served_a_parts_frames_in_turn(tmp_path: Path) -> None:
+    """A set with a frame per dome segment: each software trigger gets the part's next frame, in the segments'
+    order, over the real protocol; the station triggers each (``[camera] dome_segments``)."""
+    from sim.scene import SceneConfig
+
+    root = tmp_path / "pair"
+    init_dataset(root, DatasetSpec(width=W, height=H, dome_segments=(0.0, 180.0),
+                                   scene=SceneConfig(ambient_gradient=0.8)), 6)
+    y, x = np.mgrid[:H, :W]
+    for i in range(6):  # pixel (0, 0): the sample; (0, 1): the frame
+        raws = tuple(((x + 3 * y + 17 * i + 101 * k) % 256).astype(np.uint8) for k in range(2))
+        for k, raw in enumerate(raws):
+            raw[0, 0], raw[0, 1] = i, k
+        label = int(i in DEFECTIVE)
+        write_sample(root, Sample(i, raws[0], {"index": i, "split": split_of(i), "label": label,
+                                               "defect": {"type": "dent"} if label else None}, label, split_of(i),
+                                  defect_mask=np.zeros((H, W), bool), segment_raws=raws))
+    sets = {i: open_dataset(root).load(i, ground_truth=False).raws for i in range(6)}
+    with GvCameraServer(str(root), defect_rate=0.5) as server, AravisCamera(cfg(trigger="software")) as cam:
+        cam.start()
+        got = []
+        for _ in range(8):
+            cam.trigger()
+            got.append(cam.grab())
+        truth = {r.timestamp_ns: r for r in server.recent}
+    for first, second in zip(got[::2], got[1::2], strict=True):
+        index = truth[first.timestamp_ns].sample_index
+        assert truth[second.timestamp_ns].sample_index == index
+        assert first.raw.tobytes() == sets[index][0].tobytes() and second.raw.tobytes() == sets[index][1].tobytes()
+
+
+@pytest.mark.slow  # ~10 s: torch, a model warm-up and a second process
+def test_station_run_takes_a_served_segment_set_part_by_part(tmp_path: Path) -> None:
+    """``station serve-camera`` of a set with a frame per dome segment, ``station run --camera aravis`` with
+    ``[camera] dome_segments``: each part's two frames over the real protocol, one row per part."""
+    torch = pytest.importorskip("torch")
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+    from station.cli import main
+    from tests.station.line_sets import make_segment_set
+
+    ds = make_segment_set(tmp_path / "pair", n=8)
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "tilt_x"), "fused", 32, "center",
+                                           dome_segments=(0.0, 180.0)))
+    det.init_weights(torch.Generator().manual_seed(0))
+    model = tmp_path / "model" / "best"
+    save_checkpoint(model, det, threshold=0.5, threshold_rule="test")
+    truth = tmp_path / "truth.jsonl"
+    server = subprocess.Popen([sys.executable, "-m", "station.cli", "serve-camera", "--dataset", str(ds),
+                               "--defect-rate", "0.5", "--truth", str(truth)],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              cwd=Path(__file__).parents[3], env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    try:
+        assert server.stdout is not None
+        banner = ""
+        while "station.toml:" not in banner:
+            line = server.stdout.readline()
+            assert line, f"serve-camera ended: {banner}"
+            banner += line
+        cfg_path = tmp_path / "station.toml"
+        cfg_path.write_text(f"""
+[camera]
+kind = "aravis"
+device = "127.0.0.1"
+frame_rate_hz = 50.0
+reconnect = false
+dome_segments = [0.0, 180.0]
+[acquisition]
+cycle_time_ms = 60000.0
+backpressure = "block"
+[model]
+path = "{model}"
+[log]
+path = "{tmp_path / 'log.sqlite'}"
+image_dir = "{tmp_path / 'rejects'}"
+""")
+        assert main(["run", "--camera", "aravis", "--config", str(cfg_path), "--frames", "5"]) == 0
+    finally:
+        server.send_signal(signal.SIGTERM)
+        out, _ = server.communicate(timeout=20)
+    assert server.returncode == 0, out
+    served = {r.timestamp_ns: r for r in read_truth(truth).values()}
+    order = sorted(served.values(), key=lambda r: r.timestamp_ns)
+    rows = sqlite3.connect(tmp_path / "log.sqlite").execute(
+        "SELECT decision, camera_timestamp_ns FROM inspections ORDER BY id").fetchall()
+    assert len(rows) == 5 and all(d in ("pass", "reject") for d, _ in rows)
+    for _, ts in rows:  # each row's first frame, then the same part's second frame, sent next
+        k = next(j for j, r in enumerate(order) if r.timestamp_ns == ts)
+        assert order[k + 1].sample_index == order[k].sample_index
