@@ -1,6 +1,6 @@
 """How far a part may move between the two frames of its set (rule-23 model C, `data/ps-val`), and what
 `model.priors.photometric.frame_motion` reads for still parts. Run from the repository root:
-    .venv/bin/python docs/results/2026-11-27-frame-sets/motion.py runs/ps/C-v data/ps-val > motion.json
+    .venv/bin/python docs/results/2026-11-27-frame-sets/motion.py runs/ps/C-v data/ps-val motion.png > motion.json
 Frame 2's Stokes images are shifted along x by sub-pixel amounts (bilinear; 0.5 px also blurs by half a pixel) before
 the priors, as a part moving between exposures would shift them."""
 
@@ -52,5 +52,30 @@ def main(model: str, data: str) -> dict:
                                             for k, v in readings.items()}}
 
 
+def plot(result: dict, path: str) -> None:
+    """Good parts rejected against the shift between the frames, and the limit the station applies."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    shifts = [float(k) for k in result["rejected_by_shift_px"]]
+    rejected = [100 * v for v in result["rejected_by_shift_px"].values()]
+    fig, ax = plt.subplots(figsize=(5, 3.2))
+    ax.plot(shifts, rejected, "o-")
+    ax.axvline(0.5, color="k", ls=":", lw=0.8)
+    ax.annotate("motion_limit (640 px)", (0.52, 50), fontsize=7)
+    still = max(v["max"] for v in result["frame_motion_px_still_parts"].values())
+    ax.axvspan(0, still, color="C2", alpha=0.15, lw=0)
+    ax.annotate("frame_motion, still parts", (0.01, 80), fontsize=7, color="C2")
+    ax.set(xlabel="shift between a part's two frames (px, 640 x 480)", ylabel="good parts rejected (%)",
+           title=f"model C, {result['good_parts']} good validation parts")
+    fig.savefig(path, dpi=120, bbox_inches="tight")
+    plt.close(fig)
+
+
 if __name__ == "__main__":
-    print(json.dumps(main(sys.argv[1], sys.argv[2]), indent=1))
+    result = main(sys.argv[1], sys.argv[2])
+    if len(sys.argv) > 3:
+        plot(result, sys.argv[3])
+    print(json.dumps(result, indent=1))
