@@ -108,7 +108,7 @@ class CameraConfig:
         if self.frames_per_part > 1 and self.trigger != "software":
             raise CameraConfigError(f"camera frames_per_part = {self.frames_per_part} needs trigger = "
                                     f"'software', not {self.trigger!r}: the station triggers each frame of a part's "
-                                    "set (a burst on a line trigger is not supported)")
+                                    "set; sets on a line trigger are not supported)")
         if self.gain_db < 0 or self.packet_size < 0 or self.reconnect_attempts < 0:
             raise CameraConfigError("camera gain_db, packet_size and reconnect_attempts must be >= 0")
 
