@@ -31,11 +31,7 @@ class SetCamera(ScriptedCamera):
         self.config = CameraConfig(trigger="software", frames_per_part=frames_per_part)
 
     def grab(self, timeout_ms=None):
-        if not self.script:
-            raise CameraTimeout("script exhausted")
-        item = self.script.pop(0)
-        if isinstance(item, Exception):
-            raise item
+        item = self.next_item()
         stale = isinstance(item, tuple)
         level = item[1] if stale else item
         self.frame_id += 1

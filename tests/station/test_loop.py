@@ -38,12 +38,17 @@ class ScriptedCamera(CameraBase):
     def trigger(self):
         self.triggers += 1
 
-    def grab(self, timeout_ms=None):
+    def next_item(self):
+        """The script's next entry; an exception entry is raised."""
         if not self.script:
             raise CameraTimeout("script exhausted")
         item = self.script.pop(0)
         if isinstance(item, Exception):
             raise item
+        return item
+
+    def grab(self, timeout_ms=None):
+        item = self.next_item()
         self._stats.completed += 1
         self.frame_id += 1 + {"gap": 3, "gap1": 1}.get(item, 0)  # "gap": three frames lost in transport before this
         # one, "gap1": one

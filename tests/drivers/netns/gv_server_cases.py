@@ -198,29 +198,22 @@ def test_a_second_server_on_the_same_address_is_a_clear_error(server: GvCameraSe
         GvCameraServer(str(ds8)).start()
 
 
-@pytest.mark.slow  # ~8 s on 2 busy cores: torch, a model warm-up and a second process
-def test_station_run_inspects_the_served_camera_end_to_end(tmp_path: Path) -> None:
-    """``station serve-camera`` in a subprocess, ``station run --camera aravis`` here; the log joins the truth."""
-    pytest.importorskip("torch")
+def serve_and_run(ds: Path, model: Path, tmp_path: Path, parts: int, camera: str = "") -> tuple[str, str]:
+    """``station serve-camera --dataset ds`` in a subprocess, ``station run --camera aravis`` on it here for
+    ``parts`` parts (``camera``: more ``[camera]`` lines); returns the server's banner and its whole output."""
     from station.cli import main
-    from tests.station.test_run import make_dataset as make_station_dataset
-    from tests.station.test_run import make_model
 
-    ds = make_station_dataset(tmp_path / "ds")
-    model = make_model(tmp_path / "model" / "best")
-    truth = tmp_path / "truth.jsonl"
     server = subprocess.Popen([sys.executable, "-m", "station.cli", "serve-camera", "--dataset", str(ds),
-                               "--defect-rate", "0.5", "--truth", str(truth)],
+                               "--defect-rate", "0.5", "--truth", str(tmp_path / "truth.jsonl")],
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                               cwd=Path(__file__).parents[3], env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    banner = ""
     try:
         assert server.stdout is not None
-        banner = ""
         while "station.toml:" not in banner:  # up once it has printed the config line
             line = server.stdout.readline()
             assert line, f"serve-camera ended: {banner}"
             banner += line
-        assert 'device = "127.0.0.1", pixel_format = "Mono8"' in banner
         cfg_path = tmp_path / "station.toml"
         cfg_path.write_text(f"""
 [camera]
@@ -228,6 +221,7 @@ kind = "aravis"
 device = "127.0.0.1"
 frame_rate_hz = 50.0
 reconnect = false
+{camera}
 [acquisition]
 cycle_time_ms = 60000.0
 backpressure = "block"
@@ -237,11 +231,26 @@ path = "{model}"
 path = "{tmp_path / 'log.sqlite'}"
 image_dir = "{tmp_path / 'rejects'}"
 """)
-        assert main(["run", "--camera", "aravis", "--config", str(cfg_path), "--frames", "6"]) == 0
+        assert main(["run", "--camera", "aravis", "--config", str(cfg_path), "--frames", str(parts)]) == 0
     finally:
         server.send_signal(signal.SIGTERM)
         out, _ = server.communicate(timeout=20)
     assert server.returncode == 0, out
+    return banner, out
+
+
+@pytest.mark.slow  # ~8 s on 2 busy cores: torch, a model warm-up and a second process
+def test_station_run_inspects_the_served_camera_end_to_end(tmp_path: Path) -> None:
+    """``station serve-camera`` in a subprocess, ``station run --camera aravis`` here; the log joins the truth."""
+    pytest.importorskip("torch")
+    from tests.station.test_run import make_dataset as make_station_dataset
+    from tests.station.test_run import make_model
+
+    ds = make_station_dataset(tmp_path / "ds")
+    model = make_model(tmp_path / "model" / "best")
+    truth = tmp_path / "truth.jsonl"
+    banner, out = serve_and_run(ds, model, tmp_path, 6)
+    assert 'device = "127.0.0.1", pixel_format = "Mono8"' in banner
     assert "served" in out and "frames" in out
     rows = sqlite3.connect(tmp_path / "log.sqlite").execute(
         "SELECT decision, camera_timestamp_ns FROM inspections ORDER BY id").fetchall()
@@ -291,7 +300,6 @@ def test_station_run_takes_a_served_segment_set_part_by_part(tmp_path: Path) -> 
     from model.draem.checkpoint import save_checkpoint
     from model.draem.config import ModelConfig
     from model.draem.detector import Detector
-    from station.cli import main
     from tests.station.line_sets import make_segment_set
 
     ds = make_segment_set(tmp_path / "pair", n=8)
@@ -300,41 +308,8 @@ def test_station_run_takes_a_served_segment_set_part_by_part(tmp_path: Path) -> 
     det.init_weights(torch.Generator().manual_seed(0))
     model = tmp_path / "model" / "best"
     save_checkpoint(model, det, threshold=0.5, threshold_rule="test")
-    truth = tmp_path / "truth.jsonl"
-    server = subprocess.Popen([sys.executable, "-m", "station.cli", "serve-camera", "--dataset", str(ds),
-                               "--defect-rate", "0.5", "--truth", str(truth)],
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                              cwd=Path(__file__).parents[3], env={**os.environ, "PYTHONUNBUFFERED": "1"})
-    try:
-        assert server.stdout is not None
-        banner = ""
-        while "station.toml:" not in banner:
-            line = server.stdout.readline()
-            assert line, f"serve-camera ended: {banner}"
-            banner += line
-        cfg_path = tmp_path / "station.toml"
-        cfg_path.write_text(f"""
-[camera]
-kind = "aravis"
-device = "127.0.0.1"
-frame_rate_hz = 50.0
-reconnect = false
-dome_segments = [0.0, 180.0]
-[acquisition]
-cycle_time_ms = 60000.0
-backpressure = "block"
-[model]
-path = "{model}"
-[log]
-path = "{tmp_path / 'log.sqlite'}"
-image_dir = "{tmp_path / 'rejects'}"
-""")
-        assert main(["run", "--camera", "aravis", "--config", str(cfg_path), "--frames", "5"]) == 0
-    finally:
-        server.send_signal(signal.SIGTERM)
-        out, _ = server.communicate(timeout=20)
-    assert server.returncode == 0, out
-    served = {r.timestamp_ns: r for r in read_truth(truth).values()}
+    serve_and_run(ds, model, tmp_path, 5, camera="dome_segments = [0.0, 180.0]")
+    served = {r.timestamp_ns: r for r in read_truth(tmp_path / "truth.jsonl").values()}
     order = sorted(served.values(), key=lambda r: r.timestamp_ns)
     rows = sqlite3.connect(tmp_path / "log.sqlite").execute(
         "SELECT decision, camera_timestamp_ns FROM inspections ORDER BY id").fetchall()
