@@ -34,7 +34,7 @@ logged once, and reopened with back-off (``reconnect_backoff_s`` doubling to ``r
 Garbage, over-long lines, unknown commands and duplicate trigger ids are logged, counted and answered with ERR.
 Silence longer than ``3 * heartbeat_s`` (with a heartbeat configured) is logged as a stale link.
 
-``LineIO`` implements ``station.loop.LineLink``. The words of the protocol are ``Command``; a part's decision is a
+``LineIO`` implements ``station.line_link.LineLink``. The words of the protocol are ``Command``; a part's decision is a
 ``Verdict`` (defined here, see there why).
 """
 
@@ -217,7 +217,7 @@ class LineIO:
         return self._link_up.is_set()
 
     has_plc = True
-    """A PLC answers (``station.loop.LineLink``): decisions are pending until ``outcomes`` settles them."""
+    """A PLC answers (``station.line_link.LineLink``): decisions are pending until ``outcomes`` settles them."""
 
     def next_trigger(self, timeout_s: float) -> Trigger | None:
         """The oldest part the PLC announced and nobody took yet, or None after ``timeout_s``."""

@@ -17,7 +17,8 @@ from station.config import ConfigError, StationConfig
 from station.drift import DriftMonitor, trained_range
 from station.inspection_log import InspectionLog
 from station.inspector import Inspector
-from station.loop import LineLink, NoLink, Station
+from station.line_link import LineLink, NoLink
+from station.loop import Station
 from station.model_detector import DraemDetector
 from station.presence import PresenceCheck
 from station.reject_store import RejectStore

@@ -75,7 +75,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from station.config import PresenceConfig
     from station.inspection_log import InspectionLog
     from station.inspector import Inspector
-    from station.loop import NoLink, Station
+    from station.line_link import NoLink
+    from station.loop import Station
     from station.model_detector import DraemDetector
     from station.presence import Presence, PresenceCheck
 

@@ -16,7 +16,8 @@ from drivers.frame import Frame, GroundTruth
 from model.priors import IMX250MZR
 from station.inspection_log import InspectionLog
 from station.inspector import Inference, Inspector
-from station.loop import NoLink, Station
+from station.line_link import NoLink
+from station.loop import Station
 from station.reject_store import RejectStore
 
 BRIGHT, DARK = 200, 20

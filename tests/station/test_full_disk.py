@@ -26,7 +26,8 @@ SCRIPT = textwrap.dedent('''
     from model.priors import IMX250MZR
     from station.inspection_log import InspectionLog
     from station.inspector import Inference, Inspector
-    from station.loop import NoLink, Station
+    from station.line_link import NoLink
+    from station.loop import Station
 
     disk = Path(sys.argv[1])
     N = 400

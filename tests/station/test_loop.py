@@ -17,7 +17,8 @@ from drivers.line_io import Trigger
 from model.priors import IMX250MZR
 from station.inspection_log import InspectionLog
 from station.inspector import Inference, Inspector
-from station.loop import NoLink, Station
+from station.line_link import NoLink
+from station.loop import Station
 
 
 class ScriptedCamera(CameraBase):
@@ -533,7 +534,7 @@ def test_a_pass_row_that_cannot_be_corrected_to_a_reject_is_reported_at_shutdown
     stays full the row cannot be amended, and it used to stay a silent, untrue pass. At shutdown it is reported in
     the process log and counted."""
     from station.inspection_log import InspectionRecord, LogError
-    from station.loop import RecordKeeper
+    from station.records import RecordKeeper
 
     class NoAmend(InspectionLog):
         def amend_decision(self, row_id, decision, reason):

@@ -18,8 +18,9 @@ from model.priors.testing import detailed_stokes
 from station.config import ConfigError, StationConfig, parse_config
 from station.inspection_log import InspectionLog
 from station.inspector import Inference, Inspector
+from station.line_link import NoLink
 from station.log_report import summarize
-from station.loop import NoLink, Station
+from station.loop import Station
 from station.presence import PresenceCheck, dolp_contrast
 from station.reject_store import RejectStore
 
