@@ -6,7 +6,7 @@ early exit of a per-prior ensemble) a ``station.loop.Station`` inspects ``--part
 ``--empty-rate`` of them show no part, which needs a set rendered with ``station render --empty-rate``),
 free-running as fast as processing allows (backpressure ``block``, no PLC), and logs to a temporary SQLite file.
 A model that reads a frame per dome segment (photometric stereo) gets each part's frames, triggered one by one as
-at the station (``[camera] frames_per_part``); its latency counts every frame's grab and demosaic.
+at the station (``[camera] dome_segments``); its latency counts every frame's grab and demosaic.
 From the log:
 
 - latency per frame = grab + demosaic + priors (+ presence check) + model (+ decision): the work from trigger to

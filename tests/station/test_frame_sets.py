@@ -1,6 +1,7 @@
-"""A part imaged once per dome segment (``[camera] frames_per_part``): the station triggers each frame, judges the
-part on its frames in the order taken, keeps them all with a reject, and rejects a part whose set lacks a frame;
-a frame that comes after its part gave up on it is never taken for the next part's set."""
+"""A part imaged once per dome segment (``[camera] dome_segments``; the camera's ``frames_per_part``): the station
+triggers each frame, judges the part on its frames in the order taken, keeps them all with a reject, and rejects a
+part whose set lacks a frame; a frame that comes after its part gave up on it is never taken for the next part's
+set."""
 
 from __future__ import annotations
 
