@@ -3,7 +3,8 @@
 The station writes every part to SQLite in WAL mode, so another process can read the log while it is written.
 ``LogFollower`` polls for rows newer than the last one seen (and for recent rows whose decision was amended) and
 turns each into a ``ViewFrame``: rejected parts whose raw mosaic and heatmap were saved (``[log] save_rejects``,
-``station.reject_store``) show their images (priors recomputed from the mosaic); other parts show the decision and
+``station.reject_store``) show their images (priors recomputed from the mosaic; for a part imaged once per dome
+segment, from its frames' mean, the whole dome's, as the station judged it); other parts show the decision and
 statistics over a blank image, since the station keeps no image of them. Statistics come from the log: counts,
 reject rate, latency p50/p99 of the last ``window`` parts.
 """
@@ -95,12 +96,12 @@ class LogFollower:
                          {k: row[k] for k in FRAME_CHECKS if row.get(k) is not None})
 
     def _images(self, path: str) -> tuple[dict[str, np.ndarray | None], np.ndarray | None]:
-        from model.priors import compute_priors
+        from model.priors.api import compute_set_priors
 
         with np.load(path) as f:
-            raw = f["raw"]
+            raws = [f["raw"]] + [f[f"raw_{k}"] for k in range(1, len(f.files)) if f"raw_{k}" in f]
             heatmap = f["heatmap"].astype(np.float32) if "heatmap" in f else None
-        p = compute_priors(raw, self.layout, priors=("intensity", "dolp", "aolp"))
+        p = compute_set_priors(raws, None, self.layout, priors=("intensity", "dolp", "aolp"))
         if heatmap is not None and heatmap.shape != p["intensity"].shape:
             heatmap = None  # saved by another demosaic resolution: do not misplace it
         return {"intensity": p["intensity"], "dolp": p["dolp"], "aolp": p["aolp"]}, heatmap

@@ -72,17 +72,21 @@ def compute_priors(raw: np.ndarray, layout: str | MosaicLayout = "imx250mzr", me
     return compute_set_priors((raw,), (), layout, method, priors, bit_depth)
 
 
-def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float], layout: str | MosaicLayout = "imx250mzr",
+def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float] | None,
+                       layout: str | MosaicLayout = "imx250mzr",
                        method: str = "bilinear", priors: Iterable[str] = ("intensity", "dolp", "aolp"),
                        bit_depth: int | None = None) -> Priors:
     """``compute_priors`` for one part imaged once per dome segment (``model.priors.photometric``): ``raws`` in the
     order of ``segments`` (azimuths, degrees). Intensity and polarization come from the frames' mean Stokes (the
     uniform dome's frame), the tilts from the pairs' S0. One frame with no segments is ``compute_priors`` (which
-    calls this).
+    calls this). ``segments`` None: the frames' azimuths are not known (a saved reject's frames), so any number of
+    frames gives the mean's priors, and no tilt.
     The report is the worst frame's: the largest counts of invalid and saturated pixels (so a fraction of one
     frame's pixels), and every frame's invalid pixels."""
     names = check_prior_names(priors)
-    if len(raws) != max(1, len(segments)):
+    if segments is None:
+        segments = ()
+    elif len(raws) != max(1, len(segments)):
         raise ValueError(f"{len(raws)} frames for {len(segments)} dome segments")
     check_tilts(names, segments)
     norms = [normalize_mosaic(raw, bit_depth) for raw in raws]

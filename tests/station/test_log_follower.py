@@ -100,3 +100,24 @@ def test_the_follower_reads_the_log_from_its_own_thread(tmp_path: Path) -> None:
     stop.set()
     thread.join()
     assert shown is not None and shown.part_id == "P1"
+
+
+def test_a_reject_imaged_once_per_dome_segment_shows_the_whole_domes_priors(tmp_path: Path) -> None:
+    """A part imaged once per dome segment keeps every frame (``raw``, ``raw_1``); the viewer shows the priors of
+    their mean, as the station judged it, not those of the first half-lit frame."""
+    from model.priors.api import compute_set_priors
+
+    s0, s1, s2 = detailed_stokes(48, 64)
+    lean = np.linspace(0.5, 1.5, 64, dtype=np.float32)[None, :]  # the halves of the dome, lit in turn
+    raws = [(np.clip(stokes_to_mosaic(s0 * w, s1 * w, s2 * w), 0, 1) * 200).astype(np.uint8)
+            for w in (lean, lean[:, ::-1])]
+    image = RejectStore(tmp_path / "rejects").save("P1", 1, raws[0], None, later=(raws[1],))
+    station_log = InspectionLog(tmp_path / "log.sqlite")
+    follower = LogFollower(tmp_path / "log.sqlite", feed := ViewerFeed())
+    station_log.append(record("reject", "P1", score=0.9, threshold=0.5, image_path=image))
+    assert follower.poll() == 1
+    shown = feed.latest()
+    whole = compute_set_priors(raws, (0.0, 180.0), priors=("intensity",))["intensity"]
+    np.testing.assert_allclose(shown.intensity, whole, atol=1e-6)
+    follower.close()
+    station_log.close()
