@@ -286,9 +286,10 @@ class GvCameraServer:
                                   "process or serve inside a private network namespace (unshare -n)")
         _check_gvcp_port_free(interface_address(self.interface))
         try:
+            from model.priors.photometric import frames_per_part
             from sim.dataset import open_dataset
 
-            frames = max(1, len(open_dataset(self._camera.sim.dataset).dome_segments))
+            frames = frames_per_part(open_dataset(self._camera.sim.dataset).dome_segments)
             if frames > 1:  # a part's frames, one per frame sent: each drawn by a trigger of the source
                 self._camera.configure(CameraConfig(trigger="software", frame_rate_hz=1e9, frames_per_part=frames))
             self._camera.open()

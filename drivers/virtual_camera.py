@@ -90,11 +90,11 @@ class VirtualCamera(CameraBase):
         if self._opened:
             return
         self._check_config(self.config)
-        from model.priors.photometric import describe_segments
+        from model.priors.photometric import describe_segments, frames_per_part
         from sim.dataset import open_dataset
 
         ds = open_dataset(self.sim.dataset)
-        frames = max(1, len(ds.dome_segments))
+        frames = frames_per_part(ds.dome_segments)
         if frames != self.config.frames_per_part:  # playing another number of frames would mislead the model
             hint = "" if ds.dome_segments else " or play a set rendered with --dome-segments"
             raise CameraConfigError(f"virtual camera: {self.sim.dataset} holds {describe_segments(ds.dome_segments)}"

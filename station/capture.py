@@ -33,6 +33,7 @@ from drivers.camera import Camera
 from drivers.frame import Frame
 from model.priors.api import compute_set_priors
 from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
+from model.priors.photometric import frames_per_part
 from station.errors import UserError
 from station.inspector import significant_bits
 from station.mvtec import INFO_FILE, later_frame, read_info
@@ -128,7 +129,7 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                         "a folder of its own (station import turns it into a data set)")
     folder = label_folder(out, label, split)
     folder.mkdir(parents=True, exist_ok=True)
-    report = CaptureReport(out, folder, frames_per_part=max(1, len(segments)))
+    report = CaptureReport(out, folder, frames_per_part=frames_per_part(segments))
     number = _next_number(folder)
     t0 = time.perf_counter()
     camera.start()
@@ -143,7 +144,7 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                                     "virtual camera's ground truth): its set has too few such parts")
                 n = len(report.files)
                 shots: list[Frame] = []
-                for _ in range(max(1, len(segments))):  # a part's frames, in the segments' order
+                for _ in range(report.frames_per_part):  # a part's frames, in the segments' order
                     if software_trigger:
                         camera.trigger()
                     shots.append(camera.grab(timeout_ms) if timeout_ms else camera.grab())

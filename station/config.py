@@ -19,6 +19,7 @@ from typing import Any
 from model.draem.runtime import PRECISIONS
 from model.priors import LAYOUTS, METHODS, MosaicLayout, get_layout
 from model.priors.photometric import check_segments
+from model.priors.photometric import frames_per_part as frames_of
 from station.errors import UserError
 
 
@@ -59,7 +60,7 @@ class CameraConfig:
 
     @property
     def frames_per_part(self) -> int:
-        return len(self.dome_segments or ()) or 1
+        return frames_of(self.dome_segments)
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,7 @@ from model.priors.photometric import (
     check_tilts,
     describe_segments,
     frame_motion,
+    frames_per_part,
     mean_stokes,
     motion_limit,
     tilt_maps,
@@ -138,7 +139,7 @@ class Inspector:
         result = Inspection()
         t = time.perf_counter()
         try:
-            if len(frames) != max(1, len(self.segments)):
+            if len(frames) != frames_per_part(self.segments):
                 raise ValueError(f"{len(frames)} frame(s) for a model that reads {describe_segments(self.segments)}")
             bits = significant_bits(frame, self.bit_depth)
             norms = [normalize_mosaic(f.raw, bits) for f in frames]

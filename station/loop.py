@@ -149,6 +149,11 @@ class Part:
     late_ms: float | None = None
     """Set when the trigger was already older than the cycle time when acquisition took it (no frame taken)."""
 
+    @property
+    def taken(self) -> tuple[Frame, ...]:
+        """Every frame taken for the part, in order: ``frames``, or ``frame`` alone."""
+        return self.frames or ((self.frame,) if self.frame is not None else ())
+
 
 @dataclass
 class LiveStats:
@@ -383,7 +388,7 @@ class Station:
             for missing in range(last_id + 1, min(fid, last_id + 1 + possible, last_id + 1 + MAX_LOST_ROWS)):
                 self._dropped.append(Part(f"frame-{missing}", part.t_trigger, announced=False,
                                           error=f"frame {missing} lost before reaching the host"))
-        newest = (part.frames or (part.frame,))[-1].frame_id
+        newest = part.taken[-1].frame_id
         if self._last_frame is None or newest > self._last_frame[0]:
             self._last_frame = (newest, now)
 
@@ -429,8 +434,7 @@ class Station:
         late_ms = part.late_ms if part.late_ms is not None else 1e3 * (time.perf_counter() - part.t_trigger)
         if part.error is None and part.frame is not None and late_ms <= self.cycle_time_ms:
             assert self._model is not None
-            answer = self._model.inspect(part.part_id, part.frames or (part.frame,),
-                                         part.t_trigger + self.cycle_time_ms / 1e3)
+            answer = self._model.inspect(part.part_id, part.taken, part.t_trigger + self.cycle_time_ms / 1e3)
             if isinstance(answer, NoAnswer):
                 self._no_answer(part, answer)
                 return

@@ -10,7 +10,7 @@ import numpy as np
 from .conventions import MosaicLayout
 from .demosaic import mosaic_to_stokes
 from .mosaic import normalize_mosaic
-from .photometric import DOME_PAIRS, check_tilts, mean_stokes, tilt_maps
+from .photometric import DOME_PAIRS, check_tilts, frames_per_part, mean_stokes, tilt_maps
 from .stokes import aolp, aolp_vector, dolp, unpolarized_intensity
 
 PRIOR_KEYS = ("intensity", "dolp", "aolp", "aolp_cos", "aolp_sin", "s0", "s1", "s2", "tilt_x", "tilt_y")
@@ -86,7 +86,7 @@ def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float] | N
     names = check_prior_names(priors)
     if segments is None:
         segments = ()
-    elif len(raws) != max(1, len(segments)):
+    elif len(raws) != frames_per_part(segments):
         raise ValueError(f"{len(raws)} frames for {len(segments)} dome segments")
     check_tilts(names, segments)
     norms = [normalize_mosaic(raw, bit_depth) for raw in raws]

@@ -63,6 +63,11 @@ def tilt(s0_a: np.ndarray, s0_b: np.ndarray) -> np.ndarray:
     return np.clip(np.nan_to_num(out, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 
 
+def frames_per_part(segments: Sequence[float] | None) -> int:
+    """The frames one part is imaged in: one per segment, or one under the whole dome (no segments)."""
+    return max(1, len(segments or ()))
+
+
 def check_segments(segments: Sequence[float]) -> tuple[float, ...]:
     """``segments`` as floats; ValueError unless they are two or more distinct azimuths in [0, 360) degrees, or none
     (one frame per part, under the whole dome)."""

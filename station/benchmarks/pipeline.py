@@ -71,6 +71,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
     from model.draem.metrics import auroc
     from model.priors import get_layout
+    from model.priors.photometric import frames_per_part
     from sim.dataset import open_dataset
     from station.config import PresenceConfig
     from station.inspection_log import InspectionLog
@@ -84,7 +85,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     detector.warm_up()
     detector.members_run = 0
     layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
-    frames = max(1, len(detector.dome_segments))  # a frame per dome segment: the station triggers each
+    frames = frames_per_part(detector.dome_segments)  # a frame per dome segment: the station triggers each
     camera = VirtualCamera(CameraConfig(trigger="free_run" if frames == 1 else "software", frame_rate_hz=1000.0,
                                         timeout_ms=10000, frames_per_part=frames),
                            VirtualCameraConfig(data, defect_rate, split="test", seed=seed, empty_rate=empty_rate))
