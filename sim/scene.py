@@ -13,6 +13,7 @@ frame has x toward image LEFT and z away from the camera (docs/platform-facts.md
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, fields, replace
 from typing import Any
 
@@ -74,6 +75,14 @@ class SceneConfig:
     ``w_x`` above becomes the direction's component along that azimuth. Two frames of one part under azimuths 0 and
     180 are the two halves of a segmented dome lit in turn (photometric stereo): their sum is the uniform dome's
     frame, their normalised difference the surface's tilt along x."""
+    ring_radiance: float = 0.0
+    """A low-angle ring light (dark field) added to the environment: radiance ``ring_radiance`` from every azimuth
+    at elevations ``ring_elevation_deg`` above the ground; 0 = none. A smooth face mirrors it away from a camera
+    that looks down more steeply, so it is dark there; a rough patch (a scratch, a stain) spreads it into the camera.
+    On a horizontal face its irradiance is ``pi L (cos^2 e_lo - cos^2 e_hi)`` (e: elevation); on a face tilted
+    toward the ring it is larger. Refused with ``ambient_gradient`` (one environment map holds both only as a
+    uniform dome)."""
+    ring_elevation_deg: tuple[float, float] = (5.0, 15.0)
     colour: tuple[float, float] = (0.0, 1.0)
     background_colour: tuple[float, float] | None = None
     """Reflectance range of the ground's colours; None = ``colour``'s."""
@@ -126,6 +135,12 @@ class SceneConfig:
         if self.ambient_gradient_azimuth_deg >= 360:
             raise SimError(f"scene.ambient_gradient_azimuth_deg must be in [0, 360), got "
                            f"{self.ambient_gradient_azimuth_deg}")
+        if self.ring_radiance and self.ambient_gradient:
+            raise SimError("scene.ring_radiance and scene.ambient_gradient: one environment holds a ring light or a "
+                           "gradient dome, not both")
+        if self.ring_elevation_deg[1] >= 90 or self.ring_elevation_deg[0] >= self.ring_elevation_deg[1]:
+            raise SimError(f"scene.ring_elevation_deg: need elevations lo < hi < 90 degrees, got "
+                           f"{self.ring_elevation_deg}")
         if self.max_depth < 2:
             raise SimError(f"scene.max_depth must be >= 2, got {self.max_depth}")
 
@@ -283,6 +298,8 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
         **({"ambient_gradient": cfg.ambient_gradient} if cfg.ambient_gradient else {}),  # older sets lack it
         **({"ambient_gradient_azimuth_deg": cfg.ambient_gradient_azimuth_deg}
            if cfg.ambient_gradient and cfg.ambient_gradient_azimuth_deg else {}),
+        **({"ring_radiance": cfg.ring_radiance, "ring_elevation_deg": list(cfg.ring_elevation_deg)}
+           if cfg.ring_radiance else {}),
         "materials": materials,
         "background": background,
     }
@@ -403,7 +420,16 @@ def emitter_weights(params: dict) -> tuple[float, float]:
     sampled half as often. Unbiased either way: the weights change the noise, not the expected image."""
     light = params["light"]
     d2 = float(np.sum((np.asarray(light["origin"]) - np.asarray(light["target"])) ** 2))
-    return float(light["intensity"]) / max(d2, 1e-6), float(np.pi * params["ambient_radiance"])
+    ring = params.get("ring_radiance", 0.0)
+    ring_e = ring * ring_irradiance_factor(*params["ring_elevation_deg"]) if ring else 0.0
+    return float(light["intensity"]) / max(d2, 1e-6), float(np.pi * params["ambient_radiance"] + ring_e)
+
+
+def ring_irradiance_factor(lo_deg: float, hi_deg: float) -> float:
+    """Irradiance on a horizontal face per unit radiance of a ring from every azimuth at elevations
+    ``[lo_deg, hi_deg]``: ``pi (cos^2 lo - cos^2 hi)`` (W/m^2 per W/(m^2 sr))."""
+    lo, hi = np.radians(lo_deg), np.radians(hi_deg)
+    return float(np.pi * (np.cos(lo) ** 2 - np.cos(hi) ** 2))
 
 
 GRADIENT_ROWS = 64
@@ -423,6 +449,25 @@ def ambient_dict(radiance: float, gradient: float, azimuth_deg: float = 0.0) -> 
     bitmap = mi.Bitmap(np.repeat(rows[:, None, None], 2 * GRADIENT_ROWS, 1))
     return {"type": "envmap", "bitmap": bitmap, "scale": radiance,
             "to_world": mi.ScalarTransform4f().rotate(axis=[0, 0, 1], angle=azimuth_deg - 90)}
+
+
+RING_ROWS = 720
+"""Rows of the ring light's envmap (a quarter of a degree each); a row the ring's edge cuts gets its covered share."""
+
+
+def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float]) -> dict:
+    """The environment with a ring light (``SceneConfig.ring_radiance``): uniform ``radiance`` from every direction
+    plus ``ring`` at elevations ``elevation_deg`` (lo, hi) above the ground, as an envmap whose pole (its local +y)
+    is world +z, so its rows are polar angles from the vertical."""
+    import mitsuba as mi
+
+    edges = np.linspace(0.0, 180.0, RING_ROWS + 1)  # polar angle of the rows' edges, degrees
+    lo, hi = 90.0 - float(elevation_deg[1]), 90.0 - float(elevation_deg[0])
+    covered = np.clip(np.minimum(edges[1:], hi) - np.maximum(edges[:-1], lo), 0, None) / np.diff(edges)
+    rows = (radiance + ring * covered).astype(np.float32)
+    bitmap = mi.Bitmap(np.repeat(rows[:, None, None], 4, 1))
+    return {"type": "envmap", "bitmap": bitmap, "scale": 1.0,
+            "to_world": mi.ScalarTransform4f().rotate(axis=[1, 0, 0], angle=90)}
 
 
 def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,
@@ -448,7 +493,10 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
                          "cutoff_angle": light["cutoff_deg"], "beam_width": 0.75 * light["cutoff_deg"],
                          "to_world": mi.ScalarTransform4f().look_at(origin=light["origin"], target=light["target"],
                                                                     up=[0, 0, 1])}
-        if params["ambient_radiance"] > 0:
+        if params.get("ring_radiance"):
+            scene["ambient"] = ring_dict(params["ambient_radiance"], params["ring_radiance"],
+                                         params["ring_elevation_deg"])
+        elif params["ambient_radiance"] > 0:
             scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0),
                                             params.get("ambient_gradient_azimuth_deg", 0.0))
             scene["ambient"]["sampling_weight"] = ambient_w
