@@ -9,7 +9,8 @@ two() {  # out, then render arguments
     .venv/bin/station render "$@" --out "$out" --shard 1/2 > "runs/df/$(basename "$out")-1.log" 2>&1
     wait
 }
+while pgrep -f "station render" > /dev/null; do sleep 10; done  # a run already under way
 two data/df-ring-train $R --count 400 --seed 101 --defects 0.4 --defects-in-train
-two data/df-ring-val $R --count 200 --seed 303 --defects 0.4 --validation
-two data/df-dome-heldout $V --count 360 --seed 858 --defects 0.6 --heldout
-two data/df-ring-heldout $R --count 360 --seed 858 --defects 0.6 --heldout
+two data/df-ring-val $R --count 150 --seed 303 --defects 0.4 --validation
+two data/df-dome-heldout $V --count 300 --seed 858 --defects 0.6 --heldout
+two data/df-ring-heldout $R --count 300 --seed 858 --defects 0.6 --heldout
