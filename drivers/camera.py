@@ -71,9 +71,10 @@ class CameraConfig:
     n_buffers       stream buffer pool size.
     frames_per_part frames that make one part (photometric stereo: one per dome segment, lit in turn by a light
                     sequencer stepped by the camera's exposure output, reset by the PLC with each part); more than
-                    one needs ``trigger = "software"``: the station triggers each frame of a part's set itself
-                    (``station.loop``). The virtual camera plays a set rendered with ``station render
-                    --dome-segments`` frame by frame.
+                    one needs a trigger that starts each set: ``"software"`` (the station triggers each frame of
+                    a part's set itself) or a line (the sequencer pulses the camera once per segment; a pulse the
+                    camera misses is told by the time its successor was exposed, ``station.loop``). The virtual
+                    camera plays a set rendered with ``station render --dome-segments`` frame by frame.
     """
 
     device: str = ""
@@ -105,10 +106,9 @@ class CameraConfig:
         for name in ("exposure_us", "frame_rate_hz", "timeout_ms", "n_buffers", "frames_per_part"):
             if getattr(self, name) <= 0:
                 raise CameraConfigError(f"camera {name} = {getattr(self, name)}: must be > 0")
-        if self.frames_per_part > 1 and self.trigger != "software":
-            raise CameraConfigError(f"camera frames_per_part = {self.frames_per_part} needs trigger = "
-                                    f"'software', not {self.trigger!r}: the station triggers each frame of a part's "
-                                    "set; sets on a line trigger are not supported)")
+        if self.frames_per_part > 1 and self.trigger == "free_run":
+            raise CameraConfigError(f"camera frames_per_part = {self.frames_per_part} needs a software or line "
+                                    "trigger, not 'free_run': nothing would tell which frame starts a part's set")
         if self.gain_db < 0 or self.packet_size < 0 or self.reconnect_attempts < 0:
             raise CameraConfigError("camera gain_db, packet_size and reconnect_attempts must be >= 0")
 

@@ -223,10 +223,16 @@ def _check_timing(cfg: StationConfig, source: str) -> None:
             check_segments(cfg.camera.dome_segments)
         except ValueError as exc:
             raise ConfigError(f"{source}: [camera] dome_segments: {exc}") from None
-    if frames > 1 and cfg.camera.trigger != "software":
+    if frames > 1 and cfg.camera.trigger == "free_run":
         raise ConfigError(f"{source}: [camera] dome_segments: a frame per segment needs trigger = 'software' (the "
-                          f"station triggers each frame of a part's set), not {cfg.camera.trigger!r}")
+                          "station triggers each frame) or a line (the sequencer pulses the camera once per segment), "
+                          "not 'free_run': nothing would tell which frame starts a part's set")
     exposure_ms = cfg.camera.exposure_us / 1e3
+    delay_ms = cfg.acquisition.max_frame_delay_ms or cfg.acquisition.cycle_time_ms
+    if frames > 1 and cfg.camera.trigger.startswith("line") and frames * exposure_ms >= delay_ms:
+        raise ConfigError(f"{source}: [acquisition] max_frame_delay_ms: {frames} exposures of {exposure_ms:g} ms take "
+                          f"{frames * exposure_ms:g} ms, not within the {delay_ms:g} ms a part's frames may come after "
+                          "its TRIG: every set's last frame would be taken for a missed pulse")
     if frames > 1 and frames * exposure_ms >= cfg.acquisition.cycle_time_ms:
         raise ConfigError(f"{source}: [camera] dome_segments: {frames} exposures of {exposure_ms:g} ms take "
                           f"{frames * exposure_ms:g} ms, the whole [acquisition] cycle_time_ms "

@@ -299,14 +299,19 @@ class Station:
         return part
 
     def _grab_set(self, part: Part, first: Frame) -> tuple[Frame, ...]:
-        """``first`` and the rest of ``part``'s frames (``frames_per_part``), each triggered and taken as
-        ``_grab_for`` takes the first, never a frame completed before its own trigger; SetIncomplete when one does
-        not come within the grab timeout (a frame arriving after that is taken before the next trigger, skipped)."""
+        """``first`` and the rest of ``part``'s frames (``frames_per_part``), each taken as ``_grab_for`` takes the
+        first: software trigger, each triggered, never a frame completed before its own trigger; line trigger (the
+        sequencer pulses the camera once per segment), never a frame exposed beyond ``max_frame_delay_ms`` after the
+        part's TRIG: a missed pulse spends no frame id, and the frame after it is the next part's (FramesLost, the
+        frame kept for that part). SetIncomplete when a frame does not come within the grab timeout (a frame
+        arriving after that is taken before the next trigger, or too late for the next TRIG: skipped)."""
         frames = [first]
         for k in range(1, self.frames_per_part):
             try:
                 frames.append(self._grab_for(part))
             except CameraTimeout as exc:
+                if self._line_last_id is not None:  # as for a part's only frame: its id, if made, is spent
+                    self._line_last_id += 1
                 raise SetIncomplete(f"frame {k + 1} of {self.frames_per_part} did not come: {exc}") from None
         return tuple(frames)
 

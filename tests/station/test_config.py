@@ -49,7 +49,10 @@ def test_values_are_typed():
     ('[priors]\ndemosaic = "magic"', "demosaic: 'magic' is not one of 'bilinear'"),
     ("[priors]\nangles_deg = [[0, 45], [90, 90]]", "angles_deg: need"),
     ("[camera]\ndome_segments = [0]", r"\[camera\] dome_segments: \[0.0\]: two or more distinct azimuths"),
-    ('[camera]\ndome_segments = [0, 180]\ntrigger = "line0"', "a frame per segment needs trigger = 'software'"),
+    ('[camera]\ndome_segments = [0, 180]\ntrigger = "free_run"\n[io]\nmode = "none"',
+     "a frame per segment needs trigger = 'software'"),
+    ('[camera]\ndome_segments = [0, 180]\ntrigger = "line0"\nexposure_us = 30000\n[acquisition]\nmax_frame_delay_ms = 50',
+     "max_frame_delay_ms: 2 exposures of 30 ms take 60 ms"),
     ("[camera]\ndome_segments = [0, 180]\nexposure_us = 60000", "2 exposures of 60 ms take 120 ms, the whole"),
     ("[decision]\nthreshold = 2", r"threshold: 2.0 is out of range \[0, 1\]"),
     ("camera = 3", "camera: expected a table"),
@@ -64,6 +67,12 @@ def test_values_are_typed():
 def test_bad_config_names_the_key_and_reason(text, message):
     with pytest.raises(ConfigError, match=message):
         parse_config(text, "station.toml")
+
+
+def test_a_frame_set_on_a_line_trigger_is_taken_when_its_exposures_fit_the_frame_delay():
+    cfg = parse_config('[camera]\ndome_segments = [0, 180]\ntrigger = "line0"\nexposure_us = 10000\n'
+                       "[acquisition]\nmax_frame_delay_ms = 40\n", "station.toml")
+    assert cfg.camera.frames_per_part == 2 and cfg.camera.trigger == "line0"
 
 
 def test_missing_file_is_named(tmp_path):

@@ -5,11 +5,12 @@ set."""
 
 from __future__ import annotations
 
+import threading
 import time
 
 import numpy as np
 import pytest
-from test_loop import ScriptedCamera, ScriptedLink  # same folder (pytest puts it on sys.path)
+from test_loop import PulsedCamera, ScriptedCamera, ScriptedLink  # same folder (pytest puts it on sys.path)
 
 from drivers.camera import CameraConfig
 from drivers.errors import CameraConfigError, CameraTimeout
@@ -116,6 +117,75 @@ def test_a_set_the_model_does_not_read_is_rejected_with_its_reason(tmp_path):
     log.close()
 
 
-def test_more_than_one_frame_per_part_needs_a_software_trigger():
-    with pytest.raises(CameraConfigError, match="frames_per_part = 2 needs trigger = 'software'"):
-        CameraConfig(trigger="line0", frames_per_part=2)
+def test_a_set_needs_a_trigger_that_starts_it():
+    """Free run: nothing tells which frame is a set's first (the sequencer's), so a set could pair two parts' frames
+    or take the segments in the other order."""
+    with pytest.raises(CameraConfigError, match="frames_per_part = 2 needs a software or line trigger"):
+        CameraConfig(trigger="free_run", frames_per_part=2)
+    assert CameraConfig(trigger="line0", frames_per_part=2).frames_per_part == 2
+
+
+class PulsedSetCamera(PulsedCamera):
+    """A line-triggered camera whose light sequencer pulses it once per segment: ``pulse_set(label, missed)``
+    makes the part's frames ``SET_GAP_S`` apart, the first the brighter for a defective part (lit from segment 0's
+    side), except the pulses in ``missed`` (indices within the set), which make none and spend no frame id."""
+
+    SET_GAP_S = 0.015
+
+    def __init__(self):
+        super().__init__()
+        self.config = CameraConfig(trigger="line0", frames_per_part=2)
+
+    def pulse_set(self, label, missed=()):
+        for k in range(2):
+            if k not in missed:
+                self.pulse_level(BRIGHT if label and k == 0 else DARK, label)
+            time.sleep(self.SET_GAP_S)
+
+    def pulse_level(self, level, label):
+        exposed_ns = time.monotonic_ns() + int(1e9 * self.delay_s)
+
+        def complete():
+            with self.ready:
+                self.frame_id += 1
+                self.frames.append(Frame(np.full((8, 8), level, np.uint8), "Mono8", 8, self.frame_id, exposed_ns,
+                                         time.time_ns(), ground_truth=GroundTruth(label=label)))
+                self.ready.notify_all()
+
+        threading.Timer(self.delay_s, complete).start()
+
+
+@pytest.mark.parametrize("missed", [(2, 0), (2, 1), (5, 0)])
+def test_a_pulse_missed_inside_a_set_rejects_its_part_and_no_set_mixes_two_parts(tmp_path, missed):
+    """Parts 100 ms apart (closer than the 300 ms cycle), each lit twice 15 ms apart by the sequencer. A missed
+    pulse spends no frame id, so ids cannot tell it: had the next frame been taken, the part would be judged on a set
+    holding its successor's frame (a defective part's bright first frame as its second: a negative tilt, a pass).
+    The frame exposed beyond ``max_frame_delay_ms`` after the part's TRIG is the next part's: the part is rejected
+    as missed, the frame kept for its own part."""
+    labels = [0, 1, 0, 1, 0, 0, 1, 0]
+    link = ScriptedLink(0)
+    camera = PulsedSetCamera()
+    log = InspectionLog(tmp_path / "log.sqlite")
+    inspector = Inspector(TiltDetector(), IMX250MZR, segments=(0.0, 180.0))
+    station = Station(camera, inspector, link, log, cycle_time_ms=300.0, queue_size=8, backpressure="block",
+                      grab_timeout_ms=200, max_frame_delay_ms=60.0)
+
+    def plc():
+        for i, label in enumerate(labels):
+            time.sleep(0.1)
+            link.announce(f"P{i}")
+            camera.pulse_set(label, missed=(missed[1],) if i == missed[0] else ())
+
+    feeder = threading.Thread(target=plc)
+    feeder.start()
+    station.run(max_parts=len(labels))
+    feeder.join()
+    rows = {r["part_id"]: r for r in log.rows()}
+    bad = f"P{missed[0]}"
+    assert len(rows) == len(labels)
+    assert rows[bad]["decision"] == "reject" and "missed its trigger pulse" in rows[bad]["reason"]
+    judged = {p: r["decision"] for p, r in rows.items() if p != bad}
+    assert judged == {f"P{i}": "reject" if label else "pass" for i, label in enumerate(labels) if f"P{i}" != bad}
+    assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items() if p != bad)
+    assert dict(link.reports) == {p: r["decision"] for p, r in rows.items()}
+    log.close()
