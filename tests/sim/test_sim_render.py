@@ -146,7 +146,7 @@ def test_ring_light_lights_a_face_as_its_irradiance_says(variant: str) -> None:
 
 
 def test_ring_light_is_refused_with_a_gradient_dome() -> None:
-    with pytest.raises(SimError, match="ring_radiance and scene.ambient_gradient"):
+    with pytest.raises(SimError, match=r"ring_radiance and scene\.ambient_gradient"):
         SceneConfig(ring_radiance=5.0, ambient_gradient=0.8)
     with pytest.raises(SimError, match="ring_elevation_deg"):
         SceneConfig(ring_radiance=5.0, ring_elevation_deg=(15.0, 95.0))

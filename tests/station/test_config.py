@@ -51,7 +51,8 @@ def test_values_are_typed():
     ("[camera]\ndome_segments = [0]", r"\[camera\] dome_segments: \[0.0\]: two or more distinct azimuths"),
     ('[camera]\ndome_segments = [0, 180]\ntrigger = "free_run"\n[io]\nmode = "none"',
      "a frame per segment needs trigger = 'software'"),
-    ('[camera]\ndome_segments = [0, 180]\ntrigger = "line0"\nexposure_us = 30000\n[acquisition]\nmax_frame_delay_ms = 50',
+    ('[camera]\ndome_segments = [0, 180]\ntrigger = "line0"\nexposure_us = 30000\n'
+     '[acquisition]\nmax_frame_delay_ms = 50',
      "max_frame_delay_ms: 2 exposures of 30 ms take 60 ms"),
     ("[camera]\ndome_segments = [0, 180]\nexposure_us = 60000", "2 exposures of 60 ms take 120 ms, the whole"),
     ("[decision]\nthreshold = 2", r"threshold: 2.0 is out of range \[0, 1\]"),
