@@ -12,5 +12,5 @@ two() {  # out, then render arguments
 while pgrep -f "station render" > /dev/null; do sleep 10; done  # a run already under way
 two data/df-ring-train $R --count 400 --seed 101 --defects 0.4 --defects-in-train
 two data/df-ring-val $R --count 150 --seed 303 --defects 0.4 --validation
-two data/df-dome-heldout $V --count 300 --seed 858 --defects 0.6 --heldout
-two data/df-ring-heldout $R --count 300 --seed 858 --defects 0.6 --heldout
+two data/df-dome-heldout $V --count 240 --seed 858 --defects 0.6 --heldout
+two data/df-ring-heldout $R --count 240 --seed 858 --defects 0.6 --heldout
