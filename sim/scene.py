@@ -499,6 +499,7 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
         elif params["ambient_radiance"] > 0:
             scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0),
                                             params.get("ambient_gradient_azimuth_deg", 0.0))
+        if "ambient" in scene:
             scene["ambient"]["sampling_weight"] = ambient_w
     else:
         scene["ground"] = {"type": "rectangle",
