@@ -136,18 +136,21 @@ class PulsedSetCamera(PulsedCamera):
         super().__init__()
         self.config = CameraConfig(trigger="line0", frames_per_part=2)
 
-    def pulse_set(self, label, missed=()):
+    def pulse_set(self, label, missed=(), lost=()):
+        """``lost``: pulses whose frame is made (its id spent) but never reaches the host."""
         for k in range(2):
             if k not in missed:
-                self.pulse_level(BRIGHT if label and k == 0 else DARK, label)
+                self.pulse_level(BRIGHT if label and k == 0 else DARK, label, arrives=k not in lost)
             time.sleep(self.SET_GAP_S)
 
-    def pulse_level(self, level, label):
+    def pulse_level(self, level, label, arrives=True):
         exposed_ns = time.monotonic_ns() + int(1e9 * self.delay_s)
 
         def complete():
             with self.ready:
                 self.frame_id += 1
+                if not arrives:
+                    return
                 self.frames.append(Frame(np.full((8, 8), level, np.uint8), "Mono8", 8, self.frame_id, exposed_ns,
                                          time.time_ns(), ground_truth=GroundTruth(label=label)))
                 self.ready.notify_all()
@@ -188,4 +191,34 @@ def test_a_pulse_missed_inside_a_set_rejects_its_part_and_no_set_mixes_two_parts
     assert judged == {f"P{i}": "reject" if label else "pass" for i, label in enumerate(labels) if f"P{i}" != bad}
     assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items() if p != bad)
     assert dict(link.reports) == {p: r["decision"] for p, r in rows.items()}
+    log.close()
+
+
+def test_a_set_frame_lost_in_transport_rejects_its_part_and_the_next_set_is_its_own(tmp_path):
+    """A set's second frame made but lost (its id spent): the part's set is incomplete. The next part's first frame
+    then follows a gap in frame ids; taken as "lost in transport", it would be held for the part after it, which
+    would be judged on it."""
+    labels = [0, 1, 0, 1, 0]
+    link = ScriptedLink(0)
+    camera = PulsedSetCamera()
+    log = InspectionLog(tmp_path / "log.sqlite")
+    inspector = Inspector(TiltDetector(), IMX250MZR, segments=(0.0, 180.0))
+    station = Station(camera, inspector, link, log, cycle_time_ms=300.0, queue_size=8, backpressure="block",
+                      grab_timeout_ms=120, max_frame_delay_ms=60.0)
+
+    def plc():
+        for i, label in enumerate(labels):
+            time.sleep(0.3)
+            link.announce(f"P{i}")
+            camera.pulse_set(label, lost=(1,) if i == 1 else ())
+
+    feeder = threading.Thread(target=plc)
+    feeder.start()
+    station.run(max_parts=len(labels))
+    feeder.join()
+    rows = {r["part_id"]: r for r in log.rows()}
+    assert rows["P1"]["decision"] == "reject" and "frame 2 of 2 did not come" in rows["P1"]["reason"]
+    assert {p: r["decision"] for p, r in rows.items() if p != "P1"} == {"P0": "pass", "P2": "pass", "P3": "reject",
+                                                                         "P4": "pass"}
+    assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items())
     log.close()
