@@ -140,22 +140,34 @@ class PulsedSetCamera(PulsedCamera):
         """``lost``: pulses whose frame is made (its id spent) but never reaches the host."""
         for k in range(2):
             if k not in missed:
-                self.pulse_level(BRIGHT if label and k == 0 else DARK, label, arrives=k not in lost)
+                self.pulse(label, level=BRIGHT if label and k == 0 else DARK, arrives=k not in lost)
             time.sleep(self.SET_GAP_S)
 
-    def pulse_level(self, level, label, arrives=True):
-        exposed_ns = time.monotonic_ns() + int(1e9 * self.delay_s)
 
-        def complete():
-            with self.ready:
-                self.frame_id += 1
-                if not arrives:
-                    return
-                self.frames.append(Frame(np.full((8, 8), level, np.uint8), "Mono8", 8, self.frame_id, exposed_ns,
-                                         time.time_ns(), ground_truth=GroundTruth(label=label)))
-                self.ready.notify_all()
+def run_line_sets(tmp_path, labels, spacing_s, grab_timeout_ms, odd=None):
+    """Parts P0, P1, ... announced ``spacing_s`` apart, each lit twice by the sequencer (``pulse_set``; ``odd``:
+    {part index: its ``pulse_set`` keywords}); a 300 ms cycle, ``max_frame_delay_ms`` 60. Rows by part id, and the
+    link."""
+    link = ScriptedLink(0)
+    camera = PulsedSetCamera()
+    log = InspectionLog(tmp_path / "log.sqlite")
+    inspector = Inspector(TiltDetector(), IMX250MZR, segments=(0.0, 180.0))
+    station = Station(camera, inspector, link, log, cycle_time_ms=300.0, queue_size=8, backpressure="block",
+                      grab_timeout_ms=grab_timeout_ms, max_frame_delay_ms=60.0)
 
-        threading.Timer(self.delay_s, complete).start()
+    def plc():
+        for i, label in enumerate(labels):
+            time.sleep(spacing_s)
+            link.announce(f"P{i}")
+            camera.pulse_set(label, **(odd or {}).get(i, {}))
+
+    feeder = threading.Thread(target=plc)
+    feeder.start()
+    station.run(max_parts=len(labels))
+    feeder.join()
+    rows = {r["part_id"]: r for r in log.rows()}
+    log.close()
+    return rows, link
 
 
 @pytest.mark.parametrize("missed", [(2, 0), (2, 1), (5, 0)])
@@ -166,24 +178,7 @@ def test_a_pulse_missed_inside_a_set_rejects_its_part_and_no_set_mixes_two_parts
     The frame exposed beyond ``max_frame_delay_ms`` after the part's TRIG is the next part's: the part is rejected
     as missed, the frame kept for its own part."""
     labels = [0, 1, 0, 1, 0, 0, 1, 0]
-    link = ScriptedLink(0)
-    camera = PulsedSetCamera()
-    log = InspectionLog(tmp_path / "log.sqlite")
-    inspector = Inspector(TiltDetector(), IMX250MZR, segments=(0.0, 180.0))
-    station = Station(camera, inspector, link, log, cycle_time_ms=300.0, queue_size=8, backpressure="block",
-                      grab_timeout_ms=200, max_frame_delay_ms=60.0)
-
-    def plc():
-        for i, label in enumerate(labels):
-            time.sleep(0.1)
-            link.announce(f"P{i}")
-            camera.pulse_set(label, missed=(missed[1],) if i == missed[0] else ())
-
-    feeder = threading.Thread(target=plc)
-    feeder.start()
-    station.run(max_parts=len(labels))
-    feeder.join()
-    rows = {r["part_id"]: r for r in log.rows()}
+    rows, link = run_line_sets(tmp_path, labels, 0.1, 200, odd={missed[0]: {"missed": (missed[1],)}})
     bad = f"P{missed[0]}"
     assert len(rows) == len(labels)
     assert rows[bad]["decision"] == "reject" and "missed its trigger pulse" in rows[bad]["reason"]
@@ -191,7 +186,6 @@ def test_a_pulse_missed_inside_a_set_rejects_its_part_and_no_set_mixes_two_parts
     assert judged == {f"P{i}": "reject" if label else "pass" for i, label in enumerate(labels) if f"P{i}" != bad}
     assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items() if p != bad)
     assert dict(link.reports) == {p: r["decision"] for p, r in rows.items()}
-    log.close()
 
 
 def test_a_set_frame_lost_in_transport_rejects_its_part_and_the_next_set_is_its_own(tmp_path):
@@ -199,26 +193,8 @@ def test_a_set_frame_lost_in_transport_rejects_its_part_and_the_next_set_is_its_
     then follows a gap in frame ids; taken as "lost in transport", it would be held for the part after it, which
     would be judged on it."""
     labels = [0, 1, 0, 1, 0]
-    link = ScriptedLink(0)
-    camera = PulsedSetCamera()
-    log = InspectionLog(tmp_path / "log.sqlite")
-    inspector = Inspector(TiltDetector(), IMX250MZR, segments=(0.0, 180.0))
-    station = Station(camera, inspector, link, log, cycle_time_ms=300.0, queue_size=8, backpressure="block",
-                      grab_timeout_ms=120, max_frame_delay_ms=60.0)
-
-    def plc():
-        for i, label in enumerate(labels):
-            time.sleep(0.3)
-            link.announce(f"P{i}")
-            camera.pulse_set(label, lost=(1,) if i == 1 else ())
-
-    feeder = threading.Thread(target=plc)
-    feeder.start()
-    station.run(max_parts=len(labels))
-    feeder.join()
-    rows = {r["part_id"]: r for r in log.rows()}
+    rows, _ = run_line_sets(tmp_path, labels, 0.3, 120, odd={1: {"lost": (1,)}})
     assert rows["P1"]["decision"] == "reject" and "frame 2 of 2 did not come" in rows["P1"]["reason"]
     assert {p: r["decision"] for p, r in rows.items() if p != "P1"} == {"P0": "pass", "P2": "pass", "P3": "reject",
                                                                          "P4": "pass"}
     assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items())
-    log.close()

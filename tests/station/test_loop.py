@@ -709,14 +709,17 @@ class PulsedCamera(ScriptedCamera):
         self.frames = deque()
         self.ready = threading.Condition()
 
-    def pulse(self, label, transfer_s=0.0):
-        """The frame's camera timestamp is its exposure's end; the host has it ``transfer_s`` later."""
+    def pulse(self, label, transfer_s=0.0, level=None, arrives=True):
+        """The frame's camera timestamp is its exposure's end; the host has it ``transfer_s`` later. ``level``: its
+        brightness (default: bright for a defective part); ``arrives`` False: made (its id spent), never delivered."""
         exposed_ns = time.monotonic_ns() + int(1e9 * self.delay_s)
 
         def complete():
             with self.ready:
                 self.frame_id += 1
-                raw = np.full((8, 8), 200 if label == 1 else 20, np.uint8)
+                if not arrives:
+                    return
+                raw = np.full((8, 8), level if level is not None else 200 if label == 1 else 20, np.uint8)
                 self.frames.append(Frame(raw, "Mono8", 8, self.frame_id, exposed_ns, time.time_ns(),
                                          ground_truth=GroundTruth(label=label)))
                 self.ready.notify_all()
