@@ -33,7 +33,7 @@ ALPHA_TYPES = ("pplastic", "roughplastic", "roughconductor", "roughdielectric")
 FINISHES = ("rough", "smooth", "either")
 BACKGROUNDS = ("plain", "checkerboard", "noise")
 BACKGROUND_MATERIALS = ("diffuse", "pplastic")
-ANGLES_ANY_SIGN = ("yaw_deg", "camera_azimuth_deg", "light_azimuth_deg")
+ANGLES_ANY_SIGN = ("yaw_deg", "camera_azimuth_deg", "light_azimuth_deg", "ring_azimuth_deg")
 
 
 @dataclass(frozen=True)
@@ -83,6 +83,11 @@ class SceneConfig:
     toward the ring it is larger. Refused with ``ambient_gradient`` (one environment map holds both only as a
     uniform dome)."""
     ring_elevation_deg: tuple[float, float] = (5.0, 15.0)
+    ring_azimuth_deg: tuple[float, float] = (0.0, 360.0)  # FULL_RING
+    """The azimuths the ring covers, degrees from world +x toward +y (lo < hi, at most 360 apart): a whole ring by
+    default, a sector otherwise. A sector high enough to be mirrored into the camera by a face (opposite the camera,
+    at the camera's elevation) is a bright-field panel: the smooth face shows it, a rough patch spreads its mirrored
+    light away and goes dark. Its irradiance on a horizontal face is the whole ring's times the sector's share."""
     colour: tuple[float, float] = (0.0, 1.0)
     background_colour: tuple[float, float] | None = None
     """Reflectance range of the ground's colours; None = ``colour``'s."""
@@ -141,6 +146,10 @@ class SceneConfig:
         if self.ring_elevation_deg[1] >= 90 or self.ring_elevation_deg[0] >= self.ring_elevation_deg[1]:
             raise SimError(f"scene.ring_elevation_deg: need elevations lo < hi < 90 degrees, got "
                            f"{self.ring_elevation_deg}")
+        lo, hi = self.ring_azimuth_deg
+        if not (lo < hi <= lo + 360 and -360 <= lo and hi <= 720):
+            raise SimError(f"scene.ring_azimuth_deg: need azimuths lo < hi <= lo + 360 degrees, got "
+                           f"{self.ring_azimuth_deg}")
         if self.max_depth < 2:
             raise SimError(f"scene.max_depth must be >= 2, got {self.max_depth}")
 
@@ -300,6 +309,8 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
            if cfg.ambient_gradient and cfg.ambient_gradient_azimuth_deg else {}),
         **({"ring_radiance": cfg.ring_radiance, "ring_elevation_deg": list(cfg.ring_elevation_deg)}
            if cfg.ring_radiance else {}),
+        **({"ring_azimuth_deg": list(cfg.ring_azimuth_deg)}
+           if cfg.ring_radiance and tuple(cfg.ring_azimuth_deg) != FULL_RING else {}),  # older sets lack it
         "materials": materials,
         "background": background,
     }
@@ -421,15 +432,17 @@ def emitter_weights(params: dict) -> tuple[float, float]:
     light = params["light"]
     d2 = float(np.sum((np.asarray(light["origin"]) - np.asarray(light["target"])) ** 2))
     ring = params.get("ring_radiance", 0.0)
-    ring_e = ring * ring_irradiance_factor(*params["ring_elevation_deg"]) if ring else 0.0
+    ring_e = ring * ring_irradiance_factor(*params["ring_elevation_deg"],
+                                           *params.get("ring_azimuth_deg", FULL_RING)) if ring else 0.0
     return float(light["intensity"]) / max(d2, 1e-6), float(np.pi * params["ambient_radiance"] + ring_e)
 
 
-def ring_irradiance_factor(lo_deg: float, hi_deg: float) -> float:
-    """Irradiance on a horizontal face per unit radiance of a ring from every azimuth at elevations
-    ``[lo_deg, hi_deg]``: ``pi (cos^2 lo - cos^2 hi)`` (W/m^2 per W/(m^2 sr))."""
+def ring_irradiance_factor(lo_deg: float, hi_deg: float, az_lo_deg: float = 0.0, az_hi_deg: float = 360.0) -> float:
+    """Irradiance on a horizontal face per unit radiance of a ring at elevations ``[lo_deg, hi_deg]`` covering
+    azimuths ``[az_lo_deg, az_hi_deg]``: ``pi (cos^2 lo - cos^2 hi)`` times the sector's share of the circle
+    (W/m^2 per W/(m^2 sr))."""
     lo, hi = np.radians(lo_deg), np.radians(hi_deg)
-    return float(np.pi * (np.cos(lo) ** 2 - np.cos(hi) ** 2))
+    return float(np.pi * (np.cos(lo) ** 2 - np.cos(hi) ** 2) * (az_hi_deg - az_lo_deg) / 360.0)
 
 
 GRADIENT_ROWS = 64
@@ -452,20 +465,40 @@ def ambient_dict(radiance: float, gradient: float, azimuth_deg: float = 0.0) -> 
 
 
 RING_ROWS = 720
-"""Rows of the ring light's envmap (a quarter of a degree each); a row the ring's edge cuts gets its covered share."""
+"""Rows of the ring light's envmap (a quarter of a degree each); a row the ring's edge cuts gets its covered share.
+A sector (``SceneConfig.ring_azimuth_deg``) has twice as many columns, a quarter of a degree each as well."""
+
+FULL_RING = (0.0, 360.0)
+"""``SceneConfig.ring_azimuth_deg`` of a whole ring."""
 
 
-def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float]) -> dict:
+def _covered(edges: np.ndarray, lo: float, hi: float, period: float | None = None) -> np.ndarray:
+    """Share of each cell between consecutive ``edges`` (increasing) that lies in ``[lo, hi]``; with ``period``,
+    of ``[lo, hi]`` repeated every ``period``."""
+    shifts = (-period, 0.0, period) if period else (0.0,)
+    inside = sum(np.clip(np.minimum(edges[1:], hi + k) - np.maximum(edges[:-1], lo + k), 0, None) for k in shifts)
+    return inside / np.diff(edges)
+
+
+def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float],
+              azimuth_deg: Sequence[float] = FULL_RING) -> dict:
     """The environment with a ring light (``SceneConfig.ring_radiance``): uniform ``radiance`` from every direction
-    plus ``ring`` at elevations ``elevation_deg`` (lo, hi) above the ground, as an envmap whose pole (its local +y)
-    is world +z, so its rows are polar angles from the vertical."""
+    plus ``ring`` at elevations ``elevation_deg`` (lo, hi) above the ground and azimuths ``azimuth_deg`` (lo, hi;
+    degrees from world +x toward +y), as an envmap whose pole (its local +y) is world +z, so its rows are polar
+    angles from the vertical. Mitsuba reads a direction's column as ``u = atan2(x, -z) / 2 pi`` in the map's
+    frame, which is world azimuth ``phi = 90 - 360 u`` degrees here (a test checks a sector's side)."""
     import mitsuba as mi
 
     edges = np.linspace(0.0, 180.0, RING_ROWS + 1)  # polar angle of the rows' edges, degrees
-    lo, hi = 90.0 - float(elevation_deg[1]), 90.0 - float(elevation_deg[0])
-    covered = np.clip(np.minimum(edges[1:], hi) - np.maximum(edges[:-1], lo), 0, None) / np.diff(edges)
-    rows = (radiance + ring * covered).astype(np.float32)
-    bitmap = mi.Bitmap(np.repeat(rows[:, None, None], 4, 1))
+    rows = _covered(edges, 90.0 - float(elevation_deg[1]), 90.0 - float(elevation_deg[0]))
+    if tuple(azimuth_deg) == FULL_RING:
+        cells = np.repeat(rows[:, None], 4, 1)
+    else:  # columns run along u, i.e. toward decreasing azimuth: column j covers phi in [90 - 360 (j+1)/W, ...]
+        u_edges = np.linspace(0.0, 1.0, 2 * RING_ROWS + 1)
+        phi_edges = 90.0 - 360.0 * u_edges[::-1]  # increasing; reversed back to column order below
+        cols = _covered(phi_edges, float(azimuth_deg[0]), float(azimuth_deg[1]), period=360.0)[::-1]
+        cells = rows[:, None] * cols[None, :]
+    bitmap = mi.Bitmap((radiance + ring * cells).astype(np.float32)[..., None])
     return {"type": "envmap", "bitmap": bitmap, "scale": 1.0,
             "to_world": mi.ScalarTransform4f().rotate(axis=[1, 0, 0], angle=90)}
 
@@ -495,7 +528,7 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
                                                                     up=[0, 0, 1])}
         if params.get("ring_radiance"):
             scene["ambient"] = ring_dict(params["ambient_radiance"], params["ring_radiance"],
-                                         params["ring_elevation_deg"])
+                                         params["ring_elevation_deg"], params.get("ring_azimuth_deg", FULL_RING))
         elif params["ambient_radiance"] > 0:
             scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0),
                                             params.get("ambient_gradient_azimuth_deg", 0.0))

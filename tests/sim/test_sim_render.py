@@ -106,37 +106,48 @@ def test_gradient_dome_lights_the_plus_x_side(variant: str, gradient: float, azi
     assert c == pytest.approx(0.7 / 2, rel=0.05)  # albedo 0.5 under a mean radiance of 0.7: the mean is kept
 
 
-def _ring_irradiance(n: np.ndarray, lo_deg: float, hi_deg: float, radiance: float) -> np.ndarray:
-    """Irradiance on faces of normals ``n`` (..., 3) from a ring of ``radiance`` at elevations [lo, hi], by a sum
-    over the ring's directions (the reference ``ring_dict`` must match)."""
-    de, da = np.radians(hi_deg - lo_deg) / 60, np.radians(2.0)
+def _ring_irradiance(n: np.ndarray, lo_deg: float, hi_deg: float, radiance: float,
+                     azimuth_deg: tuple[float, float] = (0.0, 360.0)) -> np.ndarray:
+    """Irradiance on faces of normals ``n`` (..., 3) from a ring of ``radiance`` at elevations [lo, hi] and
+    azimuths ``azimuth_deg`` (from world +x toward +y), by a sum over the ring's directions (the reference
+    ``ring_dict`` must match)."""
+    de = np.radians(hi_deg - lo_deg) / 60
+    da = np.radians(azimuth_deg[1] - azimuth_deg[0]) / 180
     e = np.radians(lo_deg) + (np.arange(60) + 0.5) * de  # cell midpoints
-    ee, aa = np.meshgrid(e, (np.arange(180) + 0.5) * da, indexing="ij")
+    a = np.radians(azimuth_deg[0]) + (np.arange(180) + 0.5) * da
+    ee, aa = np.meshgrid(e, a, indexing="ij")
     w = np.stack([np.cos(ee) * np.cos(aa), np.cos(ee) * np.sin(aa), np.sin(ee)], -1).reshape(-1, 3)
     d_omega = np.cos(ee).ravel() * de * da
     return radiance * (np.clip(n @ w.T, 0, None) * d_omega).sum(-1)
+
+
+def _matte_sphere_under(env: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """S0 of a matte sphere (albedo 0.5) seen from world +z with image up along world +y, so camera axes are world
+    axes; its world normals, and the pixels on the sphere off its rim (whose pixels are part background)."""
+    import mitsuba as mi
+
+    from sim.render import _channels as render_channels
+    from sim.render import _integrator
+    from sim.scene import camera_axes
+
+    cam = {"origin": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov_x_deg": 30}
+    scene = load_scene({"type": "scene", "sensor": sensor_dict(cam, 64, 64, 64),
+                        "ball": {"type": "sphere", "radius": 0.7, "bsdf": {"type": "diffuse"}}, "env": env})
+    mi.render(scene, integrator=_integrator("stokes"), spp=64)
+    s0 = render_channels(scene)["S0"][..., 0]
+    mi.render(scene, integrator=_integrator("aov"), spp=1)
+    ch = render_channels(scene)
+    n = ch["nn"].reshape(64, 64, 3) @ camera_axes(cam).T  # camera axes are world axes here
+    return s0, n, (np.rint(ch["sid"]) > 0) & (n[..., 2] > 0.45)
 
 
 def test_ring_light_lights_a_face_as_its_irradiance_says(variant: str) -> None:
     """``SceneConfig.ring_radiance``: a matte sphere under a ring at elevations 5-15 degrees (no dome) has S0 =
     albedo / pi * E(n), E the ring's irradiance on its normal: dark on top (``ring_irradiance_factor``), bright on
     faces tilted toward the horizon."""
-    import mitsuba as mi
+    from sim.scene import ring_dict, ring_irradiance_factor
 
-    from sim.render import _channels as render_channels
-    from sim.render import _integrator
-    from sim.scene import camera_axes, ring_dict, ring_irradiance_factor
-
-    cam = {"origin": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov_x_deg": 30}
-    scene = load_scene({"type": "scene", "sensor": sensor_dict(cam, 64, 64, 64),
-                        "ball": {"type": "sphere", "radius": 0.7, "bsdf": {"type": "diffuse"}},
-                        "env": ring_dict(0.0, 10.0, (5.0, 15.0))})
-    mi.render(scene, integrator=_integrator("stokes"), spp=64)
-    s0 = render_channels(scene)["S0"][..., 0]
-    mi.render(scene, integrator=_integrator("aov"), spp=1)
-    ch = render_channels(scene)
-    n = ch["nn"].reshape(64, 64, 3) @ camera_axes(cam).T  # camera axes are world axes here
-    on = (np.rint(ch["sid"]) > 0) & (n[..., 2] > 0.45)  # off the rim, whose pixels are part background
+    s0, n, on = _matte_sphere_under(ring_dict(0.0, 10.0, (5.0, 15.0)))
     expected = 0.5 / np.pi * _ring_irradiance(n[on], 5.0, 15.0, 10.0)
     assert np.corrcoef(expected, s0[on])[0, 1] > 0.9
     assert np.median(s0[on] / np.maximum(expected, 1e-3)) == pytest.approx(1.0, rel=0.05)
@@ -145,11 +156,32 @@ def test_ring_light_lights_a_face_as_its_irradiance_says(variant: str) -> None:
     assert _ring_irradiance(np.array([0.0, 0, 1]), 5, 15, 1.0) == pytest.approx(ring_irradiance_factor(5, 15), rel=0.01)
 
 
+def test_a_ring_sector_lights_the_faces_on_its_side(variant: str) -> None:
+    """``SceneConfig.ring_azimuth_deg``: a sector of the ring at azimuths 30-90 (between world +x and +y, not
+    symmetric about either) lights a matte sphere as its irradiance says, so its columns sit at the right
+    azimuths (a mirrored or shifted map lights other faces); on top, the whole ring's irradiance times 60/360."""
+    from sim.scene import ring_dict, ring_irradiance_factor
+
+    sector = (30.0, 90.0)
+    s0, n, on = _matte_sphere_under(ring_dict(0.0, 10.0, (20.0, 45.0), sector))
+    expected = 0.5 / np.pi * _ring_irradiance(n[on], 20.0, 45.0, 10.0, sector)
+    assert np.corrcoef(expected, s0[on])[0, 1] > 0.95
+    lit = expected > 0.2 * expected.max()
+    assert np.median(s0[on][lit] / expected[lit]) == pytest.approx(1.0, rel=0.05)
+    mirrored = 0.5 / np.pi * _ring_irradiance(n[on] * [1, -1, 1], 20.0, 45.0, 10.0, sector)
+    assert np.corrcoef(mirrored, s0[on])[0, 1] < 0.5
+    top = on & (n[..., 2] > 0.99)
+    assert np.mean(s0[top]) == pytest.approx(0.5 / np.pi * 10.0 * ring_irradiance_factor(20, 45, *sector), rel=0.1)
+    assert ring_irradiance_factor(20, 45, *sector) == pytest.approx(ring_irradiance_factor(20, 45) / 6)
+
+
 def test_ring_light_is_refused_with_a_gradient_dome() -> None:
     with pytest.raises(SimError, match=r"ring_radiance and scene\.ambient_gradient"):
         SceneConfig(ring_radiance=5.0, ambient_gradient=0.8)
     with pytest.raises(SimError, match="ring_elevation_deg"):
         SceneConfig(ring_radiance=5.0, ring_elevation_deg=(15.0, 95.0))
+    with pytest.raises(SimError, match="ring_azimuth_deg"):
+        SceneConfig(ring_radiance=5.0, ring_azimuth_deg=(90.0, 70.0))
 
 
 @pytest.fixture(scope="module")

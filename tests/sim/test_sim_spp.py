@@ -121,18 +121,25 @@ def test_light_sampling_weights_change_noise_not_the_image() -> None:
     assert means[0] == pytest.approx(means[1], rel=0.05)
 
 
-@pytest.mark.parametrize("ring", [0.0, 5.89])
-def test_every_environment_gets_its_sampling_weight(ring: float) -> None:
+@pytest.mark.parametrize(("ring", "sector"), [(0.0, (0.0, 360.0)), (5.89, (0.0, 360.0)), (2.6, (70.0, 110.0))])
+def test_every_environment_gets_its_sampling_weight(ring: float, sector: tuple[float, float]) -> None:
     """The ring light's environment was built without its weight (Mitsuba's default, 1, against the stray spot's
     I / d^2 of up to 0.6): the spot took up to 37 % of the emitter samples instead of up to 21 %, and the ring's renders
-    were noisier than they need be (unbiased either way)."""
+    were noisier than they need be (unbiased either way). A sector's weight counts only its share of the ring, and
+    the sector reaches the scene."""
     from sim.meshes import usb_brick
-    from sim.scene import SceneConfig, build_scene, emitter_weights, object_to_world, pose_parts, sample_scene
+    from sim.scene import (SceneConfig, build_scene, emitter_weights, object_to_world, pose_parts,
+                           ring_irradiance_factor, sample_scene)
     from sim.variant import set_variant
 
     set_variant()
     model = usb_brick()
-    cfg = SceneConfig(ambient_radiance=0.35, ring_radiance=ring, light_intensity=(0.5, 0.5))
+    cfg = SceneConfig(ambient_radiance=0.35, ring_radiance=ring, ring_azimuth_deg=sector, light_intensity=(0.5, 0.5))
     params = sample_scene(np.random.default_rng([0, 5]), cfg, model)
     d, _ = build_scene(params, pose_parts(model, object_to_world(params["pose"])), params["materials"], 32, 24, 4)
     assert (d["spot"]["sampling_weight"], d["ambient"]["sampling_weight"]) == emitter_weights(params)
+    ring_share = (emitter_weights(params)[1] - 0.35 * np.pi) / (ring * ring_irradiance_factor(5, 15) or 1)
+    assert ring_share == pytest.approx((sector[1] - sector[0]) / 360 if ring else 0.0)
+    if ring:
+        columns = np.array(d["ambient"]["bitmap"]).shape[1]
+        assert columns == (4 if sector == (0.0, 360.0) else 1440)
