@@ -1,8 +1,8 @@
 """One part's frame -> score and heatmap: demosaic, the priors the detector needs (and no others), the detector.
 
 A model that reads a frame per dome segment (photometric stereo, ``model.priors.photometric``) gets the part's
-frames in the segments' order: intensity and polarization from their mean Stokes, the tilts from opposite pairs,
-as ``model.priors.api.compute_set_priors`` computes them for training and evaluation. The tilt compares each pixel
+frames in the segments' order: intensity and polarization from their mean Stokes, the tilts from opposite pairs, by
+the functions ``model.priors.api.compute_set_priors`` uses for training and evaluation. The tilt compares each pixel
 across the frames, so a part that moved between them reads as tilted at every edge and scores high: when the model
 finds a part over its threshold, the inspector measures that motion (``model.priors.photometric.frame_motion``, about
 10 ms a pair, paid by rejected parts only) and, beyond ``motion_limit``, gives it as the error, so the row says why.
@@ -27,19 +27,9 @@ import numpy as np
 
 from drivers.frame import Frame
 from model.priors import MosaicLayout
-from model.priors.api import check_prior_names, needs_polarization, priors_from_stokes
-from model.priors.demosaic import mosaic_to_stokes
+from model.priors.api import check_prior_names, needs_polarization, set_priors_from_stokes, set_stokes
 from model.priors.frame_stats import FrameStatistics, frame_statistics
-from model.priors.mosaic import normalize_mosaic
-from model.priors.photometric import (
-    check_tilts,
-    describe_segments,
-    frame_motion,
-    frames_per_part,
-    mean_stokes,
-    motion_limit,
-    tilt_maps,
-)
+from model.priors.photometric import check_tilts, describe_segments, frame_motion, frames_per_part, motion_limit
 from station.presence import Presence, PresenceCheck
 
 log = logging.getLogger(__name__)
@@ -142,13 +132,10 @@ class Inspector:
             if len(frames) != frames_per_part(self.segments):
                 raise ValueError(f"{len(frames)} frame(s) for a model that reads {describe_segments(self.segments)}")
             bits = significant_bits(frame, self.bit_depth)
-            norms = [normalize_mosaic(f.raw, bits) for f in frames]
-            stokes = [mosaic_to_stokes(n.data, self.layout, self.method, self.polarization) for n in norms]
+            norms, stokes = set_stokes([f.raw for f in frames], self.layout, self.method, self.polarization, bits)
             t_demosaic = time.perf_counter()
             result.timings_ms["demosaic"] = 1e3 * (t_demosaic - t)
-            result.priors = priors_from_stokes(self.names, *mean_stokes(stokes))
-            if self.segments:
-                result.priors.update(tilt_maps(self.names, self.segments, [s[0] for s in stokes]))
+            result.priors = set_priors_from_stokes(self.names, self.segments, stokes)
             result.invalid_fraction = max(n.n_nonfinite + n.n_out_of_range for n in norms) / frame.raw.size
             result.n_saturated = max(n.n_saturated for n in norms)
             if self.statistics:

@@ -8,8 +8,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .conventions import MosaicLayout
-from .demosaic import mosaic_to_stokes
-from .mosaic import normalize_mosaic
+from .demosaic import Stokes, mosaic_to_stokes
+from .mosaic import NormalizedMosaic, normalize_mosaic
 from .photometric import DOME_PAIRS, check_tilts, frames_per_part, mean_stokes, tilt_maps
 from .stokes import aolp, aolp_vector, dolp, unpolarized_intensity
 
@@ -89,17 +89,30 @@ def compute_set_priors(raws: Sequence[np.ndarray], segments: Sequence[float] | N
     elif len(raws) != frames_per_part(segments):
         raise ValueError(f"{len(raws)} frames for {len(segments)} dome segments")
     check_tilts(names, segments)
+    norms, stokes = set_stokes(raws, layout, method, needs_polarization(names), bit_depth)
+    invalid = [n.invalid for n in norms if n.invalid is not None]
+    return Priors(set_priors_from_stokes(names, segments, stokes), max(n.n_nonfinite for n in norms),
+                  max(n.n_out_of_range for n in norms), max(n.n_saturated for n in norms),
+                  invalid[0] if len(invalid) == 1 else np.logical_or.reduce(invalid) if invalid else None)
+
+
+def set_stokes(raws: Sequence[np.ndarray], layout: str | MosaicLayout, method: str, polarization: bool,
+               bit_depth: int | None) -> tuple[list[NormalizedMosaic], list[Stokes]]:
+    """Each frame of a part normalised (``normalize_mosaic``: full-scale units and what was wrong with it) and
+    demosaiced to (S0, S1, S2) (S1, S2 None unless ``polarization``); ValueError when the frames differ in shape."""
     norms = [normalize_mosaic(raw, bit_depth) for raw in raws]
     if len({n.data.shape for n in norms}) != 1:
         raise ValueError(f"the frames differ in shape: {sorted({n.data.shape for n in norms})}")
-    polar = needs_polarization(names)
-    stokes = [mosaic_to_stokes(n.data, layout, method, polar) for n in norms]
+    return norms, [mosaic_to_stokes(n.data, layout, method, polarization) for n in norms]
+
+
+def set_priors_from_stokes(names: Sequence[str], segments: Sequence[float], stokes: Sequence[Stokes]
+                           ) -> dict[str, np.ndarray]:
+    """The priors ``names`` of one part from its frames' Stokes (``segments`` order): intensity and polarization
+    from the frames' mean Stokes, the tilts from opposite segments' S0."""
     arrays = priors_from_stokes(names, *mean_stokes(stokes))
     arrays.update(tilt_maps(names, segments, [s[0] for s in stokes]))
-    invalid = [n.invalid for n in norms if n.invalid is not None]
-    return Priors(arrays, max(n.n_nonfinite for n in norms), max(n.n_out_of_range for n in norms),
-                  max(n.n_saturated for n in norms),
-                  invalid[0] if len(invalid) == 1 else np.logical_or.reduce(invalid) if invalid else None)
+    return arrays
 
 
 def needs_polarization(names: Iterable[str]) -> bool:
