@@ -455,6 +455,7 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
                            f"version {RENDERER_VERSION} (different pixels for the same seed); resuming would mix "
                            f"the two: render into a new --out, or finish the set with the older code")
         old_cmp = {"renderer_version": 1, **{k: v for k, v in old.items() if k not in IGNORED_ON_RESUME}}
+        old_cmp["config"] = _normalized_config(old_cmp.get("config", {}))
         same = old_cmp == {k: v for k, v in manifest.items() if k not in IGNORED_ON_RESUME}
         if not same:
             raise SimError(f"{path} describes a different dataset (seed or config differ); use another --out or "
@@ -470,6 +471,15 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
         if pid.isdigit() and not _alive(int(pid)):
             shutil.rmtree(stale, ignore_errors=True)
     return manifest
+
+
+def _normalized_config(config: dict[str, Any]) -> dict[str, Any]:
+    """A manifest's config as this code writes it: a key the set's code wrote at its default, or did not know yet
+    (its default draws what that code drew), reads the same either way. As written when it does not parse."""
+    try:
+        return DatasetSpec.from_dict(config).to_dict()
+    except (SimError, TypeError, ValueError):
+        return config
 
 
 def _alive(pid: int) -> bool:

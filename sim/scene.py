@@ -147,8 +147,8 @@ class SceneConfig:
             raise SimError(f"scene.ring_elevation_deg: need elevations lo < hi < 90 degrees, got "
                            f"{self.ring_elevation_deg}")
         lo, hi = self.ring_azimuth_deg
-        if not (lo < hi <= lo + 360 and -360 <= lo and hi <= 720):
-            raise SimError(f"scene.ring_azimuth_deg: need azimuths lo < hi <= lo + 360 degrees, got "
+        if not (-360 <= lo < hi <= lo + 360 <= 720):
+            raise SimError(f"scene.ring_azimuth_deg: need azimuths -360 <= lo < hi <= lo + 360 <= 720 degrees, got "
                            f"{self.ring_azimuth_deg}")
         if self.max_depth < 2:
             raise SimError(f"scene.max_depth must be >= 2, got {self.max_depth}")
@@ -172,7 +172,8 @@ class SceneConfig:
 
 
 LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose", "background_colour",
-              "ambient_gradient", "ambient_gradient_azimuth_deg")
+              "ambient_gradient", "ambient_gradient_azimuth_deg", "ring_radiance", "ring_elevation_deg",
+              "ring_azimuth_deg")
 """SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
 
@@ -474,8 +475,8 @@ FULL_RING = (0.0, 360.0)
 
 def _covered(edges: np.ndarray, lo: float, hi: float, period: float | None = None) -> np.ndarray:
     """Share of each cell between consecutive ``edges`` (increasing) that lies in ``[lo, hi]``; with ``period``,
-    of ``[lo, hi]`` repeated every ``period``."""
-    shifts = (-period, 0.0, period) if period else (0.0,)
+    of ``[lo, hi]`` repeated every ``period`` (edges and interval within two periods of each other)."""
+    shifts = tuple(k * period for k in (-2, -1, 0, 1, 2)) if period else (0.0,)
     inside = sum(np.clip(np.minimum(edges[1:], hi + k) - np.maximum(edges[:-1], lo + k), 0, None) for k in shifts)
     return inside / np.diff(edges)
 

@@ -66,3 +66,27 @@ def test_a_bit_depth_on_the_command_line_wins_over_the_presets(tmp_path: Path, f
     assert main(["render", "--out", str(out), "--count", "1", "--width", "32", "--height", "24", "--spp", "1",
                  "--no-ground-truth", "--config", "sim/presets/line-polar.toml", *flag]) == 0
     assert json.loads((out / "manifest.json").read_text())["bit_depth"] == expected
+
+
+@pytest.mark.parametrize(("written", "resumes"), [
+    ({}, True),  # before the ring light existed
+    ({"ring_radiance": 0.0, "ring_elevation_deg": [5.0, 15.0]}, True),  # the ring's keys at their defaults
+    ({"ring_radiance": 5.0, "ring_elevation_deg": [5.0, 15.0]}, False),  # a set lit by a ring is another set
+])
+def test_a_set_written_by_earlier_code_resumes_when_it_drew_the_same(tmp_path: Path, written: dict,
+                                                                      resumes: bool) -> None:
+    """The ring light's keys went into every manifest, at their defaults too, and manifests were compared key
+    for key: no set rendered before it resumed ("describes a different dataset"). A key at its default, written or
+    not, now reads the same; a key that changes the set still refuses."""
+    root = tmp_path / "set"
+    init_dataset(root, DatasetSpec(width=16, height=8), 2)
+    path = root / "manifest.json"
+    manifest = json.loads(path.read_text())
+    manifest["config"]["scene"] = {k: v for k, v in manifest["config"]["scene"].items() if "ring" not in k} | written
+    path.write_text(json.dumps(manifest))
+    if resumes:
+        init_dataset(root, DatasetSpec(width=16, height=8), 4)
+        assert json.loads(path.read_text())["count"] == 4
+    else:
+        with pytest.raises(SimError, match="describes a different dataset"):
+            init_dataset(root, DatasetSpec(width=16, height=8), 4)

@@ -128,8 +128,15 @@ def test_every_environment_gets_its_sampling_weight(ring: float, sector: tuple[f
     were noisier than they need be (unbiased either way). A sector's weight counts only its share of the ring, and
     the sector reaches the scene."""
     from sim.meshes import usb_brick
-    from sim.scene import (SceneConfig, build_scene, emitter_weights, object_to_world, pose_parts,
-                           ring_irradiance_factor, sample_scene)
+    from sim.scene import (
+        SceneConfig,
+        build_scene,
+        emitter_weights,
+        object_to_world,
+        pose_parts,
+        ring_irradiance_factor,
+        sample_scene,
+    )
     from sim.variant import set_variant
 
     set_variant()
