@@ -71,6 +71,12 @@ class AcquisitionConfig:
     max_frame_delay_ms: float | None = _opt(None, range=(1.0, 600000.0))
 
 
+def frame_delay_limit_ms(max_frame_delay_ms: float | None, cycle_time_ms: float) -> float:
+    """How long after a part's TRIG its frames may be exposed (ms): ``[acquisition] max_frame_delay_ms``, by default
+    the cycle time."""
+    return cycle_time_ms if max_frame_delay_ms is None else max_frame_delay_ms
+
+
 @dataclass(frozen=True)
 class PriorsConfig:
     layout: str = _opt("imx250mzr", choices=tuple(LAYOUTS))
@@ -228,7 +234,7 @@ def _check_timing(cfg: StationConfig, source: str) -> None:
                           "station triggers each frame) or a line (the sequencer pulses the camera once per segment), "
                           "not 'free_run': nothing would tell which frame starts a part's set")
     exposure_ms = cfg.camera.exposure_us / 1e3
-    delay_ms = cfg.acquisition.max_frame_delay_ms or cfg.acquisition.cycle_time_ms
+    delay_ms = frame_delay_limit_ms(cfg.acquisition.max_frame_delay_ms, cfg.acquisition.cycle_time_ms)
     if frames > 1 and cfg.camera.trigger.startswith("line") and frames * exposure_ms >= delay_ms:
         raise ConfigError(f"{source}: [acquisition] max_frame_delay_ms: {frames} exposures of {exposure_ms:g} ms take "
                           f"{frames * exposure_ms:g} ms, not within the {delay_ms:g} ms a part's frames may come after "

@@ -38,6 +38,7 @@ from drivers.errors import CameraError, CameraTimeout
 from drivers.frame import Frame
 from drivers.line_io import Trigger
 from model.draem.frame_checks import FRAME_CHECKS
+from station.config import frame_delay_limit_ms
 from station.decision import Decision, Verdict, decide, late
 from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
@@ -208,7 +209,7 @@ class Station:
         self.cycle_time_ms, self.grab_timeout_ms = cycle_time_ms, grab_timeout_ms
         inspector.slow_priors_ms = SLOW_PRIORS_SHARE * cycle_time_ms
         self.settle_timeout_s = settle_timeout_s
-        self.max_frame_delay_ms = cycle_time_ms if max_frame_delay_ms is None else max_frame_delay_ms
+        self.max_frame_delay_ms = frame_delay_limit_ms(max_frame_delay_ms, cycle_time_ms)
         if max_frame_delay_ms is None and link.triggered and camera.config.trigger.startswith("line"):
             log.warning("line trigger without [acquisition] max_frame_delay_ms: a pulse the camera misses is caught "
                         "only when parts come more than the cycle time (%.0f ms) apart; set it below the part spacing "
