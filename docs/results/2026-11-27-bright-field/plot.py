@@ -1,0 +1,69 @@
+"""Rule 25's figure and the per-face paired gains: image AUROC per defect type and face, D against B, with a paired
+bootstrap SE (resampling good and defective parts by index, the same parts under both lines).
+Usage: python plot.py runs/df/eval-D data/df-dome-heldout runs/bf/eval-B data/bf-heldout OUT.png"""
+
+from __future__ import annotations
+
+import csv
+import json
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+from faces import auroc  # same folder
+
+
+def faces_of(eval_dir: str, data: str) -> tuple[dict[int, float], dict[int, tuple[str, str]]]:
+    scores, groups = {}, {}
+    for r in csv.DictReader(open(Path(eval_dir) / "scores.csv")):
+        i = int(r["index"])
+        scores[i] = float(r["score"])
+        if r["label"] == "1":
+            g = np.load(Path(data) / "samples" / f"{i:06d}" / "gt.npz")
+            m = g["defect_mask"] > 0
+            groups[i] = (r["defect_type"], "top" if m.any() and np.median(g["normal"][m][:, 2]) < 0.7 else "front")
+    return scores, groups
+
+
+def main() -> None:
+    d_eval, d_data, b_eval, b_data, out = sys.argv[1:6]
+    sd, gd = faces_of(d_eval, d_data)
+    sb, _ = faces_of(b_eval, b_data)
+    good = np.array(sorted(set(sd) - set(gd)))
+    rng = np.random.default_rng(0)
+    rows = []
+    for key in sorted(set(gd.values())):
+        bad = np.array(sorted(i for i, k in gd.items() if k == key))
+        a = [np.array([s[i] for i in idx]) for s in (sd, sb) for idx in (bad, good)]
+        base, other = auroc(a[0], a[1]), auroc(a[2], a[3])
+        boot = []
+        for _ in range(1000):
+            bi, gi = rng.choice(bad, len(bad)), rng.choice(good, len(good))
+            boot.append(auroc(np.array([sb[i] for i in bi]), np.array([sb[i] for i in gi]))
+                        - auroc(np.array([sd[i] for i in bi]), np.array([sd[i] for i in gi])))
+        rows.append({"type": key[0], "face": key[1], "n": len(bad), "D": base, "B": other,
+                     "gain": other - base, "se": float(np.std(boot))})
+    print("| type | face | n | D | B | B - D (paired SE) |\n|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['type']} | {r['face']} | {r['n']} | {r['D']:.3f} | {r['B']:.3f} | {r['gain']:+.3f} ({r['se']:.3f}) |")
+    Path(out).with_suffix(".json").write_text(json.dumps(rows, indent=1))
+    fig, ax = plt.subplots(figsize=(8, 3.6))
+    x = np.arange(len(rows))
+    ax.bar(x - 0.2, [r["D"] for r in rows], 0.4, label="D: shipped dome")
+    ax.bar(x + 0.2, [r["B"] for r in rows], 0.4, yerr=[r["se"] for r in rows], label="B: half dome + bright-field panel")
+    ax.set_xticks(x, [f"{r['type'].replace('_', ' ')}\n{r['face']} ({r['n']})" for r in rows], fontsize=7)
+    ax.axhline(0.5, color="grey", lw=0.5)
+    ax.set(ylim=(0.3, 1.02), ylabel="held-out image AUROC",
+           title="Rule 25: the same 240 held-out parts under two lights (error bar: paired SE of B - D)")
+    ax.legend(fontsize=7, loc="lower left")
+    fig.tight_layout()
+    fig.savefig(out, dpi=80)
+
+
+if __name__ == "__main__":
+    main()
