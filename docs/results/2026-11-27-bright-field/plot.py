@@ -51,7 +51,7 @@ def main() -> None:
     print("| type | face | n | D | B | B - D (paired SE) |\n|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['type']} | {r['face']} | {r['n']} | {r['D']:.3f} | {r['B']:.3f} | {r['gain']:+.3f} ({r['se']:.3f}) |")
-    Path(out).with_suffix(".json").write_text(json.dumps(rows, indent=1))
+    (Path(__file__).parent / "faces.json").write_text(json.dumps(rows, indent=1))
     fig, ax = plt.subplots(figsize=(8, 3.6))
     x = np.arange(len(rows))
     ax.bar(x - 0.2, [r["D"] for r in rows], 0.4, label="D: shipped dome")
