@@ -4,7 +4,7 @@ For every defective sample of each set: the defect's mean S0 (the rendered groun
 against the mean of a band up to 5 px around it on the part, ``|ratio - 1|`` (rule 24's measure); the same for DoLP
 (absolute change); the face it lies on (camera-frame normal z: ~0.56 on the top face, ~0.83 on the front face at
 this camera); and the share of the part's mosaic pixels at the sensor's full scale. Writes contrast.json and prints
-a table. Usage: python contrast.py data/bf-check-D data/bf-check-B
+a table. Usage: python contrast.py data/bf-check-D data/bf-check-B [data/bf-check-F]
 """
 
 from __future__ import annotations
@@ -50,17 +50,17 @@ def main() -> None:
         out[root.name] = measure(root)
     Path(__file__).with_name("contrast.json").write_text(json.dumps(out, indent=1))
     names = list(out)
-    print("| set | type | face | n | median contrast | median DoLP change | median clipped on part |")
-    print("|---|---|---|---|---|---|---|")
+    print("| set | type | face | n | median contrast | median DoLP change | clipped on part: median | 90th pct |")
+    print("|---|---|---|---|---|---|---|---|")
     for name in names:
         rows = out[name]
-        clipped = np.median([r["clipped"] for r in rows])
+        clipped = np.percentile([r["clipped"] for r in rows], [50, 90])
         for t in sorted({r["type"] for r in rows}):
             for face, sel in (("top", lambda r: r["normal_z"] < 0.7), ("front", lambda r: r["normal_z"] >= 0.7)):
                 rs = [r for r in rows if r["type"] == t and sel(r)]
                 if rs:
                     print(f"| {name} | {t} | {face} | {len(rs)} | {np.median([r['contrast'] for r in rs]):.3f} | "
-                          f"{np.median([r['dolp_change'] for r in rs]):.3f} | {clipped:.4f} |")
+                          f"{np.median([r['dolp_change'] for r in rs]):.3f} | {clipped[0]:.4f} | {clipped[1]:.4f} |")
 
 
 if __name__ == "__main__":

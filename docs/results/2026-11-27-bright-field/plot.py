@@ -14,7 +14,6 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
-
 from faces import auroc  # same folder
 
 
@@ -50,12 +49,14 @@ def main() -> None:
                      "gain": other - base, "se": float(np.std(boot))})
     print("| type | face | n | D | B | B - D (paired SE) |\n|---|---|---|---|---|---|")
     for r in rows:
-        print(f"| {r['type']} | {r['face']} | {r['n']} | {r['D']:.3f} | {r['B']:.3f} | {r['gain']:+.3f} ({r['se']:.3f}) |")
+        print(f"| {r['type']} | {r['face']} | {r['n']} | {r['D']:.3f} | {r['B']:.3f} | "
+              f"{r['gain']:+.3f} ({r['se']:.3f}) |")
     (Path(__file__).parent / "faces.json").write_text(json.dumps(rows, indent=1))
     fig, ax = plt.subplots(figsize=(8, 3.6))
     x = np.arange(len(rows))
     ax.bar(x - 0.2, [r["D"] for r in rows], 0.4, label="D: shipped dome")
-    ax.bar(x + 0.2, [r["B"] for r in rows], 0.4, yerr=[r["se"] for r in rows], label="B: half dome + bright-field panel")
+    ax.bar(x + 0.2, [r["B"] for r in rows], 0.4, yerr=[r["se"] for r in rows],
+           label="B: half dome + bright-field panel")
     ax.set_xticks(x, [f"{r['type'].replace('_', ' ')}\n{r['face']} ({r['n']})" for r in rows], fontsize=7)
     ax.axhline(0.5, color="grey", lw=0.5)
     ax.set(ylim=(0.3, 1.02), ylabel="held-out image AUROC",
