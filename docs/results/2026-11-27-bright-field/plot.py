@@ -1,6 +1,7 @@
 """Rule 25's figure and the per-face paired gains: image AUROC per defect type and face, D against B, with a paired
 bootstrap SE (resampling good and defective parts by index, the same parts under both lines).
-Usage: python plot.py runs/df/eval-D data/df-dome-heldout runs/bf/eval-B data/bf-heldout OUT.png"""
+Usage: python plot.py runs/df/eval-D data/df-dome-heldout runs/bf/eval-B data/bf-heldout OUT.png [LABEL_D LABEL_B]
+(writes faces.json beside this script, or faces-<the second eval folder's name>.json with labels given)."""
 
 from __future__ import annotations
 
@@ -31,6 +32,7 @@ def faces_of(eval_dir: str, data: str) -> tuple[dict[int, float], dict[int, tupl
 
 def main() -> None:
     d_eval, d_data, b_eval, b_data, out = sys.argv[1:6]
+    label_d, label_b = sys.argv[6:8] if len(sys.argv) >= 8 else ("D: shipped dome", "B: half dome + bright-field panel")
     sd, gd = faces_of(d_eval, d_data)
     sb, _ = faces_of(b_eval, b_data)
     good = np.array(sorted(set(sd) - set(gd)))
@@ -51,16 +53,17 @@ def main() -> None:
     for r in rows:
         print(f"| {r['type']} | {r['face']} | {r['n']} | {r['D']:.3f} | {r['B']:.3f} | "
               f"{r['gain']:+.3f} ({r['se']:.3f}) |")
-    (Path(__file__).parent / "faces.json").write_text(json.dumps(rows, indent=1))
+    name = "faces.json" if len(sys.argv) < 8 else f"faces-{Path(b_eval).name}.json"
+    (Path(__file__).parent / name).write_text(json.dumps(rows, indent=1))
     fig, ax = plt.subplots(figsize=(8, 3.6))
     x = np.arange(len(rows))
-    ax.bar(x - 0.2, [r["D"] for r in rows], 0.4, label="D: shipped dome")
+    ax.bar(x - 0.2, [r["D"] for r in rows], 0.4, label=label_d)
     ax.bar(x + 0.2, [r["B"] for r in rows], 0.4, yerr=[r["se"] for r in rows],
-           label="B: half dome + bright-field panel")
+           label=label_b)
     ax.set_xticks(x, [f"{r['type'].replace('_', ' ')}\n{r['face']} ({r['n']})" for r in rows], fontsize=7)
     ax.axhline(0.5, color="grey", lw=0.5)
     ax.set(ylim=(0.3, 1.02), ylabel="held-out image AUROC",
-           title="Rule 25: the same 240 held-out parts under two lights (error bar: paired SE of B - D)")
+           title="The same 240 held-out parts under two lights (error bar: paired SE of the difference)")
     ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     fig.savefig(out, dpi=80)
