@@ -7,5 +7,7 @@ S=.venv/bin/station
     --val-data data/fp-val --out runs/bf/F
 $S eval --model runs/bf/F --data data/fp-heldout --val-data data/fp-val --out runs/bf/eval-F
 $S compare --paired runs/df/eval-D runs/bf/eval-F --out runs/bf/paired-F
-.venv/bin/python docs/results/2026-11-27-bright-field/faces.py runs/df/eval-D data/df-dome-heldout \
-    runs/bf/eval-F data/fp-heldout
+# per type and face, paired SEs (the rule's front-face dents), and the figure
+cd docs/results/2026-11-27-bright-field && ../../../.venv/bin/python plot.py ../../../runs/df/eval-D \
+    ../../../data/df-dome-heldout ../../../runs/bf/eval-F ../../../data/fp-heldout ../2026-11-27-dome-and-panel.png \
+    "D: shipped dome" "F: whole dome + panel"
