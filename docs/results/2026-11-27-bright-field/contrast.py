@@ -2,9 +2,9 @@
 
 For every defective sample of each set: the defect's mean S0 (the rendered ground-truth Stokes, before the sensor)
 against the mean of a band up to 5 px around it on the part, ``|ratio - 1|`` (rule 24's measure); the same for DoLP
-(absolute change); the face it lies on (camera-frame normal z: ~0.56 on the top face, ~0.83 on the front face at
-this camera); and the share of the part's mosaic pixels at the sensor's full scale. Writes contrast.json and prints
-a table. Usage: python contrast.py data/bf-check-D data/bf-check-B [data/bf-check-F]
+(absolute change); the face it lies on (``faces.TOP_FACE_Z``); and the share of the part's mosaic pixels at the
+sensor's full scale. Writes contrast.json and prints a table.
+Usage: python contrast.py data/bf-check-D data/bf-check-B [data/bf-check-F]
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from pathlib import Path
 
 import cv2
 import numpy as np
+from faces import TOP_FACE_Z  # same folder
 
 
 def dolp(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray) -> np.ndarray:
@@ -56,7 +57,8 @@ def main() -> None:
         rows = out[name]
         clipped = np.percentile([r["clipped"] for r in rows], [50, 90])
         for t in sorted({r["type"] for r in rows}):
-            for face, sel in (("top", lambda r: r["normal_z"] < 0.7), ("front", lambda r: r["normal_z"] >= 0.7)):
+            for face, sel in (("top", lambda r: r["normal_z"] < TOP_FACE_Z),
+                              ("front", lambda r: r["normal_z"] >= TOP_FACE_Z)):
                 rs = [r for r in rows if r["type"] == t and sel(r)]
                 if rs:
                     print(f"| {name} | {t} | {face} | {len(rs)} | {np.median([r['contrast'] for r in rs]):.3f} | "

@@ -5,7 +5,6 @@ Usage: python plot.py runs/df/eval-D data/df-dome-heldout runs/bf/eval-B data/bf
 
 from __future__ import annotations
 
-import csv
 import json
 import sys
 from pathlib import Path
@@ -15,19 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
-from faces import auroc  # same folder
-
-
-def faces_of(eval_dir: str, data: str) -> tuple[dict[int, float], dict[int, tuple[str, str]]]:
-    scores, groups = {}, {}
-    for r in csv.DictReader(open(Path(eval_dir) / "scores.csv")):
-        i = int(r["index"])
-        scores[i] = float(r["score"])
-        if r["label"] == "1":
-            g = np.load(Path(data) / "samples" / f"{i:06d}" / "gt.npz")
-            m = g["defect_mask"] > 0
-            groups[i] = (r["defect_type"], "top" if m.any() and np.median(g["normal"][m][:, 2]) < 0.7 else "front")
-    return scores, groups
+from faces import auroc, faces_of  # same folder
 
 
 def main() -> None:
