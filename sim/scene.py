@@ -34,6 +34,8 @@ FINISHES = ("rough", "smooth", "either")
 BACKGROUNDS = ("plain", "checkerboard", "noise")
 BACKGROUND_MATERIALS = ("diffuse", "pplastic")
 ANGLES_ANY_SIGN = ("yaw_deg", "camera_azimuth_deg", "light_azimuth_deg", "ring_azimuth_deg")
+FULL_RING = (0.0, 360.0)
+"""``SceneConfig.ring_azimuth_deg`` of a whole ring."""
 
 
 @dataclass(frozen=True)
@@ -83,7 +85,7 @@ class SceneConfig:
     toward the ring it is larger. Refused with ``ambient_gradient`` (one environment map holds both only as a
     uniform dome)."""
     ring_elevation_deg: tuple[float, float] = (5.0, 15.0)
-    ring_azimuth_deg: tuple[float, float] = (0.0, 360.0)  # FULL_RING
+    ring_azimuth_deg: tuple[float, float] = FULL_RING
     """The azimuths the ring covers, degrees from world +x toward +y (lo < hi, at most 360 apart): a whole ring by
     default, a sector otherwise. A sector high enough to be mirrored into the camera by a face (opposite the camera,
     at the camera's elevation) is a bright-field panel: the smooth face shows it, a rough patch spreads its mirrored
@@ -468,9 +470,6 @@ def ambient_dict(radiance: float, gradient: float, azimuth_deg: float = 0.0) -> 
 RING_ROWS = 720
 """Rows of the ring light's envmap (a quarter of a degree each); a row the ring's edge cuts gets its covered share.
 A sector (``SceneConfig.ring_azimuth_deg``) has twice as many columns, a quarter of a degree each as well."""
-
-FULL_RING = (0.0, 360.0)
-"""``SceneConfig.ring_azimuth_deg`` of a whole ring."""
 
 
 def _covered(edges: np.ndarray, lo: float, hi: float, period: float | None = None) -> np.ndarray:
