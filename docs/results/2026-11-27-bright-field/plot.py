@@ -36,7 +36,8 @@ def main() -> None:
                         - auroc(np.array([sd[i] for i in bi]), np.array([sd[i] for i in gi])))
         rows.append({"type": key[0], "face": key[1], "n": len(bad), "D": base, "B": other,
                      "gain": other - base, "se": float(np.std(boot))})
-    print("| type | face | n | D | B | B - D (paired SE) |\n|---|---|---|---|---|---|")
+    a, b = label_d.split(":")[0], label_b.split(":")[0]  # the lines' letters, as the table's columns
+    print(f"| type | face | n | {a} | {b} | {b} - {a} (paired SE) |\n|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['type']} | {r['face']} | {r['n']} | {r['D']:.3f} | {r['B']:.3f} | "
               f"{r['gain']:+.3f} ({r['se']:.3f}) |")
@@ -50,7 +51,7 @@ def main() -> None:
     ax.set_xticks(x, [f"{r['type'].replace('_', ' ')}\n{r['face']} ({r['n']})" for r in rows], fontsize=7)
     ax.axhline(0.5, color="grey", lw=0.5)
     ax.set(ylim=(0.3, 1.02), ylabel="held-out image AUROC",
-           title="The same 240 held-out parts under two lights (error bar: paired SE of the difference)")
+           title=f"The same {len(sd)} held-out parts under two lights (error bar: paired SE of the difference)")
     ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     fig.savefig(out, dpi=80)
