@@ -30,7 +30,8 @@ def with_residual(tmp_path_factory: pytest.TempPathFactory) -> tuple[Detector, P
     tmp_path = tmp_path_factory.mktemp("residual")
     det, _ = detector_with_variation(tmp_path)
     out = add_residual(det, parts(40, 0), None, parts(12, 9, defect=True), defect_masks(12), parts(10, 3),
-                       members=2, steps=100, seed=0)
+                       members=2, steps=50, seed=0)  # 50 steps: defects' lowest score minus good parts' highest
+    # 0.70 (0.07 at 100 steps, 0.44 at 30), at half the time of 100
     path = tmp_path / "res"
     save_checkpoint(path, out, threshold=0.5, threshold_rule="test")
     return out, path
