@@ -4,7 +4,8 @@
 # checkpoint). Sizes and steps are environment variables; the defaults are the shipped recipe on 2 CPU cores
 # (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
 #
-#   1. render the training set: line-polar preset + line variation, defects in all splits (for mixed supervision)
+#   1. render the training set: line-polar preset + line variation + bright-field panel, defects in all splits (for
+#      mixed supervision)
 #   2. render a held-out set with its own seed (every sample test, with the detectability oracle), and a validation
 #      set with another (every sample val: calibration, thresholds and selection; 600 parts, ~360 good)
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
@@ -20,12 +21,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
-DATA=${DATA:-data/line-polar-train}
-HELDOUT=${HELDOUT:-data/line-polar-heldout}
-VAL=${VAL:-data/line-polar-val}
+DATA=${DATA:-data/line-panel-train}
+HELDOUT=${HELDOUT:-data/line-panel-heldout}
+VAL=${VAL:-data/line-panel-val}
 RUNS=${RUNS:-runs/make-model}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
-HELDOUT_COUNT=${HELDOUT_COUNT:-500}
+HELDOUT_COUNT=${HELDOUT_COUNT:-400}
+HELDOUT_SEED=${HELDOUT_SEED:-1130}
 VAL_COUNT=${VAL_COUNT:-600}
 BASE_STEPS=${BASE_STEPS:-1000}
 BASE_STOP=${BASE_STOP:-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
@@ -37,7 +39,7 @@ HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
 JOBS=${JOBS:-2}
 SHIP=${SHIP:-1}
 DECISION=${DECISION:-variation}
-PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml)
+PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
@@ -51,7 +53,7 @@ render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
 }
 
 render "$DATA" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
-render "$HELDOUT" --count "$HELDOUT_COUNT" --seed 202 --defects 0.6 --heldout --visibility
+render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 --heldout --visibility
 render "$VAL" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \

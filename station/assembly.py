@@ -26,17 +26,18 @@ from station.viewer import ViewerFeed
 
 log = logging.getLogger(__name__)
 
-DEMO_DATASET = "data/sim-demo-line-polar"
+DEMO_DATASET = "data/sim-demo-line-panel"
 """Where ``[sim] dataset = ""`` renders its parts on first use (``DEMO_PARTS`` of them, once)."""
 DEMO_SCENE = tuple(Path(__file__).resolve().parents[1] / "sim" / "presets" / name
-                   for name in ("line-polar.toml", "variation.toml"))
-"""The demo's scene: the line the shipped model was trained for, with its variation (``model/weights/README.md``)."""
+                   for name in ("line-polar.toml", "variation.toml", "panel.toml"))
+"""The demo's scene: the line the shipped model was fitted for, with its variation and its bright-field panel
+(``model/weights/README.md``; ``scripts/make-model.sh`` layers the same files)."""
 DEMO_PARTS = 40
 DEMO_SEED = 7
 DEMO_SPP = 16
-"""Seed and samples per pixel: the training set's spp; not a seed of its training (101) or held-out (202) sets,
-so the demo shows parts the model never saw."""
-DEMO_EMPTY_DATASET = "data/sim-demo-line-polar-empty"
+"""Seed and samples per pixel: the training set's spp; not a seed of its training (101), validation (303) or
+held-out (1130) sets, so the demo shows parts the model never saw."""
+DEMO_EMPTY_DATASET = "data/sim-demo-line-panel-empty"
 """The demo set with empty views, rendered instead (once) when ``[sim] empty_rate`` > 0 and ``dataset = ""``."""
 DEMO_EMPTY_RATE = 0.25
 
@@ -63,7 +64,7 @@ def ensure_sim_dataset(cfg: StationConfig) -> str:
     if (root / "manifest.json").is_file() and len(open_dataset(root).indices(empty=None)) >= DEMO_PARTS:
         return str(root)
     print(f"[sim] dataset is empty: rendering {DEMO_PARTS} demo samples into {root} with Mitsuba (once; "
-          f"about 2 s each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
+          f"a few seconds each" + (f"; {100 * empty_rate:.0f} % of them without the part" if empty_rate else "") + ")")
     spec = DatasetSpec.from_dict({"seed": DEMO_SEED, "width": 640, "height": 480, "spp": DEMO_SPP,
                                   "defect_fraction": 0.5, "defects_in_train": True, "empty_rate": empty_rate,
                                   **read_layers(DEMO_SCENE)})

@@ -53,3 +53,17 @@ def test_the_shipped_variation_fit_is_station_variations_default() -> None:
     assert meta["train"]["variation"].get("blur_copies_sigma", 0.0) == BLUR_COPIES_SIGMA
     args = build_parser().parse_args(["variation", "--model", "m", "--data", "d", "--out", "o"])
     assert args.blur_copies is None  # None: BLUR_COPIES_SIGMA (station.evaluation.fit_variation)
+
+
+def test_the_demo_shows_the_line_make_model_renders() -> None:
+    """One shipped line: the demo's scene layers (station.assembly.DEMO_SCENE) are the preset files make-model.sh
+    renders its sets with, in the same order: two lists that must agree."""
+    import re
+
+    from station.assembly import DEMO_SCENE
+
+    line = re.search(r"^PRESET=\((.*)\)$", (ROOT / "scripts" / "make-model.sh").read_text(), re.M)
+    assert line is not None
+    files = line.group(1).split()[1::2]
+    assert [ROOT / f for f in files] == list(DEMO_SCENE)
+    assert files[-1] == "sim/presets/panel.toml" and all((ROOT / f).is_file() for f in files)
