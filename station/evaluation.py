@@ -138,10 +138,11 @@ def describe_left_out(left_out: Mapping[Any, str], most: int = 10) -> str:
 
 
 def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_good_flagged: float, key: str,
-                       record: dict):
+                       record: dict, frame_statistics: dict | None = None):
     """``det`` (a copy of checkpoint ``ck``, loaded from ``model``, with a part added) evaluated on the val split
     ``va`` of ``val_data``, thresholded there with ``station threshold``'s rule and written to ``out``, its sidecar's
-    ``train.<key>`` = ``record`` plus the calibration set, its manifest hash and good parts, the date and ``model``.
+    ``train.<key>`` = ``record`` plus the calibration set, its manifest hash and good parts, the date and ``model``;
+    ``train.frame_statistics`` (the drift monitor's trained range) = ``frame_statistics`` when given.
     Returns (the threshold choice, the evaluation, the val labels)."""
     from model.draem.checkpoint import save_checkpoint
     from model.draem.metrics import choose_threshold
@@ -154,6 +155,8 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
         **record, "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
         "calibration_parts": int((labels == 0).sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"),
         "from": str(model)}}
+    if frame_statistics is not None:
+        train["frame_statistics"] = frame_statistics
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
     return choice, ev, labels
 
@@ -168,11 +171,14 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     ``fit_parts``: fit on the first that many good train parts only (None: all of them), to measure how many a line
     needs. ``blur_copies_sigma``: the fit also sees a blurred copy of each good part, blurs up to this many input px
     (0: none; None: ``model.draem.variation.BLUR_COPIES_SIGMA``, the shipped recipe). ``refit``: ``model`` already
-    has a variation model; fit it again (its networks kept; otherwise that is an error)."""
+    has a variation model; fit it again (its networks kept; otherwise that is an error). The sidecar's frame
+    statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the variation
+    model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
     from model.draem.variation import BLUR_COPIES_SIGMA, MIN_FIT_PARTS
     from model.draem.with_variation import add_variation, without_variation
+    from model.priors.frame_stats import StatisticsRange
     from station.datasets import manifest_sha256
 
     check_max_good_flagged(max_good_flagged)
@@ -205,7 +211,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
-        "blur_copies_sigma": blur_copies_sigma})
+        "blur_copies_sigma": blur_copies_sigma}, StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
     decides = "" if decision == "combined" else f" (decision: {decision} alone)"

@@ -88,7 +88,11 @@ def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: P
     assert main(["variation", "--model", str(model), "--data", str(data), "--fit-parts", "12",
                  "--out", str(out)]) == 0
     assert "fitted on 12 good parts" in capsys.readouterr().out
-    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["fit_parts"] == 12
+    train = json.loads(out.with_suffix(".json").read_text())["train"]
+    assert train["variation"]["fit_parts"] == 12
+    # the drift monitor's trained range is the frames the deciding model was fitted on, not the networks' set (a
+    # refit on another line's renders must not warn on every frame of that line)
+    assert train["frame_statistics"]["n_frames"] == 12
     for bad in ("7", "0"):  # fewer than the fit needs: one line naming the flag, before any loading
         refused_naming(capsys, "--fit-parts", bad, model, data, tmp_path / "w")
 
