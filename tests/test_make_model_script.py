@@ -67,3 +67,17 @@ def test_the_demo_shows_the_line_make_model_renders() -> None:
     files = line.group(1).split()[1::2]
     assert [ROOT / f for f in files] == list(DEMO_SCENE)
     assert files[-1] == "sim/presets/panel.toml" and all((ROOT / f).is_file() for f in files)
+
+
+def test_the_shipped_drift_range_is_the_line_its_variation_model_was_fitted_on() -> None:
+    """The drift monitor compares frames with the sidecar's frame statistics: for the shipped model those are the
+    good parts its deciding variation model was fitted on (the panel line), not its networks' training set (the
+    dome line, which never clips: with that range, `make demo` warned of clipping on its own line's parts)."""
+    import json
+
+    meta = json.loads((ROOT / "model" / "weights" / "default.json").read_text())
+    stats, fit = meta["train"]["frame_statistics"], meta["train"]["variation"]
+    assert stats["n_frames"] == fit["fit_parts"] and fit["data"] == "data/line-panel-train"
+    # the metal plug mirrors the panel at full scale in more than a quarter of the panel line's good parts; the
+    # dome line's range had clipped_fraction 0.00003 at its third quartile
+    assert stats["q3"]["clipped_fraction"] > 0.01
