@@ -51,7 +51,7 @@ def main() -> None:
     ax.set_xticks(x, [f"{r['type'].replace('_', ' ')}\n{r['face']} ({r['n']})" for r in rows], fontsize=7)
     ax.axhline(0.5, color="grey", lw=0.5)
     ax.set(ylim=(0.3, 1.02), ylabel="held-out image AUROC",
-           title=f"The same {len(sd)} held-out parts under two lights (error bar: paired SE of the difference)")
+           title=f"The same {len(sd)} held-out parts, {a} against {b} (error bar: paired SE of the difference)")
     ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     fig.savefig(out, dpi=80)

@@ -26,4 +26,5 @@ for s in 1130 1129; do
     (cd $B && ../../../.venv/bin/python plot.py ../../../runs/pp/eval-R-$s ../../../$data \
         ../../../runs/pp/eval-RAD-$s ../../../$data ../2026-11-27-panel-priors/faces-$s.png \
         "R: intensity" "RAD: intensity, DoLP, AoLP")
+    mv $B/faces-eval-RAD-$s.json docs/results/2026-11-27-panel-priors/
 done
