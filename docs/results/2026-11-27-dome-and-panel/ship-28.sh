@@ -12,3 +12,6 @@ $S eval --model runs/ship/panel --data data/line-panel-heldout --val-data data/l
     runs/ship/panel model/weights/default
 rm -rf model/weights/default-eval && mkdir model/weights/default-eval
 cp runs/ship/eval-panel/eval.json runs/ship/eval-panel/eval.md runs/ship/eval-panel/*.png model/weights/default-eval/
+# Once more after `station variation` began to record the fitted parts' frame statistics (the drift check's range;
+# 2026-11-27 16:10): the same fit from the copied model into runs/ship2/panel, its held-out report identical, then
+# copied and its report copied the same way.
