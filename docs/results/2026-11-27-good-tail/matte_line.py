@@ -10,10 +10,7 @@ import sys
 import numpy as np
 from good_tail import scenes  # same folder
 
-
-def auroc(bad: np.ndarray, good: np.ndarray) -> float:
-    """Probability that a defective part outscores a good one (ties count half)."""
-    return float(((bad[:, None] > good[None]).sum() + 0.5 * (bad[:, None] == good[None]).sum()) / (len(bad) * len(good)))
+from model.draem.metrics import auroc
 
 
 def main() -> None:
@@ -33,7 +30,8 @@ def main() -> None:
             bad = np.array([p["score"] for p in sub if p["label"] == 1])
             cells = [f"{100 * np.mean(bad > cuts[name][q]):.0f} % ({100 * np.mean(good > cuts[name][q]):.1f} %)"
                      for q in (0.01, 0.05)]
-            print(f"| {data} | {name} | {len(good)} | {len(bad)} | {auroc(bad, good):.3f} | {cells[0]} | {cells[1]} |")
+            a = auroc(np.r_[np.ones(len(bad)), np.zeros(len(good))], np.r_[bad, good])
+            print(f"| {data} | {name} | {len(good)} | {len(bad)} | {a:.3f} | {cells[0]} | {cells[1]} |")
 
 
 if __name__ == "__main__":
