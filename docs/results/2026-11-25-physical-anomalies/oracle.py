@@ -2,7 +2,8 @@
 sets, and the share of the defects it separates that the shipped model catches.
 
 Usage: oracle.py OUT.json NAME=DATASET:CACHE ..., from the repository root, after the residual-network study's
-cache.py (the CACHE's held_* arrays are that DATASET's test split, in order). For each defective part the oracle
+cache.py (the CACHE's held_* arrays are that DATASET's test split, in order; the validation threshold comes from
+the cache in $ORACLE_VAL_CACHE, default runs/s33/zcache.npz). For each defective part the oracle
 knows the defect's pixels (its mask, registered as the model registers the frame, dilated 1 px) and compares a
 statistic there with every good part of the same set at the same pixels; a defect above 99 % of them is one a
 detector told where to look could catch at 1 % of good parts rejected. Two statistics
@@ -14,6 +15,7 @@ validation thresholds (the cache's val_score)."""
 from __future__ import annotations
 
 import json
+import os
 import sys
 
 import cv2
@@ -26,7 +28,7 @@ from station.datasets import load_split
 
 TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
 model = load_checkpoint("model/weights/default").detector.variation
-val = np.load("runs/s33/zcache.npz")
+val = np.load(os.environ.get("ORACLE_VAL_CACHE", "runs/s33/zcache.npz"))  # any cache of the model's validation set
 threshold = false_reject_threshold(val["val_score"][val["val_label"] == 0], 0.01)
 
 
