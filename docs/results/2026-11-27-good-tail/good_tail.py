@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from model.draem.metrics import false_reject_threshold
+
 
 def scenes(ev: str, data: str) -> list[dict]:
     """Each scored part of ``ev`` with the scene draws that could make a good part look unusual."""
@@ -75,7 +77,7 @@ def main() -> None:
     model = report["model"]
     parts = scenes(ev, data)
     good = sorted((g for g in parts if g["label"] == 0), key=lambda g: -g["score"])
-    t5, t1 = (float(np.quantile([g["score"] for g in good], q)) for q in (0.95, 0.99))
+    t5, t1 = (false_reject_threshold(np.array([g["score"] for g in good]), q) for q in (0.05, 0.01))
     table(parts, t5, t1)
     draw(model, data, [g["index"] for g in good[:6]], Path(__file__).parent / "good-tail.png")
 
