@@ -72,6 +72,8 @@ def test_a_bit_depth_on_the_command_line_wins_over_the_presets(tmp_path: Path, f
     ({}, True),  # before the ring light existed
     ({"ring_radiance": 0.0, "ring_elevation_deg": [5.0, 15.0]}, True),  # the ring's keys at their defaults
     ({"ring_radiance": 5.0, "ring_elevation_deg": [5.0, 15.0]}, False),  # a set lit by a ring is another set
+    ({"front_light_radiance": 0.0, "front_light_span_m": [0.011, 0.04]}, True),  # the front light off
+    ({"front_light_radiance": 2.1}, False),  # a set with a front light is another set
 ])
 def test_a_set_written_by_earlier_code_resumes_when_it_drew_the_same(tmp_path: Path, written: dict,
                                                                       resumes: bool) -> None:

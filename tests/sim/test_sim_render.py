@@ -184,6 +184,54 @@ def test_ring_light_is_refused_with_a_gradient_dome() -> None:
         SceneConfig(ring_radiance=5.0, ring_azimuth_deg=(90.0, 70.0))
 
 
+@pytest.mark.parametrize(("azimuth", "x", "y"), [(270.0, (-0.025, 0.025), (-0.040, -0.011)),
+                                                   (0.0, (0.011, 0.040), (-0.025, 0.025))])
+def test_the_front_light_lies_where_its_config_says(variant: str, azimuth: float, x: tuple, y: tuple) -> None:
+    """``SceneConfig.front_light_*``: a strip on the belt from 11 to 40 mm toward ``front_light_azimuth_deg``, 50 mm
+    across, just above the ground, emitting upward."""
+    import mitsuba as mi
+
+    from sim.scene import FRONT_LIGHT_HEIGHT_M, front_light_dict
+
+    light = {"radiance": 2.0, "span_m": [0.011, 0.040], "width_m": 0.05, "azimuth_deg": azimuth}
+    strip = mi.load_dict(front_light_dict(light))
+    box = strip.bbox()
+    np.testing.assert_allclose([box.min[0], box.max[0], box.min[1], box.max[1]], [*x, *y], atol=1e-6)
+    assert box.min[2] == pytest.approx(FRONT_LIGHT_HEIGHT_M, abs=1e-6)
+    assert strip.is_emitter()
+    si = strip.eval_parameterization([0.5, 0.5])  # the strip's centre: its normal points up
+    assert float(si.n.z[0]) == pytest.approx(1.0)
+
+
+def test_the_front_light_puts_the_front_face_in_bright_field(variant: str) -> None:
+    """The line's camera (56 degrees off vertical, from -y) sees the brick's front face (facing -y) mirror the belt
+    in front of it: with the strip there, that face reads brighter and polarized (specular light at 34 degrees
+    incidence is about half polarized), and the top face, which the strip cannot light, stays as it was."""
+    model = usb_brick()
+    line = {"camera_radius_m": (0.39, 0.39), "camera_polar_deg": (56.0, 56.0), "camera_azimuth_deg": (270.0, 270.0),
+            "camera_target_jitter_m": 0.0, "focal_length_mm": 120.0, "object_xy_m": 0.0, "yaw_deg": (0.0, 0.0),
+            "rest_pose": 0, "light_intensity": (0.0, 0.0), "ambient_radiance": 0.7, "colour": (0.55, 0.55),
+            "background_colour": (0.1, 0.1), "backgrounds": ("plain",)}
+    faces = {}
+    for radiance in (0.0, 2.1):
+        params = sample_scene(np.random.default_rng(2), SceneConfig(front_light_radiance=radiance, **line), model)
+        out = render_sample(model, params, None, RenderSettings(width=96, height=72, spp=36), seed=1)
+        body = out.object_mask & (out.part_index == 1)
+        front, top = body & (out.normal[..., 2] > 0.78), body & (out.normal[..., 2] < 0.65)
+        d = dolp(out.s0, out.s1, out.s2)
+        faces[radiance] = (np.median(out.s0[front]), np.median(d[front]), np.median(out.s0[top]))
+    (f0, p0, t0), (f1, p1, t1) = faces[0.0], faces[2.1]
+    assert f1 > 2 * f0 and p1 > 0.03 > p0
+    assert t1 == pytest.approx(t0, rel=0.1)
+
+
+def test_the_front_light_refuses_an_empty_strip() -> None:
+    with pytest.raises(SimError, match="front_light_span_m"):
+        SceneConfig(front_light_radiance=2.0, front_light_span_m=(0.04, 0.011))
+    with pytest.raises(SimError, match="front_light_azimuth_deg"):
+        SceneConfig(front_light_azimuth_deg=360.0)
+
+
 @pytest.fixture(scope="module")
 def brick_case(variant: str):
     model = usb_brick()
