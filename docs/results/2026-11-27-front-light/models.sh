@@ -19,3 +19,8 @@ fit P fl-train-P fl-val-P line-panel-heldout-1131
 fit Q fl-train fl-val fl-heldout
 $S compare --paired $R/eval-P $R/eval-Q --out $R/paired
 .venv/bin/python $R/groups.py $R/eval-P data/line-panel-heldout-1131 $R/eval-Q data/fl-heldout $R/groups.json
+# per type and face, paired SEs, and the figure (rule 25's plot.py; it writes faces-eval-Q.json beside itself)
+cd docs/results/2026-11-27-bright-field && ../../../.venv/bin/python plot.py ../../../$R/eval-P \
+    ../../../data/line-panel-heldout-1131 ../../../$R/eval-Q ../../../data/fl-heldout \
+    ../2026-11-27-front-light.png "P: shipped line" "Q: + front light" > ../../../$R/faces.md
+mv faces-eval-Q.json ../../../$R/faces.json
