@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-27-bright-field"))
-from faces import auroc, faces_of  # noqa: E402  (rule 25's reader)
+from faces import auroc, faces_of  # rule 25's reader
 
 GROUPS = {
     "front-face scratches and dents": lambda t, f: f == "front" and t in ("scratch", "dent"),
@@ -29,8 +29,8 @@ def main() -> None:
     p_eval, p_data, q_eval, q_data, out = sys.argv[1:6]
     sp, gp = faces_of(p_eval, p_data)
     sq, gq = faces_of(q_eval, q_data)
-    if set(sp) != set(sq):
-        raise SystemExit("the two evaluations scored different parts")
+    if set(sp) != set(sq) or gp != gq:
+        raise SystemExit("the two evaluations scored different parts (or their defects differ)")
     good = np.array(sorted(set(sp) - set(gp)))
     rng = np.random.default_rng(0)
     rows = []
