@@ -90,6 +90,15 @@ class SceneConfig:
     default, a sector otherwise. A sector high enough to be mirrored into the camera by a face (opposite the camera,
     at the camera's elevation) is a bright-field panel: the smooth face shows it, a rough patch spreads its mirrored
     light away and goes dark. Its irradiance on a horizontal face is the whole ring's times the sector's share."""
+    ring_fringe_period_deg: float = 0.0
+    """Fringes across the ring light (deflectometry): its radiance times ``1 + ring_fringe_depth * cos(2 pi (e -
+    e_lo) / period)`` at elevation e (e_lo: the ring's lower edge), so a bright-field panel carries stripes of
+    this period; 0 = uniform. A smooth face mirrors one stripe; a dent's slope s moves the mirror image by 2 s
+    across the stripes and changes the face's brightness there, where a uniform panel hides a shallow dent whose
+    mirror image stays on the panel. A whole number of periods across the ring keeps its mean radiance."""
+    ring_fringe_depth: float = 0.5
+    """The fringes' modulation depth, 0-1 (0.5: the dark stripe at half the mean, so a rough patch that averages
+    the panel still differs from the face at every stripe)."""
     front_light_radiance: float = 0.0
     """A flat light strip lying on the belt in front of the part, on the camera's side (in the fixture's base):
     Lambertian, radiance ``front_light_radiance`` upward, 0 = none. A vertical face turned toward a camera that
@@ -166,6 +175,10 @@ class SceneConfig:
         if not (-360 <= lo < hi <= lo + 360 <= 720):
             raise SimError(f"scene.ring_azimuth_deg: need azimuths -360 <= lo < hi <= lo + 360 <= 720 degrees, got "
                            f"{self.ring_azimuth_deg}")
+        if self.ring_fringe_period_deg and not self.ring_radiance:
+            raise SimError("scene.ring_fringe_period_deg: fringes need a ring light (scene.ring_radiance > 0)")
+        if self.ring_fringe_depth > 1:
+            raise SimError(f"scene.ring_fringe_depth must be in [0, 1], got {self.ring_fringe_depth}")
         if self.front_light_radiance and (self.front_light_span_m[0] >= self.front_light_span_m[1]
                                           or self.front_light_width_m <= 0):
             raise SimError(f"scene.front_light_span_m: need near < far (metres) and a width > 0, got "
@@ -195,8 +208,8 @@ class SceneConfig:
 
 LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose", "background_colour",
               "ambient_gradient", "ambient_gradient_azimuth_deg", "ring_radiance", "ring_elevation_deg",
-              "ring_azimuth_deg", "front_light_radiance", "front_light_span_m", "front_light_width_m",
-              "front_light_azimuth_deg")
+              "ring_azimuth_deg", "ring_fringe_period_deg", "ring_fringe_depth", "front_light_radiance",
+              "front_light_span_m", "front_light_width_m", "front_light_azimuth_deg")
 """SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
 
@@ -335,6 +348,8 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
            if cfg.ring_radiance else {}),
         **({"ring_azimuth_deg": list(cfg.ring_azimuth_deg)}
            if cfg.ring_radiance and tuple(cfg.ring_azimuth_deg) != FULL_RING else {}),  # older sets lack it
+        **({"ring_fringe": [cfg.ring_fringe_period_deg, cfg.ring_fringe_depth]}
+           if cfg.ring_radiance and cfg.ring_fringe_period_deg else {}),
         **({"front_light": {"radiance": cfg.front_light_radiance, "span_m": list(cfg.front_light_span_m),
                             "width_m": cfg.front_light_width_m, "azimuth_deg": cfg.front_light_azimuth_deg}}
            if cfg.front_light_radiance else {}),
@@ -505,16 +520,22 @@ def _covered(edges: np.ndarray, lo: float, hi: float, period: float | None = Non
 
 
 def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float],
-              azimuth_deg: Sequence[float] = FULL_RING) -> dict:
+              azimuth_deg: Sequence[float] = FULL_RING, fringe: Sequence[float] = (0.0, 0.0)) -> dict:
     """The environment with a ring light (``SceneConfig.ring_radiance``): uniform ``radiance`` from every direction
     plus ``ring`` at elevations ``elevation_deg`` (lo, hi) above the ground and azimuths ``azimuth_deg`` (lo, hi;
     degrees from world +x toward +y), as an envmap whose pole (its local +y) is world +z, so its rows are polar
     angles from the vertical. Mitsuba reads a direction's column as ``u = atan2(x, -z) / 2 pi`` in the map's
-    frame, which is world azimuth ``phi = 90 - 360 u`` degrees here (a test checks a sector's side)."""
+    frame, which is world azimuth ``phi = 90 - 360 u`` degrees here (a test checks a sector's side). ``fringe`` =
+    (period in degrees, depth): each row of the ring times ``1 + depth cos(2 pi (e - elevation_deg[0]) / period)``
+    at its centre's elevation e (``SceneConfig.ring_fringe_period_deg``); period 0: uniform."""
     import mitsuba as mi
 
     edges = np.linspace(0.0, 180.0, RING_ROWS + 1)  # polar angle of the rows' edges, degrees
     rows = _covered(edges, 90.0 - float(elevation_deg[1]), 90.0 - float(elevation_deg[0]))
+    period, depth = (float(v) for v in fringe)
+    if period:
+        elevation = 90.0 - 0.5 * (edges[:-1] + edges[1:])
+        rows = rows * (1.0 + depth * np.cos(2 * np.pi * (elevation - float(elevation_deg[0])) / period))
     if tuple(azimuth_deg) == FULL_RING:
         cells = np.repeat(rows[:, None], 4, 1)
     else:  # columns run along u, i.e. toward decreasing azimuth: column j covers phi in [90 - 360 (j+1)/W, ...]
@@ -583,7 +604,8 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
                                                                     up=[0, 0, 1])}
         if params.get("ring_radiance"):
             scene["ambient"] = ring_dict(params["ambient_radiance"], params["ring_radiance"],
-                                         params["ring_elevation_deg"], params.get("ring_azimuth_deg", FULL_RING))
+                                         params["ring_elevation_deg"], params.get("ring_azimuth_deg", FULL_RING),
+                                         params.get("ring_fringe", (0.0, 0.0)))
         elif params["ambient_radiance"] > 0:
             scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0),
                                             params.get("ambient_gradient_azimuth_deg", 0.0))

@@ -175,6 +175,28 @@ def test_a_ring_sector_lights_the_faces_on_its_side(variant: str) -> None:
     assert ring_irradiance_factor(20, 45, *sector) == pytest.approx(ring_irradiance_factor(20, 45) / 6)
 
 
+def test_ring_fringes_modulate_the_panel_across_elevation(variant: str) -> None:
+    """``SceneConfig.ring_fringe_period_deg``: the ring's rows (polar angles from the vertical, a quarter of a degree
+    each) carry 1 + depth cos(2 pi (e - e_lo) / period) at their elevation e, outside the ring nothing changes, and
+    three whole periods keep the ring's mean radiance."""
+    from sim.scene import RING_ROWS, ring_dict
+
+    plain = np.array(ring_dict(0.7, 10.0, (22.0, 46.0), (70.0, 110.0))["bitmap"]).reshape(RING_ROWS, -1)
+    striped = np.array(ring_dict(0.7, 10.0, (22.0, 46.0), (70.0, 110.0), (8.0, 0.5))["bitmap"]).reshape(RING_ROWS, -1)
+    elevation = 90.0 - (np.arange(RING_ROWS) + 0.5) * 180.0 / RING_ROWS
+    inside = (elevation > 22.2) & (elevation < 45.8)
+    expected = 0.7 + 10.0 * (1 + 0.5 * np.cos(2 * np.pi * (elevation[inside] - 22.0) / 8.0))
+    np.testing.assert_allclose(striped[inside].max(1), expected, rtol=1e-5)
+    np.testing.assert_array_equal(striped[~inside & ((elevation < 21.8) | (elevation > 46.2))],
+                                  plain[~inside & ((elevation < 21.8) | (elevation > 46.2))])
+    assert striped.sum() == pytest.approx(plain.sum(), rel=1e-3)
+    assert ring_dict(0.7, 10.0, (22.0, 46.0), fringe=(0.0, 0.5))["bitmap"] is not None  # period 0: uniform
+    with pytest.raises(SimError, match="ring_fringe_period_deg"):
+        SceneConfig(ring_fringe_period_deg=8.0)
+    with pytest.raises(SimError, match="ring_fringe_depth"):
+        SceneConfig(ring_radiance=2.6, ring_fringe_period_deg=8.0, ring_fringe_depth=1.5)
+
+
 def test_ring_light_is_refused_with_a_gradient_dome() -> None:
     with pytest.raises(SimError, match=r"ring_radiance and scene\.ambient_gradient"):
         SceneConfig(ring_radiance=5.0, ambient_gradient=0.8)
