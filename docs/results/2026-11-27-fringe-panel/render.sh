@@ -4,7 +4,7 @@
 # then R's training, validation and held-out sets.
 set -e
 V="--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml"
-R="$V --config docs/results/2026-11-28-fringe-panel/fringe.toml"
+R="$V --config docs/results/2026-11-27-fringe-panel/fringe.toml"
 mkdir -p runs/fr
 two() {  # name, then station render's arguments: both shards, one per core
     name=$1; shift
