@@ -1,6 +1,7 @@
-"""Rule 30's criteria: image AUROC of groups of defects (by type and face), the shipped line P against Q (the front
-light), with a paired bootstrap SE (the same parts under both lines, good and defective parts resampled by index).
-Faces from the ground-truth normals as rule 25's faces.py reads them.
+"""Rules 31-32's criteria: image AUROC of groups of defects (by type and face), the shipped line P against another
+line on the same parts (column Q: rule 31's front light, or rule 32's fringe panel), with a paired bootstrap SE
+(the same parts under both lines, good and defective parts resampled by index). Faces from the ground-truth
+normals as rule 25's faces.py reads them.
 Usage: python groups.py EVAL_P DATA_P EVAL_Q DATA_Q OUT.json
 """
 
@@ -21,6 +22,7 @@ GROUPS = {
     "top-face scratches": lambda t, f: f == "top" and t == "scratch",
     "front-face scratches": lambda t, f: f == "front" and t == "scratch",
     "front-face dents": lambda t, f: f == "front" and t == "dent",
+    "top-face dents": lambda t, f: f == "top" and t == "dent",
     "all defects": lambda t, f: True,
 }
 
