@@ -349,7 +349,7 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
         **({"ring_azimuth_deg": list(cfg.ring_azimuth_deg)}
            if cfg.ring_radiance and tuple(cfg.ring_azimuth_deg) != FULL_RING else {}),  # older sets lack it
         **({"ring_fringe": [cfg.ring_fringe_period_deg, cfg.ring_fringe_depth]}
-           if cfg.ring_radiance and cfg.ring_fringe_period_deg else {}),
+           if cfg.ring_fringe_period_deg else {}),  # SceneConfig refuses fringes without a ring
         **({"front_light": {"radiance": cfg.front_light_radiance, "span_m": list(cfg.front_light_span_m),
                             "width_m": cfg.front_light_width_m, "azimuth_deg": cfg.front_light_azimuth_deg}}
            if cfg.front_light_radiance else {}),
