@@ -15,8 +15,8 @@ import numpy as np
 from scipy.stats import spearmanr
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "2026-11-27-bright-field"))
-from contrast import measure  # noqa: E402  (rule 25's, unchanged)
-from faces import TOP_FACE_Z  # noqa: E402
+from contrast import measure  # rule 25's, unchanged
+from faces import TOP_FACE_Z
 
 
 def main() -> None:
