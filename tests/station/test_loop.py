@@ -379,10 +379,16 @@ class StallingCamera(ScriptedCamera):
 
 
 def test_parts_announced_while_the_camera_stalls_are_answered_within_a_cycle(tmp_path):
+    """The part whose grab stalls is answered when the grab returns (a driver's grab timeout bounds that); every
+    part announced meanwhile is answered within a cycle or so, from the processing thread."""
     link = ScriptedLink(1)
     camera = StallingCamera([0] * 20, stall_s=1.0)
     station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block",
                                 cycle_time_ms=100.0)
+    # T0 arrives now, not when the link was made: on a slow machine the set-up above took a cycle, T0 was answered
+    # as late at once, and the stall fell on S0 instead (seen once in CI's run, reproduced by sleeping 0.15 s here)
+    link.pending = deque([Trigger("T0", time.perf_counter())])
+    arrived = {"T0": link.pending[0].t_arrival}
     answered_at = {}
     report = link.report
 
@@ -404,10 +410,12 @@ def test_parts_announced_while_the_camera_stalls_are_answered_within_a_cycle(tmp
     station.run(max_parts=6)  # parts answered while acquisition is stuck count too: the run ends
     feeder.join()
     rows = {r["part_id"]: r for r in log.rows()}
-    for pid, t in announced.items():  # answered while the camera was still stalled, with a row
-        assert answered_at[pid] - t < 0.4, f"{pid} waited {answered_at[pid] - t:.2f} s"
+    waited = {pid: answered_at[pid] - t for pid, t in {**arrived, **announced}.items()}
+    stalled = [pid for pid, w in waited.items() if w >= 0.4]
+    assert len(stalled) == 1, waited  # only the part in the stalled grab waited for the camera
+    for pid in announced:  # the others: answered while the camera was still stalled, with a row
         assert rows[pid]["decision"] == "reject" and "not judged in time" in rows[pid]["reason"]
-    assert len(rows) == 6 and rows["T0"]["decision"] == "reject"  # T0's frame came after the stall
+    assert len(rows) == 6 and all(r["decision"] == "reject" for r in rows.values())
 
 
 def test_io_delivered_means_acknowledged_by_the_plc(tmp_path):
