@@ -94,6 +94,13 @@ class ScriptedLink:
         self.closed = False
         self.lock = threading.Lock()
 
+    def arrive_now(self):
+        """The scripted parts arrive now, not when the link was made: a test whose cycle is shorter than a slow
+        machine's set-up calls this just before ``run`` (else its first parts are a cycle old at the start)."""
+        with self.lock:
+            now = time.perf_counter()
+            self.pending = deque(dataclasses.replace(t, t_arrival=now) for t in self.pending)
+
     def announce(self, part_id):
         """A TRIG reaching the host now (from another thread)."""
         t = Trigger(part_id, time.perf_counter())
@@ -385,9 +392,9 @@ def test_parts_announced_while_the_camera_stalls_are_answered_within_a_cycle(tmp
     camera = StallingCamera([0] * 20, stall_s=1.0)
     station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block",
                                 cycle_time_ms=100.0)
-    # T0 arrives now, not when the link was made: on a slow machine the set-up above took a cycle, T0 was answered
-    # as late at once, and the stall fell on S0 instead (seen once in CI's run, reproduced by sleeping 0.15 s here)
-    link.pending = deque([Trigger("T0", time.perf_counter())])
+    # on a slow machine the set-up above took a cycle, T0 was answered as late at once, and the stall fell on S0
+    # instead (seen once in a clean-clone run; reproduced by sleeping 0.15 s in the set-up)
+    link.arrive_now()
     arrived = {"T0": link.pending[0].t_arrival}
     answered_at = {}
     report = link.report
@@ -583,6 +590,7 @@ def test_a_pass_that_turns_late_while_its_row_is_written_is_sent_and_logged_as_a
     link = ScriptedLink(2)
     station = Station(ScriptedCamera([0, 0], trigger="software"), Inspector(BrightnessDetector(), IMX250MZR), link,
                       log, threshold=0.5, cycle_time_ms=50.0, queue_size=8, backpressure="block")
+    link.arrive_now()  # a set-up slower than the 50 ms cycle made T0 late before its row (reproduced with 60 ms)
     station.run(max_parts=2)
     rows = list(log.rows())
     assert [d for _, d in link.reports] == ["reject", "reject"]
