@@ -76,15 +76,16 @@ class BrightnessDetector:
 
 
 class ScriptedLink:
-    """A PLC link that announces ``n`` parts (arrival times ``age_s`` in the past), acknowledges decisions listed in
-    ``ack`` (all when None), and checks write-ahead: a decision must find its part's row already in ``log``."""
+    """A PLC link that announces ``n`` parts (arrival times ``age_s`` before the station first asks for a trigger:
+    ``started_at``), acknowledges decisions listed in ``ack`` (all when None), and checks write-ahead: a decision must
+    find its part's row already in ``log``."""
 
     triggered = True
     has_plc = True
 
     def __init__(self, n, age_s=0.0, ack=None, log=None):
-        now = time.perf_counter()
-        self.pending = deque(Trigger(f"T{i}", now - age_s) for i in range(n))
+        self.pending = deque(Trigger(f"T{i}", time.perf_counter()) for i in range(n))
+        self._scripted, self.age_s, self.started_at = n, age_s, None
         self.reports = []
         self.ack, self.log = ack, log
         self._outcomes = []
@@ -94,12 +95,14 @@ class ScriptedLink:
         self.closed = False
         self.lock = threading.Lock()
 
-    def arrive_now(self):
-        """The scripted parts arrive now, not when the link was made: a test whose cycle is shorter than a slow
-        machine's set-up calls this just before ``run`` (else its first parts are a cycle old at the start)."""
-        with self.lock:
-            now = time.perf_counter()
-            self.pending = deque(dataclasses.replace(t, t_arrival=now) for t in self.pending)
+    def _start(self):
+        """Under ``lock``: the scripted parts arrive when the station first asks, not when the link was made (a
+        set-up slower than a short cycle made them late before the run: a clean-clone run failed so once)."""
+        if self.started_at is None:
+            self.started_at = time.perf_counter()
+            scripted = [self.pending.popleft() for _ in range(self._scripted)]  # first in line: nothing popped yet
+            self.pending.extendleft(reversed([dataclasses.replace(t, t_arrival=self.started_at - self.age_s)
+                                              for t in scripted]))
 
     def announce(self, part_id):
         """A TRIG reaching the host now (from another thread)."""
@@ -116,6 +119,7 @@ class ScriptedLink:
 
     def next_trigger(self, timeout_s):
         with self.lock:
+            self._start()
             if self.pending:
                 return self.pending.popleft()
         time.sleep(min(timeout_s, 0.01))
@@ -123,6 +127,7 @@ class ScriptedLink:
 
     def expired(self, before):
         with self.lock:
+            self._start()
             out = []
             while self.pending and self.pending[0].t_arrival < before:
                 out.append(self.pending.popleft())
@@ -131,6 +136,7 @@ class ScriptedLink:
     def refuse_triggers(self, handler):
         with self.lock:
             self.refuse = handler
+            self._start()
             waiting = list(self.pending)
             self.pending.clear()
         for t in waiting:
@@ -392,10 +398,6 @@ def test_parts_announced_while_the_camera_stalls_are_answered_within_a_cycle(tmp
     camera = StallingCamera([0] * 20, stall_s=1.0)
     station, log = make_station(tmp_path, camera, BrightnessDetector(), link, queue_size=8, backpressure="block",
                                 cycle_time_ms=100.0)
-    # on a slow machine the set-up above took a cycle, T0 was answered as late at once, and the stall fell on S0
-    # instead (seen once in a clean-clone run; reproduced by sleeping 0.15 s in the set-up)
-    link.arrive_now()
-    arrived = {"T0": link.pending[0].t_arrival}
     answered_at = {}
     report = link.report
 
@@ -417,7 +419,7 @@ def test_parts_announced_while_the_camera_stalls_are_answered_within_a_cycle(tmp
     station.run(max_parts=6)  # parts answered while acquisition is stuck count too: the run ends
     feeder.join()
     rows = {r["part_id"]: r for r in log.rows()}
-    waited = {pid: answered_at[pid] - t for pid, t in {**arrived, **announced}.items()}
+    waited = {pid: answered_at[pid] - t for pid, t in {"T0": link.started_at, **announced}.items()}
     stalled = [pid for pid, w in waited.items() if w >= 0.4]
     assert len(stalled) == 1, waited  # only the part in the stalled grab waited for the camera
     for pid in announced:  # the others: answered while the camera was still stalled, with a row
@@ -590,7 +592,6 @@ def test_a_pass_that_turns_late_while_its_row_is_written_is_sent_and_logged_as_a
     link = ScriptedLink(2)
     station = Station(ScriptedCamera([0, 0], trigger="software"), Inspector(BrightnessDetector(), IMX250MZR), link,
                       log, threshold=0.5, cycle_time_ms=50.0, queue_size=8, backpressure="block")
-    link.arrive_now()  # a set-up slower than the 50 ms cycle made T0 late before its row (reproduced with 60 ms)
     station.run(max_parts=2)
     rows = list(log.rows())
     assert [d for _, d in link.reports] == ["reject", "reject"]
