@@ -82,8 +82,8 @@ class SceneConfig:
     at elevations ``ring_elevation_deg`` above the ground; 0 = none. A smooth face mirrors it away from a camera
     that looks down more steeply, so it is dark there; a rough patch (a scratch, a stain) spreads it into the camera.
     On a horizontal face its irradiance is ``pi L (cos^2 e_lo - cos^2 e_hi)`` (e: elevation); on a face tilted
-    toward the ring it is larger. Refused with ``ambient_gradient`` (one environment map holds both only as a
-    uniform dome)."""
+    toward the ring it is larger. With ``ambient_gradient`` the dome under the ring is the gradient dome (one
+    environment map holds both, ``ring_dict``)."""
     ring_elevation_deg: tuple[float, float] = (5.0, 15.0)
     ring_azimuth_deg: tuple[float, float] = FULL_RING
     """The azimuths the ring covers, degrees from world +x toward +y (lo < hi, at most 360 apart): a whole ring by
@@ -165,9 +165,6 @@ class SceneConfig:
         if self.ambient_gradient_azimuth_deg >= 360:
             raise SimError(f"scene.ambient_gradient_azimuth_deg must be in [0, 360), got "
                            f"{self.ambient_gradient_azimuth_deg}")
-        if self.ring_radiance and self.ambient_gradient:
-            raise SimError("scene.ring_radiance and scene.ambient_gradient: one environment holds a ring light or a "
-                           "gradient dome, not both")
         if self.ring_elevation_deg[1] >= 90 or self.ring_elevation_deg[0] >= self.ring_elevation_deg[1]:
             raise SimError(f"scene.ring_elevation_deg: need elevations lo < hi < 90 degrees, got "
                            f"{self.ring_elevation_deg}")
@@ -520,14 +517,18 @@ def _covered(edges: np.ndarray, lo: float, hi: float, period: float | None = Non
 
 
 def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float],
-              azimuth_deg: Sequence[float] = FULL_RING, fringe: Sequence[float] = (0.0, 0.0)) -> dict:
+              azimuth_deg: Sequence[float] = FULL_RING, fringe: Sequence[float] = (0.0, 0.0),
+              gradient: float = 0.0, gradient_azimuth_deg: float = 0.0) -> dict:
     """The environment with a ring light (``SceneConfig.ring_radiance``): uniform ``radiance`` from every direction
     plus ``ring`` at elevations ``elevation_deg`` (lo, hi) above the ground and azimuths ``azimuth_deg`` (lo, hi;
     degrees from world +x toward +y), as an envmap whose pole (its local +y) is world +z, so its rows are polar
     angles from the vertical. Mitsuba reads a direction's column as ``u = atan2(x, -z) / 2 pi`` in the map's
     frame, which is world azimuth ``phi = 90 - 360 u`` degrees here (a test checks a sector's side). ``fringe`` =
     (period in degrees, depth): each row of the ring times ``1 + depth cos(2 pi (e - elevation_deg[0]) / period)``
-    at its centre's elevation e (``SceneConfig.ring_fringe_period_deg``); period 0: uniform."""
+    at its centre's elevation e (``SceneConfig.ring_fringe_period_deg``); period 0: uniform. ``gradient`` (g) and
+    ``gradient_azimuth_deg`` make the dome a gradient dome as ``ambient_dict`` does (``radiance`` (1 + g w_a), w_a
+    the direction's component along that azimuth, at each cell's centre), so a segment of the dome and the ring
+    share the one environment map."""
     import mitsuba as mi
 
     edges = np.linspace(0.0, 180.0, RING_ROWS + 1)  # polar angle of the rows' edges, degrees
@@ -536,14 +537,22 @@ def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float],
     if period:
         elevation = 90.0 - 0.5 * (edges[:-1] + edges[1:])
         rows = rows * (1.0 + depth * np.cos(2 * np.pi * (elevation - float(elevation_deg[0])) / period))
+    # columns run along u, i.e. toward decreasing azimuth: column j covers phi in [90 - 360 (j+1)/W, ...]
+    u_edges = np.linspace(0.0, 1.0, 2 * RING_ROWS + 1)
+    phi_edges = 90.0 - 360.0 * u_edges[::-1]  # increasing; reversed back to column order below
     if tuple(azimuth_deg) == FULL_RING:
         cells = np.repeat(rows[:, None], 4, 1)
-    else:  # columns run along u, i.e. toward decreasing azimuth: column j covers phi in [90 - 360 (j+1)/W, ...]
-        u_edges = np.linspace(0.0, 1.0, 2 * RING_ROWS + 1)
-        phi_edges = 90.0 - 360.0 * u_edges[::-1]  # increasing; reversed back to column order below
+    else:
         cols = _covered(phi_edges, float(azimuth_deg[0]), float(azimuth_deg[1]), period=360.0)[::-1]
         cells = rows[:, None] * cols[None, :]
-    bitmap = mi.Bitmap((radiance + ring * cells).astype(np.float32)[..., None])
+    dome = np.full((1, 1), float(radiance))
+    if gradient:
+        if cells.shape[1] == 4:
+            cells = np.repeat(rows[:, None], 2 * RING_ROWS, 1)
+        polar = np.radians(0.5 * (edges[:-1] + edges[1:]))[:, None]
+        phi = np.radians(0.5 * (phi_edges[:-1] + phi_edges[1:])[::-1])[None, :]
+        dome = radiance * (1.0 + gradient * np.sin(polar) * np.cos(phi - math.radians(gradient_azimuth_deg)))
+    bitmap = mi.Bitmap((dome + ring * cells).astype(np.float32)[..., None])
     return {"type": "envmap", "bitmap": bitmap, "scale": 1.0,
             "to_world": mi.ScalarTransform4f().rotate(axis=[1, 0, 0], angle=90)}
 
@@ -605,7 +614,8 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
         if params.get("ring_radiance"):
             scene["ambient"] = ring_dict(params["ambient_radiance"], params["ring_radiance"],
                                          params["ring_elevation_deg"], params.get("ring_azimuth_deg", FULL_RING),
-                                         params.get("ring_fringe", (0.0, 0.0)))
+                                         params.get("ring_fringe", (0.0, 0.0)), params.get("ambient_gradient", 0.0),
+                                         params.get("ambient_gradient_azimuth_deg", 0.0))
         elif params["ambient_radiance"] > 0:
             scene["ambient"] = ambient_dict(params["ambient_radiance"], params.get("ambient_gradient", 0.0),
                                             params.get("ambient_gradient_azimuth_deg", 0.0))
