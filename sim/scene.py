@@ -540,15 +540,13 @@ def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float],
     # columns run along u, i.e. toward decreasing azimuth: column j covers phi in [90 - 360 (j+1)/W, ...]
     u_edges = np.linspace(0.0, 1.0, 2 * RING_ROWS + 1)
     phi_edges = 90.0 - 360.0 * u_edges[::-1]  # increasing; reversed back to column order below
-    if tuple(azimuth_deg) == FULL_RING:
-        cells = np.repeat(rows[:, None], 4, 1)
+    if tuple(azimuth_deg) == FULL_RING:  # a uniform ring needs columns only for a gradient dome
+        cols = np.ones(2 * RING_ROWS if gradient else 4)
     else:
         cols = _covered(phi_edges, float(azimuth_deg[0]), float(azimuth_deg[1]), period=360.0)[::-1]
-        cells = rows[:, None] * cols[None, :]
-    dome = np.full((1, 1), float(radiance))
+    cells = rows[:, None] * cols[None, :]
+    dome = float(radiance)
     if gradient:
-        if cells.shape[1] == 4:
-            cells = np.repeat(rows[:, None], 2 * RING_ROWS, 1)
         polar = np.radians(0.5 * (edges[:-1] + edges[1:]))[:, None]
         phi = np.radians(0.5 * (phi_edges[:-1] + phi_edges[1:])[::-1])[None, :]
         dome = radiance * (1.0 + gradient * np.sin(polar) * np.cos(phi - math.radians(gradient_azimuth_deg)))
