@@ -84,7 +84,7 @@ class ScriptedLink:
     has_plc = True
 
     def __init__(self, n, age_s=0.0, ack=None, log=None):
-        self.pending = deque(Trigger(f"T{i}", time.perf_counter()) for i in range(n))
+        self.pending = deque()  # the scripted parts join at the first ask (_start); announce() adds more
         self._scripted, self.age_s, self.started_at = n, age_s, None
         self.reports = []
         self.ack, self.log = ack, log
@@ -100,9 +100,8 @@ class ScriptedLink:
         set-up slower than a short cycle made them late before the run: a clean-clone run failed so once)."""
         if self.started_at is None:
             self.started_at = time.perf_counter()
-            scripted = [self.pending.popleft() for _ in range(self._scripted)]  # first in line: nothing popped yet
-            self.pending.extendleft(reversed([dataclasses.replace(t, t_arrival=self.started_at - self.age_s)
-                                              for t in scripted]))
+            self.pending.extendleft(Trigger(f"T{i}", self.started_at - self.age_s)
+                                    for i in reversed(range(self._scripted)))  # first in line, T0 first
 
     def announce(self, part_id):
         """A TRIG reaching the host now (from another thread)."""
