@@ -242,9 +242,21 @@ def load_mesh(path: str | Path, materials: dict[str, str | dict], scale: float =
 
 def object_from_config(mesh: str | None, materials: dict[str, str | dict] | None, scale: float = 1.0,
                        cell_mm: float = 0.5) -> ObjectModel:
-    """The brick when ``mesh`` is empty/None, else ``load_mesh``."""
+    """The brick when ``mesh`` is empty/None, else ``load_mesh``.
+
+    For the brick, ``materials`` replaces the spec of its material keys (``BRICK_MATERIALS``: "plastic" for body and
+    studs, "metal" for the plug), e.g. ``{"plastic": {"type": "pplastic", "finish": "smooth", "distribution":
+    "ggx"}}``: the same part in another material, or rendered with another microfacet model. Raises SimError for a
+    key the brick does not have."""
     if not mesh:
-        return usb_brick(cell_mm)
+        brick = usb_brick(cell_mm)
+        if not materials:
+            return brick
+        unknown = sorted(set(materials) - set(brick.materials))
+        if unknown:
+            raise SimError(f"materials: the brick has material keys {sorted(brick.materials)}, not {unknown}")
+        specs = {k: ({"type": v} if isinstance(v, str) else dict(v)) for k, v in materials.items()}
+        return replace(brick, materials={**brick.materials, **specs})
     return load_mesh(mesh, materials or {"*": "pplastic"}, scale)
 
 

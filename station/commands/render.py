@@ -70,7 +70,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="raw mosaics only: no AOV pass, no gt.npz (labels still from a shape-index pass)")
     p.add_argument("--mesh", default="", help="PLY/OBJ instead of the built-in USB brick")
     p.add_argument("--materials", default="",
-                   help='JSON part -> material map for --mesh, e.g. \'{"*": "pplastic"}\'')
+                   help='JSON part -> material map for --mesh, e.g. \'{"*": "pplastic"}\'; for the brick, its '
+                        'material keys "plastic" and "metal", e.g. \'{"plastic": {"type": "pplastic", "finish": '
+                        '"smooth", "distribution": "ggx"}}\'')
     p.add_argument("--mesh-scale", type=float, default=1.0, help="file units -> metres (0.001 for mm)")
     p.add_argument("--visibility", action="store_true",
                    help="detectability oracle: render each defective sample's scene again without the defect (two "

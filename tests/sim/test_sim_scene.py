@@ -104,3 +104,23 @@ def test_line_polar_preset_is_the_line_at_brewster_under_a_dome() -> None:
     assert changed == {"camera_polar_deg", "light_intensity", "ambient_radiance"}
     assert polar["scene"]["camera_polar_deg"][0] < np.degrees(np.arctan(1.5)) < polar["scene"]["camera_polar_deg"][1]
     assert polar["sensor"] == {"bit_depth": 12, "exposure_gain": 2.0}
+
+
+def test_brick_materials_override_keeps_the_draws() -> None:
+    # `station render --materials` on the brick: the same parts and draws, another microfacet model on the plastic
+    from sim.meshes import object_from_config
+    from sim.scene import material_keys_check
+    from sim.variant import set_variant
+
+    set_variant()
+    ggx = object_from_config(None, {"plastic": {"type": "pplastic", "finish": "smooth", "distribution": "ggx"}})
+    material_keys_check(ggx)
+    plain = sample_scene(np.random.default_rng(3), SceneConfig(), usb_brick())
+    other = sample_scene(np.random.default_rng(3), SceneConfig(), ggx)
+    assert other["materials"]["plastic"].pop("distribution") == "ggx"
+    assert json.dumps(other, sort_keys=True) == json.dumps(plain, sort_keys=True)
+    assert "distribution" not in usb_brick().materials["plastic"]  # the cached brick is not changed
+    with pytest.raises(SimError, match="material keys"):
+        object_from_config(None, {"body": "pplastic"})
+    with pytest.raises(SimError, match="'plastic'"):
+        material_keys_check(object_from_config(None, {"plastic": {"type": "pplastic", "distribution": "ggz"}}))
