@@ -15,3 +15,4 @@ $S compare --paired $D/eval-S $D/eval-G $D/eval-E $D/eval-R --out $D/paired
 PYTHONPATH=. .venv/bin/python $D/analysis.py model/weights/default $D/threshold \
     S=$D/eval-S:data/line-panel-heldout-1133 G=$D/eval-G:data/om-ggx E=$D/eval-E:data/om-ior \
     R=$D/eval-R:data/om-rough > $D/threshold.md
+mv $D/threshold.png docs/results/2026-11-28-other-means.png
