@@ -101,6 +101,11 @@ A fit keeps at most one per 20 parts of the two thirds each fold fits on (``FOLD
 keep all 10, ``station adapt`` on 50 line parts 1 or 2. Components fitted on too few parts follow those parts'
 noise, and new good parts then score high."""
 
+GLOBAL_POLARIZATION = False
+"""The shipped recipe's ``global_polarization`` (``station variation --global-polarization``'s default): whether a
+new fit puts each frame's polarization onto the good parts' by one frame-wide gain and turn
+(``VariationModel.align_polarization``). Measured in docs/results/2026-11-28-global-polarization.md."""
+
 BLUR_COPIES_SIGMA = 0.0
 """The shipped recipe's ``blur_copies_sigma`` (input px; 0: no blurred copies), ``station variation
 --blur-copies``'s default. Copies up to 1.5 px (3.75 px of the 640 x 480 frame) were measured against the fit
@@ -138,10 +143,16 @@ specular lobe around a clipped core."""
 MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
-LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma")
+LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
-a feature; ``blur_copies_sigma`` 0: fitted without blurred copies), which score as those models did."""
+a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
+polarization read as it is), which score as those models did."""
+
+POLARIZATION_GAIN_RANGE = (0.25, 4.0)
+"""Range of a frame's polarization gain ``align_polarization`` divides by; beyond it, clamped: a frame with (almost)
+no polarization is not blown up to the reference's and a frame polarized far more is not scaled down to it, so
+both still read as unlike the good parts."""
 
 READ_DOLP = False
 """Whether a new fit reads DoLP as a feature of its own (module docstring: features). DoLP is the length of the
@@ -219,7 +230,9 @@ class VariationModel(nn.Module):
     good parts' window statistic at each pixel (module docstring: position); ``reads_dolp`` 1.0 when DoLP is
     a feature of its own, 0.0 when it is read only through AoLP's Stokes components (``READ_DOLP``;
     ``LATER_BUFFERS``); ``blur_copies_sigma`` the largest blur of the good parts' blurred copies it was fitted with
-    (input px, 0: none; ``fit``), which a refit keeps. ``intensity``, ``dolp``, ``aolp``: the channel index of
+    (input px, 0: none; ``fit``), which a refit keeps; ``global_polarization`` 1.0 when each registered frame's
+    polarization is first put onto the good parts' mean by one frame-wide gain and turn (``align_polarization``;
+    ``fit``), which a refit keeps. ``intensity``, ``dolp``, ``aolp``: the channel index of
     intensity, of DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
@@ -240,6 +253,7 @@ class VariationModel(nn.Module):
         self.register_buffer("window_spread", torch.ones(h, w))
         self.register_buffer("reads_dolp", torch.tensor(1.0))
         self.register_buffer("blur_copies_sigma", torch.tensor(0.0))
+        self.register_buffer("global_polarization", torch.tensor(0.0))
 
     # --- features and registration (numpy) ---
 
@@ -254,6 +268,41 @@ class VariationModel(nn.Module):
         if not self.dolp_read:
             f[self.dolp] = 0.0
         return f
+
+    @property
+    def aligns_polarization(self) -> bool:
+        """Whether each frame's polarization is put onto the good parts' mean first (``align_polarization``)."""
+        return bool(self.global_polarization > 0.5)
+
+    def align_polarization(self, f: np.ndarray, reference: np.ndarray, where: np.ndarray) -> np.ndarray:
+        """Registered features ``f`` (C, H, W) with their polarization divided by the frame-wide gain and turn that
+        best map ``reference`` (C, H, W: the good parts' mean features) onto them over the pixels ``where`` (H, W).
+
+        Convention: with the Stokes components as one complex number per pixel, q = (S1 + i S2) / S0 = DoLP e^(2ia),
+        a frame whose DoLP is g times the good parts' (another renderer's or material's polarization strength, a
+        polarizer array's extinction ratio) and whose AoLP is offset by d (a polarizer grid mounted turned, another
+        angle reference) reads k q with k = g e^(2id). k is fitted by least squares, k = sum(q_f conj(q_ref)) /
+        sum(|q_ref|^2), its modulus clamped to ``POLARIZATION_GAIN_RANGE``, and q_f / k is what is compared (DoLP, when
+        read, / |k|). Like exposure for intensity (a factor on I, the median of log I taken out), it changes the
+        whole part at once, where a defect changes a place. Finite for any input; ``f`` unchanged without the
+        polarization."""
+        a = self.aolp
+        if a is None or self.dolp is None or not where.any():
+            return f
+        q = f[a] + 1j * f[a + 1]
+        m = reference[a] + 1j * reference[a + 1]
+        power = float(np.sum(np.abs(m[where]) ** 2))
+        k = complex(np.sum(q[where] * np.conj(m[where]))) / power if power > 1e-12 else 1.0
+        if not np.isfinite(k) or k == 0:
+            k = 1.0
+        lo, hi = POLARIZATION_GAIN_RANGE
+        k = k / abs(k) * min(max(abs(k), lo), hi)
+        out = f.copy()
+        q = q / k
+        out[a], out[a + 1] = q.real, q.imag
+        if self.dolp_read:
+            out[self.dolp] = f[self.dolp] / abs(k)
+        return out.astype(np.float32)
 
     @property
     def dolp_read(self) -> bool:
@@ -297,7 +346,8 @@ class VariationModel(nn.Module):
 
     @torch.no_grad()
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
-            keep_reference: bool = False, blur_copies_sigma: float | None = None) -> np.ndarray:
+            keep_reference: bool = False, blur_copies_sigma: float | None = None,
+            global_polarization: bool | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -310,7 +360,10 @@ class VariationModel(nn.Module):
         applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask, and left out
         with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts' only. A softer
         lens or another renderer's pixel filter is then among what good parts look like
-        (``BLUR_COPIES_SIGMA``)."""
+        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (None: the model's own, so a refit keeps it): put each
+        registered part's polarization onto the parts' mean by one frame-wide gain and turn before anything is
+        measured (``align_polarization``: twice, the mean taken again after the first), and so every frame it
+        judges (ModelError for a model without the DoLP and AoLP priors)."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -320,6 +373,10 @@ class VariationModel(nn.Module):
         if not (math.isfinite(sigma) and sigma >= 0):
             raise ModelError(f"blur_copies_sigma must be finite and >= 0, got {sigma}")
         self.blur_copies_sigma.fill_(sigma)
+        align = self.aligns_polarization if global_polarization is None else bool(global_polarization)
+        if align and (self.dolp is None or self.aolp is None):
+            raise ModelError("global_polarization needs the DoLP and AoLP priors")
+        self.global_polarization.fill_(1.0 if align else 0.0)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
@@ -343,6 +400,9 @@ class VariationModel(nn.Module):
         if keep_reference:
             region = self.region.numpy()
         stack = stack[:, :-1]
+        for _ in range(2 if align else 0):
+            mean_features = stack.mean(0)
+            stack = np.stack([self.align_polarization(f, mean_features, region) for f in stack])
         spread = 1.4826 * np.median(np.abs(stack - np.median(stack, 0))[:, :, region], axis=(0, 2))
         channel_scale = np.maximum(spread, MIN_SCALE).astype(np.float32)
         u = stack / channel_scale[:, None, None] * region
@@ -445,6 +505,8 @@ class VariationModel(nn.Module):
         for xi in xs:
             warped = self.register(xi, self.features(xi))
             judged = part & ~self.highlight(warped[-1])
+            if self.aligns_polarization:
+                warped[:-1] = self.align_polarization(warped[:-1], mean, judged if judged.any() else part)
             highlights.append(1.0 - judged.sum() / max(part.sum(), 1))
             if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
                 judged = part  # too much hidden to judge the part by the rest: fail closed

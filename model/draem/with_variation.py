@@ -18,13 +18,14 @@ from .variation import network_score
 @torch.no_grad()
 def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
                   val_good: torch.Tensor, batch: int = 16, decision: str = "combined",
-                  blur_copies_sigma: float = 0.0) -> Detector:
+                  blur_copies_sigma: float = 0.0, global_polarization: bool = False) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
     training parts: a fitted model scores its own parts low). ``decision``: ``ModelConfig.decision`` of the copy
     (which finding rejects; calibration and member scores do not depend on it). ``blur_copies_sigma``: the fit also
-    sees blurred copies of the good parts (``VariationModel.fit``; 0: none)."""
+    sees blurred copies of the good parts (``VariationModel.fit``; 0: none). ``global_polarization``: each frame's
+    polarization is put onto the good parts' by one frame-wide gain and turn (``VariationModel.fit``)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -34,7 +35,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     assert not unexpected and all(k.startswith("variation.") for k in missing), (missing, unexpected)
     out.eval()
     assert out.variation is not None
-    out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma)
+    out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
+                      global_polarization=global_polarization)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()
     return out

@@ -33,6 +33,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="the fit also sees a copy of each good part blurred by up to SIGMA input px, so a softer lens "
                         "or another renderer's pixel filter is among what good parts look like (default: the shipped "
                         "recipe, model.draem.variation.BLUR_COPIES_SIGMA; 0: no copies)")
+    p.add_argument("--global-polarization", action=argparse.BooleanOptionalAction, default=None,
+                   help="put each frame's polarization onto the good parts' by one frame-wide DoLP gain and AoLP turn "
+                        "before comparing (another renderer's or camera's polarization strength, a polarizer grid "
+                        "mounted turned) (default: the shipped recipe, model.draem.variation.GLOBAL_POLARIZATION)")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")
@@ -45,5 +49,5 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
-                        args.fit_parts, args.blur_copies, args.refit))
+                        args.fit_parts, args.blur_copies, args.refit, args.global_polarization))
     return 0

@@ -295,6 +295,37 @@ def test_hostile_inputs_give_finite_scores_that_reject(tmp_path: Path) -> None:
     assert bool(torch.isfinite(det.variation.zmaps(x)[0]).all())
 
 
+def test_a_fit_aligning_frame_wide_polarization_judges_another_renderers_dolp_and_aolp_as_good() -> None:
+    """Another renderer, material or polarizer array can polarize more or less over the whole part, or read every
+    angle turned by a few degrees. A fit that puts each frame's polarization onto the good parts' by one frame-wide
+    gain and turn (``global_polarization``) scores such good parts as good parts, where a plain fit rejects them, and
+    a local change of DoLP still stands out; a refit keeps the recipe; a frame without polarization still rejects."""
+    from model.draem.shifts import Channels, shift
+
+    x, ch = parts(40, 0), Channels(0, 1, 2)
+    plain, glob = (VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2) for _ in range(2))
+    plain.fit(x, x[:, 0] > 0.15)
+    glob.fit(x, x[:, 0] > 0.15, global_polarization=True)
+    assert glob.aligns_polarization and not plain.aligns_polarization
+
+    def score(vm: VariationModel, name: str, defect: bool = False) -> torch.Tensor:
+        return vm.zmaps(torch.from_numpy(shift(name, parts(20, 2 if defect else 1, defect).numpy(), ch)))[1]
+
+    good = float(score(glob, "none").max())
+    assert good <= 1.05 * float(score(plain, "none").max())  # the renders' own good parts as before
+    for name in ("dolp x0.5", "dolp x1.5", "aolp +5 deg"):  # (x2 puts I (1 + DoLP) of these parts at full scale)
+        assert float(score(plain, name).max()) > 1.5 * good, name  # a plain fit rejects some of them
+        assert float(score(glob, name).max()) <= 1.05 * good, name
+        assert float(score(glob, name, defect=True).min()) > 2 * good, name
+    flat = parts(5, 1)
+    flat[:, 1] = 0.0  # no polarization at all: not scaled up to the good parts'
+    assert float(glob.zmaps(flat)[1].min()) > 2 * good
+    glob.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the recipe
+    assert glob.aligns_polarization
+    with pytest.raises(ModelError, match="DoLP and AoLP"):
+        VariationModel(4, (H, W), intensity=0).fit(x, global_polarization=True)
+
+
 def test_a_checkpoint_from_before_the_position_rule_loads_with_the_window_uncalibrated(tmp_path: Path) -> None:
     _, path = detector_with_variation(tmp_path)
     pt = path.with_suffix(".pt")
