@@ -1,7 +1,8 @@
 #!/bin/sh
 # Rule 37, after render.sh (run from the repository root; each step is skipped when its output exists): the control
 # A and the candidate B fitted from the shipped model, evaluated on seed 1134 (unshifted and shifted) and on rules
-# 35-36's sets S, G, E, R; then the paired comparisons.
+# 35-36's sets S, G, E, R; then the paired comparisons. `models.sh A` or `models.sh B` runs one model's evaluations
+# only (the two can run side by side, one per core); without an argument, both, then the comparisons.
 set -e
 S=.venv/bin/station
 D=docs/results/2026-11-28-global-polarization
@@ -14,7 +15,7 @@ fit() {  # name, then extra arguments
 }
 fit A --no-global-polarization
 fit B --global-polarization
-for m in A B; do
+for m in ${1:-A B}; do
     [ -f $D/eval-$m-1134/eval.json ] || $S eval --model runs/gp/$m --data data/line-panel-heldout-1134 \
         --val-data data/line-panel-val --out $D/eval-$m-1134
     [ -f $D/shift-$m/shift.json ] || $S bench shift --model runs/gp/$m --data data/line-panel-heldout-1134 \
@@ -25,5 +26,6 @@ for m in A B; do
             --val-data data/line-panel-val --no-synthetic --no-plots --out $D/eval-$m-$set
     done
 done
+[ -n "$1" ] && exit 0
 $S compare --paired $D/eval-A-1134 $D/eval-B-1134 --out $D/paired-1134
 for set in S G E R; do $S compare --paired $D/eval-A-$set $D/eval-B-$set --out $D/paired-$set; done
