@@ -104,7 +104,11 @@ noise, and new good parts then score high."""
 GLOBAL_POLARIZATION = False
 """The shipped recipe's ``global_polarization`` (``station variation --global-polarization``'s default): whether a
 new fit puts each frame's polarization onto the good parts' by one frame-wide gain and turn
-(``VariationModel.align_polarization``). Measured in docs/results/2026-11-28-global-polarization.md."""
+(``VariationModel.align_polarization``). Off: by rule 37 (docs/results/2026-11-28-global-polarization.md, seed-1134
+held-out set and the seed-1133 renders) it keeps the panel model's ranking and false rejects under a halved or
+doubled DoLP or a 5-degree AoLP offset (image AUROC 0.911-0.921 against 0.861-0.882; good parts rejected at the own
+threshold with DoLP halved 4.0 % against 72.8 %), level on the renders of one set (+0.004) but 0.005-0.009 below
+on the other's four renders, dents -0.023 to -0.027 (about 2.5 SE): the rule asked for no loss beyond one SE."""
 
 BLUR_COPIES_SIGMA = 0.0
 """The shipped recipe's ``blur_copies_sigma`` (input px; 0: no blurred copies), ``station variation
