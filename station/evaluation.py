@@ -216,7 +216,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
-        "blur_copies_sigma": blur_copies_sigma, "global_polarization": global_polarization}, StatisticsRange.from_frames(tr.frame_stats).to_dict())
+        "blur_copies_sigma": blur_copies_sigma, "global_polarization": global_polarization},
+        StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
     decides = "" if decision == "combined" else f" (decision: {decision} alone)"

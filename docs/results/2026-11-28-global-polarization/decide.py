@@ -21,8 +21,8 @@ def caught_1(folder: str) -> tuple[float, float]:
 def main() -> None:
     verdicts = []
     rows = load(f"{D}/paired-1134/paired.json")["rows"]
-    print("Seed 1134, unshifted: image AUROC, B against A (paired SE)\n\n| type | defective | A | B | B - A (SE) | in SEs |"
-          "\n|---|---|---|---|---|---|")
+    print("Seed 1134, unshifted: image AUROC, B against A (paired SE)\n\n"
+          "| type | defective | A | B | B - A (SE) | in SEs |\n|---|---|---|---|---|---|")
     worst_type = 0.0
     for r in rows:
         n_se = r["gain"] / r["se"] if r["se"] > 0 else 0.0

@@ -78,7 +78,8 @@ def main() -> None:
         dg, dc = (rates(labels, flagged[name])[j] - rates(labels, flagged[ref])[j] for j in (0, 1))
         se = paired_se(labels, flagged[ref], flagged[name], rng)
         pct = np.percentile(level, [50, 90, 100])
-        by_type = {t: float(flagged[name][(types == t) & (labels == 1)].mean()) for t in sorted(set(types[labels == 1]))}
+        defective = sorted(set(types[labels == 1]))
+        by_type = {t: float(flagged[name][(types == t) & (labels == 1)].mean()) for t in defective}
         report["sets"][name] = {"data": data, "good_rejected": g, "caught": c, "d_good_rejected": dg,
                                 "d_good_rejected_se": se[0], "d_caught": dc, "d_caught_se": se[1],
                                 "noise_level_pct_50_90_100": pct.tolist(), "highlight_share_median":
