@@ -202,6 +202,11 @@ def usb_brick(cell_mm: float = 0.5) -> ObjectModel:
     return ObjectModel("usb_brick", parts, dict(BRICK_MATERIALS), body="body", features=("studs",))
 
 
+def material_spec(material: str | dict) -> dict:
+    """A material as given (a Mitsuba BSDF type such as ``"pplastic"``, or a spec dict) -> a spec dict of its own."""
+    return {"type": material} if isinstance(material, str) else dict(material)
+
+
 def load_mesh(path: str | Path, materials: dict[str, str | dict], scale: float = 1.0, body: str | None = None
               ) -> ObjectModel:
     """A user PLY/OBJ as an ``ObjectModel``: each named geometry in the file (OBJ objects/groups; a PLY is one
@@ -228,8 +233,7 @@ def load_mesh(path: str | Path, materials: dict[str, str | dict], scale: float =
         if mat is None:
             raise SimError(f"mesh file {path}: part {name!r} has no material in the material map "
                            f"(parts: {', '.join(geoms)}; use '*' for a default)")
-        spec = {"type": mat} if isinstance(mat, str) else dict(mat)
-        specs[name] = spec
+        specs[name] = material_spec(mat)
         # split vertices at edges sharper than 30 degrees: flat faces shade flat, curved scans smooth, and
         # sharp edges carry the duplicated vertices that chips look for
         v, f = trimesh.remesh.subdivide_to_size(np.asarray(g.vertices) * scale, np.asarray(g.faces),
@@ -255,8 +259,7 @@ def object_from_config(mesh: str | None, materials: dict[str, str | dict] | None
         unknown = sorted(set(materials) - set(brick.materials))
         if unknown:
             raise SimError(f"materials: the brick has material keys {sorted(brick.materials)}, not {unknown}")
-        specs = {k: ({"type": v} if isinstance(v, str) else dict(v)) for k, v in materials.items()}
-        return replace(brick, materials={**brick.materials, **specs})
+        return replace(brick, materials={**brick.materials, **{k: material_spec(v) for k, v in materials.items()}})
     return load_mesh(mesh, materials or {"*": "pplastic"}, scale)
 
 
