@@ -61,21 +61,21 @@ def main() -> None:
     print("| set | good rejected | caught | good rejected - ref (SE) | caught - ref (SE) | good parts' noise level: "
           "median / 90th / max | highlight share: median |\n|---|---|---|---|---|---|---|")
     flagged = {name: np.array([per[name][i][2] >= thr for i in index], float) for name, _ in sets}
-    example, zmap = None, {}
+    ref_rates = rates(labels, flagged[ref])
+    good_idx = [i for i in index if per[ref][i][0] == 0]
+    example = good_idx[int(np.argsort([per[ref][i][2] for i in good_idx])[len(good_idx) // 2])]  # median good part
+    zmap = {}
     for name, spec in sets:
         data = spec.split(":")[1]
         sp = load_split(data, "test", cfg.priors, cfg.input_shape, roi=cfg.roi, frame_aspect=cfg.frame_aspect,
                         progress=False)
-        good_rows = [sp.index.index(i) for i in index if per[ref][i][0] == 0]
+        good_rows = [sp.index.index(i) for i in good_idx]
         z = v.zmaps(sp.priors[good_rows])
         level, hidden = z.noise_level.numpy(), z.highlight_fraction.numpy()
-        if example is None:  # the reference's median good part
-            good_idx = [i for i in index if per[ref][i][0] == 0]
-            example = good_idx[int(np.argsort([per[ref][i][2] for i in good_idx])[len(good_idx) // 2])]
-        k = good_rows[[i for i in index if per[ref][i][0] == 0].index(example)]
-        zmap[name] = (sp.priors[k, 0].numpy(), v.zmaps(sp.priors[k:k + 1]).maps[0].numpy(), per[name][example][2])
+        j = good_idx.index(example)
+        zmap[name] = (sp.priors[good_rows[j], 0].numpy(), z.maps[j].numpy(), per[name][example][2])
         g, c = rates(labels, flagged[name])
-        dg, dc = (rates(labels, flagged[name])[j] - rates(labels, flagged[ref])[j] for j in (0, 1))
+        dg, dc = g - ref_rates[0], c - ref_rates[1]
         se = paired_se(labels, flagged[ref], flagged[name], rng)
         pct = np.percentile(level, [50, 90, 100])
         defective = sorted(set(types[labels == 1]))
@@ -97,7 +97,7 @@ def main() -> None:
     fig = plt.figure(figsize=(10, 2.2 + 1.6 * len(sets)))
     ax = fig.add_subplot(len(sets) + 1, 1, 1)
     for name, _ in sets:
-        s = np.sort([per[name][i][2] for i in index if per[ref][i][0] == 0])
+        s = np.sort([per[name][i][2] for i in good_idx])
         ax.plot(s, 1 - np.arange(len(s)) / len(s), label=name)
     ax.axvline(thr, color="k", lw=0.8, ls="--")
     ax.set_yscale("log")
