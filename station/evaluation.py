@@ -164,7 +164,7 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
 def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
                   decision: str = "variation", fit_parts: int | None = None,
                   blur_copies_sigma: float | None = None, refit: bool = False,
-                  global_polarization: bool | None = None) -> str:
+                  global_polarization: str | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
@@ -178,6 +178,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the variation
     model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
+    from model.draem.config import PolarizationAlignment
     from model.draem.errors import ModelError
     from model.draem.variation import BLUR_COPIES_SIGMA, GLOBAL_POLARIZATION, MIN_FIT_PARTS
     from model.draem.with_variation import add_variation, without_variation
@@ -186,7 +187,11 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
 
     check_max_good_flagged(max_good_flagged)
     blur_copies_sigma = BLUR_COPIES_SIGMA if blur_copies_sigma is None else blur_copies_sigma
-    global_polarization = GLOBAL_POLARIZATION if global_polarization is None else global_polarization
+    try:
+        alignment = PolarizationAlignment.of(GLOBAL_POLARIZATION if global_polarization is None
+                                             else global_polarization)
+    except ModelError as exc:
+        raise UserError(f"--global-polarization: {exc}") from None
     if not (math.isfinite(blur_copies_sigma) and blur_copies_sigma >= 0):
         raise UserError(f"--blur-copies {blur_copies_sigma}: give a blur in input px, >= 0 (0: no copies)")
     if fit_parts is not None and fit_parts < MIN_FIT_PARTS:
@@ -211,18 +216,20 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     try:
         det = add_variation(networks, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma,
-                            global_polarization=global_polarization)
+                            global_polarization=alignment)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
-        "blur_copies_sigma": blur_copies_sigma, "global_polarization": global_polarization},
+        "blur_copies_sigma": blur_copies_sigma, "global_polarization": alignment.value},
         StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
     decides = "" if decision == "combined" else f" (decision: {decision} alone)"
     copies = f" and a blurred copy of each (up to {blur_copies_sigma:g} px)" if blur_copies_sigma else ""
-    copies += ", each frame's polarization aligned to theirs" if global_polarization else ""
+    copies += {PolarizationAlignment.MEAN: ", each frame's polarization aligned to theirs",
+               PolarizationAlignment.RANGE: ", each frame's polarization aligned where beyond theirs",
+               }.get(alignment, "")
     return (f"{out}: variation model fitted on {len(tr.index)} good parts{copies}{decides}; threshold "
             f"{choice.threshold:.4g} ({choice.rule}); on {len(labels)} val parts it flags "
             f"{choice.flagged_good_fraction:.1%} of good parts{detected}; "

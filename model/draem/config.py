@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field, replace
+from enum import StrEnum
 from typing import Any
 
 from model.priors.photometric import check_tilts
@@ -99,6 +100,33 @@ PRESETS: dict[str, Preset] = {
 
 
 DECISIONS = ("combined", "variation", "residual")
+
+
+class PolarizationAlignment(StrEnum):
+    """How a fit treats the polarization of the whole frame (``VariationModel.align_polarization``): ``OFF`` reads it
+    as it is; ``MEAN`` puts every frame's onto the good parts' mean by one frame-wide gain and turn; ``RANGE`` does so
+    only for the part of that gain and turn beyond what the fitted good parts showed, so a frame like theirs is
+    judged exactly as without alignment. The value is the model file's ``global_polarization`` buffer's index."""
+
+    OFF = "off"
+    MEAN = "mean"
+    RANGE = "range"
+
+    @property
+    def code(self) -> float:
+        """The buffer's value: 0 off, 1 mean, 2 range."""
+        return float(list(PolarizationAlignment).index(self))
+
+    @classmethod
+    def of(cls, value: PolarizationAlignment | str | bool) -> PolarizationAlignment:
+        """A mode from its name, or from the boolean of files and calls before ``RANGE`` (True: ``MEAN``)."""
+        if isinstance(value, bool):
+            return cls.MEAN if value else cls.OFF
+        try:
+            return cls(value)
+        except ValueError:
+            names = ", ".join(m.value for m in cls)
+            raise ModelError(f"global_polarization must be one of {names}, got {value!r}") from None
 
 
 @dataclass(frozen=True)

@@ -83,6 +83,7 @@ import numpy as np
 import torch
 from torch import nn
 
+from .config import PolarizationAlignment
 from .errors import ModelError
 from .frame_checks import FRAME_CHECKS
 from .shifts import Channels, blurred_copies
@@ -101,14 +102,17 @@ A fit keeps at most one per 20 parts of the two thirds each fold fits on (``FOLD
 keep all 10, ``station adapt`` on 50 line parts 1 or 2. Components fitted on too few parts follow those parts'
 noise, and new good parts then score high."""
 
-GLOBAL_POLARIZATION = False
+GLOBAL_POLARIZATION = PolarizationAlignment.OFF
 """The shipped recipe's ``global_polarization`` (``station variation --global-polarization``'s default): whether a
 new fit puts each frame's polarization onto the good parts' by one frame-wide gain and turn
 (``VariationModel.align_polarization``). Off: by rule 37 (docs/results/2026-11-28-global-polarization.md, seed-1134
-held-out set and the seed-1133 renders) it keeps the panel model's ranking and false rejects under a halved or
+held-out set and the seed-1133 renders) ``MEAN`` keeps the panel model's ranking and false rejects under a halved or
 doubled DoLP or a 5-degree AoLP offset (image AUROC 0.911-0.921 against 0.861-0.882; good parts rejected at the own
 threshold with DoLP halved 4.0 % against 72.8 %), level on the renders of one set (+0.004) but 0.005-0.009 below
-on the other's four renders, dents -0.023 to -0.027 (about 2.5 SE): the rule asked for no loss beyond one SE."""
+on the other's four renders, dents -0.023 to -0.027 (about 2.5 SE): the rule asked for no loss beyond one SE. A
+dent does not pull the fitted gain (on the dents that lost most, with and without the dent's pixels it differs in
+the third decimal); the good parts' own gains spread 0.83-1.15, and ``MEAN`` takes that spread out of the fit too.
+"""
 
 BLUR_COPIES_SIGMA = 0.0
 """The shipped recipe's ``blur_copies_sigma`` (input px; 0: no blurred copies), ``station variation
@@ -147,11 +151,13 @@ specular lobe around a clipped core."""
 MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
-LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization")
+LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
+                 "polarization_range")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
-polarization read as it is), which score as those models did."""
+polarization read as it is; ``polarization_range`` the identity, which ``MEAN`` files had), which score as those
+models did."""
 
 POLARIZATION_GAIN_RANGE = (0.25, 4.0)
 """Range of a frame's polarization gain ``align_polarization`` divides by; beyond it, clamped: a frame with (almost)
@@ -234,9 +240,11 @@ class VariationModel(nn.Module):
     good parts' window statistic at each pixel (module docstring: position); ``reads_dolp`` 1.0 when DoLP is
     a feature of its own, 0.0 when it is read only through AoLP's Stokes components (``READ_DOLP``;
     ``LATER_BUFFERS``); ``blur_copies_sigma`` the largest blur of the good parts' blurred copies it was fitted with
-    (input px, 0: none; ``fit``), which a refit keeps; ``global_polarization`` 1.0 when each registered frame's
-    polarization is first put onto the good parts' mean by one frame-wide gain and turn (``align_polarization``;
-    ``fit``), which a refit keeps. ``intensity``, ``dolp``, ``aolp``: the channel index of
+    (input px, 0: none; ``fit``), which a refit keeps; ``global_polarization`` how each registered frame's
+    polarization is first put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment.code``;
+    ``align_polarization``, ``fit``), which a refit keeps; ``polarization_range`` (4,) the gain's and turn's range
+    that ``align_polarization`` leaves alone (lowest and highest gain, lowest and highest turn in radians of AoLP;
+    the identity (1, 1, 0, 0) unless fitted with ``RANGE``). ``intensity``, ``dolp``, ``aolp``: the channel index of
     intensity, of DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
@@ -258,6 +266,7 @@ class VariationModel(nn.Module):
         self.register_buffer("reads_dolp", torch.tensor(1.0))
         self.register_buffer("blur_copies_sigma", torch.tensor(0.0))
         self.register_buffer("global_polarization", torch.tensor(0.0))
+        self.register_buffer("polarization_range", torch.tensor([1.0, 1.0, 0.0, 0.0]))
 
     # --- features and registration (numpy) ---
 
@@ -275,37 +284,59 @@ class VariationModel(nn.Module):
 
     @property
     def aligns_polarization(self) -> bool:
-        """Whether each frame's polarization is put onto the good parts' mean first (``align_polarization``)."""
+        """Whether each frame's polarization is put onto the good parts' first (``align_polarization``)."""
         return bool(self.global_polarization > 0.5)
 
+    @property
+    def polarization_alignment(self) -> PolarizationAlignment:
+        """The fit's ``PolarizationAlignment`` (``global_polarization`` buffer)."""
+        modes = list(PolarizationAlignment)
+        return modes[min(max(round(float(self.global_polarization)), 0), len(modes) - 1)]
+
+    def polarization_factor(self, f: np.ndarray, reference: np.ndarray, where: np.ndarray) -> complex:
+        """Registered features ``f`` (C, H, W) -> the frame-wide factor k = g e^(2id) that best maps ``reference``'s
+        (C, H, W: the good parts' mean features) polarization onto theirs over the pixels ``where`` (H, W), by least
+        squares (``align_polarization``), its gain g clamped to ``POLARIZATION_GAIN_RANGE``; 1 without the
+        polarization priors, without pixels or without a finite, non-zero fit."""
+        a = self.aolp
+        if a is None or self.dolp is None or not where.any():
+            return 1.0
+        q = f[a][where] + 1j * f[a + 1][where]
+        m = reference[a][where] + 1j * reference[a + 1][where]
+        power = float(np.sum(np.abs(m) ** 2))
+        k = complex(np.sum(q * np.conj(m))) / power if power > 1e-12 else 1.0
+        if not np.isfinite(k) or k == 0:
+            return 1.0
+        lo, hi = POLARIZATION_GAIN_RANGE
+        return k / abs(k) * min(max(abs(k), lo), hi)
+
     def align_polarization(self, f: np.ndarray, reference: np.ndarray, where: np.ndarray) -> np.ndarray:
-        """Registered features ``f`` (C, H, W) with their polarization divided by the frame-wide gain and turn that
-        best map ``reference`` (C, H, W: the good parts' mean features) onto them over the pixels ``where`` (H, W).
+        """Registered features ``f`` (C, H, W) with their polarization divided by the part of the frame-wide gain and
+        turn beyond ``polarization_range``, the gain and turn that best map ``reference`` (C, H, W: the good parts'
+        mean features) onto them over the pixels ``where`` (H, W).
 
         Convention: with the Stokes components as one complex number per pixel, q = (S1 + i S2) / S0 = DoLP e^(2ia),
         a frame whose DoLP is g times the good parts' (another renderer's or material's polarization strength, a
         polarizer array's extinction ratio) and whose AoLP is offset by d (a polarizer grid mounted turned, another
-        angle reference) reads k q with k = g e^(2id). k is fitted by least squares, k = sum(q_f conj(q_ref)) /
-        sum(|q_ref|^2), its modulus clamped to ``POLARIZATION_GAIN_RANGE``, and q_f / k is what is compared (DoLP, when
-        read, / |k|). Like exposure for intensity (a factor on I, the median of log I taken out), it changes the
-        whole part at once, where a defect changes a place. Finite for any input; ``f`` unchanged without the
-        polarization."""
+        angle reference) reads k q with k = g e^(2id) (``polarization_factor``). k is split as k = c r, r = g' e^(2id')
+        with g' and d' the nearest gain and turn within ``polarization_range``, and q_f / c is what is compared (DoLP,
+        when read, / |c|): with the identity range (``MEAN``) all of k, with the good parts' own range (``RANGE``)
+        only what lies beyond it, so a frame like theirs is compared as it is. Like exposure for intensity (a factor
+        on I, the median of log I taken out), it changes the whole part at once, where a defect changes a place.
+        Finite for any input; ``f`` unchanged without the polarization."""
         a = self.aolp
-        if a is None or self.dolp is None or not where.any():
+        k = self.polarization_factor(f, reference, where)
+        if a is None or k == 1.0:
             return f
-        q = f[a] + 1j * f[a + 1]
-        m = reference[a] + 1j * reference[a + 1]
-        power = float(np.sum(np.abs(m[where]) ** 2))
-        k = complex(np.sum(q[where] * np.conj(m[where]))) / power if power > 1e-12 else 1.0
-        if not np.isfinite(k) or k == 0:
-            k = 1.0
-        lo, hi = POLARIZATION_GAIN_RANGE
-        k = k / abs(k) * min(max(abs(k), lo), hi)
+        g_lo, g_hi, d_lo, d_hi = (float(v) for v in self.polarization_range)
+        turn = float(np.angle(k)) / 2.0
+        kept = min(max(abs(k), g_lo), g_hi) * np.exp(2j * min(max(turn, d_lo), d_hi))
+        c = k / kept
         out = f.copy()
-        q = q / k
+        q = (f[a] + 1j * f[a + 1]) / c
         out[a], out[a + 1] = q.real, q.imag
         if self.dolp_read:
-            out[self.dolp] = f[self.dolp] / abs(k)
+            out[self.dolp] = f[self.dolp] / abs(c)
         return out.astype(np.float32)
 
     @property
@@ -351,7 +382,7 @@ class VariationModel(nn.Module):
     @torch.no_grad()
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
             keep_reference: bool = False, blur_copies_sigma: float | None = None,
-            global_polarization: bool | None = None) -> np.ndarray:
+            global_polarization: PolarizationAlignment | str | bool | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -364,10 +395,12 @@ class VariationModel(nn.Module):
         applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask, and left out
         with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts' only. A softer
         lens or another renderer's pixel filter is then among what good parts look like
-        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (None: the model's own, so a refit keeps it): put each
-        registered part's polarization onto the parts' mean by one frame-wide gain and turn before anything is
-        measured (``align_polarization``: twice, the mean taken again after the first), and so every frame it
-        judges (ModelError for a model without the DoLP and AoLP priors)."""
+        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (a ``PolarizationAlignment``; None: the model's own, so a
+        refit keeps it): ``MEAN`` puts each registered part's polarization onto the parts' mean by one frame-wide
+        gain and turn before anything is measured (``align_polarization``: twice, the mean taken again after the
+        first), and so every frame it judges; ``RANGE`` fits as ``OFF`` and then takes the lowest and highest gain
+        and turn of the parts (not their blurred copies) as ``zmaps`` measures them into ``polarization_range``, so
+        only frames beyond them are aligned (ModelError for a model without the DoLP and AoLP priors)."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -377,10 +410,12 @@ class VariationModel(nn.Module):
         if not (math.isfinite(sigma) and sigma >= 0):
             raise ModelError(f"blur_copies_sigma must be finite and >= 0, got {sigma}")
         self.blur_copies_sigma.fill_(sigma)
-        align = self.aligns_polarization if global_polarization is None else bool(global_polarization)
-        if align and (self.dolp is None or self.aolp is None):
+        mode = (self.polarization_alignment if global_polarization is None
+                else PolarizationAlignment.of(global_polarization))
+        if mode is not PolarizationAlignment.OFF and (self.dolp is None or self.aolp is None):
             raise ModelError("global_polarization needs the DoLP and AoLP priors")
-        self.global_polarization.fill_(1.0 if align else 0.0)
+        self.global_polarization.fill_(mode.code)
+        self.polarization_range.copy_(torch.tensor([1.0, 1.0, 0.0, 0.0]))
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
@@ -404,7 +439,7 @@ class VariationModel(nn.Module):
         if keep_reference:
             region = self.region.numpy()
         stack = stack[:, :-1]
-        for _ in range(2 if align else 0):
+        for _ in range(2 if mode is PolarizationAlignment.MEAN else 0):
             mean_features = stack.mean(0)
             stack = np.stack([self.align_polarization(f, mean_features, region) for f in stack])
         spread = 1.4826 * np.median(np.abs(stack - np.median(stack, 0))[:, :, region], axis=(0, 2))
@@ -435,7 +470,20 @@ class VariationModel(nn.Module):
                             ("window_spread", spread)):
             getattr(self, name).copy_(torch.from_numpy(np.asarray(value, np.float32)))
         self.region.copy_(torch.from_numpy(region))
+        if mode is PolarizationAlignment.RANGE:
+            self.polarization_range.copy_(self._polarization_range(xs[:n_parts]))
         return signed[:n_parts]
+
+    def _polarization_range(self, xs: np.ndarray) -> torch.Tensor:
+        """(N, C, H, W) good parts' physical priors -> (4,) lowest and highest gain and turn (radians of AoLP) of
+        their ``polarization_factor`` as ``zmaps`` measures it (after the fit)."""
+        mean, part = self.mean.numpy(), self.region.numpy()
+        ks = []
+        for xi in xs:
+            warped, judged = self._registered(xi, part)
+            ks.append(self.polarization_factor(warped[:-1], mean, judged if judged.any() else part))
+        gain, turn = np.abs(ks), np.angle(ks) / 2.0
+        return torch.tensor([gain.min(), gain.max(), turn.min(), turn.max()], dtype=torch.float32)
 
     @staticmethod
     def _appearance(u: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -507,8 +555,7 @@ class VariationModel(nn.Module):
             region = part
         maps, highlights, noise, signed_all, judged_all = [], [], [], [], []
         for xi in xs:
-            warped = self.register(xi, self.features(xi))
-            judged = part & ~self.highlight(warped[-1])
+            warped, judged = self._registered(xi, part)
             if self.aligns_polarization:
                 warped[:-1] = self.align_polarization(warped[:-1], mean, judged if judged.any() else part)
             highlights.append(1.0 - judged.sum() / max(part.sum(), 1))
@@ -529,6 +576,12 @@ class VariationModel(nn.Module):
                                torch.tensor(noise, dtype=torch.float32),
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
                                torch.from_numpy(np.stack(judged_all)) if signed else None)
+
+    def _registered(self, xi: np.ndarray, part: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(C, H, W) physical priors -> (``register``'s warped features with I (1 + DoLP) last, (H, W) bool the
+        pixels of the region ``part`` not hidden by a highlight)."""
+        warped = self.register(xi, self.features(xi))
+        return warped, part & ~self.highlight(warped[-1])
 
     def scored_region(self) -> np.ndarray:
         """(H, W) bool: the part region eroded by 1 px (the image border does not erode), where a map is scored: a

@@ -9,6 +9,7 @@ from collections.abc import Callable
 import numpy as np
 import torch
 
+from .config import PolarizationAlignment
 from .detector import Detector
 from .errors import ModelError
 from .residual import train_member
@@ -18,14 +19,16 @@ from .variation import network_score
 @torch.no_grad()
 def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
                   val_good: torch.Tensor, batch: int = 16, decision: str = "combined",
-                  blur_copies_sigma: float = 0.0, global_polarization: bool = False) -> Detector:
+                  blur_copies_sigma: float = 0.0,
+                  global_polarization: PolarizationAlignment | str | bool = PolarizationAlignment.OFF) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
     training parts: a fitted model scores its own parts low). ``decision``: ``ModelConfig.decision`` of the copy
     (which finding rejects; calibration and member scores do not depend on it). ``blur_copies_sigma``: the fit also
-    sees blurred copies of the good parts (``VariationModel.fit``; 0: none). ``global_polarization``: each frame's
-    polarization is put onto the good parts' by one frame-wide gain and turn (``VariationModel.fit``)."""
+    sees blurred copies of the good parts (``VariationModel.fit``; 0: none). ``global_polarization``: whether each
+    frame's polarization is put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment``,
+    ``VariationModel.fit``)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:

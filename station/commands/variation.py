@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import argparse
 
-from model.draem.config import DECISIONS
+from model.draem.config import DECISIONS, PolarizationAlignment
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -33,10 +33,15 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="the fit also sees a copy of each good part blurred by up to SIGMA input px, so a softer lens "
                         "or another renderer's pixel filter is among what good parts look like (default: the shipped "
                         "recipe, model.draem.variation.BLUR_COPIES_SIGMA; 0: no copies)")
-    p.add_argument("--global-polarization", action=argparse.BooleanOptionalAction, default=None,
+    p.add_argument("--global-polarization", nargs="?", const="mean", default=None, metavar="MODE",
+                   choices=[m.value for m in PolarizationAlignment],
                    help="put each frame's polarization onto the good parts' by one frame-wide DoLP gain and AoLP turn "
                         "before comparing (another renderer's or camera's polarization strength, a polarizer grid "
-                        "mounted turned) (default: the shipped recipe, model.draem.variation.GLOBAL_POLARIZATION)")
+                        "mounted turned): mean (the default MODE) for every frame, range only for the gain and turn "
+                        "beyond the fitted good parts', off not at (default: the shipped recipe, "
+                        "model.draem.variation.GLOBAL_POLARIZATION)")
+    p.add_argument("--no-global-polarization", dest="global_polarization", action="store_const", const="off",
+                   help="the same as --global-polarization off")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")

@@ -12,7 +12,7 @@ import pytest
 import torch
 
 from model.draem.checkpoint import load_checkpoint, save_checkpoint
-from model.draem.config import ModelConfig
+from model.draem.config import ModelConfig, PolarizationAlignment
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
 from model.draem.variation import LATER_BUFFERS, SQUASH_CENTRE, VariationModel, combined_score, squash
@@ -324,6 +324,46 @@ def test_a_fit_aligning_frame_wide_polarization_judges_another_renderers_dolp_an
     assert glob.aligns_polarization
     with pytest.raises(ModelError, match="DoLP and AoLP"):
         VariationModel(4, (H, W), intensity=0).fit(x, global_polarization=True)
+
+
+def test_a_fit_aligning_only_polarization_beyond_the_good_parts_range_judges_their_like_exactly_as_a_plain_fit(
+) -> None:
+    """``RANGE``: good parts whose polarization gain varies (gloss, light) are judged exactly as a plain fit judges
+    them, while a frame polarized beyond them (DoLP halved, AoLP turned 5 deg) is brought back to their range and a
+    local change still stands out; the range is what the parts showed; a refit keeps the mode."""
+    from model.draem.shifts import Channels, shift
+
+    def varied(n: int, seed: int, defect: bool = False) -> torch.Tensor:
+        x = parts(n, seed, defect)
+        x[:, 1] *= torch.from_numpy(np.random.default_rng(seed).uniform(0.85, 1.15, (n, 1, 1)).astype(np.float32))
+        return x
+
+    x, ch = varied(40, 0), Channels(0, 1, 2)
+    plain, ranged = (VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2) for _ in range(2))
+    plain.fit(x, x[:, 0] > 0.15)
+    ranged.fit(x, x[:, 0] > 0.15, global_polarization="range")
+    assert ranged.polarization_alignment is PolarizationAlignment.RANGE and ranged.aligns_polarization
+    g_lo, g_hi, d_lo, d_hi = ranged.polarization_range.tolist()
+    assert 0.8 < g_lo < 0.9 and 1.1 < g_hi < 1.2 and -0.02 < d_lo <= d_hi < 0.02  # the parts' gains; no turn
+    new = varied(20, 1)
+    new[:, 1] = new[:, 1] / new[:, 1].mean((1, 2), keepdim=True) * x[:, 1].mean()  # gains well inside the range
+    # judged as without alignment: exactly where the factor lies in the range, up to a turn of 1e-5 rad beyond it
+    assert torch.allclose(ranged.zmaps(new)[0], plain.zmaps(new)[0], atol=1e-3)
+    assert torch.equal(ranged.zmaps(new[3:4])[0], plain.zmaps(new[3:4])[0])  # (its turn is 5e-7 rad)
+    good = float(plain.zmaps(new)[1].max())
+    edge = new.clone()
+    edge[:, 1] *= g_lo  # the same parts at the lowest gain the good parts showed
+    for name, like in (("dolp x0.5", float(plain.zmaps(edge)[1].max())), ("aolp +5 deg", good)):
+        moved = torch.from_numpy(shift(name, new.numpy(), ch))
+        assert float(plain.zmaps(moved)[1].max()) > 1.5 * like, name  # beyond the range: a plain fit rejects some
+        assert float(ranged.zmaps(moved)[1].max()) <= 1.05 * like, name  # judged as the parts at the range's edge
+        bad = torch.from_numpy(shift(name, varied(20, 2, defect=True).numpy(), ch))
+        assert float(ranged.zmaps(bad)[1].min()) > 2 * like, name
+    ranged.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the mode and measures its parts' range
+    assert ranged.polarization_alignment is PolarizationAlignment.RANGE
+    assert ranged.polarization_range[1] <= g_hi
+    with pytest.raises(ModelError, match="global_polarization must be one of off, mean, range"):
+        plain.fit(x, global_polarization="both")
 
 
 def test_a_checkpoint_from_before_the_position_rule_loads_with_the_window_uncalibrated(tmp_path: Path) -> None:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
 
 from station.cli import main
@@ -125,3 +126,29 @@ def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_pa
     assert "--refit" in capsys.readouterr().err
     for bad in ("-1", "nan"):  # one line naming the flag, before any loading
         refused_naming(capsys, "--blur-copies", bad, model, data, tmp_path / "w")
+
+
+def test_global_polarization_takes_a_mode_records_it_and_refuses_an_unknown_one(tmp_path: Path, capsys) -> None:
+    """``--global-polarization range`` fits the model to align only the polarization beyond its good parts' range
+    and records the mode; the bare flag means ``mean``, ``--no-global-polarization`` ``off``; an unknown mode is one
+    line naming the flag."""
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.config import PolarizationAlignment
+
+    data, model = trained(tmp_path, capsys)
+    for flags, mode in ((["--global-polarization", "range"], PolarizationAlignment.RANGE),
+                        (["--global-polarization"], PolarizationAlignment.MEAN),
+                        (["--no-global-polarization"], PolarizationAlignment.OFF)):
+        out = tmp_path / mode.value
+        assert main(["variation", "--model", str(model), "--data", str(data), *flags, "--out", str(out)]) == 0
+        said = capsys.readouterr().out
+        assert ("aligned where beyond theirs" in said) == (mode is PolarizationAlignment.RANGE)
+        assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["global_polarization"] == mode
+        vm = load_checkpoint(out).detector.variation
+        assert vm is not None and vm.polarization_alignment is mode
+        assert (vm.polarization_range.tolist() == [1.0, 1.0, 0.0, 0.0]) == (mode is not PolarizationAlignment.RANGE)
+    with pytest.raises(SystemExit, match="2"):  # argparse's refusal
+        main(["variation", "--model", str(model), "--data", str(data), "--global-polarization", "both",
+              "--out", str(tmp_path / "w")])
+    err = capsys.readouterr().err
+    assert "--global-polarization" in err and "invalid choice" in err
