@@ -173,14 +173,14 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     needs. ``blur_copies_sigma``: the fit also sees a blurred copy of each good part, blurs up to this many input px
     (0: none; None: ``model.draem.variation.BLUR_COPIES_SIGMA``, the shipped recipe). ``refit``: ``model`` already
     has a variation model; fit it again (its networks kept; otherwise that is an error). ``global_polarization``:
-    each frame's polarization is first put onto the good parts' by one frame-wide gain and turn (None:
-    ``model.draem.variation.GLOBAL_POLARIZATION``, the shipped recipe). The sidecar's frame
-    statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the variation
-    model decides, and may be fitted on another line than its networks."""
+    a ``PolarizationAlignment`` name, how each frame's polarization is first put onto the good parts' by one
+    frame-wide gain and turn (None: the shipped recipe, ``model.draem.variation.shipped_alignment``). The sidecar's
+    frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
+    variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.config import PolarizationAlignment
     from model.draem.errors import ModelError
-    from model.draem.variation import BLUR_COPIES_SIGMA, GLOBAL_POLARIZATION, MIN_FIT_PARTS
+    from model.draem.variation import BLUR_COPIES_SIGMA, MIN_FIT_PARTS, shipped_alignment
     from model.draem.with_variation import add_variation, without_variation
     from model.priors.frame_stats import StatisticsRange
     from station.datasets import manifest_sha256
@@ -188,8 +188,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     check_max_good_flagged(max_good_flagged)
     blur_copies_sigma = BLUR_COPIES_SIGMA if blur_copies_sigma is None else blur_copies_sigma
     try:
-        alignment = PolarizationAlignment.of(GLOBAL_POLARIZATION if global_polarization is None
-                                             else global_polarization)
+        alignment = PolarizationAlignment.of(global_polarization) if global_polarization is not None else None
     except ModelError as exc:
         raise UserError(f"--global-polarization: {exc}") from None
     if not (math.isfinite(blur_copies_sigma) and blur_copies_sigma >= 0):
@@ -198,6 +197,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
         raise UserError(f"--fit-parts {fit_parts}: the variation model needs at least {MIN_FIT_PARTS} good parts")
     ck = load_checkpoint(model)
     networks = ck.detector
+    if alignment is None:
+        alignment = shipped_alignment(networks.config.priors)
     try:  # the model's own refusals first, before minutes of loading
         if networks.config.variation and refit:
             networks = without_variation(networks)

@@ -39,7 +39,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "before comparing (another renderer's or camera's polarization strength, a polarizer grid "
                         "mounted turned): mean (the default MODE) for every frame, range only for the gain and turn "
                         "beyond the fitted good parts', off not at (default: the shipped recipe, "
-                        "model.draem.variation.GLOBAL_POLARIZATION)")
+                        "model.draem.variation.GLOBAL_POLARIZATION: range; off for a model without DoLP and AoLP)")
     p.add_argument("--no-global-polarization", dest="global_polarization", action="store_const", const="off",
                    help="the same as --global-polarization off")
     p.add_argument("--refit", action="store_true",

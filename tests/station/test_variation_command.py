@@ -129,17 +129,19 @@ def test_blur_copies_fit_the_model_on_blurred_copies_too_and_are_recorded(tmp_pa
 
 
 def test_global_polarization_takes_a_mode_records_it_and_refuses_an_unknown_one(tmp_path: Path, capsys) -> None:
-    """``--global-polarization range`` fits the model to align only the polarization beyond its good parts' range
-    and records the mode; the bare flag means ``mean``, ``--no-global-polarization`` ``off``; an unknown mode is one
-    line naming the flag."""
+    """``--global-polarization range`` (the shipped recipe, the default) fits the model to align only the
+    polarization beyond its good parts' range and records the mode; the bare flag means ``mean``,
+    ``--no-global-polarization`` ``off``; an unknown mode is one line naming the flag; a model without DoLP and AoLP
+    is fitted plain by default."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.config import PolarizationAlignment
 
     data, model = trained(tmp_path, capsys)
-    for flags, mode in ((["--global-polarization", "range"], PolarizationAlignment.RANGE),
+    for flags, mode in (([], PolarizationAlignment.RANGE),  # the shipped recipe
+                        (["--global-polarization", "range"], PolarizationAlignment.RANGE),
                         (["--global-polarization"], PolarizationAlignment.MEAN),
                         (["--no-global-polarization"], PolarizationAlignment.OFF)):
-        out = tmp_path / mode.value
+        out = tmp_path / f"{mode.value}{len(flags)}"
         assert main(["variation", "--model", str(model), "--data", str(data), *flags, "--out", str(out)]) == 0
         said = capsys.readouterr().out
         assert ("aligned where beyond theirs" in said) == (mode is PolarizationAlignment.RANGE)
@@ -152,3 +154,8 @@ def test_global_polarization_takes_a_mode_records_it_and_refuses_an_unknown_one(
               "--out", str(tmp_path / "w")])
     err = capsys.readouterr().err
     assert "--global-polarization" in err and "invalid choice" in err
+    # a model without polarization priors gets the plain fit by default, not an error
+    data, model = trained(tmp_path / "i", capsys, priors="intensity")
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(tmp_path / "i" / "v")]) == 0
+    vm = load_checkpoint(tmp_path / "i" / "v").detector.variation
+    assert vm is not None and vm.polarization_alignment is PolarizationAlignment.OFF
