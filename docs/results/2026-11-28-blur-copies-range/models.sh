@@ -8,9 +8,9 @@ D=docs/results/2026-11-28-blur-copies-range
 R=docs/results/2026-11-28-polarization-range
 V="--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml"
 mkdir -p runs/r39
-[ -f data/line-panel-heldout-1138/done ] || { for i in 0 1; do
+[ -f runs/r39/render-1138.done ] || { for i in 0 1; do
     $S render $V --count 400 --seed 1138 --defects 0.6 --heldout --out data/line-panel-heldout-1138 --shard $i/2 &
-    done; wait; touch data/line-panel-heldout-1138/done; }
+    done; wait; touch runs/r39/render-1138.done; }
 [ -f runs/r39/D.json ] || $S variation --model model/weights/default --refit --data data/line-panel-train \
     --val-data data/line-panel-val --decision variation --blur-copies 1.5 --out runs/r39/D
 SHIFTS="none,blur 1 px,dolp x0.5,dolp x2,aolp +5 deg,gamma 1.25,blur 0.5 px,rotate 5 deg,zoom x1.05"
