@@ -106,7 +106,8 @@ class PolarizationAlignment(StrEnum):
     """How a fit treats the polarization of the whole frame (``VariationModel.align_polarization``): ``OFF`` reads it
     as it is; ``MEAN`` puts every frame's onto the good parts' mean by one frame-wide gain and turn; ``RANGE`` does so
     only for the part of that gain and turn beyond what the fitted good parts showed, so a frame like theirs is
-    judged exactly as without alignment. The value is the model file's ``global_polarization`` buffer's index."""
+    judged as without alignment (to float rounding). The value is the model file's ``global_polarization`` buffer's
+    index."""
 
     OFF = "off"
     MEAN = "mean"

@@ -115,7 +115,6 @@ better but cost dents up to 0.027 on one set's renders: it also takes out the go
 ``MEAN`` lost most, with and without the dent's pixels it differs in the third decimal)."""
 
 
-
 def shipped_alignment(priors: tuple[str, ...] | list[str]) -> PolarizationAlignment:
     """The shipped recipe's alignment for a model reading ``priors``: ``GLOBAL_POLARIZATION`` when they include DoLP
     and AoLP, ``OFF`` otherwise (there is no polarization to align)."""
@@ -329,9 +328,9 @@ class VariationModel(nn.Module):
         angle reference) reads k q with k = g e^(2id) (``polarization_factor``). k is split as k = c r, r = g' e^(2id')
         with g' and d' the nearest gain and turn within ``polarization_range``, and q_f / c is what is compared (DoLP,
         when read, / |c|): with the identity range (``MEAN``) all of k, with the good parts' own range (``RANGE``)
-        only what lies beyond it, so a frame like theirs is compared as it is. Like exposure for intensity (a factor
-        on I, the median of log I taken out), it changes the whole part at once, where a defect changes a place.
-        Finite for any input; ``f`` unchanged without the polarization."""
+        only what lies beyond it, so a frame like theirs is compared as it is (to float rounding). Like exposure for
+        intensity (a factor on I, the median of log I taken out), it changes the whole part at once, where a defect
+        changes a place. Finite for any input; ``f`` unchanged without the polarization."""
         a = self.aolp
         k = self.polarization_factor(f, reference, where)
         if a is None or k == 1.0:

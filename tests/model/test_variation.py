@@ -326,11 +326,10 @@ def test_a_fit_aligning_frame_wide_polarization_judges_another_renderers_dolp_an
         VariationModel(4, (H, W), intensity=0).fit(x, global_polarization=True)
 
 
-def test_a_fit_aligning_only_polarization_beyond_the_good_parts_range_judges_their_like_exactly_as_a_plain_fit(
-) -> None:
-    """``RANGE``: good parts whose polarization gain varies (gloss, light) are judged exactly as a plain fit judges
-    them, while a frame polarized beyond them (DoLP halved, AoLP turned 5 deg) is brought back to their range and a
-    local change still stands out; the range is what the parts showed; a refit keeps the mode."""
+def test_a_fit_aligning_only_polarization_beyond_the_good_parts_range_judges_their_like_as_a_plain_fit() -> None:
+    """``RANGE``: good parts whose polarization gain varies (gloss, light) are judged as a plain fit judges them,
+    while a frame polarized beyond them (DoLP halved, AoLP turned 5 deg) is brought back to their range and a local
+    change still stands out; the range is what the parts showed; a refit keeps the mode."""
     from model.draem.shifts import Channels, shift
 
     def varied(n: int, seed: int, defect: bool = False) -> torch.Tensor:
