@@ -132,7 +132,11 @@ at the model's own threshold against 23 %; equal on the renders' own frames (val
 35 % of good parts were rejected at the own threshold against 5.4 %, and under mild resampling (blur 0.5 px, a
 5-degree rotation, a 5 % zoom) 8-10 % at the 5 % threshold against 5-6 %. So they are an option for a line whose
 optics are softer than the renders, checked there with ``station bench shift`` and set with ``station adapt``,
-not the default."""
+not the default. Rule 39 (docs/results/2026-11-28-blur-copies-range.md, the panel line with the polarization range,
+held-out seed 1138) measured them again: image AUROC 0.909 against 0.897 on the renders (scratches +0.042, 2.3
+paired SE), under 2.5 frame px of blur 0.878 against 0.824 with 22 % of good parts rejected at the own threshold
+against 57 %; but with DoLP halved 22 % against 13 % and through a gamma of 1.25 30 % against 16 %: still not the
+default."""
 
 MIN_FIT_PARTS = 8
 """Fewest good parts a fit takes. Far too few for a line: on the validation set, image AUROC was 0.790 with 94 parts,
