@@ -26,7 +26,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
     training parts: a fitted model scores its own parts low). ``decision``: ``ModelConfig.decision`` of the copy
     (which finding rejects; calibration and member scores do not depend on it). ``blur_copies_sigma``: the fit also
-    sees blurred copies of the good parts (``VariationModel.fit``; 0: none). ``global_polarization``: whether each
+    sees blurred copies of the good parts (``VariationModel.fit``; 0: none). ``global_polarization``: how each
     frame's polarization is put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment``,
     ``VariationModel.fit``)."""
     if detector.config.variation:

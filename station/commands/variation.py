@@ -38,7 +38,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="put each frame's polarization onto the good parts' by one frame-wide DoLP gain and AoLP turn "
                         "before comparing (another renderer's or camera's polarization strength, a polarizer grid "
                         "mounted turned): mean (the default MODE) for every frame, range only for the gain and turn "
-                        "beyond the fitted good parts', off not at (default: the shipped recipe, "
+                        "beyond the fitted good parts', off not at all (default: the shipped recipe, "
                         "model.draem.variation.GLOBAL_POLARIZATION: range; off for a model without DoLP and AoLP)")
     p.add_argument("--no-global-polarization", dest="global_polarization", action="store_const", const="off",
                    help="the same as --global-polarization off")
