@@ -167,8 +167,12 @@ LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
-polarization read as it is; ``polarization_range`` the identity, which ``MEAN`` files had), which score as those
-models did."""
+polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had), which
+score as those models did."""
+
+NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
+"""``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
+frame's gain and turn is divided out (``MEAN``, and the initial value, which older ``MEAN`` files load with)."""
 
 POLARIZATION_GAIN_RANGE = (0.25, 4.0)
 """Range of a frame's polarization gain ``align_polarization`` divides by; beyond it, clamped: a frame with (almost)
@@ -255,7 +259,7 @@ class VariationModel(nn.Module):
     polarization is first put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment.code``;
     ``align_polarization``, ``fit``), which a refit keeps; ``polarization_range`` (4,) the gain's and turn's range
     that ``align_polarization`` leaves alone (lowest and highest gain, lowest and highest turn in radians of AoLP;
-    the identity (1, 1, 0, 0) unless fitted with ``RANGE``). ``intensity``, ``dolp``, ``aolp``: the channel index of
+    ``NO_POLARIZATION_RANGE`` unless fitted with ``RANGE``). ``intensity``, ``dolp``, ``aolp``: the channel index of
     intensity, of DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
@@ -277,7 +281,7 @@ class VariationModel(nn.Module):
         self.register_buffer("reads_dolp", torch.tensor(1.0))
         self.register_buffer("blur_copies_sigma", torch.tensor(0.0))
         self.register_buffer("global_polarization", torch.tensor(0.0))
-        self.register_buffer("polarization_range", torch.tensor([1.0, 1.0, 0.0, 0.0]))
+        self.register_buffer("polarization_range", torch.tensor(NO_POLARIZATION_RANGE))
 
     # --- features and registration (numpy) ---
 
@@ -296,7 +300,7 @@ class VariationModel(nn.Module):
     @property
     def aligns_polarization(self) -> bool:
         """Whether each frame's polarization is put onto the good parts' first (``align_polarization``)."""
-        return bool(self.global_polarization > 0.5)
+        return self.polarization_alignment is not PolarizationAlignment.OFF
 
     @property
     def polarization_alignment(self) -> PolarizationAlignment:
@@ -331,10 +335,10 @@ class VariationModel(nn.Module):
         polarizer array's extinction ratio) and whose AoLP is offset by d (a polarizer grid mounted turned, another
         angle reference) reads k q with k = g e^(2id) (``polarization_factor``). k is split as k = c r, r = g' e^(2id')
         with g' and d' the nearest gain and turn within ``polarization_range``, and q_f / c is what is compared (DoLP,
-        when read, / |c|): with the identity range (``MEAN``) all of k, with the good parts' own range (``RANGE``)
-        only what lies beyond it, so a frame like theirs is compared as it is (to float rounding). Like exposure for
-        intensity (a factor on I, the median of log I taken out), it changes the whole part at once, where a defect
-        changes a place. Finite for any input; ``f`` unchanged without the polarization."""
+        when read, / |c|): with ``NO_POLARIZATION_RANGE`` (``MEAN``) all of k, with the good parts' own range
+        (``RANGE``) only what lies beyond it, so a frame like theirs is compared as it is (to float rounding). Like
+        exposure for intensity (a factor on I, the median of log I taken out), it changes the whole part at once,
+        where a defect changes a place. Finite for any input; ``f`` unchanged without the polarization."""
         a = self.aolp
         k = self.polarization_factor(f, reference, where)
         if a is None or k == 1.0:
@@ -426,7 +430,7 @@ class VariationModel(nn.Module):
         if mode is not PolarizationAlignment.OFF and (self.dolp is None or self.aolp is None):
             raise ModelError("global_polarization needs the DoLP and AoLP priors")
         self.global_polarization.fill_(mode.code)
-        self.polarization_range.copy_(torch.tensor([1.0, 1.0, 0.0, 0.0]))
+        self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
