@@ -234,6 +234,10 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
     if detector.variation is not None:  # added later: absent, they score as their models did (LATER_BUFFERS)
         for name in LATER_BUFFERS:
             state.setdefault(f"variation.{name}", getattr(detector.variation, name).clone())
+        try:
+            detector.variation.size_clusters(state, "variation.")  # their size is the fit's
+        except ModelError as exc:
+            raise CheckpointError(f"{pt}: {exc}") from None
     missing = sorted(set(detector.state_dict()) - set(state))
     unexpected = sorted(set(state) - set(detector.state_dict()))
     if missing or unexpected:

@@ -83,6 +83,7 @@ import numpy as np
 import torch
 from torch import nn
 
+from . import appearance_clusters
 from .config import PolarizationAlignment
 from .errors import ModelError
 from .frame_checks import FRAME_CHECKS
@@ -138,6 +139,13 @@ paired SE), under 2.5 frame px of blur 0.878 against 0.824 with 22 % of good par
 against 57 %; but with DoLP halved 22 % against 13 % and through a gamma of 1.25 30 % against 16 %: still not the
 default."""
 
+APPEARANCE_CLUSTERS = 0
+"""The shipped recipe's ``clusters`` (``station variation --clusters``'s default): how many groups of good parts, by
+appearance, a new fit judges each part within (module docstring: clusters; ``model.draem.appearance_clusters``);
+0: one appearance for every good part. Screened on the validation set (docs/results/2026-11-28-appearance-clusters/
+screen/screen.md, the shipped fit's residuals): image AUROC 0.897 -> 0.913 with 8 clusters (dents 0.796 -> 0.821,
+scratches 0.770 -> 0.813); rule 40 decides on a held-out set."""
+
 MIN_FIT_PARTS = 8
 """Fewest good parts a fit takes. Far too few for a line: on the validation set, image AUROC was 0.790 with 94 parts,
 0.829 with 188, 0.832 with 282 and 376, 0.823 with 755 (docs/results/2026-11-24-data-size-and-features.md)."""
@@ -163,12 +171,16 @@ MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
-                 "polarization_range")
+                 "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
-polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had), which
-score as those models did."""
+polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
+clusters), which score as those models did."""
+
+CLUSTER_BUFFERS = ("cluster_centres", "cluster_mean", "cluster_scale")
+"""Buffers whose size is the fit's (clusters and part-region pixels): a model file gives them their shape
+(``VariationModel.size_clusters``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
 """``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
@@ -259,8 +271,12 @@ class VariationModel(nn.Module):
     polarization is first put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment.code``;
     ``align_polarization``, ``fit``), which a refit keeps; ``polarization_range`` (4,) the gain's and turn's range
     that ``align_polarization`` leaves alone (lowest and highest gain, lowest and highest turn in radians of AoLP;
-    ``NO_POLARIZATION_RANGE`` unless fitted with ``RANGE``). ``intensity``, ``dolp``, ``aolp``: the channel index of
-    intensity, of DoLP and of AoLP's cosine (its sine follows), None when the model does not read that prior."""
+    ``NO_POLARIZATION_RANGE`` unless fitted with ``RANGE``); ``cluster_centres`` (M, COMPONENTS) and
+    ``cluster_spread`` (COMPONENTS,): the good parts' clusters by appearance (``model.draem.appearance_clusters``;
+    M = 0: none), ``cluster_mean`` and ``cluster_scale`` (M, C, P) float16: each cluster's mean residual and
+    residual scale at the P pixels of ``region``, in units of ``scale``. ``intensity``, ``dolp``, ``aolp``: the
+    channel index of intensity, of DoLP and of AoLP's cosine (its sine follows), None when the model does not read
+    that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
                  aolp: int | None = None, box_px: int = 5) -> None:
@@ -282,6 +298,44 @@ class VariationModel(nn.Module):
         self.register_buffer("blur_copies_sigma", torch.tensor(0.0))
         self.register_buffer("global_polarization", torch.tensor(0.0))
         self.register_buffer("polarization_range", torch.tensor(NO_POLARIZATION_RANGE))
+        self.register_buffer("cluster_spread", torch.ones(COMPONENTS))
+        self._resize_clusters(0, 0)
+
+    def _resize_clusters(self, clusters: int, pixels: int) -> None:
+        """Empty cluster buffers for ``clusters`` clusters over ``pixels`` region pixels."""
+        channels = len(self.mean)
+        self.register_buffer("cluster_centres", torch.zeros(clusters, COMPONENTS))
+        self.register_buffer("cluster_mean", torch.zeros(clusters, channels, pixels, dtype=torch.float16))
+        self.register_buffer("cluster_scale", torch.ones(clusters, channels, pixels, dtype=torch.float16))
+
+    def size_clusters(self, state: dict[str, torch.Tensor], prefix: str = "") -> None:
+        """Give the cluster buffers (``CLUSTER_BUFFERS``) the shapes they have in ``state`` (a state dict, keys under
+        ``prefix``; without them, none), so that it loads; ModelError when those shapes disagree with each other or
+        with ``state``'s region."""
+        if prefix + "cluster_centres" not in state:
+            self._resize_clusters(0, 0)
+            return
+        m = len(state[prefix + "cluster_centres"])
+        region = state.get(prefix + "region", self.region)
+        pixels = int(region.sum()) if m else 0
+        want = {"cluster_centres": (m, COMPONENTS), "cluster_mean": (m, len(self.mean), pixels),
+                "cluster_scale": (m, len(self.mean), pixels)}
+        for name, shape in want.items():
+            got = tuple(state[prefix + name].shape) if prefix + name in state else None
+            if got != shape:
+                raise ModelError(f"variation model: {name} has shape {got}, {m} clusters over the {pixels} pixels "
+                                 f"of the part region need {shape}")
+        self._resize_clusters(m, pixels)
+
+    def _load_from_state_dict(self, state_dict, prefix, *args, **kwargs):
+        if prefix + "cluster_centres" in state_dict:  # sized by the fit: take the state's shapes first
+            self.size_clusters(state_dict, prefix)
+        super()._load_from_state_dict(state_dict, prefix, *args, **kwargs)
+
+    @property
+    def clusters(self) -> int:
+        """How many clusters of good parts the fit judges within (0: none; ``cluster_centres``)."""
+        return len(self.cluster_centres)
 
     # --- features and registration (numpy) ---
 
@@ -397,7 +451,8 @@ class VariationModel(nn.Module):
     @torch.no_grad()
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
             keep_reference: bool = False, blur_copies_sigma: float | None = None,
-            global_polarization: PolarizationAlignment | str | bool | None = None) -> np.ndarray:
+            global_polarization: PolarizationAlignment | str | bool | None = None,
+            clusters: int | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -415,7 +470,12 @@ class VariationModel(nn.Module):
         gain and turn before anything is measured (``align_polarization``: twice, the mean taken again after the
         first), and so every frame it judges; ``RANGE`` fits as ``OFF`` and then takes the lowest and highest gain
         and turn of the parts (not their blurred copies) as ``zmaps`` measures them into ``polarization_range``, so
-        only frames beyond them are aligned (ModelError for a model without the DoLP and AoLP priors)."""
+        only frames beyond them are aligned (ModelError for a model without the DoLP and AoLP priors).
+        ``clusters`` (None: the model's own count, so a refit keeps it): when 2 or more, the good parts (not their
+        blurred copies) are then judged as ``zmaps`` judges a frame, grouped by their components' coefficients
+        (``model.draem.appearance_clusters.group``: fewer clusters when there are few parts), each cluster's mean
+        residual and scale kept, and the position calibration measured again on each part's clustered z, from its
+        cluster without itself; the returned maps are those z (module docstring: clusters)."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -431,6 +491,10 @@ class VariationModel(nn.Module):
             raise ModelError("global_polarization needs the DoLP and AoLP priors")
         self.global_polarization.fill_(mode.code)
         self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
+        wanted_clusters = self.clusters if clusters is None else int(clusters)
+        if wanted_clusters < 0:
+            raise ModelError(f"clusters must be >= 0, got {wanted_clusters}")
+        self._resize_clusters(0, 0)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
@@ -469,16 +533,13 @@ class VariationModel(nn.Module):
         for f in range(FOLDS):
             out = fold == f
             fold_mean, fold_components = self._appearance(u[~out], k)
-            residual[out] = self._residual(u[out] - fold_mean, fold_components)
+            residual[out] = self._residual(u[out] - fold_mean, fold_components)[0]
         scale = 1.4826 * np.median(np.abs(residual), 0)
         floor = np.maximum([np.percentile(s[region], floor_quantile) for s in scale], MIN_SCALE / channel_scale)
         scale = np.maximum(scale, floor[:, None, None])
         signed = np.stack([self.signed_z(r / scale, region) for r in residual])
         windows = np.stack([self.window(np.abs(r) / scale, region)[0] for r in residual])
-        location = np.median(windows, 0)
-        spread = cv2.GaussianBlur(np.percentile(windows, WINDOW_QUANTILE, 0) - location, (0, 0), WINDOW_BLUR_PX)
-        spread = np.maximum(spread, max(float(np.percentile(spread[region], floor_quantile)),
-                                        ABS_NORMAL_SD / self.box_px))
+        location, spread = self._position(windows, region, floor_quantile)
         mean = mean * channel_scale[:, None, None]
         for name, value in (("reference", ref), ("mean", mean), ("channel_scale", channel_scale),
                             ("components", components), ("scale", scale), ("window_location", location),
@@ -487,7 +548,68 @@ class VariationModel(nn.Module):
         self.region.copy_(torch.from_numpy(region))
         if mode is PolarizationAlignment.RANGE:
             self.polarization_range.copy_(self._polarization_range(xs[:n_parts]))
+        if wanted_clusters >= 2:
+            clustered = self._fit_clusters(xs[:n_parts], wanted_clusters, floor_quantile)
+            if clustered is not None:
+                return clustered
         return signed[:n_parts]
+
+    def _position(self, windows: np.ndarray, region: np.ndarray, floor_quantile: float
+                  ) -> tuple[np.ndarray, np.ndarray]:
+        """(N, H, W) good parts' window statistics, each from a fit without the part -> (H, W) ``window_location``
+        and ``window_spread`` (module docstring: position)."""
+        location = np.median(windows, 0)
+        spread = cv2.GaussianBlur(np.percentile(windows, WINDOW_QUANTILE, 0) - location, (0, 0), WINDOW_BLUR_PX)
+        spread = np.maximum(spread, max(float(np.percentile(spread[region], floor_quantile)),
+                                        ABS_NORMAL_SD / self.box_px))
+        return location, spread
+
+    def _fit_clusters(self, xs: np.ndarray, clusters: int, floor_quantile: float) -> np.ndarray | None:
+        """(N, C, H, W) good parts' physical priors, after the global fit -> their clustered signed z maps (N, C, H,
+        W), each from its cluster without it, with the cluster buffers and the position calibration set; None (and
+        no clusters) when ``appearance_clusters.group`` keeps fewer than 2."""
+        part = self.region.numpy()
+        judged_residuals = [self._judged_residual(xi) for xi in xs]
+        found = appearance_clusters.group(np.stack([j[1] for j in judged_residuals]), clusters)
+        if found is None:
+            return None
+        centres, spread, labels = found
+        r = np.stack([j[0][:, part] for j in judged_residuals])  # (N, C, P)
+        signed, windows = [], []
+        for i, (ri, _, judged, _) in enumerate(judged_residuals):
+            others = (labels == labels[i]) & (np.arange(len(r)) != i)
+            z = self._unpacked(ri, *appearance_clusters.residual_stats(r[others]))
+            level = self.window(np.abs(z), judged)
+            windows.append(level[0])
+            signed.append(self.signed_z(z, judged, level[1]))
+        stats = [appearance_clusters.residual_stats(r[labels == k]) for k in range(len(centres))]
+        self._resize_clusters(len(centres), int(part.sum()))
+        self.cluster_centres.copy_(torch.from_numpy(centres))
+        self.cluster_spread.copy_(torch.from_numpy(spread))
+        # float16 in the file (its size); clipped so that no hostile fit stores an Inf
+        self.cluster_mean.copy_(torch.from_numpy(np.clip(np.stack([m for m, _ in stats]), -1e4, 1e4)))
+        self.cluster_scale.copy_(torch.from_numpy(np.minimum(np.stack([s for _, s in stats]), MAX_SPREAD)))
+        location, spread_map = self._position(np.stack(windows), part, floor_quantile)
+        self.window_location.copy_(torch.from_numpy(location.astype(np.float32)))
+        self.window_spread.copy_(torch.from_numpy(spread_map.astype(np.float32)))
+        return np.stack(signed)
+
+    def _unpacked(self, r: np.ndarray, mean: np.ndarray, scale: np.ndarray) -> np.ndarray:
+        """(C, H, W) residual (z) and a cluster's (C, P) mean and scale over the region's pixels -> the clustered z
+        (C, H, W): (r - mean) / scale on the region, r elsewhere."""
+        part = self.region.numpy()
+        out = r.copy()
+        out[:, part] = (r[:, part] - mean) / scale
+        return out
+
+    def clustered(self, r: np.ndarray, coef: np.ndarray) -> np.ndarray:
+        """(C, H, W) a frame's residual (z) and (COMPONENTS,) its coefficients -> its z against the nearest cluster of
+        good parts (``r`` itself without clusters)."""
+        if not self.clusters:
+            return r
+        k = int(appearance_clusters.nearest(self.cluster_centres.numpy(),
+                                            (coef / self.cluster_spread.numpy())[None])[0])
+        return self._unpacked(r, self.cluster_mean[k].float().numpy(), self.cluster_scale[k].float().numpy())
 
     def _polarization_range(self, xs: np.ndarray) -> torch.Tensor:
         """(N, C, H, W) good parts' physical priors -> (4,) lowest and highest gain and turn (radians of AoLP) of
@@ -511,9 +633,11 @@ class VariationModel(nn.Module):
         return mean, components
 
     @staticmethod
-    def _residual(u: np.ndarray, components: np.ndarray, keep: np.ndarray | None = None) -> np.ndarray:
-        """(N, C, H, W) centred, scaled features minus their projection on ``components`` (K, C, H, W), fitted by
-        least squares over the pixels ``keep`` (H, W) when given (a highlight would otherwise pull every
+    def _residual(u: np.ndarray, components: np.ndarray, keep: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
+        """(N, C, H, W) centred, scaled features -> (their residual: minus their projection on ``components`` (K, C,
+        H, W), (N, K) the projection's coefficients), fitted by least squares over the pixels ``keep`` (H, W) when
+        given (a highlight would otherwise pull every
         component's coefficient and spread its residual over the whole part). In torch, on torch's threads:
         numpy's BLAS would start its own threads beside torch's, and on 2 cores the two pools spinning against
         each other doubled the station's time per part (71 -> 143 ms p50, docs/platform-facts.md)."""
@@ -525,7 +649,7 @@ class VariationModel(nn.Module):
             pw = p * torch.from_numpy(np.broadcast_to(keep, u.shape[1:]).reshape(-1).astype(np.float32))
             gram = pw @ p.T + 1e-6 * torch.eye(len(p))  # the identity when nothing is hidden; unused components: 0
             coef = torch.linalg.solve(gram, pw @ flat.T).T
-        return (flat - coef @ p).reshape(u.shape).numpy()
+        return (flat - coef @ p).reshape(u.shape).numpy(), coef.numpy()
 
     def calibrate(self, network_scores: torch.Tensor, variation_scores: torch.Tensor) -> None:
         """Location (median) and spread (1.4826 MAD, floored) of both image scores on good validation parts."""
@@ -545,7 +669,8 @@ class VariationModel(nn.Module):
             if not bool(torch.isfinite(getattr(self, name)).all()):
                 raise ModelError(f"variation model: {name} has NaN or Inf values")
         spreads = {"channel_scale": self.channel_scale, "scale": self.scale, "window_spread": self.window_spread,
-                   "calibration": self.calibration[1::2]}
+                   "calibration": self.calibration[1::2], "cluster_spread": self.cluster_spread,
+                   "cluster_scale": self.cluster_scale.float()}
         for name, value in spreads.items():
             if not (bool((value > 0).all()) and bool((value <= MAX_SPREAD).all())):
                 raise ModelError(f"variation model: {name} has values outside (0, {MAX_SPREAD:g}] "
@@ -561,23 +686,15 @@ class VariationModel(nn.Module):
         """(N, C, H, W) physical priors -> box-averaged z maps, image scores and what each frame's rules found;
         with ``signed``, also each frame's signed maps and judged pixels (for the residual networks; a model
         without them does not pay for them)."""
-        xs = x.float().cpu().numpy()
-        mean, scale = self.mean.numpy(), self.scale.numpy()
-        cs, components, part = self.channel_scale.numpy()[:, None, None], self.components.numpy(), self.region.numpy()
         location, spread = self.window_location.numpy(), self.window_spread.numpy()
         region = self.scored_region()
         if not region.any():
-            region = part
+            region = self.region.numpy()
         maps, highlights, noise, signed_all, judged_all = [], [], [], [], []
-        for xi in xs:
-            warped, judged = self._registered(xi, part)
-            if self.aligns_polarization:
-                warped[:-1] = self.align_polarization(warped[:-1], mean, judged if judged.any() else part)
-            highlights.append(1.0 - judged.sum() / max(part.sum(), 1))
-            if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
-                judged = part  # too much hidden to judge the part by the rest: fail closed
-            u = (warped[:-1] - mean) / cs * part
-            r = self._residual(u[None], components, judged)[0] / scale
+        for xi in x.float().cpu().numpy():
+            r, coef, judged, hidden = self._judged_residual(xi)
+            highlights.append(hidden)
+            r = self.clustered(r, coef)
             w, level = self.window(np.abs(r), judged)
             noise.append(level)
             if signed:
@@ -591,6 +708,21 @@ class VariationModel(nn.Module):
                                torch.tensor(noise, dtype=torch.float32),
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
                                torch.from_numpy(np.stack(judged_all)) if signed else None)
+
+    def _judged_residual(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """(C, H, W) physical priors of a frame -> its residual in units of ``scale`` (C, H, W) before clusters, its
+        (COMPONENTS,) coefficients, the (H, W) bool pixels judged and the share of the part the highlight rule
+        found (module docstring: register, highlights, appearance)."""
+        mean, part = self.mean.numpy(), self.region.numpy()
+        warped, judged = self._registered(xi, part)
+        if self.aligns_polarization:
+            warped[:-1] = self.align_polarization(warped[:-1], mean, judged if judged.any() else part)
+        hidden = 1.0 - judged.sum() / max(part.sum(), 1)
+        if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
+            judged = part  # too much hidden to judge the part by the rest: fail closed
+        u = (warped[:-1] - mean) / self.channel_scale.numpy()[:, None, None] * part
+        r, coef = self._residual(u[None], self.components.numpy(), judged)
+        return r[0] / self.scale.numpy(), coef[0], judged, float(hidden)
 
     def _registered(self, xi: np.ndarray, part: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(C, H, W) physical priors -> (``register``'s warped features with I (1 + DoLP) last, (H, W) bool the

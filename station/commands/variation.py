@@ -4,8 +4,8 @@ Fitted on the good parts of ``--data``'s train split, calibrated on the val spli
 validation set rendered with ``station render --validation``, or else of ``--data``), then the threshold is chosen
 on that val split with ``station threshold``'s rule (``model.draem.metrics.choose_threshold``). The networks
 are copied unchanged; the sidecar records the fit (``train.variation``: set, manifest hash, parts, blurred copies,
-date). ``--refit`` fits the variation model of a model that has one again (the shipped model on more good parts, or
-with ``--blur-copies``).
+clusters, date). ``--refit`` fits the variation model of a model that has one again (the shipped model on more good
+parts, or with ``--blur-copies`` or ``--clusters``).
 """
 
 from __future__ import annotations
@@ -42,6 +42,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "model.draem.variation.GLOBAL_POLARIZATION: range; off for a model without DoLP and AoLP)")
     p.add_argument("--no-global-polarization", dest="global_polarization", action="store_const", const="off",
                    help="the same as --global-polarization off")
+    p.add_argument("--clusters", type=int, default=None, metavar="N",
+                   help="group the good parts by appearance into up to N clusters (k-means on the appearance "
+                        "components' coefficients, at most one per 40 parts) and judge each part against its own "
+                        "cluster (default: the shipped recipe, model.draem.variation.APPEARANCE_CLUSTERS; 0: none)")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")
@@ -54,5 +58,5 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
-                        args.fit_parts, args.blur_copies, args.refit, args.global_polarization))
+                        args.fit_parts, args.blur_copies, args.refit, args.global_polarization, args.clusters))
     return 0
