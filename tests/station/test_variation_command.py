@@ -159,3 +159,15 @@ def test_global_polarization_takes_a_mode_records_it_and_refuses_an_unknown_one(
     assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(tmp_path / "i" / "v")]) == 0
     vm = load_checkpoint(tmp_path / "i" / "v").detector.variation
     assert vm is not None and vm.polarization_alignment is PolarizationAlignment.OFF
+
+
+def test_clusters_are_recorded_as_fitted_and_a_negative_count_is_refused(tmp_path: Path, capsys) -> None:
+    """``--clusters N``: the sidecar records how many clusters the fit kept, which is fewer when there are few good
+    parts (one per 40; this set's ~30 make none, and the message then claims none); a negative count is one line
+    naming the flag, before any loading."""
+    data, model = trained(tmp_path, capsys)
+    out = tmp_path / "c"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--clusters", "8", "--out", str(out)]) == 0
+    assert "judged within" not in capsys.readouterr().out
+    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["clusters"] == 0
+    refused_naming(capsys, "--clusters", "-1", model, data, tmp_path / "w")
