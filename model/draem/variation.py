@@ -66,6 +66,15 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               residuals, docs/results/2026-11-24-position.md), against the uncalibrated window: caught at 1 % of
               good parts rejected 46 % -> 50 % (paired bootstrap SE 2.1), at 5 % 53 % -> 62 % (SE 2.7), image
               AUROC 0.813 -> 0.830 (SE 0.010)
+    clusters  (``clusters`` >= 2; none in files before 2026-11-28) the residual after the components, judged against
+              the good parts most like the frame, not against all of them: the fit groups its good parts by their
+              components' coefficients (k-means, ``model.draem.appearance_clusters``) and keeps each group's mean
+              residual and residual scale over the region; a frame's residual (z) has its nearest group's mean
+              taken out and is divided by that group's scale before the noise level and the window, and the
+              position calibration is measured on the good parts' z so judged, each from its group without itself.
+              The components are linear; a part's yaw, a moving light and the finish change the frame non-linearly
+              (a highlight that moves, a mirror image that turns), and one scale per pixel served every kind of
+              good part. Screened on the validation set (``APPEARANCE_CLUSTERS``)
     score     max of the map: how far the worst place of the part lies beyond the good parts there, in units of
               their 95th-percentile excess
 
@@ -575,14 +584,17 @@ class VariationModel(nn.Module):
             return None
         centres, spread, labels = found
         r = np.stack([j[0][:, part] for j in judged_residuals])  # (N, C, P)
+        stats = [appearance_clusters.residual_stats(r[labels == k]) for k in range(len(centres))]
         signed, windows = [], []
-        for i, (ri, _, judged, _) in enumerate(judged_residuals):
+        for i, (ri, coef, judged, _) in enumerate(judged_residuals):
             others = (labels == labels[i]) & (np.arange(len(r)) != i)
-            z = self._unpacked(ri, *appearance_clusters.residual_stats(r[others]))
+            own = list(stats)
+            own[labels[i]] = appearance_clusters.residual_stats(r[others])  # its cluster without it
+            z = self._unpacked(ri, *appearance_clusters.blend(appearance_clusters.weights(centres, coef / spread),
+                                                              own))
             level = self.window(np.abs(z), judged)
             windows.append(level[0])
             signed.append(self.signed_z(z, judged, level[1]))
-        stats = [appearance_clusters.residual_stats(r[labels == k]) for k in range(len(centres))]
         self._resize_clusters(len(centres), int(part.sum()))
         self.cluster_centres.copy_(torch.from_numpy(centres))
         self.cluster_spread.copy_(torch.from_numpy(spread))
@@ -603,13 +615,14 @@ class VariationModel(nn.Module):
         return out
 
     def clustered(self, r: np.ndarray, coef: np.ndarray) -> np.ndarray:
-        """(C, H, W) a frame's residual (z) and (COMPONENTS,) its coefficients -> its z against the nearest cluster of
-        good parts (``r`` itself without clusters)."""
+        """(C, H, W) a frame's residual (z) and (COMPONENTS,) its coefficients -> its z against the clusters of good
+        parts near it, weighted by distance (``appearance_clusters.weights``; ``r`` itself without clusters)."""
         if not self.clusters:
             return r
-        k = int(appearance_clusters.nearest(self.cluster_centres.numpy(),
-                                            (coef / self.cluster_spread.numpy())[None])[0])
-        return self._unpacked(r, self.cluster_mean[k].float().numpy(), self.cluster_scale[k].float().numpy())
+        w = appearance_clusters.weights(self.cluster_centres.numpy(), coef / self.cluster_spread.numpy())
+        near = np.flatnonzero(w)
+        stats = [(self.cluster_mean[k].float().numpy(), self.cluster_scale[k].float().numpy()) for k in near]
+        return self._unpacked(r, *appearance_clusters.blend(w[near], stats))
 
     def _polarization_range(self, xs: np.ndarray) -> torch.Tensor:
         """(N, C, H, W) good parts' physical priors -> (4,) lowest and highest gain and turn (radians of AoLP) of

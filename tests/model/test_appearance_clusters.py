@@ -57,6 +57,17 @@ def test_kmeans_finds_separate_groups_and_group_merges_small_clusters_and_needs_
     assert not mean.any() and bool((scale == appearance_clusters.SCALE_FLOOR).all())
 
 
+def test_a_part_is_weighed_against_the_clusters_near_it_and_a_nan_part_against_one() -> None:
+    centres = np.array([[0.0, 0.0], [1.0, 0.0], [10.0, 0.0]])
+    w = appearance_clusters.weights(centres, np.array([0.5, 0.0]))
+    assert w[0] == pytest.approx(0.5) and w[1] == pytest.approx(0.5) and w[2] == 0.0  # halfway; the far one left out
+    assert appearance_clusters.weights(centres, np.array([9.9, 0.0]))[2] > 0.99
+    assert appearance_clusters.weights(centres, np.array([np.nan, 0.0])).sum() == 1.0
+    mean, scale = appearance_clusters.blend(np.array([0.5, 0.5]), [(np.zeros(3), np.full(3, 1.0)),
+                                                                    (np.full(3, 2.0), np.full(3, 7.0))])
+    assert np.allclose(mean, 1.0) and np.allclose(scale, 5.0)  # sqrt((1 + 49) / 2)
+
+
 def test_two_kinds_of_good_part_each_judged_within_its_own_cluster_show_a_faint_defect_the_plain_fit_misses(
         tmp_path: Path) -> None:
     """One global spread per pixel serves both kinds: where kind 0 is mottled, kind 1's faint defect hides in
