@@ -1,10 +1,10 @@
 """Probe: does a local (nearest-neighbour) appearance model beat the global PCA on the validation set?"""
+
 from __future__ import annotations
 
 import sys
 import time
 
-import cv2
 import numpy as np
 from sklearn.metrics import roc_auc_score
 
@@ -26,7 +26,9 @@ def feats(vm, sp):
             judged = part
         u = (warped[:-1] - mean) / cs * part
         r = vm._residual(u[None], comps, judged)[0] / vm.scale.numpy()
-        us.append(u.astype(np.float32)); rs.append(r.astype(np.float32)); js.append(judged)
+        us.append(u.astype(np.float32))
+        rs.append(r.astype(np.float32))
+        js.append(judged)
     return np.stack(us), np.stack(rs), np.stack(js)
 
 
@@ -43,7 +45,7 @@ def main() -> None:
     va = model_split(ck, MODEL, "data/line-panel-val", "val")
     print("loaded", time.time() - t0, flush=True)
     c = np.load("runs/knn/cache.npz")
-    ut, rt, jt, uv, rv, jv = (c[k] for k in ("ut", "rt", "jt", "uv", "rv", "jv"))
+    ut, rt, _jt, uv, rv, jv = (c[k] for k in ("ut", "rt", "jt", "uv", "rv", "jv"))
     y = np.array([d is not None and d != "" for d in va.defect_type])
     types = np.array([d or "good" for d in va.defect_type])
     out = vm.zmaps(va.priors)
@@ -53,7 +55,7 @@ def main() -> None:
     ct = ut.reshape(len(ut), -1) @ comps.T
     cv_ = uv.reshape(len(uv), -1) @ comps.T
     sd = ct.std(0) + 1e-6
-    res = {"shipped": shipped, "global": np.array([stat(vm, r, j, region) for r, j in zip(rv, jv)])}
+    res = {"shipped": shipped, "global": np.array([stat(vm, r, j, region) for r, j in zip(rv, jv, strict=False)])}
     for K in (15, 25, 50):
         s_res, s_raw = [], []
         for i in range(len(uv)):

@@ -1,4 +1,5 @@
 """Probe 2: kNN residual with the position calibration (window location/spread from training parts' own kNN windows)."""
+
 from __future__ import annotations
 
 import time
@@ -34,10 +35,15 @@ def main() -> None:
     sd = ct.std(0) + 1e-6
     loc, spr = vm.window_location.numpy(), vm.window_spread.numpy()
     res = {"shipped": sc["shipped"]}
-    res["global+pos"] = np.array([float(np.where(region & j, np.maximum((window(vm, r, j) - loc) / spr, 0), 0).max())
-                                  for r, j in zip(rv, jv)])
+    res["global+pos"] = np.array(
+        [
+            float(np.where(region & j, np.maximum((window(vm, r, j) - loc) / spr, 0), 0).max())
+            for r, j in zip(rv, jv, strict=True)
+        ]
+    )
     for K in (25, 50):
-        def knn_z(c0, r0, exclude=None):
+
+        def knn_z(c0, r0, exclude=None, K=K):
             d = (((ct - c0) / sd) ** 2).sum(1)
             if exclude is not None:
                 d[exclude] = np.inf
@@ -45,6 +51,7 @@ def main() -> None:
             m = rt[nb].mean(0)
             s = np.maximum(1.4826 * np.median(np.abs(rt[nb] - m), 0) * np.sqrt(K / (K - 1)), 0.3)
             return (r0 - m) / s
+
         wt = np.stack([window(vm, knn_z(ct[i], rt[i], i), jt[i]) for i in range(len(ut))])
         location = np.median(wt, 0)
         spread = cv2.GaussianBlur(np.percentile(wt, WINDOW_QUANTILE, 0) - location, (0, 0), WINDOW_BLUR_PX)
@@ -62,8 +69,10 @@ def main() -> None:
     for name, s in res.items():
         thr = np.quantile(s[good], 0.99)
         thr5 = np.quantile(s[good], 0.95)
-        line = (f"{name:12s} auroc {roc_auc_score(y, s):.3f} caught@1% {np.mean(s[y] > thr):.2f} "
-                f"@5% {np.mean(s[y] > thr5):.2f}")
+        line = (
+            f"{name:12s} auroc {roc_auc_score(y, s):.3f} caught@1% {np.mean(s[y] > thr):.2f} "
+            f"@5% {np.mean(s[y] > thr5):.2f}"
+        )
         for t in sorted(set(types[y])):
             sel = good | (types == t)
             line += f" {t[:5]} {roc_auc_score(y[sel], s[sel]):.3f}"

@@ -1,4 +1,5 @@
 """Probe 3: clusters (k-means in the global components' coefficients) instead of per-part neighbours."""
+
 from __future__ import annotations
 
 import time
@@ -37,11 +38,13 @@ def main() -> None:
     for M in (4, 8, 16):
         km = KMeans(M, n_init=10, random_state=0).fit(ct / sd)
         lab = km.labels_
+
         def stats(members):
             m = rt[members].mean(0)
             n = len(members)
             s = np.maximum(1.4826 * np.median(np.abs(rt[members] - m), 0) * np.sqrt(n / max(n - 1, 1)), 0.3)
             return m, s
+
         full = {k: stats(np.flatnonzero(lab == k)) for k in range(M)}
         wt = []
         for i in range(len(ut)):
@@ -64,8 +67,10 @@ def main() -> None:
     for name, s in res.items():
         thr = np.quantile(s[good], 0.99)
         thr5 = np.quantile(s[good], 0.95)
-        line = (f"{name:12s} auroc {roc_auc_score(y, s):.3f} caught@1% {np.mean(s[y] > thr):.2f} "
-                f"@5% {np.mean(s[y] > thr5):.2f}")
+        line = (
+            f"{name:12s} auroc {roc_auc_score(y, s):.3f} caught@1% {np.mean(s[y] > thr):.2f} "
+            f"@5% {np.mean(s[y] > thr5):.2f}"
+        )
         for t in sorted(set(types[y])):
             sel = good | (types == t)
             line += f" {t[:5]} {roc_auc_score(y[sel], s[sel]):.3f}"
