@@ -66,6 +66,12 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               residuals, docs/results/2026-11-24-position.md), against the uncalibrated window: caught at 1 % of
               good parts rejected 46 % -> 50 % (paired bootstrap SE 2.1), at 5 % 53 % -> 62 % (SE 2.7), image
               AUROC 0.813 -> 0.830 (SE 0.010)
+    contrast  (fitted with ``global_contrast``; files before 2026-11-28 have none) the log intensity feature divided
+              by the part of the frame's contrast gain that lies beyond the good parts' range: c, the least-squares
+              factor that maps the good parts' mean feature onto the frame's over the judged pixels. A camera's tone
+              response that is a power of I (a gamma g: I -> I^g) multiplies log I, and so the feature (log I minus
+              its median), by g; exposure and gain, a factor on I, the median takes out. A frame within the range
+              is judged as it is; a defect changes a place, not the part's contrast
     clusters  (``clusters`` >= 2; none in files before 2026-11-28) the residual after the components, judged against
               the good parts most like the frame, not against all of them: the fit groups its good parts by their
               components' coefficients (k-means, ``model.draem.appearance_clusters``) and keeps each group's mean
@@ -184,12 +190,14 @@ MAX_HIDDEN = 0.5
 """Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
-                 "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale")
+                 "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
+                 "contrast_range")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
 polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
-clusters), which score as those models did."""
+clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is), which score as those models
+did."""
 
 CLUSTER_BUFFERS = ("cluster_centres", "cluster_mean", "cluster_scale")
 """Buffers whose size is the fit's (clusters and part-region pixels): a model file gives them their shape
@@ -203,6 +211,15 @@ POLARIZATION_GAIN_RANGE = (0.25, 4.0)
 """Range of a frame's polarization gain ``align_polarization`` divides by; beyond it, clamped: a frame with (almost)
 no polarization is not blown up to the reference's and a frame polarized far more is not scaled down to it, so
 both still read as unlike the good parts."""
+
+CONTRAST_GAIN_RANGE = (0.25, 4.0)
+"""Range of a frame's contrast gain (``VariationModel.contrast_factor``): beyond it, clamped. Also the initial
+``contrast_range``: a model fitted without the contrast range judges every frame's contrast as it is (any gain lies
+within it, so nothing is divided)."""
+
+GLOBAL_CONTRAST = False
+"""The shipped recipe's contrast range (``station variation --contrast-range``; module docstring: contrast): off
+until a rule has measured it on a held-out set."""
 
 READ_DOLP = False
 """Whether a new fit reads DoLP as a feature of its own (module docstring: features). DoLP is the length of the
@@ -311,6 +328,7 @@ class VariationModel(nn.Module):
         self.register_buffer("blur_copies_sigma", torch.tensor(0.0))
         self.register_buffer("global_polarization", torch.tensor(0.0))
         self.register_buffer("polarization_range", torch.tensor(NO_POLARIZATION_RANGE))
+        self.register_buffer("contrast_range", torch.tensor(CONTRAST_GAIN_RANGE))
         self.register_buffer("cluster_spread", torch.ones(COMPONENTS))
         self._resize_clusters(0, 0)
 
@@ -422,6 +440,38 @@ class VariationModel(nn.Module):
         return out.astype(np.float32)
 
     @property
+    def aligns_contrast(self) -> bool:
+        """Whether frames beyond the good parts' contrast are aligned (``contrast_range`` fitted)."""
+        return tuple(float(v) for v in self.contrast_range) != CONTRAST_GAIN_RANGE
+
+    def contrast_factor(self, f: np.ndarray, where: np.ndarray) -> float:
+        """Registered features ``f`` (C, H, W) -> the frame-wide gain c that best maps the good parts' mean log
+        intensity feature onto the frame's over the pixels ``where`` (H, W), by least squares, clamped to
+        ``CONTRAST_GAIN_RANGE``; 1 without pixels or without a finite, positive fit (``align_contrast``)."""
+        if not where.any():
+            return 1.0
+        m, q = self.mean.numpy()[self.intensity][where], f[self.intensity][where]
+        power = float(np.sum(m.astype(np.float64) ** 2))
+        c = float(np.sum(q.astype(np.float64) * m)) / power if power > 1e-12 else 1.0
+        if not math.isfinite(c) or c <= 0:
+            return 1.0
+        lo, hi = CONTRAST_GAIN_RANGE
+        return min(max(c, lo), hi)
+
+    def align_contrast(self, f: np.ndarray, where: np.ndarray) -> np.ndarray:
+        """Registered features ``f`` (C, H, W) with their log intensity feature divided by the part of the frame-wide
+        contrast gain beyond ``contrast_range`` (module docstring: contrast); ``f`` itself when the gain lies within
+        it (always, with ``CONTRAST_GAIN_RANGE``)."""
+        c = self.contrast_factor(f, where)
+        lo, hi = (float(v) for v in self.contrast_range)
+        kept = min(max(c, lo), hi)
+        if kept == c:
+            return f
+        out = f.copy()
+        out[self.intensity] = f[self.intensity] * (kept / c)
+        return out
+
+    @property
     def dolp_read(self) -> bool:
         """Whether DoLP is a feature of its own (``READ_DOLP``); always when there is no AoLP to carry it."""
         return self.dolp is None or self.aolp is None or bool(self.reads_dolp > 0.5)
@@ -465,7 +515,7 @@ class VariationModel(nn.Module):
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
             keep_reference: bool = False, blur_copies_sigma: float | None = None,
             global_polarization: PolarizationAlignment | str | bool | None = None,
-            clusters: int | None = None) -> np.ndarray:
+            clusters: int | None = None, global_contrast: bool | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -488,7 +538,10 @@ class VariationModel(nn.Module):
         blurred copies) are then judged as ``zmaps`` judges a frame, grouped by their components' coefficients
         (``model.draem.appearance_clusters.group``: fewer clusters when there are few parts), each cluster's mean
         residual and scale kept, and the position calibration measured again on each part's clustered z, from its
-        cluster without itself; the returned maps are those z (module docstring: clusters)."""
+        cluster without itself; the returned maps are those z (module docstring: clusters). ``global_contrast``
+        (None: the model's own, so a refit keeps it): the lowest and highest contrast gain of the good parts (not
+        their copies) as ``zmaps`` measures it go into ``contrast_range`` (before the clusters), so only frames beyond
+        them are aligned (``align_contrast``); otherwise ``CONTRAST_GAIN_RANGE``, which aligns nothing."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -505,6 +558,8 @@ class VariationModel(nn.Module):
         self.global_polarization.fill_(mode.code)
         self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
         wanted_clusters = self.clusters if clusters is None else int(clusters)
+        contrast = self.aligns_contrast if global_contrast is None else bool(global_contrast)
+        self.contrast_range.copy_(torch.tensor(CONTRAST_GAIN_RANGE))
         if wanted_clusters < 0:
             raise ModelError(f"clusters must be >= 0, got {wanted_clusters}")
         self._resize_clusters(0, 0)
@@ -561,6 +616,8 @@ class VariationModel(nn.Module):
         self.region.copy_(torch.from_numpy(region))
         if mode is PolarizationAlignment.RANGE:
             self.polarization_range.copy_(self._polarization_range(xs[:n_parts]))
+        if contrast:
+            self.contrast_range.copy_(self._contrast_range(xs[:n_parts]))
         if wanted_clusters >= 2:
             clustered = self._fit_clusters(xs[:n_parts], wanted_clusters, floor_quantile)
             if clustered is not None:
@@ -627,6 +684,19 @@ class VariationModel(nn.Module):
         near = np.flatnonzero(w)
         stats = [(self.cluster_mean[k].float().numpy(), self.cluster_scale[k].float().numpy()) for k in near]
         return self._unpacked(r, *appearance_clusters.blend(w[near], stats))
+
+    def _contrast_range(self, xs: np.ndarray) -> torch.Tensor:
+        """(N, C, H, W) good parts' physical priors -> (2,) lowest and highest ``contrast_factor`` as ``zmaps``
+        measures it (after the fit and its polarization range)."""
+        mean, part = self.mean.numpy(), self.region.numpy()
+        cs = []
+        for xi in xs:
+            warped, judged = self._registered(xi, part)
+            where = judged if judged.any() else part
+            if self.aligns_polarization:
+                warped[:-1] = self.align_polarization(warped[:-1], mean, where)
+            cs.append(self.contrast_factor(warped[:-1], where))
+        return torch.tensor([min(cs), max(cs)], dtype=torch.float32)
 
     def _polarization_range(self, xs: np.ndarray) -> torch.Tensor:
         """(N, C, H, W) good parts' physical priors -> (4,) lowest and highest gain and turn (radians of AoLP) of
@@ -734,6 +804,7 @@ class VariationModel(nn.Module):
         warped, judged = self._registered(xi, part)
         if self.aligns_polarization:
             warped[:-1] = self.align_polarization(warped[:-1], mean, judged if judged.any() else part)
+        warped[:-1] = self.align_contrast(warped[:-1], judged if judged.any() else part)
         hidden = 1.0 - judged.sum() / max(part.sum(), 1)
         if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
             judged = part  # too much hidden to judge the part by the rest: fail closed

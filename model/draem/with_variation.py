@@ -21,7 +21,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
                   val_good: torch.Tensor, batch: int = 16, decision: str = "combined",
                   blur_copies_sigma: float = 0.0,
                   global_polarization: PolarizationAlignment | str | bool = PolarizationAlignment.OFF,
-                  clusters: int = 0) -> Detector:
+                  clusters: int = 0, global_contrast: bool = False) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
@@ -30,7 +30,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     sees blurred copies of the good parts (``VariationModel.fit``; 0: none). ``global_polarization``: how each
     frame's polarization is put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment``,
     ``VariationModel.fit``). ``clusters``: how many groups of good parts, by appearance, each part is judged within
-    (``VariationModel.fit``; 0: none)."""
+    (``VariationModel.fit``; 0: none). ``global_contrast``: frames beyond the good parts' contrast are aligned
+    (``VariationModel.fit``)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -41,7 +42,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     out.eval()
     assert out.variation is not None
     out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
-                      global_polarization=global_polarization, clusters=clusters)
+                      global_polarization=global_polarization, clusters=clusters, global_contrast=global_contrast)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()
     return out

@@ -46,6 +46,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="group the good parts by appearance into up to N clusters (k-means on the appearance "
                         "components' coefficients, at most one per 40 parts) and judge each part against its own "
                         "cluster (default: the shipped recipe, model.draem.variation.APPEARANCE_CLUSTERS; 0: none)")
+    p.add_argument("--contrast-range", dest="global_contrast", action="store_const", const=True, default=None,
+                   help="record the good parts' range of frame-wide contrast (the gain on log intensity a camera's "
+                        "gamma puts there) and take out of each frame only the part beyond it (default: the shipped "
+                        "recipe, model.draem.variation.GLOBAL_CONTRAST: off)")
+    p.add_argument("--no-contrast-range", dest="global_contrast", action="store_const", const=False,
+                   help="judge every frame's contrast as it is")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")
@@ -58,5 +64,6 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_variation
 
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
-                        args.fit_parts, args.blur_copies, args.refit, args.global_polarization, args.clusters))
+                        args.fit_parts, args.blur_copies, args.refit, args.global_polarization, args.clusters,
+                        args.global_contrast))
     return 0
