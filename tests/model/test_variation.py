@@ -421,3 +421,31 @@ def test_onnx_runs_the_variation_member_too(tmp_path: Path) -> None:
     x = torch.cat([parts(3, 7), parts(3, 8, defect=True)])
     a, b = onnx.predict(x), det.predict(x)
     assert "variation" in a.member_scores and float((a.score - b.score).abs().max()) < 1e-4
+
+
+def test_a_fit_with_the_contrast_range_judges_a_gamma_cameras_good_parts_as_good_and_its_like_exactly_as_before(
+        ) -> None:
+    """A camera's gamma multiplies log I, and so the intensity feature, by one factor: the plain fit scores such good
+    parts far above its good parts; with the good parts' contrast range (``global_contrast``) the excess is taken out,
+    they score as good parts, defects still stand out, and frames within the range score exactly as the plain fit
+    scores them. A refit keeps the range; the file records it."""
+    from model.draem.shifts import Channels, shift
+
+    x, ch = parts(40, 0), Channels(0, 1, 2)
+    plain, ranged = (VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2) for _ in range(2))
+    plain.fit(x, x[:, 0] > 0.15)
+    ranged.fit(x, x[:, 0] > 0.15, global_contrast=True)
+    lo, hi = (float(v) for v in ranged.contrast_range)
+    assert ranged.aligns_contrast and not plain.aligns_contrast and 0.8 < lo < 1.0 < hi < 1.2
+
+    def scores(vm: VariationModel, name: str, defect: bool = False) -> torch.Tensor:
+        return vm.zmaps(torch.from_numpy(shift(name, parts(20, 2 if defect else 1, defect).numpy(), ch)))[1]
+
+    assert torch.equal(scores(ranged, "none"), scores(plain, "none"))  # within the range: as before, exactly
+    good = float(scores(ranged, "none").max())
+    assert float(scores(plain, "gamma 1.25").min()) > good  # every one above every good part
+    for name in ("gamma 1.25", "gamma 0.8"):
+        assert float(scores(ranged, name).max()) < 1.5 * good + 0.5, name
+        assert float(scores(ranged, name, defect=True).min()) > 2 * float(scores(ranged, name).max()), name
+    ranged.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the recipe and measures its own parts
+    assert ranged.aligns_contrast

@@ -161,13 +161,19 @@ def test_global_polarization_takes_a_mode_records_it_and_refuses_an_unknown_one(
     assert vm is not None and vm.polarization_alignment is PolarizationAlignment.OFF
 
 
-def test_clusters_are_recorded_as_fitted_and_a_negative_count_is_refused(tmp_path: Path, capsys) -> None:
+def test_clusters_and_the_contrast_range_are_recorded_as_fitted_and_a_negative_count_is_refused(
+        tmp_path: Path, capsys) -> None:
     """``--clusters N``: the sidecar records how many clusters the fit kept, which is fewer when there are few good
     parts (one per 40; this set's ~30 make none, and the message then claims none); a negative count is one line
-    naming the flag, before any loading."""
+    naming the flag, before any loading. ``--contrast-range``: the sidecar records the good parts' range."""
     data, model = trained(tmp_path, capsys)
     out = tmp_path / "c"
     assert main(["variation", "--model", str(model), "--data", str(data), "--clusters", "8", "--out", str(out)]) == 0
     assert "judged within" not in capsys.readouterr().out
     assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["clusters"] == 0
     refused_naming(capsys, "--clusters", "-1", model, data, tmp_path / "w")
+    assert main(["variation", "--model", str(model), "--data", str(data), "--contrast-range", "--out",
+                 str(tmp_path / "k")]) == 0
+    assert "contrast aligned where beyond theirs" in capsys.readouterr().out
+    lo, hi = json.loads((tmp_path / "k.json").read_text())["train"]["variation"]["contrast_range"]
+    assert 0.25 < lo <= hi < 4.0
