@@ -72,9 +72,8 @@ def kmeans(points: np.ndarray, k: int, restarts: int = RESTARTS, seed: int = 0, 
 
 def group(coefs: np.ndarray, clusters: int) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     """(N, K) good parts' coefficients -> ((M, K) centres in ``spread`` units, (K,) spread (module docstring),
-    (N,) labels), M at most
-    ``clusters`` and N // ``CLUSTER_PARTS``, every cluster at least ``MIN_CLUSTER_PARTS`` parts (the smallest
-    merged into the nearest others, one at a time); None when fewer than 2 clusters are left."""
+    (N,) labels), M at most ``clusters`` and N // ``CLUSTER_PARTS``, every cluster at least ``MIN_CLUSTER_PARTS``
+    parts (the smallest merged into the nearest others, one at a time); None when fewer than 2 clusters are left."""
     m = min(clusters, len(coefs) // CLUSTER_PARTS)
     if m < 2:
         return None

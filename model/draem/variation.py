@@ -75,9 +75,10 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
     clusters  (``clusters`` >= 2; none in files before 2026-11-28) the residual after the components, judged against
               the good parts most like the frame, not against all of them: the fit groups its good parts by their
               components' coefficients (k-means, ``model.draem.appearance_clusters``) and keeps each group's mean
-              residual and residual scale over the region; a frame's residual (z) has its nearest group's mean
-              taken out and is divided by that group's scale before the noise level and the window, and the
-              position calibration is measured on the good parts' z so judged, each from its group without itself.
+              residual and residual scale over the region; a frame's residual (z) has the mean of the groups near
+              it taken out and is divided by their scale (each group weighted by the frame's distance to it)
+              before the noise level and the window, and the position calibration is measured on the good parts'
+              z so judged, each with its own group without itself.
               The components are linear; a part's yaw, a moving light and the finish change the frame non-linearly
               (a highlight that moves, a mirror image that turns), and one scale per pixel served every kind of
               good part. Screened on the validation set (``APPEARANCE_CLUSTERS``)
@@ -158,7 +159,7 @@ APPEARANCE_CLUSTERS = 0
 """The shipped recipe's ``clusters`` (``station variation --clusters``'s default): how many groups of good parts, by
 appearance, a new fit judges each part within (module docstring: clusters; ``model.draem.appearance_clusters``);
 0: one appearance for every good part. Rule 40 (docs/results/2026-11-28-appearance-clusters.md) measured 8 clusters
-against the shipped fit on held-out seed 1139: image AUROC 0.924 against 0.906 (+2.5 paired SE; dents 0.844 against
+against the shipped fit on held-out seed 1139: image AUROC 0.924 against 0.906 (+2.5 paired SE; dents 0.843 against
 0.803, scratches 0.815 against 0.781), the same 70 % caught at 1 %. But a frame unlike the renders as a whole is
 judged against the few good parts nearest it, whose spread is tighter than all of theirs: at its own threshold it
 rejected 96 % of good parts through a gamma of 1.25 (the plain fit 29 %), 40 % with DoLP halved (12 %) and 66 %
@@ -198,10 +199,6 @@ a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_pola
 polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
 clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is), which score as those models
 did."""
-
-CLUSTER_BUFFERS = ("cluster_centres", "cluster_mean", "cluster_scale")
-"""Buffers whose size is the fit's (clusters and part-region pixels): a model file gives them their shape
-(``VariationModel.size_clusters``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
 """``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
@@ -340,9 +337,9 @@ class VariationModel(nn.Module):
         self.register_buffer("cluster_scale", torch.ones(clusters, channels, pixels, dtype=torch.float16))
 
     def size_clusters(self, state: dict[str, torch.Tensor], prefix: str = "") -> None:
-        """Give the cluster buffers (``CLUSTER_BUFFERS``) the shapes they have in ``state`` (a state dict, keys under
-        ``prefix``; without them, none), so that it loads; ModelError when those shapes disagree with each other or
-        with ``state``'s region."""
+        """Give the cluster buffers, whose size is the fit's (clusters, region pixels), the shapes they have in
+        ``state`` (a state dict, keys under ``prefix``; without them, none), so that it loads; ModelError when those
+        shapes disagree with each other or with ``state``'s region."""
         if prefix + "cluster_centres" not in state:
             self._resize_clusters(0, 0)
             return
@@ -358,7 +355,8 @@ class VariationModel(nn.Module):
                                  f"of the part region need {shape}")
         self._resize_clusters(m, pixels)
 
-    def _load_from_state_dict(self, state_dict, prefix, *args, **kwargs):
+    def _load_from_state_dict(self, state_dict: dict[str, torch.Tensor], prefix: str, *args: object,
+                              **kwargs: object) -> None:
         if prefix + "cluster_centres" in state_dict:  # sized by the fit: take the state's shapes first
             self.size_clusters(state_dict, prefix)
         super()._load_from_state_dict(state_dict, prefix, *args, **kwargs)
@@ -688,13 +686,9 @@ class VariationModel(nn.Module):
     def _contrast_range(self, xs: np.ndarray) -> torch.Tensor:
         """(N, C, H, W) good parts' physical priors -> (2,) lowest and highest ``contrast_factor`` as ``zmaps``
         measures it (after the fit and its polarization range)."""
-        mean, part = self.mean.numpy(), self.region.numpy()
         cs = []
         for xi in xs:
-            warped, judged = self._registered(xi, part)
-            where = judged if judged.any() else part
-            if self.aligns_polarization:
-                warped[:-1] = self.align_polarization(warped[:-1], mean, where)
+            warped, _, where = self._aligned(xi)
             cs.append(self.contrast_factor(warped[:-1], where))
         return torch.tensor([min(cs), max(cs)], dtype=torch.float32)
 
@@ -724,8 +718,8 @@ class VariationModel(nn.Module):
                   ) -> tuple[np.ndarray, np.ndarray]:
         """(N, C, H, W) centred, scaled features -> (their residual: minus their projection on ``components`` (K, C,
         H, W), (N, K) the projection's coefficients), fitted by least squares over the pixels ``keep`` (H, W) when
-        given (a highlight would otherwise pull every
-        component's coefficient and spread its residual over the whole part). In torch, on torch's threads:
+        given (a highlight would otherwise pull every component's coefficient and spread its residual over the whole
+        part). In torch, on torch's threads:
         numpy's BLAS would start its own threads beside torch's, and on 2 cores the two pools spinning against
         each other doubled the station's time per part (71 -> 143 ms p50, docs/platform-facts.md)."""
         p = torch.from_numpy(np.ascontiguousarray(components, np.float32)).reshape(len(components), u[0].size)
@@ -801,16 +795,25 @@ class VariationModel(nn.Module):
         (COMPONENTS,) coefficients, the (H, W) bool pixels judged and the share of the part the highlight rule
         found (module docstring: register, highlights, appearance)."""
         mean, part = self.mean.numpy(), self.region.numpy()
-        warped, judged = self._registered(xi, part)
-        if self.aligns_polarization:
-            warped[:-1] = self.align_polarization(warped[:-1], mean, judged if judged.any() else part)
-        warped[:-1] = self.align_contrast(warped[:-1], judged if judged.any() else part)
+        warped, judged, where = self._aligned(xi)
+        warped[:-1] = self.align_contrast(warped[:-1], where)
         hidden = 1.0 - judged.sum() / max(part.sum(), 1)
         if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
             judged = part  # too much hidden to judge the part by the rest: fail closed
         u = (warped[:-1] - mean) / self.channel_scale.numpy()[:, None, None] * part
         r, coef = self._residual(u[None], self.components.numpy(), judged)
         return r[0] / self.scale.numpy(), coef[0], judged, float(hidden)
+
+    def _aligned(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(C, H, W) physical priors -> (``_registered``'s warped features with their polarization aligned when the
+        model aligns it, its judged pixels, the pixels alignments fit over: those judged, or the part region when
+        none are)."""
+        part = self.region.numpy()
+        warped, judged = self._registered(xi, part)
+        where = judged if judged.any() else part
+        if self.aligns_polarization:
+            warped[:-1] = self.align_polarization(warped[:-1], self.mean.numpy(), where)
+        return warped, judged, where
 
     def _registered(self, xi: np.ndarray, part: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(C, H, W) physical priors -> (``register``'s warped features with I (1 + DoLP) last, (H, W) bool the
