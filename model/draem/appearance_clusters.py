@@ -44,6 +44,11 @@ def spread_of(coefs: np.ndarray) -> np.ndarray:
     return np.maximum(coefs.std(0), SPREAD_FLOOR).astype(np.float32)
 
 
+def sq_distances(points: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """(N, K) points and (M, K) centres -> (N, M) squared Euclidean distances."""
+    return ((points[:, None] - centres[None]) ** 2).sum(2)
+
+
 def kmeans(points: np.ndarray, k: int, restarts: int = RESTARTS, seed: int = 0, steps: int = 100
            ) -> tuple[np.ndarray, np.ndarray]:
     """(N, D) points -> ((k, D) centres, (N,) labels) by Lloyd's k-means from k-means++ seeds, the best of
@@ -53,16 +58,16 @@ def kmeans(points: np.ndarray, k: int, restarts: int = RESTARTS, seed: int = 0, 
     for _ in range(restarts):
         centres = points[[rng.integers(len(points))]]
         while len(centres) < k:
-            d = ((points[:, None] - centres[None]) ** 2).sum(2).min(1)
+            d = sq_distances(points, centres).min(1)
             p = d / d.sum() if d.sum() > 0 else None
             centres = np.concatenate([centres, points[[rng.choice(len(points), p=p)]]])
         for _ in range(steps):
-            labels = ((points[:, None] - centres[None]) ** 2).sum(2).argmin(1)
+            labels = nearest(centres, points)
             moved = np.stack([points[labels == j].mean(0) if (labels == j).any() else centres[j] for j in range(k)])
             if np.allclose(moved, centres):
                 break
             centres = moved
-        labels = ((points[:, None] - centres[None]) ** 2).sum(2).argmin(1)
+        labels = nearest(centres, points)
         inertia = float(((points - centres[labels]) ** 2).sum())
         if best is None or inertia < best[0]:
             best = (inertia, centres, labels)
@@ -91,13 +96,13 @@ def group(coefs: np.ndarray, clusters: int) -> tuple[np.ndarray, np.ndarray, np.
         labels = nearest(centres, points)
     if len(centres) < 2:
         return None
-    width = max(float(np.median(np.sqrt(((points[:, None] - centres[None]) ** 2).sum(2).min(1)))), SPREAD_FLOOR)
+    width = max(float(np.median(np.sqrt(sq_distances(points, centres).min(1)))), SPREAD_FLOOR)
     return (centres / width).astype(np.float32), (spread * width).astype(np.float32), labels
 
 
 def nearest(centres: np.ndarray, points: np.ndarray) -> np.ndarray:
     """(M, K) centres and (N, K) points, both in spread units -> (N,) index of each point's nearest centre."""
-    return ((points[:, None] - centres[None]) ** 2).sum(2).argmin(1)
+    return sq_distances(points, centres).argmin(1)
 
 
 WEIGHT_FLOOR = 1e-4
@@ -108,7 +113,7 @@ def weights(centres: np.ndarray, point: np.ndarray) -> np.ndarray:
     """(M, K) centres and (K,) a part's coefficients, both in ``spread`` units -> (M,) weights exp(-d^2 / 2) relative
     to the nearest centre's, those under ``WEIGHT_FLOOR`` zero, normalised to sum 1; the nearest alone when the
     distances are not finite."""
-    d2 = ((point[None] - centres) ** 2).sum(1)
+    d2 = sq_distances(point[None], centres)[0]
     if not np.isfinite(d2).all():
         w = np.zeros(len(centres))
         w[int(np.nan_to_num(d2, nan=np.inf).argmin())] = 1.0

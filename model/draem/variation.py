@@ -461,7 +461,9 @@ class VariationModel(nn.Module):
     def align_contrast(self, f: np.ndarray, where: np.ndarray) -> np.ndarray:
         """Registered features ``f`` (C, H, W) with their log intensity feature divided by the part of the frame-wide
         contrast gain beyond ``contrast_range`` (module docstring: contrast); ``f`` itself when the gain lies within
-        it (always, with ``CONTRAST_GAIN_RANGE``)."""
+        it (always, with ``CONTRAST_GAIN_RANGE``: then not even measured)."""
+        if not self.aligns_contrast:
+            return f
         c = self.contrast_factor(f, where)
         lo, hi = (float(v) for v in self.contrast_range)
         kept = min(max(c, lo), hi)
@@ -550,6 +552,10 @@ class VariationModel(nn.Module):
         sigma = float(self.blur_copies_sigma) if blur_copies_sigma is None else float(blur_copies_sigma)
         if not (math.isfinite(sigma) and sigma >= 0):
             raise ModelError(f"blur_copies_sigma must be finite and >= 0, got {sigma}")
+        wanted_clusters = self.clusters if clusters is None else int(clusters)
+        if wanted_clusters < 0:
+            raise ModelError(f"clusters must be >= 0, got {wanted_clusters}")
+        contrast = self.aligns_contrast if global_contrast is None else bool(global_contrast)
         self.blur_copies_sigma.fill_(sigma)
         mode = (self.polarization_alignment if global_polarization is None
                 else PolarizationAlignment.of(global_polarization))
@@ -557,11 +563,7 @@ class VariationModel(nn.Module):
             raise ModelError("global_polarization needs the DoLP and AoLP priors")
         self.global_polarization.fill_(mode.code)
         self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
-        wanted_clusters = self.clusters if clusters is None else int(clusters)
-        contrast = self.aligns_contrast if global_contrast is None else bool(global_contrast)
         self.contrast_range.copy_(torch.tensor(CONTRAST_GAIN_RANGE))
-        if wanted_clusters < 0:
-            raise ModelError(f"clusters must be >= 0, got {wanted_clusters}")
         self._resize_clusters(0, 0)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
@@ -653,9 +655,9 @@ class VariationModel(nn.Module):
             own[labels[i]] = appearance_clusters.residual_stats(r[others])  # its cluster without it
             z = self._unpacked(ri, *appearance_clusters.blend(appearance_clusters.weights(centres, coef / spread),
                                                               own))
-            level = self.window(np.abs(z), judged)
-            windows.append(level[0])
-            signed.append(self.signed_z(z, judged, level[1]))
+            w, level = self.window(np.abs(z), judged)
+            windows.append(w)
+            signed.append(self.signed_z(z, judged, level))
         self._resize_clusters(len(centres), int(part.sum()))
         self.cluster_centres.copy_(torch.from_numpy(centres))
         self.cluster_spread.copy_(torch.from_numpy(spread))
@@ -721,9 +723,9 @@ class VariationModel(nn.Module):
         """(N, C, H, W) centred, scaled features -> (their residual: minus their projection on ``components`` (K, C,
         H, W), (N, K) the projection's coefficients), fitted by least squares over the pixels ``keep`` (H, W) when
         given (a highlight would otherwise pull every component's coefficient and spread its residual over the whole
-        part). In torch, on torch's threads:
-        numpy's BLAS would start its own threads beside torch's, and on 2 cores the two pools spinning against
-        each other doubled the station's time per part (71 -> 143 ms p50, docs/platform-facts.md)."""
+        part). In torch, on torch's threads: numpy's BLAS would start its own threads beside torch's, and on 2 cores
+        the two pools spinning against each other doubled the station's time per part (71 -> 143 ms p50,
+        docs/platform-facts.md)."""
         p = torch.from_numpy(np.ascontiguousarray(components, np.float32)).reshape(len(components), u[0].size)
         flat = torch.from_numpy(np.ascontiguousarray(u, np.float32)).reshape(len(u), -1)
         if keep is None:
