@@ -165,7 +165,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
                   decision: str = "variation", fit_parts: int | None = None,
                   blur_copies_sigma: float | None = None, refit: bool = False,
                   global_polarization: str | None = None, clusters: int | None = None,
-                  global_contrast: bool | None = None) -> str:
+                  global_contrast: str | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
@@ -174,16 +174,16 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     needs. ``blur_copies_sigma``: the fit also sees a blurred copy of each good part, blurs up to this many input px
     (0: none; None: ``model.draem.variation.BLUR_COPIES_SIGMA``, the shipped recipe). ``refit``: ``model`` already
     has a variation model; fit it again (its networks kept; otherwise that is an error). ``global_polarization``:
-    a ``PolarizationAlignment`` name, how each frame's polarization is first put onto the good parts' by one
+    a ``Alignment`` name, how each frame's polarization is first put onto the good parts' by one
     frame-wide gain and turn (None: the shipped recipe, ``model.draem.variation.shipped_alignment``). ``clusters``:
     how many groups of good parts, by appearance, each part is judged within (0: none; None: the shipped recipe,
-    ``model.draem.variation.APPEARANCE_CLUSTERS``; fewer when there are few parts). ``global_contrast``: frames
-    whose contrast (log intensity's frame-wide gain) lies beyond the good parts' have the excess taken out (None: the
-    shipped recipe, ``model.draem.variation.GLOBAL_CONTRAST``). The sidecar's
+    ``model.draem.variation.APPEARANCE_CLUSTERS``; fewer when there are few parts). ``global_contrast``: an
+    ``Alignment`` name, how each frame's contrast (log intensity's frame-wide gain) is put onto the good parts' (None:
+    the shipped recipe, ``model.draem.variation.GLOBAL_CONTRAST``). The sidecar's
     frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
     variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
-    from model.draem.config import PolarizationAlignment
+    from model.draem.config import Alignment
     from model.draem.errors import ModelError
     from model.draem.variation import (
         APPEARANCE_CLUSTERS,
@@ -199,13 +199,16 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     check_max_good_flagged(max_good_flagged)
     blur_copies_sigma = BLUR_COPIES_SIGMA if blur_copies_sigma is None else blur_copies_sigma
     clusters = APPEARANCE_CLUSTERS if clusters is None else clusters
-    global_contrast = GLOBAL_CONTRAST if global_contrast is None else global_contrast
     if clusters < 0:
         raise UserError(f"--clusters {clusters}: give a number of clusters, >= 0 (0: none)")
     try:
-        alignment = PolarizationAlignment.of(global_polarization) if global_polarization is not None else None
+        alignment = Alignment.of(global_polarization) if global_polarization is not None else None
     except ModelError as exc:
         raise UserError(f"--global-polarization: {exc}") from None
+    try:
+        contrast = GLOBAL_CONTRAST if global_contrast is None else Alignment.of(global_contrast, "global_contrast")
+    except ModelError as exc:
+        raise UserError(f"--global-contrast: {exc}") from None
     if not (math.isfinite(blur_copies_sigma) and blur_copies_sigma >= 0):
         raise UserError(f"--blur-copies {blur_copies_sigma}: give a blur in input px, >= 0 (0: no copies)")
     if fit_parts is not None and fit_parts < MIN_FIT_PARTS:
@@ -232,24 +235,25 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     try:
         det = add_variation(networks, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma,
-                            global_polarization=alignment, clusters=clusters, global_contrast=global_contrast)
+                            global_polarization=alignment, clusters=clusters, global_contrast=contrast)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
         "blur_copies_sigma": blur_copies_sigma, "global_polarization": alignment.value,
-        "clusters": det.variation.clusters, "contrast_range": det.variation.contrast_range.tolist()
-        if det.variation.aligns_contrast else None},
+        "clusters": det.variation.clusters, "global_contrast": contrast.value,
+        "contrast_range": det.variation.contrast_range.tolist() if det.variation.aligns_contrast else None},
         StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
     decides = "" if decision == "combined" else f" (decision: {decision} alone)"
     copies = f" and a blurred copy of each (up to {blur_copies_sigma:g} px)" if blur_copies_sigma else ""
-    copies += {PolarizationAlignment.MEAN: ", each frame's polarization aligned to theirs",
-               PolarizationAlignment.RANGE: ", each frame's polarization aligned where beyond theirs",
+    copies += {Alignment.MEAN: ", each frame's polarization aligned to theirs",
+               Alignment.RANGE: ", each frame's polarization aligned where beyond theirs",
                }.get(alignment, "")
     copies += f", judged within {det.variation.clusters} clusters by appearance" if det.variation.clusters else ""
-    copies += ", each frame's contrast aligned where beyond theirs" if det.variation.aligns_contrast else ""
+    copies += {Alignment.MEAN: ", each frame's contrast aligned to theirs",
+               Alignment.RANGE: ", each frame's contrast aligned where beyond theirs"}.get(contrast, "")
     return (f"{out}: variation model fitted on {len(tr.index)} good parts{copies}{decides}; threshold "
             f"{choice.threshold:.4g} ({choice.rule}); on {len(labels)} val parts it flags "
             f"{choice.flagged_good_fraction:.1%} of good parts{detected}; "

@@ -102,12 +102,13 @@ PRESETS: dict[str, Preset] = {
 DECISIONS = ("combined", "variation", "residual")
 
 
-class PolarizationAlignment(StrEnum):
-    """How a fit treats the polarization of the whole frame (``VariationModel.align_polarization``): ``OFF`` reads it
-    as it is; ``MEAN`` puts every frame's onto the good parts' mean by one frame-wide gain and turn; ``RANGE`` does so
-    only for the part of that gain and turn beyond what the fitted good parts showed, so a frame like theirs is
-    judged as without alignment (to float rounding). The value is the model file's ``global_polarization`` buffer's
-    index."""
+class Alignment(StrEnum):
+    """How a fit treats a frame-wide factor: the polarization's gain and turn (``VariationModel.align_polarization``,
+    the model file's ``global_polarization`` buffer holds the mode's index) or the log intensity's contrast gain
+    (``VariationModel.align_contrast``, read from its ``contrast_range`` buffer). ``OFF`` reads the frame as it is;
+    ``MEAN`` puts every frame (the fitted good parts too) onto the good parts' mean by the factor; ``RANGE`` takes out
+    only the part of the factor beyond what the fitted good parts showed, so a frame like theirs is judged as without
+    alignment (to float rounding)."""
 
     OFF = "off"
     MEAN = "mean"
@@ -115,19 +116,20 @@ class PolarizationAlignment(StrEnum):
 
     @property
     def code(self) -> float:
-        """The buffer's value: 0 off, 1 mean, 2 range."""
-        return float(list(PolarizationAlignment).index(self))
+        """The ``global_polarization`` buffer's value: 0 off, 1 mean, 2 range."""
+        return float(list(Alignment).index(self))
 
     @classmethod
-    def of(cls, value: PolarizationAlignment | str | bool) -> PolarizationAlignment:
-        """A mode from its name, or from the boolean of files and calls before ``RANGE`` (True: ``MEAN``)."""
+    def of(cls, value: Alignment | str | bool, name: str = "global_polarization") -> Alignment:
+        """A mode from its name, or from the boolean of files and calls before ``RANGE`` (True: ``MEAN``); a
+        ModelError naming ``name`` (the setting) for anything else."""
         if isinstance(value, bool):
             return cls.MEAN if value else cls.OFF
         try:
             return cls(value)
         except ValueError:
             names = ", ".join(m.value for m in cls)
-            raise ModelError(f"global_polarization must be one of {names}, got {value!r}") from None
+            raise ModelError(f"{name} must be one of {names}, got {value!r}") from None
 
 
 @dataclass(frozen=True)

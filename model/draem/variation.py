@@ -67,11 +67,12 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               good parts rejected 46 % -> 50 % (paired bootstrap SE 2.1), at 5 % 53 % -> 62 % (SE 2.7), image
               AUROC 0.813 -> 0.830 (SE 0.010)
     contrast  (fitted with ``global_contrast``; files before 2026-11-28 have none) the log intensity feature divided
-              by the part of the frame's contrast gain that lies beyond the good parts' range: c, the least-squares
-              factor that maps the good parts' mean feature onto the frame's over the judged pixels. A camera's tone
-              response that is a power of I (a gamma g: I -> I^g) multiplies log I, and so the feature (log I minus
-              its median), by g; exposure and gain, a factor on I, the median takes out. A frame within the range
-              is judged as it is; a defect changes a place, not the part's contrast
+              by the frame's contrast gain c, the least-squares factor that maps the good parts' mean feature onto
+              the frame's over the judged pixels: ``MEAN`` all of it (the fitted good parts' too, so their mean is
+              that of parts of one contrast), ``RANGE`` only the part beyond the good parts' range, so a frame
+              within it is judged as it is. A camera's tone response that is a power of I (a gamma g: I -> I^g)
+              multiplies log I, and so the feature (log I minus its median), by g; exposure and gain, a factor on
+              I, the median takes out. A defect changes a place, not the part's contrast
     clusters  (``clusters`` >= 2; none in files before 2026-11-28) the residual after the components, judged against
               the good parts most like the frame, not against all of them: the fit groups its good parts by their
               components' coefficients (k-means, ``model.draem.appearance_clusters``) and keeps each group's mean
@@ -100,7 +101,7 @@ import torch
 from torch import nn
 
 from . import appearance_clusters
-from .config import PolarizationAlignment
+from .config import Alignment
 from .errors import ModelError
 from .frame_checks import FRAME_CHECKS
 from .shifts import Channels, blurred_copies
@@ -119,7 +120,7 @@ A fit keeps at most one per 20 parts of the two thirds each fold fits on (``FOLD
 keep all 10, ``station adapt`` on 50 line parts 1 or 2. Components fitted on too few parts follow those parts'
 noise, and new good parts then score high."""
 
-GLOBAL_POLARIZATION = PolarizationAlignment.RANGE
+GLOBAL_POLARIZATION = Alignment.RANGE
 """The shipped recipe's ``global_polarization`` (``station variation --global-polarization``'s default): how a new
 fit puts each frame's polarization onto the good parts' by one frame-wide gain and turn
 (``VariationModel.align_polarization``). ``RANGE``, by rule 38 (docs/results/2026-11-28-polarization-range.md,
@@ -132,10 +133,10 @@ better but cost dents up to 0.027 on one set's renders: it also takes out the go
 ``MEAN`` lost most, with and without the dent's pixels it differs in the third decimal)."""
 
 
-def shipped_alignment(priors: tuple[str, ...] | list[str]) -> PolarizationAlignment:
+def shipped_alignment(priors: tuple[str, ...] | list[str]) -> Alignment:
     """The shipped recipe's alignment for a model reading ``priors``: ``GLOBAL_POLARIZATION`` when they include DoLP
     and AoLP, ``OFF`` otherwise (there is no polarization to align)."""
-    return GLOBAL_POLARIZATION if {"dolp", "aolp"} <= set(priors) else PolarizationAlignment.OFF
+    return GLOBAL_POLARIZATION if {"dolp", "aolp"} <= set(priors) else Alignment.OFF
 
 
 BLUR_COPIES_SIGMA = 0.0
@@ -214,11 +215,13 @@ CONTRAST_GAIN_RANGE = (0.25, 4.0)
 ``contrast_range``: a model fitted without the contrast range judges every frame's contrast as it is (any gain lies
 within it, so nothing is divided)."""
 
-GLOBAL_CONTRAST = False
-"""The shipped recipe's contrast range (``station variation --contrast-range``; module docstring: contrast): off.
-Rule 41 (docs/results/2026-11-28-contrast-range.md, held-out seed 1140): the good training parts' own gains span
-0.69-1.28 (the line's lights and exposure), so through a gamma of 1.25 most good parts stay within the range: 25.6 %
-of them were rejected at the own threshold against 29.7 % without it; every other frame scored as without it."""
+GLOBAL_CONTRAST = Alignment.OFF
+"""The shipped recipe's ``global_contrast`` (``station variation --global-contrast``; module docstring: contrast):
+off. ``RANGE``, rule 41 (docs/results/2026-11-28-contrast-range.md, held-out seed 1140): the good training parts'
+own gains span 0.69-1.28 (the line's lights and exposure), so through a gamma of 1.25 most good parts stay within
+the range: 25.6 % of them were rejected at the own threshold against 29.7 % without it; every other frame scored as
+without it."""
+
 
 READ_DOLP = False
 """Whether a new fit reads DoLP as a feature of its own (module docstring: features). DoLP is the length of the
@@ -297,7 +300,7 @@ class VariationModel(nn.Module):
     a feature of its own, 0.0 when it is read only through AoLP's Stokes components (``READ_DOLP``;
     ``LATER_BUFFERS``); ``blur_copies_sigma`` the largest blur of the good parts' blurred copies it was fitted with
     (input px, 0: none; ``fit``), which a refit keeps; ``global_polarization`` how each registered frame's
-    polarization is first put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment.code``;
+    polarization is first put onto the good parts' by one frame-wide gain and turn (``Alignment.code``;
     ``align_polarization``, ``fit``), which a refit keeps; ``polarization_range`` (4,) the gain's and turn's range
     that ``align_polarization`` leaves alone (lowest and highest gain, lowest and highest turn in radians of AoLP;
     ``NO_POLARIZATION_RANGE`` unless fitted with ``RANGE``); ``cluster_centres`` (M, COMPONENTS) and
@@ -385,12 +388,12 @@ class VariationModel(nn.Module):
     @property
     def aligns_polarization(self) -> bool:
         """Whether each frame's polarization is put onto the good parts' first (``align_polarization``)."""
-        return self.polarization_alignment is not PolarizationAlignment.OFF
+        return self.polarization_alignment is not Alignment.OFF
 
     @property
-    def polarization_alignment(self) -> PolarizationAlignment:
-        """The fit's ``PolarizationAlignment`` (``global_polarization`` buffer)."""
-        modes = list(PolarizationAlignment)
+    def polarization_alignment(self) -> Alignment:
+        """The fit's ``Alignment`` (``global_polarization`` buffer)."""
+        modes = list(Alignment)
         return modes[min(max(round(float(self.global_polarization)), 0), len(modes) - 1)]
 
     def polarization_factor(self, f: np.ndarray, reference: np.ndarray, where: np.ndarray) -> complex:
@@ -441,16 +444,25 @@ class VariationModel(nn.Module):
 
     @property
     def aligns_contrast(self) -> bool:
-        """Whether frames beyond the good parts' contrast are aligned (``contrast_range`` fitted)."""
-        return tuple(float(v) for v in self.contrast_range) != CONTRAST_GAIN_RANGE
+        """Whether frames' contrast is aligned (``contrast_alignment`` not ``OFF``)."""
+        return self.contrast_alignment is not Alignment.OFF
 
-    def contrast_factor(self, f: np.ndarray, where: np.ndarray) -> float:
-        """Registered features ``f`` (C, H, W) -> the frame-wide gain c that best maps the good parts' mean log
-        intensity feature onto the frame's over the pixels ``where`` (H, W), by least squares, clamped to
-        ``CONTRAST_GAIN_RANGE``; 1 without pixels or without a finite, positive fit (``align_contrast``)."""
+    @property
+    def contrast_alignment(self) -> Alignment:
+        """The fit's contrast ``Alignment``, from its ``contrast_range``: ``CONTRAST_GAIN_RANGE`` (nothing divided)
+        ``OFF``, (1, 1) (all of the gain divided) ``MEAN``, a fitted range ``RANGE``."""
+        lo_hi = tuple(float(v) for v in self.contrast_range)
+        return {CONTRAST_GAIN_RANGE: Alignment.OFF, (1.0, 1.0): Alignment.MEAN}.get(lo_hi, Alignment.RANGE)
+
+    def contrast_factor(self, f: np.ndarray, where: np.ndarray, reference: np.ndarray | None = None) -> float:
+        """Registered features ``f`` (C, H, W) -> the frame-wide gain c that best maps ``reference`` (H, W; None:
+        the good parts' mean log intensity feature) onto the frame's log intensity feature over the pixels
+        ``where`` (H, W), by least squares, clamped to ``CONTRAST_GAIN_RANGE``; 1 without pixels or without a
+        finite, positive fit (``align_contrast``)."""
         if not where.any():
             return 1.0
-        m, q = self.mean.numpy()[self.intensity][where], f[self.intensity][where]
+        m = (self.mean.numpy()[self.intensity] if reference is None else reference)[where]
+        q = f[self.intensity][where]
         power = float(np.sum(m.astype(np.float64) ** 2))
         c = float(np.sum(q.astype(np.float64) * m)) / power if power > 1e-12 else 1.0
         if not math.isfinite(c) or c <= 0:
@@ -460,8 +472,8 @@ class VariationModel(nn.Module):
 
     def align_contrast(self, f: np.ndarray, where: np.ndarray) -> np.ndarray:
         """Registered features ``f`` (C, H, W) with their log intensity feature divided by the part of the frame-wide
-        contrast gain beyond ``contrast_range`` (module docstring: contrast); ``f`` itself when the gain lies within
-        it (always, with ``CONTRAST_GAIN_RANGE``: then not even measured)."""
+        contrast gain beyond ``contrast_range`` (module docstring: contrast; (1, 1), ``MEAN``: all of it); ``f`` itself
+        when the gain lies within it (always, with ``CONTRAST_GAIN_RANGE``: then not even measured)."""
         if not self.aligns_contrast:
             return f
         c = self.contrast_factor(f, where)
@@ -516,8 +528,8 @@ class VariationModel(nn.Module):
     @torch.no_grad()
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
             keep_reference: bool = False, blur_copies_sigma: float | None = None,
-            global_polarization: PolarizationAlignment | str | bool | None = None,
-            clusters: int | None = None, global_contrast: bool | None = None) -> np.ndarray:
+            global_polarization: Alignment | str | bool | None = None,
+            clusters: int | None = None, global_contrast: Alignment | str | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -530,7 +542,7 @@ class VariationModel(nn.Module):
         applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask, and left out
         with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts' only. A softer
         lens or another renderer's pixel filter is then among what good parts look like
-        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (a ``PolarizationAlignment``; None: the model's own, so a
+        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (a ``Alignment``; None: the model's own, so a
         refit keeps it): ``MEAN`` puts each registered part's polarization onto the parts' mean by one frame-wide
         gain and turn before anything is measured (``align_polarization``: twice, the mean taken again after the
         first), and so every frame it judges; ``RANGE`` fits as ``OFF`` and then takes the lowest and highest gain
@@ -541,9 +553,12 @@ class VariationModel(nn.Module):
         (``model.draem.appearance_clusters.group``: fewer clusters when there are few parts), each cluster's mean
         residual and scale kept, and the position calibration measured again on each part's clustered z, from its
         cluster without itself; the returned maps are those z (module docstring: clusters). ``global_contrast``
-        (None: the model's own, so a refit keeps it): the lowest and highest contrast gain of the good parts (not
-        their copies) as ``zmaps`` measures it go into ``contrast_range`` (before the clusters), so only frames beyond
-        them are aligned (``align_contrast``); otherwise ``CONTRAST_GAIN_RANGE``, which aligns nothing."""
+        (an ``Alignment``; None: the model's own, so a refit keeps it): ``MEAN`` divides each registered part's
+        log intensity feature by its contrast gain against the parts' mean before anything is measured (twice, the
+        mean taken again after the first), and so every frame it judges (``contrast_range`` (1, 1)); ``RANGE`` fits
+        as ``OFF`` and then takes the lowest and highest contrast gain of the parts (not their copies) as ``zmaps``
+        measures it into ``contrast_range`` (before the clusters), so only frames beyond them are aligned
+        (``align_contrast``); ``OFF`` keeps ``CONTRAST_GAIN_RANGE``, which aligns nothing."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -555,11 +570,12 @@ class VariationModel(nn.Module):
         wanted_clusters = self.clusters if clusters is None else int(clusters)
         if wanted_clusters < 0:
             raise ModelError(f"clusters must be >= 0, got {wanted_clusters}")
-        contrast = self.aligns_contrast if global_contrast is None else bool(global_contrast)
+        contrast = (self.contrast_alignment if global_contrast is None
+                    else Alignment.of(global_contrast, "global_contrast"))
         self.blur_copies_sigma.fill_(sigma)
         mode = (self.polarization_alignment if global_polarization is None
-                else PolarizationAlignment.of(global_polarization))
-        if mode is not PolarizationAlignment.OFF and (self.dolp is None or self.aolp is None):
+                else Alignment.of(global_polarization))
+        if mode is not Alignment.OFF and (self.dolp is None or self.aolp is None):
             raise ModelError("global_polarization needs the DoLP and AoLP priors")
         self.global_polarization.fill_(mode.code)
         self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
@@ -588,9 +604,13 @@ class VariationModel(nn.Module):
         if keep_reference:
             region = self.region.numpy()
         stack = stack[:, :-1]
-        for _ in range(2 if mode is PolarizationAlignment.MEAN else 0):
+        for _ in range(2 if mode is Alignment.MEAN else 0):
             mean_features = stack.mean(0)
             stack = np.stack([self.align_polarization(f, mean_features, region) for f in stack])
+        for _ in range(2 if contrast is Alignment.MEAN else 0):
+            mean_intensity = stack[:, self.intensity].mean(0)
+            stack[:, self.intensity] /= np.array([self.contrast_factor(f, region, mean_intensity) for f in stack],
+                                                 np.float32)[:, None, None]
         spread = 1.4826 * np.median(np.abs(stack - np.median(stack, 0))[:, :, region], axis=(0, 2))
         channel_scale = np.maximum(spread, MIN_SCALE).astype(np.float32)
         u = stack / channel_scale[:, None, None] * region
@@ -616,9 +636,11 @@ class VariationModel(nn.Module):
                             ("window_spread", spread)):
             getattr(self, name).copy_(torch.from_numpy(np.asarray(value, np.float32)))
         self.region.copy_(torch.from_numpy(region))
-        if mode is PolarizationAlignment.RANGE:
+        if mode is Alignment.RANGE:
             self.polarization_range.copy_(self._polarization_range(xs[:n_parts]))
-        if contrast:
+        if contrast is Alignment.MEAN:
+            self.contrast_range.fill_(1.0)
+        elif contrast is Alignment.RANGE:
             self.contrast_range.copy_(self._contrast_range(xs[:n_parts]))
         if wanted_clusters >= 2:
             clustered = self._fit_clusters(xs[:n_parts], wanted_clusters, floor_quantile)

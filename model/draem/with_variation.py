@@ -9,7 +9,7 @@ from collections.abc import Callable
 import numpy as np
 import torch
 
-from .config import PolarizationAlignment
+from .config import Alignment
 from .detector import Detector
 from .errors import ModelError
 from .residual import train_member
@@ -20,18 +20,18 @@ from .variation import network_score
 def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
                   val_good: torch.Tensor, batch: int = 16, decision: str = "combined",
                   blur_copies_sigma: float = 0.0,
-                  global_polarization: PolarizationAlignment | str | bool = PolarizationAlignment.OFF,
-                  clusters: int = 0, global_contrast: bool = False) -> Detector:
+                  global_polarization: Alignment | str | bool = Alignment.OFF,
+                  clusters: int = 0, global_contrast: Alignment | str = Alignment.OFF) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
     training parts: a fitted model scores its own parts low). ``decision``: ``ModelConfig.decision`` of the copy
     (which finding rejects; calibration and member scores do not depend on it). ``blur_copies_sigma``: the fit also
     sees blurred copies of the good parts (``VariationModel.fit``; 0: none). ``global_polarization``: how each
-    frame's polarization is put onto the good parts' by one frame-wide gain and turn (``PolarizationAlignment``,
+    frame's polarization is put onto the good parts' by one frame-wide gain and turn (``Alignment``,
     ``VariationModel.fit``). ``clusters``: how many groups of good parts, by appearance, each part is judged within
-    (``VariationModel.fit``; 0: none). ``global_contrast``: frames beyond the good parts' contrast are aligned
-    (``VariationModel.fit``)."""
+    (``VariationModel.fit``; 0: none). ``global_contrast``: how each frame's contrast is put onto the good
+    parts' (``Alignment``, ``VariationModel.fit``)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:

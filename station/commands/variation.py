@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import argparse
 
-from model.draem.config import DECISIONS, PolarizationAlignment
+from model.draem.config import DECISIONS, Alignment
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -34,7 +34,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "or another renderer's pixel filter is among what good parts look like (default: the shipped "
                         "recipe, model.draem.variation.BLUR_COPIES_SIGMA; 0: no copies)")
     p.add_argument("--global-polarization", nargs="?", const="mean", default=None, metavar="MODE",
-                   choices=[m.value for m in PolarizationAlignment],
+                   choices=[m.value for m in Alignment],
                    help="put each frame's polarization onto the good parts' by one frame-wide DoLP gain and AoLP turn "
                         "before comparing (another renderer's or camera's polarization strength, a polarizer grid "
                         "mounted turned): mean (the default MODE) for every frame, range only for the gain and turn "
@@ -46,12 +46,16 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="group the good parts by appearance into up to N clusters (k-means on the appearance "
                         "components' coefficients, at most one per 40 parts) and judge each part against its own "
                         "cluster (default: the shipped recipe, model.draem.variation.APPEARANCE_CLUSTERS; 0: none)")
-    p.add_argument("--contrast-range", dest="global_contrast", action="store_const", const=True, default=None,
-                   help="record the good parts' range of frame-wide contrast (the gain on log intensity a camera's "
-                        "gamma puts there) and take out of each frame only the part beyond it (default: the shipped "
-                        "recipe, model.draem.variation.GLOBAL_CONTRAST: off)")
-    p.add_argument("--no-contrast-range", dest="global_contrast", action="store_const", const=False,
-                   help="judge every frame's contrast as it is")
+    p.add_argument("--global-contrast", nargs="?", const="mean", default=None, metavar="MODE",
+                   choices=[m.value for m in Alignment],
+                   help="divide each frame's log intensity by its frame-wide contrast gain against the good parts' "
+                        "(the gain a camera's gamma puts there): mean (the default MODE) all of it, the fitted good "
+                        "parts' too; range only the part beyond the good parts' own range; off not at all (default: "
+                        "the shipped recipe, model.draem.variation.GLOBAL_CONTRAST: off)")
+    p.add_argument("--contrast-range", dest="global_contrast", action="store_const", const="range",
+                   help="the same as --global-contrast range")
+    p.add_argument("--no-global-contrast", dest="global_contrast", action="store_const", const="off",
+                   help="the same as --global-contrast off")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")

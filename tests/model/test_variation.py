@@ -12,7 +12,7 @@ import pytest
 import torch
 
 from model.draem.checkpoint import load_checkpoint, save_checkpoint
-from model.draem.config import ModelConfig, PolarizationAlignment
+from model.draem.config import Alignment, ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
 from model.draem.variation import LATER_BUFFERS, SQUASH_CENTRE, VariationModel, combined_score, squash
@@ -341,7 +341,7 @@ def test_a_fit_aligning_only_polarization_beyond_the_good_parts_range_judges_the
     plain, ranged = (VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2) for _ in range(2))
     plain.fit(x, x[:, 0] > 0.15)
     ranged.fit(x, x[:, 0] > 0.15, global_polarization="range")
-    assert ranged.polarization_alignment is PolarizationAlignment.RANGE and ranged.aligns_polarization
+    assert ranged.polarization_alignment is Alignment.RANGE and ranged.aligns_polarization
     g_lo, g_hi, d_lo, d_hi = ranged.polarization_range.tolist()
     assert 0.8 < g_lo < 0.9 and 1.1 < g_hi < 1.2 and -0.02 < d_lo <= d_hi < 0.02  # the parts' gains; no turn
     new = varied(20, 1)
@@ -359,7 +359,7 @@ def test_a_fit_aligning_only_polarization_beyond_the_good_parts_range_judges_the
         bad = torch.from_numpy(shift(name, varied(20, 2, defect=True).numpy(), ch))
         assert float(ranged.zmaps(bad)[1].min()) > 2 * like, name
     ranged.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the mode and measures its parts' range
-    assert ranged.polarization_alignment is PolarizationAlignment.RANGE
+    assert ranged.polarization_alignment is Alignment.RANGE
     assert ranged.polarization_range[1] <= g_hi
     with pytest.raises(ModelError, match="global_polarization must be one of off, mean, range"):
         plain.fit(x, global_polarization="both")
@@ -434,7 +434,7 @@ def test_a_fit_with_the_contrast_range_judges_a_gamma_cameras_good_parts_as_good
     x, ch = parts(40, 0), Channels(0, 1, 2)
     plain, ranged = (VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2) for _ in range(2))
     plain.fit(x, x[:, 0] > 0.15)
-    ranged.fit(x, x[:, 0] > 0.15, global_contrast=True)
+    ranged.fit(x, x[:, 0] > 0.15, global_contrast="range")
     lo, hi = (float(v) for v in ranged.contrast_range)
     assert ranged.aligns_contrast and not plain.aligns_contrast and 0.8 < lo < 1.0 < hi < 1.2
 
@@ -449,3 +449,29 @@ def test_a_fit_with_the_contrast_range_judges_a_gamma_cameras_good_parts_as_good
         assert float(scores(ranged, name, defect=True).min()) > 2 * float(scores(ranged, name).max()), name
     ranged.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the recipe and measures its own parts
     assert ranged.aligns_contrast
+
+
+def test_a_fit_that_divides_every_frames_contrast_judges_a_gamma_cameras_good_parts_as_good_and_defects_as_defects(
+        ) -> None:
+    """``global_contrast`` ``MEAN``: every frame's log intensity feature, the fitted good parts' too, is divided by
+    its contrast gain against the good parts' mean, so good parts through a gamma score as good parts, and defects
+    still stand out; the file records it as a ``contrast_range`` of (1, 1), and a refit keeps it."""
+    from model.draem.shifts import Channels, shift
+
+    x, ch = parts(40, 0), Channels(0, 1, 2)
+    vm = VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2)
+    vm.fit(x, x[:, 0] > 0.15, global_contrast="mean")
+    assert vm.contrast_alignment is Alignment.MEAN and vm.contrast_range.tolist() == [1.0, 1.0]
+
+    def scores(name: str, defect: bool = False) -> torch.Tensor:
+        return vm.zmaps(torch.from_numpy(shift(name, parts(20, 2 if defect else 1, defect).numpy(), ch)))[1]
+
+    good = float(scores("none").max())
+    assert float(scores("none", defect=True).min()) > 1.5 * good
+    for name in ("gamma 1.25", "gamma 0.8"):
+        assert float(scores(name).max()) < 1.2 * good + 0.2, name
+        assert float(scores(name, defect=True).min()) > 1.5 * float(scores(name).max()), name
+    vm.fit(x[:20], keep_reference=True)
+    assert vm.contrast_alignment is Alignment.MEAN
+    with pytest.raises(ModelError, match="global_contrast must be one of"):
+        vm.fit(x, global_contrast="all")

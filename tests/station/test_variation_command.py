@@ -134,21 +134,21 @@ def test_global_polarization_takes_a_mode_records_it_and_refuses_an_unknown_one(
     ``--no-global-polarization`` ``off``; an unknown mode is one line naming the flag; a model without DoLP and AoLP
     is fitted plain by default."""
     from model.draem.checkpoint import load_checkpoint
-    from model.draem.config import PolarizationAlignment
+    from model.draem.config import Alignment
 
     data, model = trained(tmp_path, capsys)
-    for flags, mode in (([], PolarizationAlignment.RANGE),  # the shipped recipe
-                        (["--global-polarization", "range"], PolarizationAlignment.RANGE),
-                        (["--global-polarization"], PolarizationAlignment.MEAN),
-                        (["--no-global-polarization"], PolarizationAlignment.OFF)):
+    for flags, mode in (([], Alignment.RANGE),  # the shipped recipe
+                        (["--global-polarization", "range"], Alignment.RANGE),
+                        (["--global-polarization"], Alignment.MEAN),
+                        (["--no-global-polarization"], Alignment.OFF)):
         out = tmp_path / f"{mode.value}{len(flags)}"
         assert main(["variation", "--model", str(model), "--data", str(data), *flags, "--out", str(out)]) == 0
         said = capsys.readouterr().out
-        assert ("aligned where beyond theirs" in said) == (mode is PolarizationAlignment.RANGE)
+        assert ("aligned where beyond theirs" in said) == (mode is Alignment.RANGE)
         assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["global_polarization"] == mode
         vm = load_checkpoint(out).detector.variation
         assert vm is not None and vm.polarization_alignment is mode
-        assert (vm.polarization_range.tolist() == [1.0, 1.0, 0.0, 0.0]) == (mode is not PolarizationAlignment.RANGE)
+        assert (vm.polarization_range.tolist() == [1.0, 1.0, 0.0, 0.0]) == (mode is not Alignment.RANGE)
     with pytest.raises(SystemExit, match="2"):  # argparse's refusal
         main(["variation", "--model", str(model), "--data", str(data), "--global-polarization", "both",
               "--out", str(tmp_path / "w")])
@@ -158,14 +158,15 @@ def test_global_polarization_takes_a_mode_records_it_and_refuses_an_unknown_one(
     data, model = trained(tmp_path / "i", capsys, priors="intensity")
     assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(tmp_path / "i" / "v")]) == 0
     vm = load_checkpoint(tmp_path / "i" / "v").detector.variation
-    assert vm is not None and vm.polarization_alignment is PolarizationAlignment.OFF
+    assert vm is not None and vm.polarization_alignment is Alignment.OFF
 
 
 def test_clusters_and_the_contrast_range_are_recorded_as_fitted_and_a_negative_count_is_refused(
         tmp_path: Path, capsys) -> None:
     """``--clusters N``: the sidecar records how many clusters the fit kept, which is fewer when there are few good
     parts (one per 40; this set's ~30 make none, and the message then claims none); a negative count is one line
-    naming the flag, before any loading. ``--contrast-range``: the sidecar records the good parts' range."""
+    naming the flag, before any loading. ``--contrast-range``: the sidecar records the good parts' range;
+    ``--global-contrast`` (mean): that every frame's contrast is divided out."""
     data, model = trained(tmp_path, capsys)
     out = tmp_path / "c"
     assert main(["variation", "--model", str(model), "--data", str(data), "--clusters", "8", "--out", str(out)]) == 0
@@ -177,3 +178,8 @@ def test_clusters_and_the_contrast_range_are_recorded_as_fitted_and_a_negative_c
     assert "contrast aligned where beyond theirs" in capsys.readouterr().out
     lo, hi = json.loads((tmp_path / "k.json").read_text())["train"]["variation"]["contrast_range"]
     assert 0.25 < lo <= hi < 4.0
+    assert main(["variation", "--model", str(model), "--data", str(data), "--global-contrast", "--out",
+                 str(tmp_path / "m")]) == 0
+    assert "contrast aligned to theirs" in capsys.readouterr().out
+    fitted = json.loads((tmp_path / "m.json").read_text())["train"]["variation"]
+    assert fitted["global_contrast"] == "mean" and fitted["contrast_range"] == [1.0, 1.0]
