@@ -210,13 +210,14 @@ class Station:
         inspector.slow_priors_ms = SLOW_PRIORS_SHARE * cycle_time_ms
         self.settle_timeout_s = settle_timeout_s
         self.max_frame_delay_ms = frame_delay_limit_ms(max_frame_delay_ms, cycle_time_ms)
+        """Line trigger: a frame exposed later than this after a part's TRIG reached the host (``TransferClock``) is
+        the next part's (the camera missed this part's pulse): this part is rejected and the frame kept for the next;
+        one exposed earlier than this before it is an earlier part's (skipped). Default: the cycle time (such a frame
+        could only make its part late)."""
         if max_frame_delay_ms is None and link.triggered and camera.config.trigger.startswith("line"):
             log.warning("line trigger without [acquisition] max_frame_delay_ms: a pulse the camera misses is caught "
                         "only when parts come more than the cycle time (%.0f ms) apart; set it below the part spacing "
                         "(docs/bring-up.md, step 8)", cycle_time_ms)
-        """Line trigger: a frame exposed later than this after a part's TRIG reached the host (``TransferClock``) is
-        the next part's (the camera missed this part's pulse): this part is rejected and the frame kept for the next.
-        Default: the cycle time (such a frame could only make its part late)."""
         self.drift = drift
         """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
         logged when it starts and stops, kept in every row while it lasts, and shown in the viewer."""
@@ -319,7 +320,10 @@ class Station:
     def _grab_for(self, part: Part) -> Frame:
         """The frame of ``part``: triggered, frames completed before the part could have been imaged are an earlier
         part's (one that arrived after its own part timed out) and are skipped, never judged for this part.
-        Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host.
+        Software trigger: before ``trigger()``; hardware trigger: over a cycle before the TRIG reached the host, line
+        trigger with a PLC: over ``max_frame_delay_ms`` before it (a part's frames lie within that of its TRIG, either
+        side: a frame a part gave up on as too late is not taken by the next part either, which would judge every
+        later part on its predecessor's frames).
         "Completed" is on the host, less any transfer time above the quickest lately (``TransferClock``, from the
         camera's timestamps): a frame held up by a network stall past its grab's timeout, arriving after the next
         part's trigger, was still taken before it.
@@ -336,8 +340,8 @@ class Station:
         if software:
             earliest = time.perf_counter()
             self.camera.trigger()
-        else:
-            earliest = part.t_trigger - self.cycle_time_ms / 1e3
+        else:  # line trigger: the TRIG may reach the host after the pulse, by as much as a frame may come after it
+            earliest = part.t_trigger - (self.max_frame_delay_ms if line else self.cycle_time_ms) / 1e3
         deadline = time.perf_counter() + self.grab_timeout_ms / 1e3
         while True:
             remaining_ms = max(1, int(1e3 * (deadline - time.perf_counter())))

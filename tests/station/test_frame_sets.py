@@ -136,8 +136,10 @@ class PulsedSetCamera(PulsedCamera):
         super().__init__()
         self.config = CameraConfig(trigger="line0", frames_per_part=2)
 
-    def pulse_set(self, label, missed=(), lost=()):
-        """``lost``: pulses whose frame is made (its id spent) but never reaches the host."""
+    def pulse_set(self, label, missed=(), lost=(), late_s=0.0):
+        """``lost``: pulses whose frame is made (its id spent) but never reaches the host; ``late_s``: the sequencer
+        pulses that long after the part's TRIG."""
+        time.sleep(late_s)
         for k in range(2):
             if k not in missed:
                 self.pulse(label, level=BRIGHT if label and k == 0 else DARK, arrives=k not in lost)
@@ -198,3 +200,19 @@ def test_a_set_frame_lost_in_transport_rejects_its_part_and_the_next_set_is_its_
     assert {p: r["decision"] for p, r in rows.items() if p != "P1"} == {"P0": "pass", "P2": "pass", "P3": "reject",
                                                                          "P4": "pass"}
     assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items())
+
+
+def test_a_set_exposed_too_late_for_its_part_is_not_the_next_parts_and_every_later_part_is_judged_on_its_own(
+        tmp_path):
+    """The sequencer pulses P1 90 ms after its TRIG, beyond ``max_frame_delay_ms`` (60): P1 is rejected as missed
+    and its frames held. They were exposed over 100 ms before P2's TRIG, beyond the same tolerance the other way: not
+    P2's either (skipped as an earlier part's). Taken for P2, every later part would be judged on its predecessor's
+    frames: a defective part passed on a good one's."""
+    labels = [0, 1, 0, 1, 0, 0]
+    rows, link = run_line_sets(tmp_path, labels, 0.1, 200, odd={1: {"late_s": 0.09}})
+    assert len(rows) == len(labels)
+    assert rows["P1"]["decision"] == "reject" and "missed its trigger pulse" in rows["P1"]["reason"]
+    judged = {p: r["decision"] for p, r in rows.items() if p != "P1"}
+    assert judged == {f"P{i}": "reject" if label else "pass" for i, label in enumerate(labels) if i != 1}
+    assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items() if p != "P1")
+    assert dict(link.reports) == {p: r["decision"] for p, r in rows.items()}
