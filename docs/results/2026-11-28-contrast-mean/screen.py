@@ -1,10 +1,11 @@
 """Screen for rule 42 (validation set only; it decides nothing): fits that divide every frame's contrast gain out,
-their own good parts' too (``station variation --global-contrast mean``), without clusters (M) and with 8 (ML),
-against the shipped file (C) and rule 40's clustered fit (L), on the validation set's parts as shot and shifted:
-image AUROC, and good parts rejected at the threshold that rejects 5 % of the unshifted good parts. "L, scale >= 1" and
-"ML, scale >= 1": the clustered files with each cluster's residual scale floored at the global one (1 in these
-units) at test time only, so a cluster can loosen the judgement but never tighten it.
-Usage (repository root, after the fits in models.sh): python docs/results/2026-11-28-contrast-mean/screen.py"""
+their own good parts' too (``station variation --global-contrast mean``), without clusters (M) and with 8 (ML), and
+both again with blurred copies of the good parts (``--blur-copies 1.5``: MB, MLB), against the shipped file (C) and
+rule 40's clustered fit (L), on the validation set's parts as shot and shifted: image AUROC, and good parts rejected
+at the threshold that rejects 5 % of the unshifted good parts. "L, scale >= 1" and "ML, scale >= 1": the clustered
+files with each cluster's residual scale floored at the global one (1 in these units) at test time only, so a
+cluster can loosen the judgement but never tighten it. Usage (repository root, after the fits in models.sh):
+python docs/results/2026-11-28-contrast-mean/screen.py"""
 
 from __future__ import annotations
 
@@ -16,8 +17,9 @@ from model.draem.checkpoint import load_checkpoint
 from model.draem.shifts import Channels, shift
 from station.evaluation import model_split
 
-MODELS = {"C": "model/weights/default", "L": "runs/r40/L", "M": "runs/r42/M", "ML": "runs/r42/ML"}
-SHIFTS = ("none", "gamma 1.25", "gamma 0.8", "dolp x0.5", "blur 1 px")
+MODELS = {"C": "model/weights/default", "L": "runs/r40/L", "M": "runs/r42/M", "ML": "runs/r42/ML", "MB": "runs/r42/MB",
+          "MLB": "runs/r42/MLB"}
+SHIFTS = ("none", "gamma 1.25", "gamma 0.8", "dolp x0.5", "blur 1 px", "blur 0.5 px", "rotate 5 deg")
 
 
 def main() -> None:
