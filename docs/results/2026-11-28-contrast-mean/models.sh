@@ -28,3 +28,7 @@ done
 [ -n "$1" ] && exit 0
 $S compare --paired $OUT/eval-C-1141 $OUT/eval-X-1141 --out $OUT/paired-1141
 for set in G E R; do $S compare --paired $R/eval-C-$set $OUT/eval-X-$set --out $OUT/paired-$set; done
+# (e): both files in one run, the cores otherwise idle
+[ -f $OUT/bench-X/pipeline.json ] || $S bench pipeline --data data/line-panel-heldout-1141 \
+    --models model/weights/default,runs/r42/MLB --methods bilinear --precisions fp32 --presence on --parts 150 \
+    --out $OUT/bench-X
