@@ -42,17 +42,23 @@ def test_station_train_defaults_are_the_networks_make_model_trains() -> None:
 
 
 def test_the_shipped_variation_fit_is_station_variations_default() -> None:
-    """The shipped model's variation model was fitted with the blurred copies `station variation` (and so `make
-    model`) makes by default: none (a checkpoint without the record was fitted before the option, without them)."""
+    """The shipped model's variation model was fitted as `station variation` (and so `make model`) fits by default:
+    its blurred copies, clusters and contrast alignment (a checkpoint without a record was fitted before the option,
+    without it), read from the sidecar and from the file itself."""
     import json
 
-    from model.draem.variation import BLUR_COPIES_SIGMA
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.variation import APPEARANCE_CLUSTERS, BLUR_COPIES_SIGMA, GLOBAL_CONTRAST
     from station.cli import build_parser
 
     meta = json.loads((ROOT / "model" / "weights" / "default.json").read_text())
-    assert meta["train"]["variation"].get("blur_copies_sigma", 0.0) == BLUR_COPIES_SIGMA
+    fit = meta["train"]["variation"]
+    assert fit.get("blur_copies_sigma", 0.0) == BLUR_COPIES_SIGMA
+    assert fit.get("clusters", 0) == APPEARANCE_CLUSTERS and fit.get("global_contrast", "off") == GLOBAL_CONTRAST
+    vm = load_checkpoint(ROOT / "model" / "weights" / "default").detector.variation
+    assert vm.clusters == APPEARANCE_CLUSTERS and vm.contrast_alignment is GLOBAL_CONTRAST
     args = build_parser().parse_args(["variation", "--model", "m", "--data", "d", "--out", "o"])
-    assert args.blur_copies is None  # None: BLUR_COPIES_SIGMA (station.evaluation.fit_variation)
+    assert args.blur_copies is None and args.clusters is None and args.global_contrast is None  # the constants
 
 
 def test_the_demo_shows_the_line_make_model_renders() -> None:
