@@ -69,11 +69,11 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
     contrast  (fitted with ``global_contrast``; files before 2026-11-28 have none) the log intensity feature divided
               by the frame's contrast gain c, the factor that maps the good parts' mean feature onto the frame's
               over the judged pixels (trimmed least squares, ``robust_gain``, since rule 42: a defect's place does
-              not move it): ``MEAN`` all of it (the fitted good parts' too, so their mean is that of parts of one
-              contrast), ``RANGE`` only the part beyond the good parts' range, so a frame within it is judged as it
-              is. A camera's tone response that is a power of I (a gamma g: I -> I^g) multiplies log I, and so the
-              feature (log I minus its median), by g; exposure and gain, a factor on I, the median takes out. A
-              defect changes a place, not the part's contrast
+              not move it): ``MEAN`` all of it (the fitted good parts' too, so their mean is
+              that of parts of one contrast), ``RANGE`` only the part beyond the good parts' range, so a frame
+              within it is judged as it is. A camera's tone response that is a power of I (a gamma g: I -> I^g)
+              multiplies log I, and so the feature (log I minus its median), by g; exposure and gain, a factor on
+              I, the median takes out. A defect changes a place, not the part's contrast
     clusters  (``clusters`` >= 2; none in files before 2026-11-28) the residual after the components, judged against
               the good parts most like the frame, not against all of them: the fit groups its good parts by their
               components' coefficients (k-means, ``model.draem.appearance_clusters``) and keeps each group's mean
