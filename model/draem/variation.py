@@ -67,9 +67,8 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               good parts rejected 46 % -> 50 % (paired bootstrap SE 2.1), at 5 % 53 % -> 62 % (SE 2.7), image
               AUROC 0.813 -> 0.830 (SE 0.010)
     contrast  (fitted with ``global_contrast``; files before 2026-11-28 have none) the log intensity feature divided
-              by the frame's contrast gain c, the factor that maps the good parts' mean feature onto the frame's
-              over the judged pixels (trimmed least squares, ``robust_gain``, since rule 42: a defect's place does
-              not move it): ``MEAN`` all of it (the fitted good parts' too, so their mean is
+              by the frame's contrast gain c, the least-squares factor that maps the good parts' mean feature onto
+              the frame's over the judged pixels: ``MEAN`` all of it (the fitted good parts' too, so their mean is
               that of parts of one contrast), ``RANGE`` only the part beyond the good parts' range, so a frame
               within it is judged as it is. A camera's tone response that is a power of I (a gamma g: I -> I^g)
               multiplies log I, and so the feature (log I minus its median), by g; exposure and gain, a factor on
@@ -461,12 +460,14 @@ class VariationModel(nn.Module):
     def contrast_factor(self, f: np.ndarray, where: np.ndarray, reference: np.ndarray | None = None) -> float:
         """Registered features ``f`` (C, H, W) -> the frame-wide gain c that best maps ``reference`` (H, W; None:
         the good parts' mean log intensity feature) onto the frame's log intensity feature over the pixels
-        ``where`` (H, W), by trimmed least squares (``robust_gain``: a defect's place does not move it), clamped to
-        ``CONTRAST_GAIN_RANGE``; 1 without pixels or without a finite, positive fit (``align_contrast``)."""
+        ``where`` (H, W), by least squares, clamped to ``CONTRAST_GAIN_RANGE``; 1 without pixels or without a
+        finite, positive fit (``align_contrast``)."""
         if not where.any():
             return 1.0
         m = (self.mean.numpy()[self.intensity] if reference is None else reference)[where]
-        c = robust_gain(f[self.intensity][where], m)
+        q = f[self.intensity][where]
+        power = float(np.sum(m.astype(np.float64) ** 2))
+        c = float(np.sum(q.astype(np.float64) * m)) / power if power > 1e-12 else 1.0
         if not math.isfinite(c) or c <= 0:
             return 1.0
         lo, hi = CONTRAST_GAIN_RANGE
@@ -899,40 +900,6 @@ class VariationModel(nn.Module):
         beyond the cap is judged as is."""
         s = float(np.median(z[:, judged])) / MEDIAN_ABS_NORMAL if judged.any() else 1.0
         return s if math.isfinite(s) else 1e6
-
-
-GAIN_TRIM = 3.0
-"""``robust_gain`` refits without the pixels whose residual lies more than this many robust SDs from the median."""
-
-GAIN_PASSES = 2
-"""``robust_gain``'s refits after the first least-squares fit."""
-
-
-def robust_gain(q: np.ndarray, m: np.ndarray) -> float:
-    """(P,) a frame's values and (P,) a reference's at the same pixels -> the gain c of q ~ c m: least squares, then
-    ``GAIN_PASSES`` times again without the pixels whose residual q - c m lies more than ``GAIN_TRIM`` robust SDs
-    (1.4826 MAD) from its median, so a defect's place (a scratch that darkens where the reference is brightest)
-    does not pull the gain of the whole frame; a pass that would keep fewer than half of the pixels keeps the last
-    gain. NaN without a fit (no finite pixels, or a reference of no power there)."""
-    q, m = q.astype(np.float64), m.astype(np.float64)
-
-    def fit(keep: np.ndarray) -> float:
-        power = float(np.sum(m[keep] ** 2))
-        return float(np.sum(q[keep] * m[keep])) / power if power > 1e-12 else math.nan
-
-    keep = np.isfinite(q) & np.isfinite(m)
-    c = fit(keep)
-    for _ in range(GAIN_PASSES):
-        if not math.isfinite(c):
-            break
-        e = q - c * m
-        centre = np.median(e[keep])
-        spread = 1.4826 * np.median(np.abs(e[keep] - centre))
-        kept = keep & (np.abs(e - centre) <= GAIN_TRIM * spread)
-        if kept.sum() < 0.5 * keep.sum() or kept.sum() == keep.sum():
-            break
-        keep, c = kept, fit(kept)
-    return c
 
 
 def network_score(member_scores: dict[str, torch.Tensor]) -> torch.Tensor:

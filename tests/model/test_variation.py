@@ -451,23 +451,6 @@ def test_a_fit_with_the_contrast_range_judges_a_gamma_cameras_good_parts_as_good
     assert ranged.aligns_contrast
 
 
-def test_a_defect_where_the_part_is_brightest_does_not_move_the_frames_contrast_gain() -> None:
-    """A top-face scratch reads dark where the good parts' mean is brightest: least squares over the part would lower
-    the frame's gain by ~0.2 and so divide part of the scratch away with it; ``robust_gain`` leaves those pixels out
-    and finds the frame's own gain. Non-finite pixels are left out; without a fit, NaN (which callers read as 1)."""
-    from model.draem.variation import robust_gain
-
-    rng = np.random.default_rng(0)
-    m = rng.normal(0.0, 1.0, 5000)
-    q = 1.2 * m + rng.normal(0.0, 0.1, 5000)
-    q[np.argsort(m)[-250:]] -= 2.0  # 5 % of the part, at its brightest
-    assert float(q @ m / (m @ m)) < 1.05
-    assert robust_gain(q, m) == pytest.approx(1.2, abs=0.01)
-    q[:10] = np.inf
-    assert robust_gain(q, m) == pytest.approx(1.2, abs=0.01)
-    assert math.isnan(robust_gain(np.zeros(0), np.zeros(0))) and math.isnan(robust_gain(q, np.zeros(5000)))
-
-
 def test_a_fit_that_divides_every_frames_contrast_judges_a_gamma_cameras_good_parts_as_good_and_defects_as_defects(
         ) -> None:
     """``global_contrast`` ``MEAN``: every frame's log intensity feature, the fitted good parts' too, is divided by
