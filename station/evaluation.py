@@ -174,7 +174,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     needs. ``blur_copies_sigma``: the fit also sees a blurred copy of each good part, blurs up to this many input px
     (0: none; None: ``model.draem.variation.BLUR_COPIES_SIGMA``, the shipped recipe). ``refit``: ``model`` already
     has a variation model; fit it again (its networks kept; otherwise that is an error). ``global_polarization``:
-    a ``Alignment`` name, how each frame's polarization is first put onto the good parts' by one
+    an ``Alignment`` name, how each frame's polarization is first put onto the good parts' by one
     frame-wide gain and turn (None: the shipped recipe, ``model.draem.variation.shipped_alignment``). ``clusters``:
     how many groups of good parts, by appearance, each part is judged within (0: none; None: the shipped recipe,
     ``model.draem.variation.APPEARANCE_CLUSTERS``; fewer when there are few parts). ``global_contrast``: an

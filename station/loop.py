@@ -340,7 +340,8 @@ class Station:
         if software:
             earliest = time.perf_counter()
             self.camera.trigger()
-        else:  # line trigger: the TRIG may reach the host after the pulse, by as much as a frame may come after it
+        else:  # hardware trigger; on a line trigger with a PLC the TRIG may reach the host after the pulse, by as
+            # much as a frame may come after it
             earliest = part.t_trigger - (self.max_frame_delay_ms if line else self.cycle_time_ms) / 1e3
         deadline = time.perf_counter() + self.grab_timeout_ms / 1e3
         while True:

@@ -223,7 +223,7 @@ the range: 25.6 % of them were rejected at the own threshold against 29.7 % with
 without it. ``MEAN``, rule 42 (docs/results/2026-11-28-contrast-mean.md, held-out seed 1141), with 8 clusters and
 blurred copies (1.5 px): every frame-wide shift held (good parts rejected at the own threshold through a gamma of
 1.25 7.1 % against 27.6 %, under 1 px of blur 15.4 % against 56.4 %), but scratches 0.790 against 0.836 (2.3 paired
-SE): the gain is a least-squares fit, and a top-face scratch, dark where the good parts are brightest, pulls it."""
+SE). Dividing the contrast out costs them by itself, not the gain's least-squares fit (a robust fit did no better)."""
 
 
 READ_DOLP = False
@@ -545,7 +545,7 @@ class VariationModel(nn.Module):
         applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask, and left out
         with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts' only. A softer
         lens or another renderer's pixel filter is then among what good parts look like
-        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (a ``Alignment``; None: the model's own, so a
+        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (an ``Alignment``; None: the model's own, so a
         refit keeps it): ``MEAN`` puts each registered part's polarization onto the parts' mean by one frame-wide
         gain and turn before anything is measured (``align_polarization``: twice, the mean taken again after the
         first), and so every frame it judges; ``RANGE`` fits as ``OFF`` and then takes the lowest and highest gain
