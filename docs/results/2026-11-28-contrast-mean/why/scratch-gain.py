@@ -2,8 +2,9 @@
 good parts and each defect type: the median contrast gain c the M fit (runs/r42/M, contrast divided out) measures,
 and the variation score of C (the shipped file) and of M, each in units of its own good parts' scores (median and
 1.4826 MAD), so the two are comparable: the median, and the 10th percentile (defective) or 90th (good), where the
-classes overlap. Then, over the good parts, the rank correlation of M's score with their gain's distance from 1
-(|log c|) and C's. Usage (repository root): python .../why/scratch-gain.py"""
+classes overlap. Then the rank correlation, over the good parts and over the scratched ones, of the change of
+score from C to M with log c (dividing the log intensity by c scales its noise by 1 / c), and the ten good parts M
+scores highest. Usage (repository root): python .../why/scratch-gain.py"""
 
 from __future__ import annotations
 
@@ -39,9 +40,14 @@ def main() -> None:
         q = 90 if t == "good" else 10
         cells = [f"{np.median(z[m][k]):.1f}, {np.percentile(z[m][k], q):.1f}" for m in MODELS]
         print(f"| {t} | {int(k.sum())} | {mid:.3f} ({lo:.3f}-{hi:.3f}) | " + " | ".join(cells) + " |")
-    good, far = kind == "good", np.abs(np.log(gains))
-    print("\nGood parts, rank correlation of the score with |log c|: " + ", ".join(
-        f"{m} {spearmanr(z[m][good], far[good])[0]:+.2f}" for m in MODELS))
+    change, log_c = z["M"] - z["C"], np.log(gains)
+    print("\nRank correlation of the score's change (M - C) with log c: " + ", ".join(
+        f"{t} {spearmanr(change[kind == t], log_c[kind == t])[0]:+.2f}" for t in ("good", "scratch")))
+    good = kind == "good"
+    top = np.argsort(z["M"][good])[-10:]
+    print("The ten good parts M scores highest: c " + " ".join(f"{v:.2f}" for v in gains[good][top])
+          + "; C's score " + " ".join(f"{v:.1f}" for v in z["C"][good][top])
+          + "; M's " + " ".join(f"{v:.1f}" for v in z["M"][good][top]))
 
 
 if __name__ == "__main__":
