@@ -70,9 +70,13 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               by the frame's contrast gain c, the least-squares factor that maps the good parts' mean feature onto
               the frame's over the judged pixels: ``MEAN`` all of it (the fitted good parts' too, so their mean is
               that of parts of one contrast), ``RANGE`` only the part beyond the good parts' range, so a frame
-              within it is judged as it is. A camera's tone response that is a power of I (a gamma g: I -> I^g)
-              multiplies log I, and so the feature (log I minus its median), by g; exposure and gain, a factor on
-              I, the median takes out. A defect changes a place, not the part's contrast
+              within it is judged as it is. The residual is then taken back to the frame's own units (times the
+              gain divided out): the frame is compared with the good parts' pattern scaled by its gain, so its noise
+              is not rescaled with its contrast (divided, a low-contrast good part was judged louder and a faint
+              scratch on a high-contrast part quieter: docs/results/2026-11-28-contrast-mean/why/). A camera's tone
+              response that is a power of I (a gamma g: I -> I^g) multiplies log I, and so the feature (log I minus
+              its median), by g; exposure and gain, a factor on I, the median takes out. A defect changes a place,
+              not the part's contrast
     clusters  (``clusters`` >= 2; none in files before 2026-11-28) the residual after the components, judged against
               the good parts most like the frame, not against all of them: the fit groups its good parts by their
               components' coefficients (k-means, ``model.draem.appearance_clusters``) and keeps each group's mean
@@ -473,20 +477,22 @@ class VariationModel(nn.Module):
         lo, hi = CONTRAST_GAIN_RANGE
         return min(max(c, lo), hi)
 
-    def align_contrast(self, f: np.ndarray, where: np.ndarray) -> np.ndarray:
-        """Registered features ``f`` (C, H, W) with their log intensity feature divided by the part of the frame-wide
-        contrast gain beyond ``contrast_range`` (module docstring: contrast; (1, 1), ``MEAN``: all of it); ``f`` itself
-        when the gain lies within it (always, with ``CONTRAST_GAIN_RANGE``: then not even measured)."""
+    def align_contrast(self, f: np.ndarray, where: np.ndarray) -> tuple[np.ndarray, float]:
+        """Registered features ``f`` (C, H, W) -> (``f`` with its log intensity feature divided by the part k of the
+        frame-wide contrast gain beyond ``contrast_range``, k) (module docstring: contrast; (1, 1), ``MEAN``: all of
+        it); (``f`` itself, 1) when the gain lies within it (always, with ``CONTRAST_GAIN_RANGE``: then not even
+        measured). The residual of the divided feature times k is the frame against the good parts' pattern scaled
+        by k, in the frame's own units (``_judged_residual``)."""
         if not self.aligns_contrast:
-            return f
+            return f, 1.0
         c = self.contrast_factor(f, where)
         lo, hi = (float(v) for v in self.contrast_range)
         kept = min(max(c, lo), hi)
         if kept == c:
-            return f
+            return f, 1.0
         out = f.copy()
         out[self.intensity] = f[self.intensity] * (kept / c)
-        return out
+        return out, c / kept
 
     @property
     def dolp_read(self) -> bool:
@@ -610,10 +616,12 @@ class VariationModel(nn.Module):
         for _ in range(2 if mode is Alignment.MEAN else 0):
             mean_features = stack.mean(0)
             stack = np.stack([self.align_polarization(f, mean_features, region) for f in stack])
+        divided = np.ones(n, np.float32)  # each part's contrast gain divided out
         for _ in range(2 if contrast is Alignment.MEAN else 0):
             mean_intensity = stack[:, self.intensity].mean(0)
-            stack[:, self.intensity] /= np.array([self.contrast_factor(f, region, mean_intensity) for f in stack],
-                                                 np.float32)[:, None, None]
+            gains = np.array([self.contrast_factor(f, region, mean_intensity) for f in stack], np.float32)
+            stack[:, self.intensity] /= gains[:, None, None]
+            divided *= gains
         spread = 1.4826 * np.median(np.abs(stack - np.median(stack, 0))[:, :, region], axis=(0, 2))
         channel_scale = np.maximum(spread, MIN_SCALE).astype(np.float32)
         u = stack / channel_scale[:, None, None] * region
@@ -627,6 +635,7 @@ class VariationModel(nn.Module):
             out = fold == f
             fold_mean, fold_components = self._appearance(u[~out], k)
             residual[out] = self._residual(u[out] - fold_mean, fold_components)[0]
+        residual[:, self.intensity] *= divided[:, None, None]  # in each part's own units, as zmaps judges a frame
         scale = 1.4826 * np.median(np.abs(residual), 0)
         floor = np.maximum([np.percentile(s[region], floor_quantile) for s in scale], MIN_SCALE / channel_scale)
         scale = np.maximum(scale, floor[:, None, None])
@@ -825,13 +834,15 @@ class VariationModel(nn.Module):
         found (module docstring: register, highlights, appearance)."""
         mean, part = self.mean.numpy(), self.region.numpy()
         warped, judged, where = self._aligned(xi)
-        warped[:-1] = self.align_contrast(warped[:-1], where)
+        warped[:-1], k = self.align_contrast(warped[:-1], where)
         hidden = 1.0 - judged.sum() / max(part.sum(), 1)
         if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
             judged = part  # too much hidden to judge the part by the rest: fail closed
         u = (warped[:-1] - mean) / self.channel_scale.numpy()[:, None, None] * part
         r, coef = self._residual(u[None], self.components.numpy(), judged)
-        return r[0] / self.scale.numpy(), coef[0], judged, float(hidden)
+        r = r[0]
+        r[self.intensity] *= k  # in the frame's own units: its noise is not rescaled with its contrast
+        return r / self.scale.numpy(), coef[0], judged, float(hidden)
 
     def _aligned(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(C, H, W) physical priors -> (``_registered``'s warped features with their polarization aligned when the
