@@ -1,7 +1,7 @@
 """After rule 42 (it decides nothing): does the residual in the frame's own units win back the scratches X lost?
 Image AUROC of all defects, dents and scratches on seed 1141 (which decided rule 42 and so may be looked at now) for
-the shipped file C, X (MLB) and MLBN, with patch.diff applied (not committed
-). Usage (repository root, patch applied): python .../check-1141.py"""
+the shipped file C, X (MLB, scored with the new code) and MLBN (fitted with it). Usage (repository root):
+python .../check-1141.py"""
 
 from __future__ import annotations
 

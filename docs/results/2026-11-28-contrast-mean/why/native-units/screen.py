@@ -1,10 +1,10 @@
 """Screen after rule 42 (validation set only; it decides nothing): rule 42's X fitted again with the residual kept in
-each frame's own units when its contrast is divided out ([patch.diff](patch.diff): the divided residual times the
-gain, the frame against the good parts' pattern scaled by it), MLBN, against the shipped file C and rule 42's MLB.
+each frame's own units when its contrast is divided out (the divided residual times the gain, the frame against
+the good parts' pattern scaled by it; ``VariationModel._judged_residual`` and ``fit`` since this screen), MLBN,
+against the shipped file C and rule 42's MLB.
 Image AUROC of all defects, dents and scratches as shot; image AUROC and good parts rejected at the threshold that
-rejects 5 % of the unshifted good parts under each shift. The patch was applied for this run only (git apply
-patch.diff; runs/r43/MLBN fitted with it) and not committed. Usage (repository root, patch applied):
-python docs/results/2026-11-28-contrast-mean/why/native-units/screen.py"""
+rejects 5 % of the unshifted good parts under each shift. MLB (least-squares division when fitted) is scored with
+the new code. Usage (repository root): python docs/results/2026-11-28-contrast-mean/why/native-units/screen.py"""
 
 from __future__ import annotations
 
