@@ -227,7 +227,8 @@ the range: 25.6 % of them were rejected at the own threshold against 29.7 % with
 without it. ``MEAN``, rule 42 (docs/results/2026-11-28-contrast-mean.md, held-out seed 1141), with 8 clusters and
 blurred copies (1.5 px): every frame-wide shift held (good parts rejected at the own threshold through a gamma of
 1.25 7.1 % against 27.6 %, under 1 px of blur 15.4 % against 56.4 %), but scratches 0.790 against 0.836 (2.3 paired
-SE). Dividing the contrast out costs them by itself, not the gain's least-squares fit (a robust fit did no better)."""
+SE): dividing the frame by its gain rescaled its noise with its contrast (a robust fit of the gain did no better),
+which the residual in the frame's own units no longer does (rule 43 measures it)."""
 
 
 READ_DOLP = False
