@@ -143,7 +143,7 @@ def shipped_alignment(priors: tuple[str, ...] | list[str]) -> Alignment:
     return GLOBAL_POLARIZATION if {"dolp", "aolp"} <= set(priors) else Alignment.OFF
 
 
-BLUR_COPIES_SIGMA = 0.0
+BLUR_COPIES_SIGMA = 1.5
 """The shipped recipe's ``blur_copies_sigma`` (input px; 0: no blurred copies), ``station variation
 --blur-copies``'s default. Copies up to 1.5 px (3.75 px of the 640 x 480 frame) were measured against the fit
 without them (docs/results/2026-11-25-frame-shifts.md, rules 9-13 and the full shift bench after them, held-out set
@@ -157,10 +157,12 @@ optics are softer than the renders, checked there with ``station bench shift`` a
 not the default. Rule 39 (docs/results/2026-11-28-blur-copies-range.md, the panel line with the polarization range,
 held-out seed 1138) measured them again: image AUROC 0.909 against 0.897 on the renders (scratches +0.042, 2.3
 paired SE), under 2.5 frame px of blur 0.878 against 0.824 with 22 % of good parts rejected at the own threshold
-against 57 %; but with DoLP halved 22 % against 13 % and through a gamma of 1.25 30 % against 16 %: still not the
-default."""
+against 57 %; but with DoLP halved 22 % against 13 % and through a gamma of 1.25 30 % against 16 %. Shipped since
+rule 43 (docs/results/2026-11-28-native-units.md, held-out seed 1142), together with ``GLOBAL_CONTRAST`` ``MEAN``
+and 8 ``APPEARANCE_CLUSTERS``: with the contrast divided out, the copies' costs above no longer showed (good parts
+rejected at the own threshold under 1 px of blur 8.9 % against 49.4 %, with DoLP halved 13.7 % against 15.5 %)."""
 
-APPEARANCE_CLUSTERS = 0
+APPEARANCE_CLUSTERS = 8
 """The shipped recipe's ``clusters`` (``station variation --clusters``'s default): how many groups of good parts, by
 appearance, a new fit judges each part within (module docstring: clusters; ``model.draem.appearance_clusters``);
 0: one appearance for every good part. Rule 40 (docs/results/2026-11-28-appearance-clusters.md) measured 8 clusters
@@ -168,8 +170,9 @@ against the shipped fit on held-out seed 1139: image AUROC 0.924 against 0.906 (
 0.803, scratches 0.815 against 0.781), the same 70 % caught at 1 %. But a frame unlike the renders as a whole is
 judged against the few good parts nearest it, whose spread is tighter than all of theirs: at its own threshold it
 rejected 96 % of good parts through a gamma of 1.25 (the plain fit 29 %), 40 % with DoLP halved (12 %) and 66 %
-under 2.5 frame px of blur (50 %). So it is an option for a line whose frames are checked against its renders
-(``station bench shift``), not the default."""
+under 2.5 frame px of blur (50 %). Shipped since rule 43 (docs/results/2026-11-28-native-units.md), with
+``GLOBAL_CONTRAST`` ``MEAN`` and blurred copies, which take out the frame-wide differences that made the nearest
+groups' tight spread reject good parts: through a gamma of 1.25 7.7 % against the plain fit's 26.2 %."""
 
 MIN_FIT_PARTS = 8
 """Fewest good parts a fit takes. Far too few for a line: on the validation set, image AUROC was 0.790 with 94 parts,
@@ -219,16 +222,21 @@ CONTRAST_GAIN_RANGE = (0.25, 4.0)
 ``contrast_range``: a model fitted without the contrast range judges every frame's contrast as it is (any gain lies
 within it, so nothing is divided)."""
 
-GLOBAL_CONTRAST = Alignment.OFF
+GLOBAL_CONTRAST = Alignment.MEAN
 """The shipped recipe's ``global_contrast`` (``station variation --global-contrast``; module docstring: contrast):
-off. ``RANGE``, rule 41 (docs/results/2026-11-28-contrast-range.md, held-out seed 1140): the good training parts'
-own gains span 0.69-1.28 (the line's lights and exposure), so through a gamma of 1.25 most good parts stay within
-the range: 25.6 % of them were rejected at the own threshold against 29.7 % without it; every other frame scored as
+``MEAN``, with the residual in the frame's own units, 8 ``APPEARANCE_CLUSTERS`` and ``BLUR_COPIES_SIGMA`` 1.5, by
+rule 43 (docs/results/2026-11-28-native-units.md, held-out seed 1142, thresholds from validation): image AUROC 0.883
+against the plain fit's 0.869 (+1.5 paired SE; dents 0.744 against 0.729, scratches 0.675 against 0.624), good
+parts rejected at the own threshold 2.4 % unshifted (4.8 %), through a gamma of 1.25 7.7 % (26.2 %), under 1 px of
+blur 8.9 % (49.4 %); the seed-1133 re-renders by other means 0.893-0.900 against 0.879-0.892. Before it:
+``RANGE``, rule 41 (docs/results/2026-11-28-contrast-range.md, held-out seed 1140): the good training parts' own
+gains span 0.69-1.28 (the line's lights and exposure), so through a gamma of 1.25 most good parts stay within the
+range: 25.6 % of them were rejected at the own threshold against 29.7 % without it; every other frame scored as
 without it. ``MEAN``, rule 42 (docs/results/2026-11-28-contrast-mean.md, held-out seed 1141), with 8 clusters and
 blurred copies (1.5 px): every frame-wide shift held (good parts rejected at the own threshold through a gamma of
 1.25 7.1 % against 27.6 %, under 1 px of blur 15.4 % against 56.4 %), but scratches 0.790 against 0.836 (2.3 paired
 SE): dividing the frame by its gain rescaled its noise with its contrast (a robust fit of the gain did no better),
-which the residual in the frame's own units no longer does (rule 43 measures it)."""
+which the residual in the frame's own units no longer does (rule 43)."""
 
 
 READ_DOLP = False

@@ -32,7 +32,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--blur-copies", type=float, default=None, metavar="SIGMA",
                    help="the fit also sees a copy of each good part blurred by up to SIGMA input px, so a softer lens "
                         "or another renderer's pixel filter is among what good parts look like (default: the shipped "
-                        "recipe, model.draem.variation.BLUR_COPIES_SIGMA; 0: no copies)")
+                        "recipe, model.draem.variation.BLUR_COPIES_SIGMA: 1.5; 0: no copies)")
     p.add_argument("--global-polarization", nargs="?", const="mean", default=None, metavar="MODE",
                    choices=[m.value for m in Alignment],
                    help="put each frame's polarization onto the good parts' by one frame-wide DoLP gain and AoLP turn "
@@ -45,13 +45,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--clusters", type=int, default=None, metavar="N",
                    help="group the good parts by appearance into up to N clusters (k-means on the appearance "
                         "components' coefficients, at most one per 40 parts) and judge each part against its own "
-                        "cluster (default: the shipped recipe, model.draem.variation.APPEARANCE_CLUSTERS; 0: none)")
+                        "cluster (default: the shipped recipe, model.draem.variation.APPEARANCE_CLUSTERS: 8; 0: none)")
     p.add_argument("--global-contrast", nargs="?", const="mean", default=None, metavar="MODE",
                    choices=[m.value for m in Alignment],
                    help="divide each frame's log intensity by its frame-wide contrast gain against the good parts' "
                         "(the gain a camera's gamma puts there): mean (the default MODE) all of it, the fitted good "
                         "parts' too; range only the part beyond the good parts' own range; off not at all (default: "
-                        "the shipped recipe, model.draem.variation.GLOBAL_CONTRAST: off)")
+                        "the shipped recipe, model.draem.variation.GLOBAL_CONTRAST: mean)")
     p.add_argument("--contrast-range", dest="global_contrast", action="store_const", const="range",
                    help="the same as --global-contrast range")
     p.add_argument("--no-global-contrast", dest="global_contrast", action="store_const", const="off",
