@@ -148,14 +148,16 @@ class PulsedSetCamera(PulsedCamera):
 
 def run_line_sets(tmp_path, labels, spacing_s, grab_timeout_ms, odd=None):
     """Parts P0, P1, ... announced ``spacing_s`` apart, each lit twice by the sequencer (``pulse_set``; ``odd``:
-    {part index: its ``pulse_set`` keywords}); a 300 ms cycle, ``max_frame_delay_ms`` 60. Rows by part id, and the
+    {part index: its ``pulse_set`` keywords}); a 300 ms cycle, ``max_frame_delay_ms`` 100: a set's second frame
+    comes 15 ms after its TRIG, the next part's first at least 130 ms after it, so a loaded machine's late wake-ups
+    (which only delay pulses) have 85 ms before a part's own frame reads as too late. Rows by part id, and the
     link."""
     link = ScriptedLink(0)
     camera = PulsedSetCamera()
     log = InspectionLog(tmp_path / "log.sqlite")
     inspector = Inspector(TiltDetector(), IMX250MZR, segments=(0.0, 180.0))
     station = Station(camera, inspector, link, log, cycle_time_ms=300.0, queue_size=8, backpressure="block",
-                      grab_timeout_ms=grab_timeout_ms, max_frame_delay_ms=60.0)
+                      grab_timeout_ms=grab_timeout_ms, max_frame_delay_ms=100.0)
 
     def plc():
         for i, label in enumerate(labels):
@@ -204,12 +206,12 @@ def test_a_set_frame_lost_in_transport_rejects_its_part_and_the_next_set_is_its_
 
 def test_a_set_exposed_too_late_for_its_part_is_not_the_next_parts_and_every_later_part_is_judged_on_its_own(
         tmp_path):
-    """The sequencer pulses P1 90 ms after its TRIG, beyond ``max_frame_delay_ms`` (60): P1 is rejected as missed
-    and its frames held. They were exposed over 100 ms before P2's TRIG, beyond the same tolerance the other way: not
-    P2's either (skipped as an earlier part's). Taken for P2, every later part would be judged on its predecessor's
-    frames: a defective part passed on a good one's."""
+    """The sequencer pulses P1 150 ms after its TRIG, beyond ``max_frame_delay_ms`` (100): P1 is rejected as
+    missed and its frames held. They were exposed over 100 ms before P2's TRIG, beyond the same tolerance the other
+    way: not P2's either (skipped as an earlier part's). Taken for P2, every later part would be judged on its
+    predecessor's frames: a defective part passed on a good one's."""
     labels = [0, 1, 0, 1, 0, 0]
-    rows, link = run_line_sets(tmp_path, labels, 0.1, 200, odd={1: {"late_s": 0.09}})
+    rows, link = run_line_sets(tmp_path, labels, 0.1, 200, odd={1: {"late_s": 0.15}})
     assert len(rows) == len(labels)
     assert rows["P1"]["decision"] == "reject" and "missed its trigger pulse" in rows["P1"]["reason"]
     judged = {p: r["decision"] for p, r in rows.items() if p != "P1"}
