@@ -291,6 +291,10 @@ def run(args: argparse.Namespace) -> int:
     from station.datasets import manifest_sha256
     from station.detectability import COLUMNS as DETECTABILITY_COLUMNS
     from station.detectability import detection_by_detectability, oracle_snr
+    from station.told_where import COLUMNS as TOLD_WHERE_COLUMNS
+    from station.told_where import FALSE_REJECT as TOLD_WHERE_FALSE_REJECT
+    from station.told_where import plot as told_where_plot
+    from station.told_where import told_where
 
     models = args.model.split(",")
     if len(models) > 1 and not args.ablation:
@@ -335,7 +339,7 @@ def run(args: argparse.Namespace) -> int:
         files.append(_ablation_plot(out, ablation))
     by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(args.data, sp.index),
                                         sp.defect_type)
-    industrial, industrial_note = [], ""
+    industrial, industrial_note, rep = [], "", None
     if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
         val_data = args.val_data or args.data
         try:
@@ -354,6 +358,11 @@ def run(args: argparse.Namespace) -> int:
                                    f"{100 * fr:g} % -> {t:.4g}, observed here {100 * rep.false_reject_observed[fr]:.1f}"
                                    " %" for fr, t in rep.thresholds.items())
                                + f"; val split of {val_data}, {int((vsp.label == 0).sum())} good parts):")
+    where = told_where(ck.detector.variation, sp.priors, sp.label.numpy(), sp.defect_mask, sp.mask_known.numpy(),
+                       sp.defect_type, ev.scores, rep.thresholds.get(TOLD_WHERE_FALSE_REJECT) if rep else None
+                       ) if ck.detector.variation is not None else []
+    if where and not args.no_plots:
+        files.append(told_where_plot(out, where))
     write_scores(out / "scores.csv", sp, ev)
     manifest_ok = ck.meta.get("data_manifest_sha256")
     payload = {"scores": "scores.csv", "model": str(args.model), "precision": args.precision,
@@ -362,7 +371,7 @@ def run(args: argparse.Namespace) -> int:
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": normal_prior_record(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "detectors": detectors, "channels": channels,
-               "by_detectability": by_snr,
+               "by_detectability": by_snr, "told_where": where,
                "industrial": industrial, "industrial_note": industrial_note,
                "industrial_val_data": str(args.val_data or args.data), "plots": files}
     cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",
@@ -380,6 +389,12 @@ def run(args: argparse.Namespace) -> int:
         table += ("\n\nDetection by detectability (the oracle's best-prior SNR, station/detectability.py; caught: "
                   "score > threshold, the station's rule; image AUROC: these defects against all good parts):\n\n"
                   + markdown_table(by_snr, DETECTABILITY_COLUMNS))
+    if where:
+        table += (f"\n\nTold where to look (station/told_where.py): the share of each type's defects whose "
+                  f"residual at their own pixels lies above {100 * TOLD_WHERE_FALSE_REJECT:g} % of this split's good "
+                  f"parts at the same pixels (the localised oracle, by either statistic: what the features show), "
+                  f"and the share the model caught at its validation threshold for the same share of good parts:\n\n"
+                  + markdown_table(where, TOLD_WHERE_COLUMNS))
     if detectors:
         table += ("\n\nImage AUROC by detector (networks: their mean score; variation: the registered variation "
                   "model, which never saw a defect of any type; residual: the residual networks on its residuals; "

@@ -46,7 +46,14 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     report = json.loads((tmp_path / "ev" / "eval.json").read_text())
     assert [r["type"] for r in report["detectors"]] == ["all", "stain"] and not report["early_exit"]
     assert all(0.0 <= r[k] <= 1.0 for r in report["detectors"] for k in ("networks", "variation", "combined"))
-    assert "Image AUROC by detector" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "Image AUROC by detector" in printed and "Told where to look" in printed
+    # the localised oracle: per type, what the features separate at 1 % of good parts and what the model caught
+    told = report["told_where"]
+    assert [r["type"] for r in told] == ["all", "stain"]
+    assert told[0]["defects"] == report["rows"][0]["anomalous"]
+    assert all(0.0 <= r[k] <= 1.0 for r in told for k in ("separable", "separable_pixels", "separable_mean", "caught"))
+    assert told[0]["separable"] >= max(told[0]["separable_pixels"], told[0]["separable_mean"])
     # twice: a detector that already has one is refused in one line
     assert main(["variation", "--model", str(out), "--data", str(data), "--out", str(tmp_path / "w")]) == 2
     assert "already has a variation model" in capsys.readouterr().err
