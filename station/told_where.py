@@ -61,7 +61,7 @@ def plot(out: Path, rows: list[dict]) -> str:
     ax.set_xticks(x, [r["type"].replace("_", " ") for r in rows], fontsize=8)
     ax.set(ylim=(0, 1), ylabel=f"share at {100 * FALSE_REJECT:g} % of good parts rejected",
            title="defects the features separate, and the defects caught")
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
     fig.savefig(out / "told-where.png", dpi=120, bbox_inches="tight")
     plt.close(fig)
     return "told-where.png"
