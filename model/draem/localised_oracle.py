@@ -30,8 +30,8 @@ from model.draem.variation import VariationModel
 GROW_PX = 1
 """A defect's registered mask is grown by this many pixels (its edge mixes defect and part)."""
 
-STATISTICS = ("pixels", "mean")
 BATCH = 50
+"""Frames scored at a time: only each frame's statistics over the masks are kept, not its residual maps."""
 
 
 @dataclass(frozen=True)
@@ -54,14 +54,15 @@ class OracleResult:
         return self.separable_by.any(1)
 
 
-def _signed(vm: VariationModel, x: torch.Tensor) -> tuple[np.ndarray, np.ndarray]:
-    """(N, C, H, W) priors -> (signed residual z (N, C, H*W) float32, judged pixels (N, H*W) float32)."""
-    z, judged = [], []
+def _all_statistics(vm: VariationModel, x: torch.Tensor, masks: np.ndarray) -> np.ndarray:
+    """(N, C, H, W) priors and (M, H*W) masks -> (N, M, 2) ``statistics`` of every frame over every mask."""
+    out = []
     for i in range(0, len(x), BATCH):
-        out = vm.zmaps(x[i:i + BATCH], signed=True)
-        z.append(out.signed.numpy().reshape(*out.signed.shape[:2], -1))
-        judged.append(out.judged.numpy().reshape(len(out.judged), -1).astype(np.float32))
-    return np.concatenate(z), np.concatenate(judged)
+        o = vm.zmaps(x[i:i + BATCH], signed=True)
+        n = len(o.signed)
+        out.append(statistics(o.signed.numpy().reshape(n, o.signed.shape[1], -1),
+                              o.judged.numpy().reshape(n, -1).astype(np.float32), masks))
+    return np.concatenate(out)
 
 
 def statistics(z: np.ndarray, judged: np.ndarray, masks: np.ndarray) -> np.ndarray:
@@ -70,9 +71,9 @@ def statistics(z: np.ndarray, judged: np.ndarray, masks: np.ndarray) -> np.ndarr
     m = masks.astype(np.float32).T  # (P, M)
     count = judged @ m  # (N, M)
     safe = np.maximum(count, 1.0)
-    pixels = ((z.astype(np.float64) ** 2).sum(1) * judged) @ m / safe
+    pixels = ((z**2).sum(1) * judged) @ m / safe
     mean = sum(((z[:, c] * judged) @ m / safe) ** 2 for c in range(z.shape[1]))
-    out = np.stack([pixels, mean], axis=-1)
+    out = np.stack([pixels, mean], axis=-1).astype(np.float64)
     return np.where((count > 0)[..., None], out, 0.0)
 
 
@@ -92,8 +93,7 @@ def localised_oracle(vm: VariationModel, priors: torch.Tensor, labels: np.ndarra
     registered = vm.register_masks(x[bad], masks[bad].bool()).numpy()
     grow = np.ones((2 * GROW_PX + 1,) * 2, np.uint8)
     grown = np.stack([cv2.dilate(m.astype(np.uint8), grow) for m in registered]).reshape(len(bad), -1)
-    z, judged = _signed(vm, x)
-    good_stats = statistics(z[~labels], judged[~labels], grown)  # (G, D, 2)
-    own = statistics(z[bad], judged[bad], grown)[np.arange(len(bad)), np.arange(len(bad))]  # (D, 2)
-    limit = np.percentile(good_stats, 100.0 * (1.0 - false_reject), axis=0)
+    stats = _all_statistics(vm, x, grown)  # (N, D, 2)
+    own = stats[bad, np.arange(len(bad))]  # (D, 2): each defect at its own pixels
+    limit = np.percentile(stats[~labels], 100.0 * (1.0 - false_reject), axis=0)  # the good parts there
     return OracleResult(own, limit, false_reject)
