@@ -19,20 +19,24 @@ COLUMNS = ["type", "defects", "separable_pixels", "separable_mean", "separable",
 
 
 def told_where(variation, priors, labels: np.ndarray, masks, mask_known: np.ndarray, types: list[str],
-               scores: np.ndarray, threshold: float | None) -> list[dict]:
+               scores: np.ndarray, threshold: float | None) -> tuple[list[dict], list[bool | None]]:
     """A model's variation model and a split's (N, C, H, W) priors, (N,) labels, (N, H, W) defect masks, (N,) whether
     each mask is known, (N,) defect types, (N,) decision scores and the threshold that rejects ``FALSE_REJECT`` of
-    the validation set's good parts (None: ``caught`` is NaN) -> rows (``COLUMNS``); [] without good parts or
-    defective parts with masks."""
+    the validation set's good parts (None: ``caught`` is NaN) -> (rows (``COLUMNS``), per part whether the oracle
+    separates it: None for good parts and defects without a mask); ([], all None) without good parts or defective
+    parts with masks."""
     from model.draem.localised_oracle import localised_oracle
 
     labels = np.asarray(labels).astype(bool)
     keep = ~labels | (labels & np.asarray(mask_known, bool))
+    per_part: list[bool | None] = [None] * len(labels)
     if labels[keep].all() or not labels[keep].any():
-        return []
+        return [], per_part
     idx = np.flatnonzero(keep)
     res = localised_oracle(variation, priors[idx], labels[idx].astype(int), masks[idx], FALSE_REJECT)
     bad = idx[labels[idx]]
+    for k, i in enumerate(bad):
+        per_part[i] = bool(res.separable[k])
     kinds = np.asarray(types, dtype=object)[bad]
     caught = (np.asarray(scores)[bad] > threshold) if threshold is not None else np.full(len(bad), np.nan)
     rows = []
@@ -44,7 +48,7 @@ def told_where(variation, priors, labels: np.ndarray, masks, mask_known: np.ndar
                      "separable_mean": float(res.separable_by[sel, 1].mean()),
                      "separable": float(sep.mean()), "caught": float(np.mean(caught[sel])),
                      "caught_of_separable": float(np.mean(caught[sel][sep])) if sep.any() else math.nan})
-    return rows
+    return rows, per_part
 
 
 def plot(out: Path, rows: list[dict]) -> str:

@@ -128,19 +128,22 @@ FALSE_REJECTS = (0.01, 0.05)
 """The industrial pair's fixed shares of good parts rejected."""
 
 
-def write_scores(path: Path, sp, ev) -> None:
+def write_scores(path: Path, sp, ev, separable: list[bool | None] | None = None) -> None:
     """One row per part of the evaluated split: its dataset index, label, defect type ("" for good parts), the
     model's decision score, and each member's image score (``ev.member_scores``, e.g. "variation"), so two models
-    on the same parts can be compared part by part (a paired bootstrap) and any row audited."""
+    on the same parts can be compared part by part (a paired bootstrap) and any row audited; with ``separable``
+    (``station.told_where``), whether the localised oracle separates each defect (1 / 0, "" for good parts)."""
     import csv
 
     members = sorted(ev.member_scores)
+    told = [] if separable is None else ["separable"]
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["index", "label", "defect_type", "score", *members])
+        w.writerow(["index", "label", "defect_type", "score", *members, *told])
         for k, (i, y, t) in enumerate(zip(sp.index, sp.label.tolist(), sp.defect_type, strict=True)):
+            flag = [] if separable is None else ["" if separable[k] is None else int(separable[k])]
             w.writerow([i, y, t, f"{float(ev.scores[k]):.6g}", *(f"{float(ev.member_scores[m][k]):.6g}"
-                                                                for m in members)])
+                                                                for m in members), *flag])
 
 
 def detector_rows(ev, label, types: list[str]) -> list[dict]:
@@ -358,12 +361,13 @@ def run(args: argparse.Namespace) -> int:
                                    f"{100 * fr:g} % -> {t:.4g}, observed here {100 * rep.false_reject_observed[fr]:.1f}"
                                    " %" for fr, t in rep.thresholds.items())
                                + f"; val split of {val_data}, {int((vsp.label == 0).sum())} good parts):")
-    where = told_where(ck.detector.variation, sp.priors, sp.label.numpy(), sp.defect_mask, sp.mask_known.numpy(),
-                       sp.defect_type, ev.scores, rep.thresholds.get(TOLD_WHERE_FALSE_REJECT) if rep else None
-                       ) if ck.detector.variation is not None else []
+    where, separable = told_where(
+        ck.detector.variation, sp.priors, sp.label.numpy(), sp.defect_mask, sp.mask_known.numpy(), sp.defect_type,
+        ev.scores, rep.thresholds.get(TOLD_WHERE_FALSE_REJECT) if rep else None
+    ) if ck.detector.variation is not None else ([], None)
     if where and not args.no_plots:
         files.append(told_where_plot(out, where))
-    write_scores(out / "scores.csv", sp, ev)
+    write_scores(out / "scores.csv", sp, ev, separable if where else None)
     manifest_ok = ck.meta.get("data_manifest_sha256")
     payload = {"scores": "scores.csv", "model": str(args.model), "precision": args.precision,
                "model_config": cfg.to_dict(), "threshold": thr,

@@ -3,6 +3,7 @@ parts, calibrated and thresholded on its val split, recorded in the sidecar; err
 
 from __future__ import annotations
 
+import csv
 import json
 from pathlib import Path
 
@@ -54,6 +55,12 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     assert told[0]["defects"] == report["rows"][0]["anomalous"]
     assert all(0.0 <= r[k] <= 1.0 for r in told for k in ("separable", "separable_pixels", "separable_mean", "caught"))
     assert told[0]["separable"] >= max(told[0]["separable_pixels"], told[0]["separable_mean"])
+    # scores.csv says which defects the oracle separates, part by part
+    with open(tmp_path / "ev" / "scores.csv", newline="") as fh:
+        parts = list(csv.DictReader(fh))
+    flags = [int(r["separable"]) for r in parts if r["label"] == "1"]
+    assert all(r["separable"] == "" for r in parts if r["label"] == "0")
+    assert len(flags) == told[0]["defects"] and sum(flags) == round(told[0]["separable"] * len(flags))
     # twice: a detector that already has one is refused in one line
     assert main(["variation", "--model", str(out), "--data", str(data), "--out", str(tmp_path / "w")]) == 2
     assert "already has a variation model" in capsys.readouterr().err
