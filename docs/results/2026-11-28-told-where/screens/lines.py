@@ -1,6 +1,7 @@
 """Screen on validation (2-fold: per-place calibration on half the good parts, scored on the other half and every
-defect): the shipped 5 x 5 box of the max-channel z against oriented line windows (LENGTHxWIDTH px, 8 angles), alone
-and the larger. Usage: python lines.py CACHE.npz line9x1 line15x1 ... (CACHE from lines_cache.py)"""
+defect): the shipped 5 x 5 box of the max-channel z against oriented line windows (lineLxW: L x W px, 8 angles) or
+boxes over the root chi-square over the channels (chiboxB), alone and the larger.
+Usage: python lines.py CACHE.npz chibox5 line9x1 ... (CACHE from lines_cache.py)"""
 import sys
 
 import cv2
@@ -25,8 +26,11 @@ def line_kernel(length: int, width: int, angle: float) -> np.ndarray:
 
 
 def stat(kind: str) -> np.ndarray:
-    if kind == "box5":
+    if kind.startswith("box"):  # box5: the shipped window; chibox5: the same over the root chi-square
         return np.stack([cv2.blur(m, (5, 5), borderType=cv2.BORDER_REPLICATE) for m in z])
+    if kind.startswith("chibox"):
+        b = int(kind[6:])
+        return np.stack([cv2.blur(m, (b, b), borderType=cv2.BORDER_REPLICATE) for m in d["chi"]])
     length, width = map(int, kind[4:].split("x"))
     ks = [line_kernel(length, width, a) for a in np.arange(8) * np.pi / 8]
     return np.stack([np.max([cv2.filter2D(m, -1, k, borderType=cv2.BORDER_REPLICATE) for k in ks], 0) for m in z])
