@@ -72,9 +72,10 @@ def report(name: str, s: np.ndarray) -> None:
     print("  ".join(row), flush=True)
 
 
-base = scores(stat("box5"))
-report("box5 (as shipped)", base)
-for kind in sys.argv[2:]:
-    s = scores(stat(kind))
-    report(kind, s)
-    report(f"max(box5, {kind})", np.maximum(robust(base), robust(s)))
+if __name__ == "__main__":
+    base = scores(stat("box5"))
+    report("box5 (as shipped)", base)
+    for kind in sys.argv[2:]:
+        s = scores(stat(kind))
+        report(kind, s)
+        report(f"max(box5, {kind})", np.maximum(robust(base), robust(s)))
