@@ -5,7 +5,8 @@ px, grown 1 px), each tested as the localised oracle tests a defect's pixels (th
 there against the references' same mean, in units of their 95th percentile above their median); the part's score
 is the largest. Writes each set's box (shipped) and propose scores.
 
-Usage: PYTHONPATH=. python propose_fit.py OUT.npz TRAIN VAL [HELDOUT ...] (from the repository root)."""
+Usage: PYTHONPATH=. python propose_fit.py OUT.npz TRAIN VAL [HELDOUT ...] (from the repository root). The fit and
+its references are kept in OUT.fit.pt and reused by a later run with the same OUT."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ import sys
 
 import cv2
 import numpy as np
+import torch
 
 from model.draem.checkpoint import load_checkpoint
 from station.evaluation import model_split
@@ -47,11 +49,20 @@ def main() -> None:
     out, train, val, *heldout = sys.argv[1:]
     ck = load_checkpoint(MODEL)
     vm = copy.deepcopy(ck.detector.variation)
-    tr = model_split(ck, MODEL, train, "train", good_only=True)
-    ref = vm.fit(tr.priors.float(), tr.object_mask)  # (N, C, H, W) left-out signed z, zero where not judged
-    ref_chi = (ref.astype(np.float32) ** 2).sum(1)
-    ref_judged = (ref != 0).any(1).astype(np.float32)
-    print(f"fitted on {len(ref)} good training parts", flush=True)
+    cache = out + ".fit.pt"
+    try:
+        saved = torch.load(cache, weights_only=True)
+        vm.size_clusters(saved["state"])
+        vm.load_state_dict(saved["state"])
+        ref_chi, ref_judged = saved["ref_chi"].numpy(), saved["ref_judged"].numpy()
+    except FileNotFoundError:
+        tr = model_split(ck, MODEL, train, "train", good_only=True)
+        ref = vm.fit(tr.priors.float(), tr.object_mask)  # (N, C, H, W) left-out signed z, zero where not judged
+        ref_chi = (ref.astype(np.float32) ** 2).sum(1)
+        ref_judged = (ref != 0).any(1).astype(np.float32)
+        torch.save({"state": vm.state_dict(), "ref_chi": torch.from_numpy(ref_chi),
+                    "ref_judged": torch.from_numpy(ref_judged)}, cache)
+    print(f"references: {len(ref_chi)} good training parts", flush=True)
     shipped = ck.detector.variation
     result = {}
     for name, root, split in (("val", val, "val"), *((f"heldout{k}", h, "test") for k, h in enumerate(heldout))):
@@ -75,7 +86,8 @@ def main() -> None:
         box, same = np.concatenate(box), np.concatenate(same)
         print(f"{name}: {len(box)} parts; refit against shipped box scores: max |difference| "
               f"{float(np.abs(box - same).max()):.3g}", flush=True)
-        result.update({f"{name}_box": box, f"{name}_test": np.array(test), f"{name}_label": sp.label.numpy(),
+        result.update({f"{name}_box": box, f"{name}_shipped": same, f"{name}_test": np.array(test),
+                       f"{name}_label": sp.label.numpy(),
                        f"{name}_type": np.array([t or "" for t in sp.defect_type]),
                        f"{name}_index": np.array(sp.index)})
     np.savez(out, **result)
