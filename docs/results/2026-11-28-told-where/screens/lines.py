@@ -6,8 +6,7 @@ import sys
 
 import cv2
 import numpy as np
-
-from model.draem.metrics import auroc, false_reject_threshold
+from common import report as common_report
 
 d = np.load(sys.argv[1])
 z, judged, lab, types, region = d["z"], d["judged"], d["label"], d["types"], d["region"]
@@ -62,14 +61,8 @@ def robust(s: np.ndarray) -> np.ndarray:
 
 
 def report(name: str, s: np.ndarray) -> None:
-    gd = lab == 0
-    t1, t5 = false_reject_threshold(s[gd], 0.01), false_reject_threshold(s[gd], 0.05)
-    row = [f"{name:22s}", f"AUROC {auroc(lab, s):.3f}", f"@1% {np.mean(s[~gd] > t1):.0%}",
-           f"@5% {np.mean(s[~gd] > t5):.0%}"]
-    for t in sorted(set(types[~gd])):
-        sel = gd | (types == t)
-        row.append(f"{t[:5]} {auroc(lab[sel], s[sel]):.3f}/{np.mean(s[types == t] > t1):.0%}")
-    print("  ".join(row), flush=True)
+    """``common.report`` on this cache's labels and types, printed."""
+    print(common_report(name, s, lab, types), flush=True)
 
 
 if __name__ == "__main__":
