@@ -14,7 +14,7 @@ good parts' spread, after the frame's noise level, judged pixels only):
 - "mean": the chi-square over the channels of the residual averaged over those pixels first (a change of one sign
   across the defect, pixel noise averaged out).
 A defect is separable when either statistic is (so up to twice ``false_reject`` of good parts would be above one of
-them). numpy and torch only; a defect whose mask registers outside the judged part is not separable.
+them). numpy, OpenCV and torch; a defect whose mask registers outside the judged part is not separable.
 """
 
 from __future__ import annotations
