@@ -165,7 +165,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
                   decision: str = "variation", fit_parts: int | None = None,
                   blur_copies_sigma: float | None = None, refit: bool = False,
                   global_polarization: str | None = None, clusters: int | None = None,
-                  global_contrast: str | None = None) -> str:
+                  global_contrast: str | None = None, second_look: bool | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
@@ -179,7 +179,9 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     how many groups of good parts, by appearance, each part is judged within (0: none; None: the shipped recipe,
     ``model.draem.variation.APPEARANCE_CLUSTERS``; fewer when there are few parts). ``global_contrast``: an
     ``Alignment`` name, how each frame's contrast (log intensity's frame-wide gain) is put onto the good parts' (None:
-    the shipped recipe, ``model.draem.variation.GLOBAL_CONTRAST``). The sidecar's
+    the shipped recipe, ``model.draem.variation.GLOBAL_CONTRAST``). ``second_look``: keep the good parts' left-out
+    residuals and look again at suspicious parts (``model.draem.second_look``; None: the shipped recipe,
+    ``model.draem.variation.SECOND_LOOK``). The sidecar's
     frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
     variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
@@ -190,6 +192,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
         BLUR_COPIES_SIGMA,
         GLOBAL_CONTRAST,
         MIN_FIT_PARTS,
+        SECOND_LOOK,
         shipped_alignment,
     )
     from model.draem.with_variation import add_variation, without_variation
@@ -199,6 +202,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     check_max_good_flagged(max_good_flagged)
     blur_copies_sigma = BLUR_COPIES_SIGMA if blur_copies_sigma is None else blur_copies_sigma
     clusters = APPEARANCE_CLUSTERS if clusters is None else clusters
+    second_look = SECOND_LOOK if second_look is None else second_look
     if clusters < 0:
         raise UserError(f"--clusters {clusters}: give a number of clusters, >= 0 (0: none)")
     try:
@@ -235,14 +239,16 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     try:
         det = add_variation(networks, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma,
-                            global_polarization=alignment, clusters=clusters, global_contrast=contrast)
+                            global_polarization=alignment, clusters=clusters, global_contrast=contrast,
+                            second_look=second_look)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "fit_parts": len(tr.index),
         "blur_copies_sigma": blur_copies_sigma, "global_polarization": alignment.value,
         "clusters": det.variation.clusters, "global_contrast": contrast.value,
-        "contrast_range": det.variation.contrast_range.tolist() if det.variation.aligns_contrast else None},
+        "contrast_range": det.variation.contrast_range.tolist() if det.variation.aligns_contrast else None,
+        "second_look_references": det.variation.second_look.references},
         StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
@@ -254,6 +260,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     copies += f", judged within {det.variation.clusters} clusters by appearance" if det.variation.clusters else ""
     copies += {Alignment.MEAN: ", each frame's contrast aligned to theirs",
                Alignment.RANGE: ", each frame's contrast aligned where beyond theirs"}.get(contrast, "")
+    looks = det.variation.second_look.references
+    copies += f", a second look at suspicious parts against {looks} of them" if looks else ""
     return (f"{out}: variation model fitted on {len(tr.index)} good parts{copies}{decides}; threshold "
             f"{choice.threshold:.4g} ({choice.rule}); on {len(labels)} val parts it flags "
             f"{choice.flagged_good_fraction:.1%} of good parts{detected}; "

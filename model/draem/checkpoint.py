@@ -233,9 +233,9 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
         raise CheckpointError(f"{js}: model uses priors {list(config.priors)}, expected {list(expect_priors)}")
     if detector.variation is not None:  # added later: absent, they score as their models did (LATER_BUFFERS)
         for name in LATER_BUFFERS:
-            state.setdefault(f"variation.{name}", getattr(detector.variation, name).clone())
+            state.setdefault(f"variation.{name}", detector.variation.get_buffer(name).clone())
         try:
-            detector.variation.size_clusters(state, "variation.")  # their size is the fit's
+            detector.variation.size_fitted(state, "variation.")  # their size is the fit's
         except ModelError as exc:
             raise CheckpointError(f"{pt}: {exc}") from None
     missing = sorted(set(detector.state_dict()) - set(state))

@@ -108,6 +108,7 @@ from . import appearance_clusters
 from .config import Alignment
 from .errors import ModelError
 from .frame_checks import FRAME_CHECKS
+from .second_look import SecondLook
 from .shifts import Channels, blurred_copies
 
 LOG_FLOOR = 1e-3
@@ -200,13 +201,13 @@ MAX_HIDDEN = 0.5
 
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
-                 "contrast_range")
+                 "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
 polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
-clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is), which score as those models
-did."""
+clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look), which score as
+those models did. Dotted names are a submodule's (``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
 """``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
@@ -237,6 +238,10 @@ blurred copies (1.5 px): every frame-wide shift held (good parts rejected at the
 1.25 7.1 % against 27.6 %, under 1 px of blur 15.4 % against 56.4 %), but scratches 0.790 against 0.836 (2.3 paired
 SE): dividing the frame by its gain rescaled its noise with its contrast (a robust fit of the gain did no better),
 which the residual in the frame's own units no longer does (rule 43)."""
+
+SECOND_LOOK = False
+"""The shipped recipe's second look (``station variation --second-look``; ``model.draem.second_look``): decided by
+rule 47 (docs/results/2026-11-28-cascade.md, held-out seed 1148)."""
 
 
 READ_DOLP = False
@@ -287,12 +292,12 @@ and a frame far off the fitted line (a hostile input) cannot push a network read
 
 class VariationOutput(NamedTuple):
     """``VariationModel.zmaps``, per frame of N: ``maps`` (N, H, W) window statistic against the good parts at each
-    pixel (module docstring: position), zero off the part and below their median; ``scores``
-    (N,) their max; ``highlight_fraction`` (N,) the share of the part the highlight rule found (above
-    ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the frame's noise level (1 on the fitted line);
-    ``signed`` (N, C, H, W) each channel's signed residual in units of ``scale`` after the noise level (``signed_z``;
-    what the residual networks read, ``model.draem.residual``); ``judged`` (N, H, W) bool, the pixels judged; both
-    None unless ``zmaps`` was asked for them."""
+    pixel (module docstring: position), zero off the part and below their median; ``scores`` (N,) their max, or for a
+    part above the second look's gate its score (``model.draem.second_look``); ``highlight_fraction`` (N,) the share
+    of the part the highlight rule found (above ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the
+    frame's noise level (1 on the fitted line); ``signed`` (N, C, H, W) each channel's signed residual in units of
+    ``scale`` after the noise level (``signed_z``; what the residual networks read, ``model.draem.residual``);
+    ``judged`` (N, H, W) bool, the pixels judged; both None unless ``zmaps`` was asked for them."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -322,9 +327,10 @@ class VariationModel(nn.Module):
     ``NO_POLARIZATION_RANGE`` unless fitted with ``RANGE``); ``cluster_centres`` (M, COMPONENTS) and
     ``cluster_spread`` (COMPONENTS,): the good parts' clusters by appearance (``model.draem.appearance_clusters``;
     M = 0: none), ``cluster_mean`` and ``cluster_scale`` (M, C, P) float16: each cluster's mean residual and
-    residual scale at the P pixels of ``region``, in units of ``scale``. ``intensity``, ``dolp``, ``aolp``: the
-    channel index of intensity, of DoLP and of AoLP's cosine (its sine follows), None when the model does not read
-    that prior."""
+    residual scale at the P pixels of ``region``, in units of ``scale``. ``second_look``: propose and test for
+    parts the window finds suspicious (``model.draem.second_look``; no references: none). ``intensity``,
+    ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's cosine (its sine follows), None when
+    the model does not read that prior."""
 
     def __init__(self, channels: int, shape: tuple[int, int], intensity: int, dolp: int | None = None,
                  aolp: int | None = None, box_px: int = 5) -> None:
@@ -349,6 +355,7 @@ class VariationModel(nn.Module):
         self.register_buffer("contrast_range", torch.tensor(CONTRAST_GAIN_RANGE))
         self.register_buffer("cluster_spread", torch.ones(COMPONENTS))
         self._resize_clusters(0, 0)
+        self.second_look = SecondLook()
 
     def _resize_clusters(self, clusters: int, pixels: int) -> None:
         """Empty cluster buffers for ``clusters`` clusters over ``pixels`` region pixels."""
@@ -376,10 +383,20 @@ class VariationModel(nn.Module):
                                  f"of the part region need {shape}")
         self._resize_clusters(m, pixels)
 
+    def size_fitted(self, state: dict[str, torch.Tensor], prefix: str = "") -> None:
+        """``size_clusters``, and the second look's references (``SecondLook.size``) over ``state``'s region: every
+        buffer whose size is the fit's takes its shape in ``state``, so that it loads (ModelError as they say)."""
+        self.size_clusters(state, prefix)
+        region = state.get(prefix + "region", self.region)
+        self.second_look.size(state, prefix + "second_look.", int(region.sum()))
+
     def _load_from_state_dict(self, state_dict: dict[str, torch.Tensor], prefix: str, *args: object,
                               **kwargs: object) -> None:
         if prefix + "cluster_centres" in state_dict:  # sized by the fit: take the state's shapes first
             self.size_clusters(state_dict, prefix)
+        if prefix + "second_look.chi" in state_dict:
+            self.second_look.size(state_dict, prefix + "second_look.",
+                                  int(state_dict.get(prefix + "region", self.region).sum()))
         super()._load_from_state_dict(state_dict, prefix, *args, **kwargs)
 
     @property
@@ -599,6 +616,7 @@ class VariationModel(nn.Module):
         self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
         self.contrast_range.copy_(torch.tensor(CONTRAST_GAIN_RANGE))
         self._resize_clusters(0, 0)
+        self.second_look = SecondLook()  # a new fit's references are its own (``fit_second_look``)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
@@ -794,15 +812,23 @@ class VariationModel(nn.Module):
         """ModelError unless every buffer is finite, every scale and spread in (0, ``MAX_SPREAD``] and the part
         region at least ``MIN_REGION`` of the frame: a NaN, an empty region or a huge spread would pass every part."""
         for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *LATER_BUFFERS):
-            if not bool(torch.isfinite(getattr(self, name)).all()):
+            value = self.get_buffer(name)
+            if name == "second_look.calibration":
+                value = value[1:]  # its gate is infinite until calibrated: no part is looked at again
+            if not bool(torch.isfinite(value.float()).all()):
                 raise ModelError(f"variation model: {name} has NaN or Inf values")
         spreads = {"channel_scale": self.channel_scale, "scale": self.scale, "window_spread": self.window_spread,
                    "calibration": self.calibration[1::2], "cluster_spread": self.cluster_spread,
-                   "cluster_scale": self.cluster_scale.float()}
+                   "cluster_scale": self.cluster_scale.float(),
+                   "second_look.calibration": self.second_look.calibration[2::2]}
         for name, value in spreads.items():
             if not (bool((value > 0).all()) and bool((value <= MAX_SPREAD).all())):
                 raise ModelError(f"variation model: {name} has values outside (0, {MAX_SPREAD:g}] "
                                  f"({float(value.min()):.3g} .. {float(value.max()):.3g})")
+        look = self.second_look
+        if look.references and look.chi.shape[1] != int(self.region.sum()):
+            raise ModelError(f"variation model: second_look.chi covers {look.chi.shape[1]} pixels, the part region "
+                             f"{int(self.region.sum())}")
         if float(self.region.float().mean()) < MIN_REGION:
             raise ModelError(f"variation model: region covers {100 * float(self.region.float().mean()):.2f} % of "
                              f"the frame, under {100 * MIN_REGION:g} %: no part to judge")
@@ -818,7 +844,8 @@ class VariationModel(nn.Module):
         region = self.scored_region()
         if not region.any():
             region = self.region.numpy()
-        maps, highlights, noise, signed_all, judged_all = [], [], [], [], []
+        maps, scores, highlights, noise, signed_all, judged_all = [], [], [], [], [], []
+        part = self.region.numpy()
         for xi in x.float().cpu().numpy():
             r, coef, judged, hidden = self._judged_residual(xi)
             highlights.append(hidden)
@@ -831,8 +858,14 @@ class VariationModel(nn.Module):
             z = np.maximum((w - location) / spread, 0.0)
             # a NaN here is a number the model could not make: fail closed (it used to read as 0, a pass)
             maps.append(np.where(region & judged, np.nan_to_num(z, nan=1e6, posinf=1e6), 0.0).astype(np.float32))
+            scores.append(float(maps[-1].max()))
+            if self.second_look.suspicious(scores[-1]):
+                s = signed_all[-1] if signed else self.signed_z(r, judged, level)
+                t = self.second_look.test(maps[-1], (s.astype(np.float32) ** 2).sum(0), judged, part)
+                scores[-1] = self.second_look.score(scores[-1], t)
         m = torch.from_numpy(np.stack(maps)).to(x.device)
-        return VariationOutput(m, m.flatten(1).amax(1), torch.tensor(highlights, dtype=torch.float32),
+        return VariationOutput(m, torch.tensor(scores, dtype=torch.float32, device=x.device),
+                               torch.tensor(highlights, dtype=torch.float32),
                                torch.tensor(noise, dtype=torch.float32),
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
                                torch.from_numpy(np.stack(judged_all)) if signed else None)

@@ -21,7 +21,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
                   val_good: torch.Tensor, batch: int = 16, decision: str = "combined",
                   blur_copies_sigma: float = 0.0,
                   global_polarization: Alignment | str | bool = Alignment.OFF,
-                  clusters: int = 0, global_contrast: Alignment | str = Alignment.OFF) -> Detector:
+                  clusters: int = 0, global_contrast: Alignment | str = Alignment.OFF,
+                  second_look: bool = False) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
@@ -31,7 +32,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     frame's polarization is put onto the good parts' by one frame-wide gain and turn (``Alignment``,
     ``VariationModel.fit``). ``clusters``: how many groups of good parts, by appearance, each part is judged within
     (``VariationModel.fit``; 0: none). ``global_contrast``: how each frame's contrast is put onto the good
-    parts' (``Alignment``, ``VariationModel.fit``)."""
+    parts' (``Alignment``, ``VariationModel.fit``). ``second_look``: keep the good parts' left-out residuals as
+    references for a second look at suspicious parts (``add_second_look``)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -41,11 +43,33 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     assert not unexpected and all(k.startswith("variation.") for k in missing), (missing, unexpected)
     out.eval()
     assert out.variation is not None
-    out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
-                      global_polarization=global_polarization, clusters=clusters, global_contrast=global_contrast)
+    references = out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
+                                   global_polarization=global_polarization, clusters=clusters,
+                                   global_contrast=global_contrast)
+    if second_look:
+        add_second_look(out, references, val_good, batch)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()
     return out
+
+
+@torch.no_grad()
+def add_second_look(detector: Detector, references: np.ndarray, val_good: torch.Tensor, batch: int = 16) -> None:
+    """Give ``detector``'s variation model its second look (``model.draem.second_look``), in place: ``references``
+    (R, C, H, W) the good training parts' left-out signed residuals (``VariationModel.fit``'s return), gate and units
+    from ``val_good`` (N, C, H, W) good validation parts' window and test scores."""
+    assert detector.variation is not None
+    var = detector.variation
+    region = var.region.numpy()
+    var.second_look.fit(references, region)
+    window, test = [], []
+    for i in range(0, len(val_good), batch):
+        o = var.zmaps(val_good[i:i + batch], signed=True)  # not calibrated yet: no part is looked at again
+        assert o.signed is not None and o.judged is not None
+        window += o.scores.tolist()
+        for m, s, j in zip(o.maps.numpy(), o.signed.numpy(), o.judged.numpy(), strict=True):
+            test.append(var.second_look.test(m, (s ** 2).sum(0), j, region))
+    var.second_look.calibrate(np.array(window), np.array(test))
 
 
 def without_variation(detector: Detector) -> Detector:

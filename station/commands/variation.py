@@ -56,6 +56,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="the same as --global-contrast range")
     p.add_argument("--no-global-contrast", dest="global_contrast", action="store_const", const="off",
                    help="the same as --global-contrast off")
+    p.add_argument("--second-look", action=argparse.BooleanOptionalAction, default=None,
+                   help="keep the good parts' left-out residuals in the file and look again at each part above the "
+                        "window's 5 %% threshold: test the regions around its map's 5 highest places against them "
+                        "(model.draem.second_look; default: the shipped recipe, "
+                        "model.draem.variation.SECOND_LOOK)")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")
@@ -69,5 +74,5 @@ def run(args: argparse.Namespace) -> int:
 
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
                         args.fit_parts, args.blur_copies, args.refit, args.global_polarization, args.clusters,
-                        args.global_contrast))
+                        args.global_contrast, args.second_look))
     return 0
