@@ -28,6 +28,9 @@ from .errors import CheckpointError, ModelError
 from .preprocess import Normalizer
 from .variation import LATER_BUFFERS
 
+NETWORKS_HALF = ("members.",)
+"""Key prefixes ``save_checkpoint`` stores in float16 for a model whose networks do not decide."""
+
 FORMAT = "polar-ano-draem"
 SIDECAR_VERSION = 1
 
@@ -68,13 +71,17 @@ def paths(path: str | Path) -> tuple[Path, Path]:
     return stem.with_name(stem.name + ".pt"), stem.with_name(stem.name + ".json")
 
 
-def write_checkpoint_files(path: str | Path, module: torch.nn.Module, meta: dict[str, Any]) -> tuple[Path, Path]:
+def write_checkpoint_files(path: str | Path, module: torch.nn.Module, meta: dict[str, Any],
+                           half: tuple[str, ...] = ()) -> tuple[Path, Path]:
     """Write ``<path>.pt`` (the module's state_dict, on CPU) and ``<path>.json`` (``meta`` plus ``weights_file`` and
     ``weights_sha256``), each under a temporary name then renamed: a crash never leaves a half file under the
-    final name. Shared by every checkpoint format of the project."""
+    final name. Shared by every checkpoint format of the project. ``half``: key prefixes whose float32 tensors are
+    stored as float16 (loading copies them back into float32 parameters)."""
     pt, js = paths(path)
     pt.parent.mkdir(parents=True, exist_ok=True)
     state = {k: v.detach().cpu().contiguous() for k, v in module.state_dict().items()}
+    state = {k: v.half() if v.dtype == torch.float32 and k.startswith(half) and half else v
+             for k, v in state.items()}
     tmp = pt.with_name(pt.name + ".tmp")
     torch.save(state, tmp)
     tmp.replace(pt)
@@ -180,7 +187,10 @@ def load_weights(js: Path, meta: dict[str, Any], map_location: str | torch.devic
 def save_checkpoint(path: str | Path, detector: Detector, threshold: float | None = None, threshold_rule: str = "",
                     data_manifest_sha256: str | None = None, metrics: dict[str, Any] | None = None,
                     train: dict[str, Any] | None = None) -> tuple[Path, Path]:
-    """Write ``<path>.pt`` (state_dict) and ``<path>.json`` atomically (``write_checkpoint_files``)."""
+    """Write ``<path>.pt`` (state_dict) and ``<path>.json`` atomically (``write_checkpoint_files``). A model whose
+    networks do not decide (``decision`` "variation" or "residual") stores its DRAEM networks in float16
+    (``NETWORKS_HALF``): float32 would double the file for nothing (the shipped one: 24.4 MB of
+    networks in float32); they load back into float32."""
     n = detector.normalizer
     meta = {
         "format": FORMAT, "version": SIDECAR_VERSION, "convention_version": CONVENTION_VERSION,
@@ -189,7 +199,8 @@ def save_checkpoint(path: str | Path, detector: Detector, threshold: float | Non
         "threshold": threshold, "threshold_rule": threshold_rule, "data_manifest_sha256": data_manifest_sha256,
         "created": time.strftime("%Y-%m-%dT%H:%M:%S"), "metrics": metrics or {}, "train": train or {},
     }
-    return write_checkpoint_files(path, detector, meta)
+    half = () if detector.config.networks_decide else NETWORKS_HALF
+    return write_checkpoint_files(path, detector, meta, half)
 
 
 def read_sidecar(path: str | Path) -> dict[str, Any]:

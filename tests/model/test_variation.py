@@ -476,3 +476,23 @@ def test_a_fit_that_divides_every_frames_contrast_judges_a_gamma_cameras_good_pa
     assert vm.contrast_alignment is Alignment.MEAN
     with pytest.raises(ModelError, match="global_contrast must be one of"):
         vm.fit(x, global_contrast="all")
+
+
+def test_a_model_whose_networks_do_not_decide_stores_them_in_float16_and_decides_as_before(tmp_path: Path) -> None:
+    det, _ = detector_with_variation(tmp_path)
+    alone = Detector(det.config.with_(decision="variation"), det.normalizer)
+    alone.load_state_dict(det.state_dict())
+    alone.eval()
+    path = tmp_path / "alone"
+    save_checkpoint(path, alone, threshold=0.5, threshold_rule="test")
+    state = torch.load(path.with_suffix(".pt"), weights_only=True)
+    members = [v for k, v in state.items() if k.startswith("members.") and v.is_floating_point()]
+    assert members and all(v.dtype == torch.float16 for v in members)
+    assert state["variation.mean"].dtype == torch.float32  # the variation model decides: kept as fitted
+    loaded = load_checkpoint(path).detector
+    assert all(p.dtype == torch.float32 for p in loaded.parameters())
+    x = torch.cat([parts(6, 4), parts(4, 5, defect=True)])
+    assert torch.equal(loaded.predict(x).score, alone.predict(x).score)
+    combined_state = torch.load(tmp_path / "var.pt", weights_only=True)  # networks that decide: float32
+    assert all(v.dtype == torch.float32 for k, v in combined_state.items()
+               if k.startswith("members.") and v.is_floating_point())
