@@ -285,6 +285,10 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
     fr = float((heldout >= choice.threshold).mean())
     log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
              choice.threshold, 100 * fr)
+    if detector.variation is not None and detector.variation.second_look.references:
+        log.warning("the adapted variation model has no second look (model.draem.second_look): it is fitted on a "
+                    "training set's references and calibrated on a validation set's good parts; fit it with station "
+                    "variation --refit on the line's own sets")
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
     changed = detector.config.decision != final.config.decision
     if changed:
