@@ -187,6 +187,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     from model.draem.checkpoint import load_checkpoint
     from model.draem.config import Alignment
     from model.draem.errors import ModelError
+    from model.draem.second_look import MIN_REFERENCES
     from model.draem.variation import (
         APPEARANCE_CLUSTERS,
         BLUR_COPIES_SIGMA,
@@ -261,7 +262,10 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
     copies += {Alignment.MEAN: ", each frame's contrast aligned to theirs",
                Alignment.RANGE: ", each frame's contrast aligned where beyond theirs"}.get(contrast, "")
     looks = det.variation.second_look.references
-    copies += f", a second look at suspicious parts against {looks} of them" if looks else ""
+    if looks:
+        copies += f", a second look at suspicious parts against {looks} of them"
+    elif second_look:
+        copies += f", no second look (it needs >= {MIN_REFERENCES} good parts)"
     return (f"{out}: variation model fitted on {len(tr.index)} good parts{copies}{decides}; threshold "
             f"{choice.threshold:.4g} ({choice.rule}); on {len(labels)} val parts it flags "
             f"{choice.flagged_good_fraction:.1%} of good parts{detected}; "

@@ -45,6 +45,9 @@ GATE_FALSE_REJECT = 0.05
 """The second look is for parts above the window score's threshold at this rate of good validation parts."""
 TAIL_QUANTILE = 95.0
 """A region's score is in units of the references' TAIL_QUANTILE-th percentile above their median."""
+MIN_REFERENCES = 20
+"""Fewest reference parts a second look is fitted on (their TAIL_QUANTILE-th percentile needs some); a fit on fewer
+good parts has none (``model.draem.with_variation.add_variation``)."""
 CALIBRATION = ("gate", "window_location", "window_spread", "test_location", "test_spread")
 """The entries of ``SecondLook.calibration``, in order (the gate in robust SD of the window score)."""
 
@@ -115,8 +118,9 @@ class SecondLook(nn.Module):
     def fit(self, signed: np.ndarray, region: np.ndarray) -> None:
         """Keep the references: ``signed`` (R, C, H, W) the good training parts' left-out signed residuals
         (``VariationModel.fit``'s return; zero where not judged), ``region`` (H, W) bool the part region."""
-        if len(signed) < 20:
-            raise ModelError(f"second look: {len(signed)} reference parts; its 95th percentile needs >= 20")
+        if len(signed) < MIN_REFERENCES:
+            raise ModelError(f"second look: {len(signed)} reference parts; its {TAIL_QUANTILE:g}th percentile needs "
+                             f">= {MIN_REFERENCES}")
         chi = (np.asarray(signed, np.float32) ** 2).sum(1)[:, region]
         judged = (np.asarray(signed) != 0).any(1)[:, region]
         self.resize(len(chi), int(region.sum()))

@@ -619,7 +619,7 @@ class VariationModel(nn.Module):
         self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
         self.contrast_range.copy_(torch.tensor(CONTRAST_GAIN_RANGE))
         self._resize_clusters(0, 0)
-        self.second_look = SecondLook()  # a new fit's references are its own (``fit_second_look``)
+        self.second_look = SecondLook()  # a new fit's references are its own (``with_variation.add_second_look``)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:

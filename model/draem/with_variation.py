@@ -13,6 +13,7 @@ from .config import Alignment
 from .detector import Detector
 from .errors import ModelError
 from .residual import train_member
+from .second_look import MIN_REFERENCES
 from .variation import network_score
 
 
@@ -33,7 +34,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     ``VariationModel.fit``). ``clusters``: how many groups of good parts, by appearance, each part is judged within
     (``VariationModel.fit``; 0: none). ``global_contrast``: how each frame's contrast is put onto the good
     parts' (``Alignment``, ``VariationModel.fit``). ``second_look``: keep the good parts' left-out residuals as
-    references for a second look at suspicious parts (``add_second_look``)."""
+    references for a second look at suspicious parts (``add_second_look``), when there are at least
+    ``MIN_REFERENCES`` of them (fewer: none)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -46,7 +48,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     references = out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
                                    global_polarization=global_polarization, clusters=clusters,
                                    global_contrast=global_contrast)
-    if second_look:
+    if second_look and len(references) >= MIN_REFERENCES:
         add_second_look(out, references, val_good, batch)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()

@@ -42,6 +42,8 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     assert meta["model"]["decision"] == "variation"  # the default is the shipped recipe
     rec = meta["train"]["variation"]
     assert rec["fit_parts"] > 8 and rec["calibration_parts"] >= 2 and rec["from"].endswith("last")
+    # the shipped recipe looks again at suspicious parts, against every good part fitted
+    assert rec["second_look_references"] == rec["fit_parts"] and "a second look at suspicious parts" in line
     assert main(["eval", "--model", str(out), "--data", str(data), "--no-plots", "--no-synthetic",
                  "--out", str(tmp_path / "ev")]) == 0
     report = json.loads((tmp_path / "ev" / "eval.json").read_text())
@@ -102,9 +104,10 @@ def test_fit_parts_fits_on_the_first_good_parts_only_and_is_recorded(tmp_path: P
     out = tmp_path / "v"
     assert main(["variation", "--model", str(model), "--data", str(data), "--fit-parts", "12",
                  "--out", str(out)]) == 0
-    assert "fitted on 12 good parts" in capsys.readouterr().out
+    said = capsys.readouterr().out
+    assert "fitted on 12 good parts" in said and "no second look (it needs >= 20 good parts)" in said
     train = json.loads(out.with_suffix(".json").read_text())["train"]
-    assert train["variation"]["fit_parts"] == 12
+    assert train["variation"]["fit_parts"] == 12 and train["variation"]["second_look_references"] == 0
     # the drift monitor's trained range is the frames the deciding model was fitted on, not the networks' set (a
     # refit on another line's renders must not warn on every frame of that line)
     assert train["frame_statistics"]["n_frames"] == 12
