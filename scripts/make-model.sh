@@ -12,7 +12,8 @@
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
 #   6. variation: the registered variation model added (fitted on good train parts, calibrated and thresholded on
-#      the validation set); the shipped model decides on its finding alone (DECISION, chosen on the validation set:
+#      the validation set; with station variation's defaults: contrast divided out, 8 clusters, blurred copies, a
+#      second look at suspicious parts); the shipped model decides on its finding alone (DECISION, chosen on the validation set:
 #      model/weights/README.md); station eval still reports the networks, the station skips them
 #   7. held-out types: the networks without one type, decision combined, so the comparison shows what the networks
 #      do with a type they never saw (the variation model never sees any defect)
