@@ -1,7 +1,8 @@
 """What the second look raises among good parts (validation only, nothing chosen): each good validation part above
 the gate, its window and test scores in robust SD, and for its highest-testing region (each region tested alone:
-the map kept only there, proposed again) the place (row, column of the 96 x 192 input), size and how near full scale the frame's I (1 + DoLP) comes within 5 px of it (highlights are not
-judged; 1.0 is full scale). Usage: PYTHONPATH=. python tail.py (from the repository root)."""
+the map kept only there, proposed again) the place (row, column of the 96 x 192 input), its size and how near full
+scale the frame's I (1 + DoLP) comes within 5 px of it (highlights are not judged; 1.0 is full scale).
+Usage: PYTHONPATH=. python tail.py (from the repository root)."""
 
 import cv2
 import numpy as np
