@@ -7,8 +7,9 @@ What depends on the line, in this model:
   - per-position statistics: the variation model's appearance (mean, principal components, per-pixel scales;
     ``model.draem.variation``), when the detector has one: re-estimated on the line's good parts, registered to
     the reference it was trained with (its part region kept; with blurred copies of the parts when the model was
-    fitted with them, ``VariationModel.blur_copies_sigma``); then both detectors' calibration, from the held-out
-    scores;
+    fitted with them, ``VariationModel.blur_copies_sigma``); its second look, when it has one, on the line's own
+    good parts as references (``model.draem.second_look``); then the second look's gate and both detectors'
+    calibration, from the held-out scores;
   - whether the networks still judge: their held-out good parts' median image score, in robust standard
     deviations of their good validation parts (the trained calibration), after the refit; above
     ``DOMAIN_SHIFT_SD`` they are out of their domain on this line and the adapted model decides on the variation
@@ -46,8 +47,9 @@ from .loss import draem_loss
 from .metrics import usable_threshold
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
+from .second_look import MIN_REFERENCES
 from .variation import combined_score
-from .with_variation import member_scores, residual_raw
+from .with_variation import member_scores, residual_raw, second_look_scores
 
 log = logging.getLogger(__name__)
 
@@ -183,7 +185,10 @@ def _refit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Detector:
     """A copy with the normalisation (and the variation model's statistics, when it has one) fitted on ``x``."""
     d = with_normalizer(detector, _fit(detector, x, cfg))
     if d.variation is not None:
-        d.variation.fit(x, keep_reference=True)
+        looked = d.variation.second_look.references > 0
+        references = d.variation.fit(x, keep_reference=True)  # a new fit has no second look
+        if looked and len(references) >= MIN_REFERENCES:  # one on the line's own parts, calibrated held out
+            d.variation.second_look.fit(references, d.variation.region.numpy())
     return d
 
 
@@ -198,6 +203,7 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     shift concerns the DRAEM networks only). Returns (scores, the networks' shift in robust SD or None)."""
     if final.variation is None:
         return np.concatenate([image_scores(d, xp) for d, xp in parts]), None
+    _calibrate_second_look(final, parts)
     pairs = [member_scores(d, xp) for d, xp in parts]
     net, var = torch.cat([p[0] for p in pairs]), torch.cat([p[1] for p in pairs])
     location, spread = (float(c) for c in final.variation.calibration[:2])
@@ -213,6 +219,24 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     if shift > DOMAIN_SHIFT_SD and not keep_networks:
         final.config = final.config.with_(decision="variation")
     return combined_score(net, var, final.variation.calibration, final.config.networks_decide).numpy(), shift
+
+
+def _calibrate_second_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:
+    """The refitted second look's gate and units (``model.draem.second_look``) from the held-out parts' window and
+    test scores, each scored by the detector fitted without them, then shared by all of them; ``final`` keeps none
+    when a fold's detector has none (too few parts to fit it)."""
+    assert final.variation is not None
+    if not final.variation.second_look.references:
+        return
+    if not all(d.variation is not None and d.variation.second_look.references for d, _ in parts):
+        final.variation.second_look.resize(0, 0)
+        return
+    scores = [second_look_scores(d.variation, xp) for d, xp in parts if d.variation is not None]
+    final.variation.second_look.calibrate(np.concatenate([w for w, _ in scores]),
+                                          np.concatenate([t for _, t in scores]))
+    for d, _ in parts:
+        assert d.variation is not None
+        d.variation.second_look.calibration.copy_(final.variation.second_look.calibration)
 
 
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,
@@ -285,10 +309,10 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
     fr = float((heldout >= choice.threshold).mean())
     log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
              choice.threshold, 100 * fr)
-    if detector.variation is not None and detector.variation.second_look.references:
-        log.warning("the adapted variation model has no second look (model.draem.second_look): it is fitted on a "
-                    "training set's references and calibrated on a validation set's good parts; fit it with station "
-                    "variation --refit on the line's own sets")
+    if (detector.variation is not None and detector.variation.second_look.references and final.variation is not None
+            and not final.variation.second_look.references):
+        log.warning("the adapted variation model has no second look (model.draem.second_look): it needs at least "
+                    "%d good parts in each fold's fit", MIN_REFERENCES)
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
     changed = detector.config.decision != final.config.decision
     if changed:

@@ -14,7 +14,7 @@ from .detector import Detector
 from .errors import ModelError
 from .residual import train_member
 from .second_look import MIN_REFERENCES
-from .variation import network_score
+from .variation import VariationModel, network_score
 
 
 @torch.no_grad()
@@ -62,16 +62,23 @@ def add_second_look(detector: Detector, references: np.ndarray, val_good: torch.
     from ``val_good`` (N, C, H, W) good validation parts' window and test scores."""
     assert detector.variation is not None
     var = detector.variation
+    var.second_look.fit(references, var.region.numpy())
+    var.second_look.calibrate(*second_look_scores(var, val_good, batch))
+
+
+@torch.no_grad()
+def second_look_scores(var: VariationModel, x: torch.Tensor, batch: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    """(N,) window and (N,) test scores of parts ``x`` (N, C, H, W) by ``var``'s second look, whose references are
+    fitted and whose gate is not yet set (so no part is looked at again): what ``SecondLook.calibrate`` reads."""
     region = var.region.numpy()
-    var.second_look.fit(references, region)
     window, test = [], []
-    for i in range(0, len(val_good), batch):
-        o = var.zmaps(val_good[i:i + batch], signed=True)  # not calibrated yet: no part is looked at again
+    for i in range(0, len(x), batch):
+        o = var.zmaps(x[i:i + batch], signed=True)
         assert o.signed is not None and o.judged is not None
         window += o.scores.tolist()
         for m, s, j in zip(o.maps.numpy(), o.signed.numpy(), o.judged.numpy(), strict=True):
             test.append(var.second_look.test(m, (s ** 2).sum(0), j, region))
-    var.second_look.calibrate(np.array(window), np.array(test))
+    return np.array(window), np.array(test)
 
 
 def without_variation(detector: Detector) -> Detector:

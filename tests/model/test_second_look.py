@@ -133,3 +133,18 @@ def test_a_file_without_a_second_look_scores_as_before(tmp_path: Path) -> None:
     x = parts(5, 7, defect=True)
     assert plain.variation is not None
     assert torch.equal(loaded.variation.zmaps(x).scores, plain.variation.zmaps(x).scores)
+
+
+def test_adapting_fits_the_second_look_on_the_lines_parts_or_drops_it_when_too_few(tmp_path: Path) -> None:
+    from model.draem.adapt import AdaptConfig, adapt
+
+    _, looked, _ = with_second_look(tmp_path)
+    line = parts(40, 8)
+    adapted, result = adapt(looked, line, torch.ones(len(line), *line.shape[2:], dtype=torch.bool),
+                            AdaptConfig(false_reject=0.05), progress=False)
+    look = adapted.variation.second_look
+    assert look.references == 40 and bool(torch.isfinite(look.calibration).all())
+    assert np.isfinite(result.heldout_scores).all()
+    few = parts(15, 9)  # each fold's fit has 12 parts, under MIN_REFERENCES
+    adapted, _ = adapt(looked, few, torch.ones(len(few), *few.shape[2:], dtype=torch.bool), progress=False)
+    assert adapted.variation.second_look.references == 0

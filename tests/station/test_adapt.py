@@ -118,8 +118,10 @@ def test_adapt_refits_the_variation_models_statistics_and_calibration(line, tmp_
     assert old is not None and new is not None
     assert torch.equal(old.reference, new.reference) and torch.equal(old.region, new.region)
     assert not torch.equal(old.mean, new.mean) and not torch.equal(old.calibration, new.calibration)
-    # the second look's references are the training set's parts: the line's refit does not keep them
-    assert old.second_look.references > 0 and new.second_look.references == 0
+    # the second look is fitted again too: the line's own parts as references, its gate from their held-out scores
+    assert old.second_look.references > 0 and new.second_look.references == 140
+    assert bool(torch.isfinite(new.second_look.calibration).all())
+    assert not torch.equal(old.second_look.calibration, new.second_look.calibration)
     rec = json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]
     assert "variation" in rec["per_position"] and "variation statistics" in rec["scheme"]
     assert rec["advice"].startswith("140 good parts, fewer than the 200 recommended")
