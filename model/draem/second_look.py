@@ -131,15 +131,15 @@ class SecondLook(nn.Module):
         """A part's test score (module docstring, step 2): ``window_map`` (H, W) its window map, ``chi`` (H, W) the
         chi-square over the channels of its signed residual, ``judged`` (H, W) bool its judged pixels, ``region``
         (H, W) bool the region the references are kept over. 0 when nothing is proposed; finite."""
-        ref_chi = self.chi.numpy()
-        ref_judged = np.unpackbits(self.judged.numpy(), axis=1, count=ref_chi.shape[1]).astype(np.float32)
+        ref_chi, packed = self.chi.numpy(), self.judged.numpy()
         own = np.where(judged, np.nan_to_num(chi, nan=0.0, posinf=6e4), 0.0)
         best = 0.0
         for reg in proposals(window_map):
-            at = reg[region]
-            if not at.any():
+            at = np.flatnonzero(reg[region])  # the region's reference pixels: only they are read, not all P
+            if not len(at):
                 continue
-            r = ref_chi[:, at].astype(np.float32).sum(1) / np.maximum(ref_judged[:, at].sum(1), 1.0)
+            ref_judged = (packed[:, at >> 3] >> (7 - (at & 7)).astype(np.uint8)) & 1  # numpy.packbits' bit order
+            r = ref_chi[:, at].astype(np.float32).sum(1) / np.maximum(ref_judged.sum(1, dtype=np.float32), 1.0)
             mine = float(own[reg].sum()) / max(float(judged[reg].sum()), 1.0)
             med, q = float(np.median(r)), float(np.percentile(r, TAIL_QUANTILE))
             best = max(best, (mine - med) / max(q - med, 1e-6))

@@ -61,6 +61,32 @@ def test_a_region_whose_residual_runs_higher_than_the_references_there_tests_hig
     assert look.test(np.zeros((40, 80), np.float32), chi, judged, region) == 0.0  # nothing proposed
 
 
+def test_a_regions_test_counts_only_the_references_judged_pixels() -> None:
+    """The references' judged pixels are kept as bits; a region over the unjudged first column must average each
+    reference's chi-square over its judged pixels only (the oracle's statistic), computed here by hand."""
+    region = np.ones((40, 80), bool)
+    refs = references(40, 4)
+    look = SecondLook()
+    look.fit(refs, region)
+    m = blob(20, 1, 3.0)
+    reg = proposals(m)[0]
+    assert reg[:, 0].any() and reg[:, 1:].any()  # the region straddles the unjudged column
+    own = references(1, 5)[0]
+    judged = np.ones((40, 80), bool)
+    chi = (own ** 2).sum(0)
+    ref_chi = (refs ** 2).sum(1).astype(np.float16).astype(np.float32)[:, reg]
+    ref_judged = (refs != 0).any(1)[:, reg]
+    r = ref_chi.sum(1) / ref_judged.sum(1)
+    med, q = np.median(r), np.percentile(r, 95.0)
+    want = max(0.0, (chi[reg].mean() - med) / (q - med))
+    for extra in proposals(m)[1:]:  # the other places, scored the same way
+        rc = (refs ** 2).sum(1).astype(np.float16).astype(np.float32)[:, extra]
+        re = rc.sum(1) / (refs != 0).any(1)[:, extra].sum(1)
+        mm, qq = np.median(re), np.percentile(re, 95.0)
+        want = max(want, (chi[extra].mean() - mm) / (qq - mm))
+    assert look.test(m, chi, judged, region) == pytest.approx(want, rel=1e-5)
+
+
 def test_only_parts_above_the_gate_are_looked_at_again_and_the_part_at_the_gate_is_not() -> None:
     """The 5 % threshold is the (k+1)-th largest good score (``false_reject_threshold``): that part itself. Rule 46
     gated with >= and its second look raised that part and the threshold with it (caught at 5 % -1.3 points)."""
