@@ -80,7 +80,7 @@ def write_checkpoint_files(path: str | Path, module: torch.nn.Module, meta: dict
     pt, js = paths(path)
     pt.parent.mkdir(parents=True, exist_ok=True)
     state = {k: v.detach().cpu().contiguous() for k, v in module.state_dict().items()}
-    state = {k: v.half() if v.dtype == torch.float32 and k.startswith(half) and half else v
+    state = {k: v.half() if v.dtype == torch.float32 and k.startswith(half) else v  # startswith(()) is False
              for k, v in state.items()}
     tmp = pt.with_name(pt.name + ".tmp")
     torch.save(state, tmp)
