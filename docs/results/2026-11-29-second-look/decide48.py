@@ -1,7 +1,8 @@
-"""Rule 48's decision (rule48.md) from design.py's OUT.npz over the validation set and the deciding set (h0): C,
-the shipped second look (its ``chi`` statistic), against X, the same cascade with the candidate statistic; both
-in robust SD over the good validation parts, thresholds from those parts held fixed, paired bootstrap SEs over the
-deciding set's parts. Usage: python decide48.py OUT.npz STATISTIC."""
+"""Rule 48's decision (rule48.md) from nets.py's OUT.npz over the validation set and the deciding set (h0). C: the
+shipped file (window score; above the gate, the larger of window and test). X: above the gate, the larger of C and
+the residual network's score, each divided by its own 1 % threshold on the good validation parts; C so divided
+elsewhere. X_nodent: X with the network trained without dents (for (e)). Thresholds from the good validation
+parts held fixed; paired bootstrap SEs over the deciding set's parts. Usage: python decide48.py OUT.npz."""
 
 from __future__ import annotations
 
@@ -13,21 +14,30 @@ from model.draem.metrics import auroc, false_reject_threshold
 from model.draem.second_look import robust_location_spread
 
 d = np.load(sys.argv[1])
-cand = sys.argv[2]
 gate = float(d["gate"])
 vg = d["val_label"] == 0
 
 
-def cascade(name: str, key: str) -> np.ndarray:
-    loc, spread = robust_location_spread(d[f"val_{key}"][vg])
-    c = d[f"{name}_window"]
-    t = (np.nan_to_num(d[f"{name}_{key}"], nan=0.0) - loc) / spread
+def shipped(s: str) -> np.ndarray:
+    c, t = d[f"{s}_window"], d[f"{s}_chi"]
     return np.where(c > gate, np.maximum(c, t), c)
 
 
-keys = {"C": "chi", "X": cand}
-val = {k: cascade("val", s) for k, s in keys.items()}
-held = {k: cascade("h0", s) for k, s in keys.items()}
+def network(s: str, net: str) -> np.ndarray:
+    """The network's mean top-10 logits in robust SD over the good validation parts."""
+    loc, spread = robust_location_spread(d[f"val_{net}_logit"][vg])
+    return (d[f"{s}_{net}_logit"] - loc) / spread
+
+
+def cascade(s: str, net: str) -> np.ndarray:
+    tc = false_reject_threshold(shipped("val")[vg], 0.01)
+    tn = false_reject_threshold(network("val", net)[vg], 0.01)
+    c = shipped(s) / tc
+    return np.where(d[f"{s}_window"] > gate, np.maximum(c, network(s, net) / tn), c)
+
+
+val = {"C": shipped("val"), "X": cascade("val", "all"), "Xnd": cascade("val", "nodent")}
+held = {"C": shipped("h0"), "X": cascade("h0", "all"), "Xnd": cascade("h0", "nodent")}
 lab, types = d["h0_label"], d["h0_type"]
 thr = {k: {fr: false_reject_threshold(v[vg], fr) for fr in (0.01, 0.05)} for k, v in val.items()}
 
@@ -44,28 +54,34 @@ def figures(idx: np.ndarray) -> dict[str, float]:
 
 
 allidx = np.arange(len(lab))
-point = figures(allidx)
+dents = np.flatnonzero((lab == 0) | (types == "dent"))
+point, point_d = figures(allidx), figures(dents)
 rng = np.random.default_rng(48)
 boot = [figures(rng.choice(allidx, len(allidx))) for _ in range(1000)]
+boot_d = [figures(rng.choice(dents, len(dents))) for _ in range(1000)]
 
 
-def se(key: str) -> float:
-    return float(np.std([b[f"X {key}"] - b[f"C {key}"] for b in boot]))
+def se(key: str, x: str = "X", b: list | None = None) -> float:
+    return float(np.std([r[f"{x} {key}"] - r[f"C {key}"] for r in (b or boot)]))
 
 
-print(f"deciding set: {int((lab == 0).sum())} good, {int((lab == 1).sum())} defective; gate {gate:.3f}; "
-      f"X = {cand}; validation 1 % thresholds C {thr['C'][0.01]:.2f}, X {thr['X'][0.01]:.2f}")
-print("| | C | X | X - C (paired SE) |\n|---|---|---|---|")
+print(f"deciding set: {int((lab == 0).sum())} good, {int((lab == 1).sum())} defective; gate {gate:.3f}")
+print("| | C | X | X - C (paired SE) | X without dents in training | Xnd - C (SE) |\n|---|---|---|---|---|---|")
 for key in ("auroc", "caught 0.01", "caught 0.05", "good rejected 0.01", "good rejected 0.05"):
-    c, x = point[f"C {key}"], point[f"X {key}"]
-    print(f"| {key} | {c:.3f} | {x:.3f} | {x - c:+.3f} ({se(key):.3f}) |")
-print("\nper type (image AUROC / caught at 1 % / caught at 5 %):\n| type | C | X |\n|---|---|---|")
+    c, x, xn = point[f"C {key}"], point[f"X {key}"], point[f"Xnd {key}"]
+    print(f"| {key} | {c:.3f} | {x:.3f} | {x - c:+.3f} ({se(key):.3f}) | {xn:.3f} | {xn - c:+.3f} "
+          f"({se(key, 'Xnd'):.3f}) |")
+print("\nper type (image AUROC / caught at 1 % / caught at 5 %):")
+print("| type | C | X | X without dents |\n|---|---|---|---|")
 for t in sorted(set(types[lab == 1])):
     f = figures(np.flatnonzero((lab == 0) | (types == t)))
     print(f"| {t} | " + " | ".join(f"{f[f'{k} auroc']:.3f} / {f[f'{k} caught 0.01']:.0%} / {f[f'{k} caught 0.05']:.0%}"
-                                  for k in ("C", "X")) + " |")
+                                  for k in ("C", "X", "Xnd")) + " |")
 a = point["X caught 0.01"] - point["C caught 0.01"] > se("caught 0.01")
 b = point["X auroc"] - point["C auroc"] >= -se("auroc")
 c = point["X caught 0.05"] - point["C caught 0.05"] >= -se("caught 0.05")
 dd = point["X good rejected 0.01"] <= 0.02
-print(f"\n(a) {a}  (b) {b}  (c) {c}  (d) {dd}  -> {'taken' if a and b and c and dd else 'not taken'}")
+e = point_d["Xnd caught 0.01"] - point_d["C caught 0.01"] >= -se("caught 0.01", "Xnd", boot_d)
+print(f"\ndents, the network trained without them: caught at 1 % {point_d['Xnd caught 0.01']:.3f} against C's "
+      f"{point_d['C caught 0.01']:.3f} (SE {se('caught 0.01', 'Xnd', boot_d):.3f})")
+print(f"(a) {a}  (b) {b}  (c) {c}  (d) {dd}  (e) {e}  -> {'taken' if a and b and c and dd and e else 'not taken'}")

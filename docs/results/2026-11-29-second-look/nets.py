@@ -14,10 +14,23 @@ import numpy as np
 import torch
 
 from model.draem.checkpoint import load_checkpoint
+from model.draem.detector import Detector
+from model.draem.residual import TOP_K
 from station.evaluation import model_split
 
 MODEL = "model/weights/default"
 BATCH = 50
+
+
+def top_logits(det: Detector, signed: torch.Tensor, judged: torch.Tensor) -> np.ndarray:
+    """(N,) the mean of the TOP_K highest logits over the judged pixels, averaged over members: the networks'
+    score before the sigmoid saturates it (``NET_logit``; put in robust SD by the analysis)."""
+    x, j = det.residual_inputs(signed, judged)
+    j = j | ~j.flatten(1).any(1).view(-1, 1, 1)  # nothing judged: the whole map, as member_scores
+    with torch.no_grad():
+        out = [m(x).masked_fill(~j, -torch.inf).flatten(1).topk(TOP_K, 1).values.mean(1)
+               for m in det.residual.members]
+    return torch.stack(out).mean(0).numpy()
 
 
 def main() -> None:
@@ -42,7 +55,8 @@ def main() -> None:
     for name, root, split in (("val", val, "val"), *((f"h{k}", h, "test") for k, h in enumerate(heldout))):
         sp = model_split(ck, MODEL, root, split)
         x = sp.priors.float()
-        cols: dict[str, list[float]] = {"window": [], "chi": [], **{n: [] for n in dets}}
+        cols: dict[str, list[float]] = {"window": [], "chi": [], **{n: [] for n in dets},
+                                        **{n + "_logit": [] for n in dets}}
         for i in range(0, len(x), BATCH):
             o = vm.zmaps(x[i:i + BATCH], signed=True)
             for m, s, j in zip(o.maps.numpy(), o.signed.numpy(), o.judged.numpy(), strict=True):
@@ -50,6 +64,7 @@ def main() -> None:
                 cols["chi"].append((look.test(m, (s.astype(np.float32) ** 2).sum(0), j, part) - tl) / ts)
             for n, d in dets.items():
                 cols[n].extend(d.residual_output(o.signed, o.judged).score.tolist())
+                cols[n + "_logit"].extend(top_logits(d, o.signed, o.judged).tolist())
             print(f"{name}: {min(i + BATCH, len(x))}/{len(x)}", flush=True)
         for k, v in cols.items():
             result[f"{name}_{k}"] = np.array(v)
