@@ -273,11 +273,13 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
 
 
 def fit_residual(model: str, data: str, out: str, val_data: str | None = None, members: int = 3, steps: int = 3000,
-                 seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = 0.05) -> str:
+                 seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = 0.05,
+                 look: bool = False) -> str:
     """Checkpoint ``model`` (with its variation model) plus ``members`` residual networks (``model.draem.residual``)
-    deciding, trained on ``data``'s train split (good parts and rendered defective parts with masks, without
-    ``holdout_type``'s), calibrated and thresholded on ``val_data``'s val split (default ``data``'s) as
-    ``fit_variation``; written to ``out``; one line saying what it does on the val split. Progress on stderr."""
+    deciding (``look``: as the variation model's second look instead, the model's decision kept), trained on
+    ``data``'s train split (good parts and rendered defective parts with masks, without ``holdout_type``'s),
+    calibrated and thresholded on ``val_data``'s val split (default ``data``'s) as ``fit_variation``; written to
+    ``out``; one line saying what it does on the val split. Progress on stderr."""
     import sys
 
     from model.draem.checkpoint import load_checkpoint
@@ -297,6 +299,9 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     if ck.detector.residual is not None:  # the model's own refusal, before minutes of loading
         raise UserError(f"{model}: the detector already has residual networks: start from the model they were added "
                         f"to ({ck.meta.get('train', {}).get('residual', {}).get('from', 'its train.residual.from')})")
+    if look and (ck.detector.config.decision == "combined" or not ck.detector.variation.second_look.references):
+        raise UserError(f"{model}: --second-look needs a model decided by its variation model with its second look "
+                        f"(station variation --decision variation --second-look)")  # before minutes of loading
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
     keep = [i for i, (lab, t) in enumerate(zip(tr.label.tolist(), tr.defect_type, strict=True))
@@ -310,14 +315,15 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     try:
         det = add_residual(ck.detector, tr.priors[good], tr.object_mask[good] if tr.object_masks_known else None,
                            tr.priors[keep], tr.defect_mask[keep].bool(), va.priors[good_va], members, steps, seed,
-                           progress=lambda line: print(line, file=sys.stderr, flush=True))
+                           progress=lambda line: print(line, file=sys.stderr, flush=True), look=look)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "residual", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good),
         "defective_parts": len(keep), "holdout_type": holdout_type, "members": members, "steps": steps,
-        "seed": seed})
+        "seed": seed, "look": look})
     detected = f" and {choice.detected_fraction:.1%} of defective" if int(labels.sum()) else ""
-    return (f"{out}: {members} residual networks decide; threshold {choice.threshold:.4g} ({choice.rule}); on "
+    role = "are the variation model's second look" if look else "decide"
+    return (f"{out}: {members} residual networks {role}; threshold {choice.threshold:.4g} ({choice.rule}); on "
             f"{len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts{detected}; image "
             f"AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")

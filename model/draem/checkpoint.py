@@ -249,6 +249,8 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
             detector.variation.size_fitted(state, "variation.")  # their size is the fit's
         except ModelError as exc:
             raise CheckpointError(f"{pt}: {exc}") from None
+    if detector.residual is not None:  # added later (rule 49): absent, the networks are no second look
+        state.setdefault("residual.look", detector.residual.look.clone())
     missing = sorted(set(detector.state_dict()) - set(state))
     unexpected = sorted(set(state) - set(detector.state_dict()))
     if missing or unexpected:

@@ -15,7 +15,7 @@ from .errors import ModelError
 from .networks import Draem, DraemEvalOutput, init_weights
 from .preprocess import Normalizer
 from .residual import UNJUDGEABLE_Z, ResidualDetector, ResidualOutput
-from .variation import MAX_HIDDEN, NOISE_CAP, VariationModel, combine, squash
+from .variation import MAX_HIDDEN, NOISE_CAP, VariationModel, VariationOutput, combine, squash
 
 
 def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, window_px: int) -> torch.Tensor:
@@ -111,8 +111,11 @@ class Detector(nn.Module):
         if self.variation is None:
             return DetectorOutput(amap, score, maps, scores)
         v = self.variation.zmaps(x, signed=self.residual is not None)
+        looks = self.residual is not None and self.residual.looks and self.config.decision != "residual"
+        if looks:
+            v = v._replace(scores=self.residual_look(v))
         maps, scores = {**maps, "variation": v.maps}, {**scores, "variation": v.scores}
-        if self.residual is not None:
+        if self.residual is not None and not looks:
             assert v.signed is not None and v.judged is not None  # asked for above
             r = self.residual_output(v.signed, v.judged)
             maps["residual"], scores["residual"] = r.map.to(amap.device), r.score.to(score.device)
@@ -130,6 +133,23 @@ class Detector(nn.Module):
         map (N, H, W) probability, score (N,) robust SD above the good validation parts."""
         assert self.residual is not None
         return self.residual.predict(*self.residual_inputs(signed, judged))
+
+    def residual_look(self, v: VariationOutput) -> torch.Tensor:
+        """(N,) the variation model's scores with the residual networks as its second look (``model.draem.residual``,
+        ``look``): a part above the second look's gate scores the larger of its score and the networks' finding in
+        the window's units; the networks run on those parts only. The rest keep their score."""
+        assert self.residual is not None and self.variation is not None and v.signed is not None
+        look = self.variation.second_look
+        window = v.maps.flatten(1).amax(1)
+        ask = [i for i, w in enumerate(window.tolist()) if look.suspicious(w)]
+        if not ask:
+            return v.scores
+        assert v.judged is not None
+        found = self.residual.look_score(self.residual.top_logits(*self.residual_inputs(v.signed[ask], v.judged[ask])))
+        _, wl, ws = (float(c) for c in look.calibration[:3])
+        scores = v.scores.clone()
+        scores[ask] = torch.maximum(scores[ask], (wl + ws * found).to(scores.dtype).to(scores.device))
+        return scores
 
     def residual_inputs(self, signed: torch.Tensor, judged: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """(the residual networks' input (N, C + 2, H, W), (N, H, W) the pixels they judge: ``judged`` inside the

@@ -21,6 +21,12 @@ Score: each member's image score is the mean of its ``TOP_K`` highest pixel prob
 part, put in robust standard deviations above the good validation parts (``calibration``: median, 1.4826 MAD per
 member), then averaged over members (an ensemble of seeds). Measured on the validation set (600 parts, 370 good)
 against the variation model's own statistic: docs/results/2026-11-25-residual-networks.md.
+
+As the variation model's second look (rule 49, docs/results/2026-11-29-second-look.md; ``look``): the networks are
+asked only about a part above the second look's gate, and their finding is the mean of the members' ``TOP_K``
+highest logits (the probabilities saturate at 1: calibrated, they top out below the window's 1 % threshold), in
+robust SD over the good validation parts. That finding and the variation model's score, each divided by its own 1 %
+threshold on the good validation parts, are put side by side; the part scores the larger (``look_score``).
 """
 
 from __future__ import annotations
@@ -49,6 +55,16 @@ CROP = (64, 96)
 RENDERED_SHARE = 0.25
 """Share of each batch drawn from the rendered defective parts (the rest good parts, half of them with a synthetic
 anomaly)."""
+
+LOOK_FALSE_REJECT = 0.01
+"""The second look puts the networks' finding and the variation model's score side by side in units of their own
+threshold at this rate of good validation parts rejected (the line's operating point)."""
+
+LOOK = ("location", "spread", "threshold", "variation_threshold")
+"""The entries of ``ResidualDetector.look`` (float64), in order: the median and spread (1.4826 MAD) of the mean top
+logits over the good validation parts, the networks' threshold in those robust SD and the variation model's (in
+the window's robust SD, ``model.draem.second_look``), each at ``LOOK_FALSE_REJECT``. The threshold inf: no look
+(the networks decide, or only report)."""
 
 UNJUDGEABLE_Z = 1e3
 """Decision score (robust SD) of a frame the variation model cannot judge: its noise level beyond ``NOISE_CAP`` (a
@@ -98,6 +114,12 @@ class ResidualDetector(nn.Module):
             raise ModelError(f"residual networks: members must be >= 1, got {members}")
         self.members = nn.ModuleList(ResidualNet(channels + 2) for _ in range(members))
         self.register_buffer("calibration", torch.tensor([[0.0, 1.0]] * members))
+        self.register_buffer("look", torch.tensor([0.0, 1.0, np.inf, np.inf], dtype=torch.float64))
+
+    @property
+    def looks(self) -> bool:
+        """Whether the networks are the variation model's second look (``look`` set by ``calibrate_look``)."""
+        return bool(torch.isfinite(self.look).all())
 
     @staticmethod
     def inputs(signed: torch.Tensor, region: torch.Tensor, window_spread: torch.Tensor) -> torch.Tensor:
@@ -135,6 +157,37 @@ class ResidualDetector(nn.Module):
         loc, spread = self.calibration[:, 0:1], self.calibration[:, 1:2]
         return ResidualOutput(prob, ((raw - loc) / spread).mean(0))
 
+    @torch.no_grad()
+    def top_logits(self, x: torch.Tensor, judged: torch.Tensor) -> torch.Tensor:
+        """Inputs (N, C + 2, H, W) and judged (N, H, W) -> (N,) the mean over members of the mean of their ``TOP_K``
+        highest logits over the judged pixels (the whole map when none is judged: fail closed), float64, finite (a
+        NaN reads as 1e6: the part is raised)."""
+        j = judged.bool() | ~judged.flatten(1).any(1).view(-1, 1, 1)
+        k = min(TOP_K, j[0].numel())
+        out = [m(x).masked_fill(~j, -torch.inf).flatten(1).topk(k, 1).values.mean(1) for m in self.members]
+        return torch.nan_to_num(torch.stack(out).mean(0).double(), nan=1e6, posinf=1e6, neginf=-1e6)
+
+    def calibrate_look(self, top_logits: torch.Tensor, variation_scores: np.ndarray) -> None:
+        """Set ``look`` from the good validation parts' (N,) ``top_logits`` and (N,) variation scores in the window's
+        robust SD (module docstring; ``LOOK``)."""
+        from .metrics import false_reject_threshold
+        from .second_look import robust_location_spread
+
+        loc, spread = robust_location_spread(top_logits.double().numpy())
+        t = false_reject_threshold((top_logits.double().numpy() - loc) / spread, LOOK_FALSE_REJECT)
+        tv = false_reject_threshold(np.asarray(variation_scores, np.float64), LOOK_FALSE_REJECT)
+        if not (t > 0 and tv > 0):
+            raise ModelError(f"residual networks' look: the 1 % thresholds on the good validation parts must be > 0, "
+                             f"got {t:.3g} (networks) and {tv:.3g} (variation model)")
+        self.look.copy_(torch.tensor([loc, spread, t, tv], dtype=torch.float64))
+
+    def look_score(self, top_logits: torch.Tensor) -> torch.Tensor:
+        """(N,) ``top_logits`` -> (N,) the networks' finding in the variation model's robust SD: its robust SD over
+        its own threshold, times the variation model's threshold (so that the larger of the two compares each against
+        its own threshold)."""
+        loc, spread, t, tv = (float(v) for v in self.look)
+        return (top_logits.double() - loc) / spread / t * tv
+
     def calibrate(self, raw: torch.Tensor) -> None:
         """Set ``calibration`` from (members, N) raw scores of good validation parts (at least 2)."""
         if raw.shape[1] < 2:
@@ -150,6 +203,8 @@ class ResidualDetector(nn.Module):
                 raise ModelError(f"residual networks: {name} has NaN or Inf values")
         if not bool((self.calibration[:, 1] > 0).all()):
             raise ModelError("residual networks: a calibration spread is not > 0")
+        if not bool((self.look[1:] > 0).all()) or bool(torch.isnan(self.look).any()):
+            raise ModelError("residual networks: look needs a spread and thresholds > 0")
 
 
 def shape_mask(rng: np.random.Generator, judged: np.ndarray) -> np.ndarray | None:

@@ -4,6 +4,7 @@ networks that read it (``model.draem.residual``)."""
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable
 
 import numpy as np
@@ -108,26 +109,34 @@ def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> 
 @torch.no_grad()
 def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
                  defects: torch.Tensor, defect_masks: torch.Tensor, val_good: torch.Tensor, members: int = 3,
-                 steps: int = 3000, seed: int = 0, progress: Callable[[str], None] | None = None) -> Detector:
+                 steps: int = 3000, seed: int = 0, progress: Callable[[str], None] | None = None,
+                 look: bool = False) -> Detector:
     """A copy of ``detector`` (which has the variation model) with ``members`` residual networks
-    (``model.draem.residual``) deciding: the variation model fitted again on ``good`` (N, C, H, W) good training
-    parts (the same parts give the same fit; its left-out residuals are the networks' good examples), ``defects``
-    (M, C, H, W) rendered defective training parts with ``defect_masks`` (M, H, W) registered as the frames,
-    member k trained with seed ``seed + k``; both detectors then calibrated on ``val_good`` (good validation
-    parts). ``progress``: one line per 250 steps."""
+    (``model.draem.residual``) deciding: trained on the left-out residuals of ``good`` (N, C, H, W) good training
+    parts (the variation model fitted again on them, in a copy: the same parts give the same fit, and the model's
+    own, with its second look, is kept), ``defects`` (M, C, H, W) rendered defective training parts with
+    ``defect_masks`` (M, H, W) registered as the frames, member k trained with seed ``seed + k``; both detectors
+    then calibrated on ``val_good`` (good validation parts). ``look``: the networks do not decide but are the
+    variation model's second look (``ResidualDetector.look``, calibrated on ``val_good``); the model's decision is
+    kept, and it needs a fitted second look (``add_second_look``). ``progress``: one line per 250 steps."""
     if detector.variation is None:
         raise ModelError("the residual networks read the variation model: add it first (station variation)")
     if detector.residual is not None:
         raise ModelError("the detector already has residual networks: start from the model they were added to")
     if len(val_good) < 2:
         raise ModelError(f"calibrating the residual networks needs good validation parts, got {len(val_good)}")
-    out = Detector(detector.config.with_(residual_members=members, decision="residual"), detector.normalizer)
+    if look and (detector.config.decision == "combined" or not detector.variation.second_look.references):
+        raise ModelError("the residual networks as a second look need a model decided by its variation model with "
+                         "its second look (station variation --decision variation --second-look)")
+    out = Detector(detector.config.with_(residual_members=members,
+                                         decision=detector.config.decision if look else "residual"),
+                   detector.normalizer)
     missing, unexpected = out.load_state_dict(detector.state_dict(), strict=False)
     assert not unexpected and all(k.startswith("residual.") for k in missing), (missing, unexpected)
     out.eval()
     assert out.variation is not None and out.residual is not None
     var, res = out.variation, out.residual
-    signed = torch.from_numpy(var.fit(good, good_object_mask))
+    signed = torch.from_numpy(copy.deepcopy(var).fit(good, good_object_mask))
     region = var.region.bool()
     good_in = res.inputs(signed, region, var.window_spread).numpy()
     if len(defects):
@@ -145,9 +154,27 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
             train_member(net, good_in, defect_in, masks, steps, seed + k, progress=report)
     var.calibrate(*member_scores(out, val_good))
     res.calibrate(residual_raw(out, val_good))
+    if look:
+        calibrate_look(out, val_good)
     var.check()
     res.check()
     return out
+
+
+@torch.no_grad()
+def calibrate_look(detector: Detector, val_good: torch.Tensor, batch_size: int = 16) -> None:
+    """Set the residual networks' ``look`` of ``detector`` from good validation parts ``val_good`` (N, C, H, W):
+    their mean top logits and the variation model's scores in the window's robust SD (``model.draem.residual``)."""
+    assert detector.variation is not None and detector.residual is not None
+    var, res = detector.variation, detector.residual
+    _, wl, ws = (float(c) for c in var.second_look.calibration[:3])
+    logits, scores = [], []
+    for i in range(0, len(val_good), batch_size):
+        v = var.zmaps(val_good[i:i + batch_size], signed=True)
+        assert v.signed is not None and v.judged is not None
+        logits.append(res.top_logits(*detector.residual_inputs(v.signed, v.judged)))
+        scores.append((v.scores.double().numpy() - wl) / ws)
+    res.calibrate_look(torch.cat(logits), np.concatenate(scores))
 
 
 @torch.no_grad()

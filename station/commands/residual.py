@@ -1,5 +1,5 @@
 """``station residual``: add residual networks (``model.draem.residual``) that read the variation model's signed z
-maps, and let them decide.
+maps, and let them decide, or (``--second-look``) ask them about the parts above the variation model's gate.
 
 Trained on ``--data``'s train split (its good parts' left-out residuals, half of them with synthetic anomalies, and
 its rendered defective parts with their masks; ``--holdout-type`` leaves one type's out), calibrated and
@@ -33,6 +33,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "networks never saw (default: none left out)")
     p.add_argument("--max-good-flagged", type=float, default=0.05,
                    help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
+    p.add_argument("--second-look", action="store_true",
+                   help="the networks do not decide: they are the variation model's second look at parts above its "
+                        "gate, side by side with its score at each one's own 1 %% threshold (the shipped recipe; "
+                        "needs a model with the second look)")
     p.set_defaults(func=run)
 
 
@@ -40,5 +44,5 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_residual
 
     print(fit_residual(args.model, args.data, args.out, args.val_data, args.members, args.steps, args.seed,
-                       args.holdout_type, args.max_good_flagged))
+                       args.holdout_type, args.max_good_flagged, args.second_look))
     return 0

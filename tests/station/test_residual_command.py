@@ -53,3 +53,29 @@ def test_a_model_without_the_variation_model_or_a_bad_type_is_refused_in_one_lin
     assert main(["residual", "--model", str(model), "--data", str(data), "--out", str(tmp_path / "r"),
                  "--holdout-type", "crack"]) == 2
     assert "not a defect type" in capsys.readouterr().err
+
+
+def test_second_look_networks_keep_the_decision_and_need_the_second_look(tmp_path: Path, capsys) -> None:
+    data, model = trained(tmp_path, capsys)
+    var = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(var)]) == 0
+    capsys.readouterr()
+    out = tmp_path / "r"
+    assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(out), "--members", "1",
+                 "--steps", "3", "--second-look"]) == 0
+    assert "1 residual networks are the variation model's second look" in capsys.readouterr().out
+    meta = json.loads(out.with_suffix(".json").read_text())
+    assert meta["model"]["decision"] == "variation" and meta["model"]["residual_members"] == 1
+    assert meta["train"]["residual"]["look"] is True
+    assert meta["train"]["variation"]["second_look_references"] > 0  # the model's own record is kept
+    assert main(["eval", "--model", str(out), "--data", str(data), "--no-plots", "--no-synthetic",
+                 "--out", str(tmp_path / "ev")]) == 0
+    capsys.readouterr()
+    few = tmp_path / "few"  # fitted on 12 good parts: no second look to join
+    assert main(["variation", "--model", str(model), "--data", str(data), "--fit-parts", "12", "--out",
+                 str(few)]) == 0
+    capsys.readouterr()
+    assert main(["residual", "--model", str(few), "--data", str(data), "--out", str(tmp_path / "r2"),
+                 "--members", "1", "--steps", "1", "--second-look"]) == 2
+    err = capsys.readouterr().err
+    assert "second look" in err and len(err.strip().splitlines()) == 1
