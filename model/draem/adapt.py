@@ -47,9 +47,10 @@ from .loss import draem_loss
 from .metrics import usable_threshold
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
+from .residual import NO_LOOK
 from .second_look import MIN_REFERENCES
 from .variation import combined_score
-from .with_variation import member_scores, residual_raw, second_look_scores
+from .with_variation import look_scores, member_scores, residual_raw, second_look_scores
 
 log = logging.getLogger(__name__)
 
@@ -204,6 +205,7 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     if final.variation is None:
         return np.concatenate([image_scores(d, xp) for d, xp in parts]), None
     _calibrate_second_look(final, parts)
+    _calibrate_look(final, parts)
     pairs = [member_scores(d, xp) for d, xp in parts]
     net, var = torch.cat([p[0] for p in pairs]), torch.cat([p[1] for p in pairs])
     location, spread = (float(c) for c in final.variation.calibration[:2])
@@ -219,6 +221,25 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     if shift > DOMAIN_SHIFT_SD and not keep_networks:
         final.config = final.config.with_(decision="variation")
     return combined_score(net, var, final.variation.calibration, final.config.networks_decide).numpy(), shift
+
+
+def _calibrate_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:
+    """The residual networks' look (``model.draem.residual``), when they are the second look, from the held-out
+    parts' top logits and variation scores, each scored by the detector fitted without them (after its second look
+    is calibrated), then shared by all of them; the networks themselves are kept. ``final`` looks no more (the
+    networks only report) when the second look was dropped."""
+    if final.residual is None or not final.residual.looks:
+        return
+    if final.variation is None or not final.variation.second_look.references:
+        for d in (final, *(d for d, _ in parts)):
+            assert d.residual is not None
+            d.residual.look.copy_(torch.tensor(NO_LOOK, dtype=torch.float64))
+        return
+    pairs = [look_scores(d, xp) for d, xp in parts]
+    final.residual.calibrate_look(torch.cat([p[0] for p in pairs]), np.concatenate([p[1] for p in pairs]))
+    for d, _ in parts:
+        assert d.residual is not None
+        d.residual.look.copy_(final.residual.look)
 
 
 def _calibrate_second_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:

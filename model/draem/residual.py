@@ -66,6 +66,9 @@ logits over the good validation parts, the networks' threshold in those robust S
 the window's robust SD, ``model.draem.second_look``), each at ``LOOK_FALSE_REJECT``. The threshold inf: no look
 (the networks decide, or only report)."""
 
+NO_LOOK = (0.0, 1.0, float("inf"), float("inf"))
+"""``ResidualDetector.look`` of networks that are no second look (``LOOK``)."""
+
 UNJUDGEABLE_Z = 1e3
 """Decision score (robust SD) of a frame the variation model cannot judge: its noise level beyond ``NOISE_CAP`` (a
 frame nothing like the fitted line's parts: hostile, black, saturated, another part) or more than ``MAX_HIDDEN`` of
@@ -114,7 +117,7 @@ class ResidualDetector(nn.Module):
             raise ModelError(f"residual networks: members must be >= 1, got {members}")
         self.members = nn.ModuleList(ResidualNet(channels + 2) for _ in range(members))
         self.register_buffer("calibration", torch.tensor([[0.0, 1.0]] * members))
-        self.register_buffer("look", torch.tensor([0.0, 1.0, np.inf, np.inf], dtype=torch.float64))
+        self.register_buffer("look", torch.tensor(NO_LOOK, dtype=torch.float64))
 
     @property
     def looks(self) -> bool:

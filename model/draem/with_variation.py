@@ -162,19 +162,26 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
 
 
 @torch.no_grad()
-def calibrate_look(detector: Detector, val_good: torch.Tensor, batch_size: int = 16) -> None:
-    """Set the residual networks' ``look`` of ``detector`` from good validation parts ``val_good`` (N, C, H, W):
-    their mean top logits and the variation model's scores in the window's robust SD (``model.draem.residual``)."""
+def look_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tuple[torch.Tensor, np.ndarray]:
+    """What the residual networks' ``look`` is calibrated from, on parts ``x`` (N, C, H, W): (N,) their mean top
+    logits (``ResidualDetector.top_logits``) and (N,) the variation model's scores in the window's robust SD."""
     assert detector.variation is not None and detector.residual is not None
     var, res = detector.variation, detector.residual
     _, wl, ws = (float(c) for c in var.second_look.calibration[:3])
     logits, scores = [], []
-    for i in range(0, len(val_good), batch_size):
-        v = var.zmaps(val_good[i:i + batch_size], signed=True)
+    for i in range(0, len(x), batch_size):
+        v = var.zmaps(x[i:i + batch_size], signed=True)
         assert v.signed is not None and v.judged is not None
         logits.append(res.top_logits(*detector.residual_inputs(v.signed, v.judged)))
         scores.append((v.scores.double().numpy() - wl) / ws)
-    res.calibrate_look(torch.cat(logits), np.concatenate(scores))
+    return torch.cat(logits), np.concatenate(scores)
+
+
+def calibrate_look(detector: Detector, val_good: torch.Tensor) -> None:
+    """Set the residual networks' ``look`` of ``detector`` from good validation parts ``val_good`` (N, C, H, W)
+    (``look_scores``; ``model.draem.residual``)."""
+    assert detector.residual is not None
+    detector.residual.calibrate_look(*look_scores(detector, val_good))
 
 
 @torch.no_grad()

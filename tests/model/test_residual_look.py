@@ -109,3 +109,23 @@ def test_the_look_needs_a_model_decided_by_its_variation_model_with_its_second_l
     with pytest.raises(ModelError, match="second look"):
         add_residual(without, parts(40, 0), None, parts(4, 9, defect=True), defect_masks(4), parts(30, 3),
                      members=1, steps=1, look=True)
+
+
+def test_adapting_recalibrates_the_look_on_the_lines_parts_or_drops_it_with_the_second_look(
+        with_look: tuple[Detector, Detector, Path]) -> None:
+    from model.draem.adapt import AdaptConfig, adapt
+
+    _, det, _ = with_look
+    assert det.residual is not None
+    line = parts(40, 8)
+    adapted, result = adapt(det, line, torch.ones(len(line), *line.shape[2:], dtype=torch.bool),
+                            AdaptConfig(false_reject=0.05), progress=False)
+    assert adapted.residual is not None and adapted.residual.looks
+    assert not torch.equal(adapted.residual.look, det.residual.look)  # the line's own units and thresholds
+    for a, b in zip(adapted.residual.parameters(), det.residual.parameters(), strict=True):
+        assert torch.equal(a, b)  # the networks are kept
+    assert np.isfinite(result.heldout_scores).all()
+    few = parts(15, 9)  # each fold's fit has 12 parts: no second look, so no look either
+    adapted, _ = adapt(det, few, torch.ones(len(few), *few.shape[2:], dtype=torch.bool), progress=False)
+    assert adapted.variation is not None and adapted.variation.second_look.references == 0
+    assert adapted.residual is not None and not adapted.residual.looks
