@@ -15,6 +15,9 @@
 #      the validation set; with station variation's defaults: contrast divided out, 8 clusters, blurred copies, a
 #      second look at suspicious parts); the shipped model decides on its finding alone (DECISION, chosen on the validation set:
 #      model/weights/README.md); station eval still reports the networks, the station skips them
+#   6b. look: one residual network (trained on the variation model's residuals of good parts with synthetic
+#      anomalies and of the rendered defective parts) asked about the parts above the second look's gate, beside it
+#      at each one's own 1 % threshold (station residual --second-look; rule 49, docs/results/2026-11-29-second-look.md)
 #   7. held-out types: the networks without one type, decision combined, so the comparison shows what the networks
 #      do with a type they never saw (the variation model never sees any defect)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
@@ -40,6 +43,8 @@ HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
 JOBS=${JOBS:-2}
 SHIP=${SHIP:-1}
 DECISION=${DECISION:-variation}
+LOOK_MEMBERS=${LOOK_MEMBERS:-1}
+LOOK_STEPS=${LOOK_STEPS:-3000}
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
@@ -67,6 +72,12 @@ variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exi
     [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$VAL" --out "$2" "${@:3}"
 }
 variation "$RUNS/band/best" "$RUNS/band-variation" --decision "$DECISION"
+SHIPPED=band-variation
+if [ "$DECISION" = variation ]; then  # step 6b: the look joins a model its variation model decides
+    [ -f "$RUNS/band-look.json" ] || "$BIN/station" residual --model "$RUNS/band-variation" --data "$DATA" \
+        --val-data "$VAL" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/band-look"
+    SHIPPED=band-look
+fi
 for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
     "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
         --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
@@ -75,7 +86,7 @@ for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw ev
 done
 
 "$BIN/station" threshold --model "$RUNS/base/last" --data "$DATA"
-for m in base/last mixed/best band/best band-variation $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/variation"; done)
+for m in base/last mixed/best band/best band-variation ${SHIPPED/band-variation/} $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/variation"; done)
 do
     name=${m%/last}; name=${name%/best}; name=${name//\//-}
     "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-$name"
@@ -84,7 +95,7 @@ done
 
 if [ "$SHIP" = 1 ]; then
     "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
-        "$RUNS/band-variation" model/weights/default
+        "$RUNS/$SHIPPED" model/weights/default
     "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$VAL" \
         --out model/weights/default-eval
     cp "$RUNS"/compare/compare.* model/weights/default-eval/
