@@ -284,7 +284,7 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
 
     from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
-    from model.draem.with_variation import add_residual
+    from model.draem.with_variation import add_residual, can_look
     from sim.defects import DEFECT_TYPES
     from station.datasets import manifest_sha256
 
@@ -299,7 +299,7 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     if ck.detector.residual is not None:  # the model's own refusal, before minutes of loading
         raise UserError(f"{model}: the detector already has residual networks: start from the model they were added "
                         f"to ({ck.meta.get('train', {}).get('residual', {}).get('from', 'its train.residual.from')})")
-    if look and (ck.detector.config.decision == "combined" or not ck.detector.variation.second_look.references):
+    if look and not can_look(ck.detector):
         raise UserError(f"{model}: --second-look needs a model decided by its variation model with its second look "
                         f"(station variation --decision variation --second-look)")  # before minutes of loading
     tr = model_split(ck, model, data, "train")

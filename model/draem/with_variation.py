@@ -106,6 +106,13 @@ def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> 
     return torch.cat(net), torch.cat(var)
 
 
+def can_look(detector: Detector) -> bool:
+    """Whether residual networks can be ``detector``'s second look (``add_residual(look=True)``): its variation model
+    decides, and has a fitted second look."""
+    return (detector.variation is not None and detector.config.decision == "variation"
+            and detector.variation.second_look.references > 0)
+
+
 @torch.no_grad()
 def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
                  defects: torch.Tensor, defect_masks: torch.Tensor, val_good: torch.Tensor, members: int = 3,
@@ -125,7 +132,7 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
         raise ModelError("the detector already has residual networks: start from the model they were added to")
     if len(val_good) < 2:
         raise ModelError(f"calibrating the residual networks needs good validation parts, got {len(val_good)}")
-    if look and (detector.config.decision == "combined" or not detector.variation.second_look.references):
+    if look and not can_look(detector):
         raise ModelError("the residual networks as a second look need a model decided by its variation model with "
                          "its second look (station variation --decision variation --second-look)")
     out = Detector(detector.config.with_(residual_members=members,
