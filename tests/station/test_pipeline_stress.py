@@ -81,13 +81,16 @@ def test_hostile_frames_give_finite_scores_in_range(inspectors: dict[str, Inspec
 
 def shipped_networks(tmp: Path) -> Path:
     """The shipped model's networks without its variation member (which is numpy fp32 whatever the precision and
-    puts every hostile frame near 1), saved as a checkpoint: what bf16 changes."""
+    puts every hostile frame near 1) and the residual network that reads it, saved as a checkpoint: what bf16
+    changes."""
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.detector import Detector
 
     ck = load_checkpoint(SHIPPED)
-    nets = Detector(ck.detector.config.with_(variation=False, decision="combined"), ck.detector.normalizer)
-    nets.load_state_dict({k: v for k, v in ck.detector.state_dict().items() if not k.startswith("variation.")})
+    nets = Detector(ck.detector.config.with_(variation=False, decision="combined", residual_members=0),
+                    ck.detector.normalizer)
+    nets.load_state_dict({k: v for k, v in ck.detector.state_dict().items()
+                          if not k.startswith(("variation.", "residual."))})
     save_checkpoint(tmp / "networks", nets, threshold=0.5, threshold_rule="test")
     return tmp / "networks"
 
