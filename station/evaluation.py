@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -274,13 +274,17 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
 
 def fit_residual(model: str, data: str, out: str, val_data: str | None = None, members: int = 3, steps: int = 3000,
                  seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = 0.05,
-                 look: bool = False) -> str:
+                 look: bool = False, more_defects: Sequence[str] = ()) -> str:
     """Checkpoint ``model`` (with its variation model) plus ``members`` residual networks (``model.draem.residual``)
     deciding (``look``: as the variation model's second look instead, the model's decision kept), trained on
-    ``data``'s train split (good parts and rendered defective parts with masks, without ``holdout_type``'s),
-    calibrated and thresholded on ``val_data``'s val split (default ``data``'s) as ``fit_variation``; written to
-    ``out``; one line saying what it does on the val split. Progress on stderr."""
+    ``data``'s train split (good parts and rendered defective parts with masks, without ``holdout_type``'s; plus the
+    defective train parts of each set in ``more_defects``, whose good parts are not used: the good parts' residuals
+    are left out of the fit on ``data``'s), calibrated and thresholded on ``val_data``'s val split (default
+    ``data``'s) as ``fit_variation``; written to ``out``; one line saying what it does on the val split. Progress on
+    stderr."""
     import sys
+
+    import torch
 
     from model.draem.checkpoint import load_checkpoint
     from model.draem.errors import ModelError
@@ -304,23 +308,33 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
                         f"(station variation --decision variation --second-look)")  # before minutes of loading
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
-    keep = [i for i, (lab, t) in enumerate(zip(tr.label.tolist(), tr.defect_type, strict=True))
-            if lab and t != holdout_type and tr.mask_known is not None and bool(tr.mask_known[i])]
+    defects, masks = [], []
+    for root, sp in ((data, tr), *((d, model_split(ck, model, d, "train")) for d in more_defects)):
+        keep = [i for i, (lab, t) in enumerate(zip(sp.label.tolist(), sp.defect_type, strict=True))
+                if lab and t != holdout_type and sp.mask_known is not None and bool(sp.mask_known[i])]
+        if root != data and not keep:
+            raise UserError(f"--more-defects {root}: no defective train parts with masks (station render "
+                            f"--defects-in-train){f' besides {holdout_type}' if holdout_type else ''}")
+        defects.append(sp.priors[keep])
+        masks.append(sp.defect_mask[keep].bool())
     val_data = val_data or data
     va = model_split(ck, model, val_data, "val")
     good_va = va.label == 0
-    print(f"{data}: {len(good)} good and {len(keep)} defective train parts"
+    n_def = sum(len(d) for d in defects)
+    print(f"{data}: {len(good)} good and {n_def} defective train parts"
+          f"{f' ({n_def - len(defects[0])} from --more-defects)' if more_defects else ''}"
           f"{f' (without {holdout_type})' if holdout_type else ''}; {members} networks x {steps} steps",
           file=sys.stderr, flush=True)
     try:
         det = add_residual(ck.detector, tr.priors[good], tr.object_mask[good] if tr.object_masks_known else None,
-                           tr.priors[keep], tr.defect_mask[keep].bool(), va.priors[good_va], members, steps, seed,
+                           torch.cat(defects), torch.cat(masks), va.priors[good_va], members, steps, seed,
                            progress=lambda line: print(line, file=sys.stderr, flush=True), look=look)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "residual", {
         "data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good),
-        "defective_parts": len(keep), "holdout_type": holdout_type, "members": members, "steps": steps,
+        "more_defects": [{"data": str(d), "manifest_sha256": manifest_sha256(d)} for d in more_defects],
+        "defective_parts": n_def, "holdout_type": holdout_type, "members": members, "steps": steps,
         "seed": seed, "look": look})
     detected = f" and {choice.detected_fraction:.1%} of defective" if int(labels.sum()) else ""
     role = "are the variation model's second look" if look else "decide"

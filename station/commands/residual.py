@@ -2,7 +2,8 @@
 maps, and let them decide, or (``--second-look``) ask them about the parts above the variation model's gate.
 
 Trained on ``--data``'s train split (its good parts' left-out residuals, half of them with synthetic anomalies, and
-its rendered defective parts with their masks; ``--holdout-type`` leaves one type's out), calibrated and
+its rendered defective parts with their masks, and those of each ``--more-defects`` set; ``--holdout-type`` leaves
+one type's out), calibrated and
 thresholded on ``--val-data``'s val split with ``station threshold``'s rule. The networks and the variation model
 are copied (the variation model fitted again on the same good parts: the same fit); the sidecar records the
 training (``train.residual``).
@@ -33,6 +34,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "networks never saw (default: none left out)")
     p.add_argument("--max-good-flagged", type=float, default=0.05,
                    help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
+    p.add_argument("--more-defects", action="append", default=[], metavar="DATA",
+                   help="another rendered set whose defective train parts the networks also learn from (its good "
+                        "parts are not used); repeat for several (e.g. station render --defects 1 "
+                        "--defects-in-train with its own seed)")
     p.add_argument("--second-look", action="store_true",
                    help="the networks do not decide: they are the variation model's second look at parts above its "
                         "gate, side by side with its score at each one's own 1 %% threshold (the shipped recipe; "
@@ -44,5 +49,5 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_residual
 
     print(fit_residual(args.model, args.data, args.out, args.val_data, args.members, args.steps, args.seed,
-                       args.holdout_type, args.max_good_flagged, args.second_look))
+                       args.holdout_type, args.max_good_flagged, args.second_look, args.more_defects))
     return 0

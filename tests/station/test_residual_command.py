@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from line_sets import make_line_set
 from test_variation_command import trained  # same folder (pytest puts it on sys.path)
 
 from station.cli import main
@@ -79,3 +80,31 @@ def test_second_look_networks_keep_the_decision_and_need_the_second_look(tmp_pat
                  "--members", "1", "--steps", "1", "--second-look"]) == 2
     err = capsys.readouterr().err
     assert "second look" in err and len(err.strip().splitlines()) == 1
+
+
+def test_more_defects_are_learned_from_and_recorded_and_a_set_without_them_refused(tmp_path: Path, capsys) -> None:
+    data, model = trained(tmp_path, capsys)
+    var = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(var)]) == 0
+    capsys.readouterr()
+    more = make_line_set(tmp_path / "more", n=20, seed=7, defective=lambda i: i % 2 == 0, kind=lambda i: "chip")
+    out = tmp_path / "r"
+    assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(out), "--members", "1",
+                 "--steps", "2", "--more-defects", str(more)]) == 0
+    assert "from --more-defects" in capsys.readouterr().err
+    rec = json.loads(out.with_suffix(".json").read_text())["train"]["residual"]
+    assert rec["more_defects"][0]["data"] == str(more) and rec["more_defects"][0]["manifest_sha256"]
+    assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(tmp_path / "r1"), "--members",
+                 "1", "--steps", "2"]) == 0
+    capsys.readouterr()
+    alone = json.loads((tmp_path / "r1.json").read_text())["train"]["residual"]["defective_parts"]
+    assert rec["defective_parts"] > alone > 0  # the other set's defective train parts were added to the set's own
+    # a set whose train split has no defective parts (or only the held-out type's) is refused in one line, once
+    # loaded (after the loading progress), before any training
+    for extra in (["--holdout-type", "chip"], []):
+        plain = make_line_set(tmp_path / "plain", n=10, seed=8) if not extra else more
+        assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(tmp_path / "r2"),
+                     "--steps", "1", "--more-defects", str(plain), *extra]) == 2
+        err = capsys.readouterr().err
+        assert f"--more-defects {plain}: no defective" in err.splitlines()[-1] and "residual network" not in err
+    assert not (tmp_path / "r2.json").exists()
