@@ -1,0 +1,60 @@
+"""The second look's network on defect types it never saw, from nets50.py's OUT.npz: for each defect type T, the
+shipped cascade with no network (the file before rule 49), with a network that saw T (R: every type, seed 0) and
+with the network trained without T (column H-T, same command and seed), each scored as the file scores it
+(screen50.py's ``cascade``). Thresholds from the good validation parts, held fixed. Per type against all good
+parts of the held-out sets (pooled): image AUROC and caught at 1 % and 5 %; and the whole set with each network.
+Usage: python heldout50.py OUT.npz."""
+
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+
+from model.draem.metrics import auroc, false_reject_threshold
+from model.draem.second_look import robust_location_spread
+
+d = np.load(sys.argv[1])
+gate = float(d["gate"])
+vg = d["val_label"] == 0
+sets = sorted(k[:-7] for k in d.files if k.endswith("_window") and k != "val_window")
+
+
+def shipped(s: str) -> np.ndarray:
+    c, t = d[f"{s}_window"], d[f"{s}_chi"]
+    return np.where(c > gate, np.maximum(c, t), c)
+
+
+def cascade(s: str, col: str) -> np.ndarray:
+    if col == "none":
+        return shipped(s)
+    loc, spread = robust_location_spread(d[f"val_{col}"][vg])
+    net = lambda z: (d[f"{z}_{col}"] - loc) / spread  # noqa: E731
+    tc, tn = false_reject_threshold(shipped("val")[vg], 0.01), false_reject_threshold(net("val")[vg], 0.01)
+    return np.where(d[f"{s}_window"] > gate, np.maximum(shipped(s) / tc, net(s) / tn), shipped(s) / tc)
+
+
+y = np.concatenate([d[f"{s}_label"] for s in sets])
+ty = np.concatenate([d[f"{s}_type"] for s in sets])
+kinds = sorted({t for t in ty if t})
+print(f"sets {', '.join(sets)}: {int((y == 0).sum())} good, {int((y == 1).sum())} defective")
+
+
+def figures(col: str, part: np.ndarray) -> str:
+    v = cascade("val", col)
+    t1, t5 = false_reject_threshold(v[vg], 0.01), false_reject_threshold(v[vg], 0.05)
+    x = np.concatenate([cascade(s, col) for s in sets])
+    keep = (y == 0) | part
+    return (f"{auroc(y[keep], x[keep]):.3f} / {np.mean(x[part] > t1):.0%} / {np.mean(x[part] > t5):.0%}")
+
+
+print("\nimage AUROC / caught at 1 % / caught at 5 %, each type against all good parts:\n")
+print("| type | defective | no network | network that saw it (R) | network trained without it (H-T) |")
+print("|---|---|---|---|---|")
+for t in kinds:
+    col = f"H-{t}"
+    held = figures(col, ty == t) if f"val_{col}" in d.files else "(not trained)"
+    print(f"| {t} | {int(np.sum(ty == t))} | {figures('none', ty == t)} | {figures('R', ty == t)} | {held} |")
+print("\nall defective parts, each network:\n\n| network | image AUROC / caught at 1 % / caught at 5 % |\n|---|---|")
+for col in [c for c in ("none", "R", *(f"H-{t}" for t in kinds), "C") if c == "none" or f"val_{c}" in d.files]:
+    print(f"| {col} | {figures(col, y == 1)} |")
