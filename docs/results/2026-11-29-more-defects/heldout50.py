@@ -2,8 +2,8 @@
 shipped cascade with no network (the file before rule 49), with a network that saw T (R: every type, seed 0) and
 with the network trained without T (column H-T, same command and seed), each scored as the file scores it
 (screen50.py's ``cascade``). Thresholds from the good validation parts, held fixed. Per type against all good
-parts of the held-out sets (pooled): image AUROC and caught at 1 % and 5 %; and the whole set with each network.
-Usage: python heldout50.py OUT.npz."""
+parts of the held-out sets (pooled; all, or those named): image AUROC and caught at 1 % and 5 %; and the whole
+set with each network. Usage: python heldout50.py OUT.npz [SET...] (e.g. h0)."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ from model.draem.second_look import robust_location_spread
 d = np.load(sys.argv[1])
 gate = float(d["gate"])
 vg = d["val_label"] == 0
-sets = sorted(k[:-7] for k in d.files if k.endswith("_window") and k != "val_window")
+sets = sys.argv[2:] or sorted(k[:-7] for k in d.files if k.endswith("_window") and k != "val_window")
 
 
 def shipped(s: str) -> np.ndarray:
@@ -40,12 +40,15 @@ kinds = sorted({t for t in ty if t})
 print(f"sets {', '.join(sets)}: {int((y == 0).sum())} good, {int((y == 1).sum())} defective")
 
 
-def figures(col: str, part: np.ndarray) -> str:
+def figures(col: str, part: np.ndarray, good: bool = False) -> str:
+    """Image AUROC / caught at 1 % / caught at 5 % of ``part`` against all good parts (``good``: and the good
+    parts rejected at the 1 % threshold)."""
     v = cascade("val", col)
     t1, t5 = false_reject_threshold(v[vg], 0.01), false_reject_threshold(v[vg], 0.05)
     x = np.concatenate([cascade(s, col) for s in sets])
     keep = (y == 0) | part
-    return (f"{auroc(y[keep], x[keep]):.3f} / {np.mean(x[part] > t1):.0%} / {np.mean(x[part] > t5):.0%}")
+    return (f"{auroc(y[keep], x[keep]):.3f} / {np.mean(x[part] > t1):.0%} / {np.mean(x[part] > t5):.0%}"
+            + (f" / {np.mean(x[y == 0] > t1):.1%}" if good else ""))
 
 
 print("\nimage AUROC / caught at 1 % / caught at 5 %, each type against all good parts:\n")
@@ -55,6 +58,7 @@ for t in kinds:
     col = f"H-{t}"
     held = figures(col, ty == t) if f"val_{col}" in d.files else "(not trained)"
     print(f"| {t} | {int(np.sum(ty == t))} | {figures('none', ty == t)} | {figures('R', ty == t)} | {held} |")
-print("\nall defective parts, each network:\n\n| network | image AUROC / caught at 1 % / caught at 5 % |\n|---|---|")
+print("\nall defective parts, each network:\n\n| network | image AUROC / caught at 1 % / caught at 5 % / good "
+      "rejected at 1 % |\n|---|---|")
 for col in [c for c in ("none", "R", *(f"H-{t}" for t in kinds), "C") if c == "none" or f"val_{c}" in d.files]:
-    print(f"| {col} | {figures(col, y == 1)} |")
+    print(f"| {col} | {figures(col, y == 1, good=True)} |")
