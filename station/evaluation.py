@@ -306,6 +306,9 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     if look and not can_look(ck.detector):
         raise UserError(f"{model}: --second-look needs a model decided by its variation model with its second look "
                         f"(station variation --decision variation --second-look)")  # before minutes of loading
+    for d in more_defects:  # before minutes of loading
+        if Path(d).resolve() == Path(data).resolve():
+            raise UserError(f"--more-defects {d}: the training set itself (--data); give another rendered set")
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
     defects, masks = [], []

@@ -3,10 +3,9 @@ maps, and let them decide, or (``--second-look``) ask them about the parts above
 
 Trained on ``--data``'s train split (its good parts' left-out residuals, half of them with synthetic anomalies, and
 its rendered defective parts with their masks, and those of each ``--more-defects`` set; ``--holdout-type`` leaves
-one type's out), calibrated and
-thresholded on ``--val-data``'s val split with ``station threshold``'s rule. The networks and the variation model
-are copied (the variation model fitted again on the same good parts: the same fit); the sidecar records the
-training (``train.residual``).
+one type's out), calibrated and thresholded on ``--val-data``'s val split with ``station threshold``'s rule. The
+networks and the variation model are copied (the variation model fitted again on the same good parts: the same
+fit); the sidecar records the training (``train.residual``).
 """
 
 from __future__ import annotations

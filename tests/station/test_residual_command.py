@@ -107,4 +107,8 @@ def test_more_defects_are_learned_from_and_recorded_and_a_set_without_them_refus
                      "--steps", "1", "--more-defects", str(plain), *extra]) == 2
         err = capsys.readouterr().err
         assert f"--more-defects {plain}: no defective" in err.splitlines()[-1] and "residual network" not in err
+    assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(tmp_path / "r2"), "--steps", "1",
+                 "--more-defects", str(data)]) == 2  # the training set twice: refused before loading
+    err = capsys.readouterr().err
+    assert "the training set itself" in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / "r2.json").exists()
