@@ -11,27 +11,13 @@ import sys
 from collections.abc import Callable
 
 import numpy as np
+from cascade50 import findings, good_val, held_sets
 
 from model.draem.metrics import auroc, false_reject_threshold
-from model.draem.second_look import robust_location_spread
 
 d = np.load(sys.argv[1])
-gate = float(d["gate"])
-vg = d["val_label"] == 0
-sets = sorted(k[:-7] for k in d.files if k.endswith("_window") and k != "val_window")
-
-
-def shipped(s: str) -> np.ndarray:
-    c, t = d[f"{s}_window"], d[f"{s}_chi"]
-    return np.where(c > gate, np.maximum(c, t), c)
-
-
-def findings(s: str, col: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The shipped score and the network's, each over its own 1 % threshold; whether the part is above the gate."""
-    loc, spread = robust_location_spread(d[f"val_{col}"][vg])
-    net = lambda z: (d[f"{z}_{col}"] - loc) / spread  # noqa: E731
-    tc, tn = false_reject_threshold(shipped("val")[vg], 0.01), false_reject_threshold(net("val")[vg], 0.01)
-    return shipped(s) / tc, net(s) / tn, d[f"{s}_window"] > gate
+vg = good_val(d)
+sets = held_sets(d)
 
 
 COMBINE: dict[str, Callable[[np.ndarray, np.ndarray], np.ndarray]] = {
@@ -48,7 +34,7 @@ print("|---|---|---|---|---|---|---|---|")
 for col in ("C", "X"):
     for name, f in COMBINE.items():
         def score(s: str, col: str = col, f: Callable = f) -> np.ndarray:
-            a, b, g = findings(s, col)
+            a, b, g = findings(d, s, col)
             return np.where(g, np.maximum(a, f(a, b)), a)
         v = score("val")
         t1, t5 = false_reject_threshold(v[vg], 0.01), false_reject_threshold(v[vg], 0.05)

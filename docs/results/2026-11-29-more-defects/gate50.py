@@ -9,30 +9,14 @@ from __future__ import annotations
 import sys
 
 import numpy as np
+from cascade50 import findings, good_val, held_sets
 
 from model.draem.metrics import auroc, false_reject_threshold
-from model.draem.second_look import robust_location_spread
 
 d = np.load(sys.argv[1])
 col = sys.argv[2] if len(sys.argv) > 2 else "C"
-gate = float(d["gate"])
-vg = d["val_label"] == 0
-sets = sorted(k[:-7] for k in d.files if k.endswith("_window") and k != "val_window")
-
-
-def shipped(s: str) -> np.ndarray:
-    c, t = d[f"{s}_window"], d[f"{s}_chi"]
-    return np.where(c > gate, np.maximum(c, t), c)
-
-
-loc, spread = robust_location_spread(d[f"val_{col}"][vg])
-
-
-def net(s: str) -> np.ndarray:
-    return (d[f"{s}_{col}"] - loc) / spread
-
-
-tc, tn = false_reject_threshold(shipped("val")[vg], 0.01), false_reject_threshold(net("val")[vg], 0.01)
+vg = good_val(d)
+sets = held_sets(d)
 y = np.concatenate([d[f"{s}_label"] for s in sets])
 ty = np.concatenate([d[f"{s}_type"] for s in sets])
 print(f"network column {col}\n\n| asked above the window's threshold at | caught at 1 % | at 5 % | image AUROC | "
@@ -41,7 +25,8 @@ for q in (0.05, 0.1, 0.2, 0.5, 1.0):
     g = -np.inf if q == 1.0 else false_reject_threshold(d["val_window"][vg], q)
 
     def score(s: str, g: float = g) -> np.ndarray:
-        return np.where(d[f"{s}_window"] > g, np.maximum(shipped(s) / tc, net(s) / tn), shipped(s) / tc)
+        a, b, _ = findings(d, s, col)
+        return np.where(d[f"{s}_window"] > g, np.maximum(a, b), a)
 
     v = score("val")
     t1, t5 = false_reject_threshold(v[vg], 0.01), false_reject_threshold(v[vg], 0.05)

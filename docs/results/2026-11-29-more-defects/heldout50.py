@@ -1,7 +1,7 @@
 """The second look's network on defect types it never saw, from nets50.py's OUT.npz: for each defect type T, the
 shipped cascade with no network (the file before rule 49), with a network that saw T (R: every type, seed 0) and
 with the network trained without T (column H-T, same command and seed), each scored as the file scores it
-(screen50.py's ``cascade``). Thresholds from the good validation parts, held fixed. Per type against all good
+(``cascade50.cascade``). Thresholds from the good validation parts, held fixed. Per type against all good
 parts of the held-out sets (pooled; all, or those named): image AUROC and caught at 1 % and 5 %; and the whole
 set with each network. Usage: python heldout50.py OUT.npz [SET...] (e.g. h0)."""
 
@@ -10,28 +10,13 @@ from __future__ import annotations
 import sys
 
 import numpy as np
+from cascade50 import cascade, good_val, held_sets
 
 from model.draem.metrics import auroc, false_reject_threshold
-from model.draem.second_look import robust_location_spread
 
 d = np.load(sys.argv[1])
-gate = float(d["gate"])
-vg = d["val_label"] == 0
-sets = sys.argv[2:] or sorted(k[:-7] for k in d.files if k.endswith("_window") and k != "val_window")
-
-
-def shipped(s: str) -> np.ndarray:
-    c, t = d[f"{s}_window"], d[f"{s}_chi"]
-    return np.where(c > gate, np.maximum(c, t), c)
-
-
-def cascade(s: str, col: str) -> np.ndarray:
-    if col == "none":
-        return shipped(s)
-    loc, spread = robust_location_spread(d[f"val_{col}"][vg])
-    net = lambda z: (d[f"{z}_{col}"] - loc) / spread  # noqa: E731
-    tc, tn = false_reject_threshold(shipped("val")[vg], 0.01), false_reject_threshold(net("val")[vg], 0.01)
-    return np.where(d[f"{s}_window"] > gate, np.maximum(shipped(s) / tc, net(s) / tn), shipped(s) / tc)
+vg = good_val(d)
+sets = sys.argv[2:] or held_sets(d)
 
 
 y = np.concatenate([d[f"{s}_label"] for s in sets])
@@ -43,9 +28,9 @@ print(f"sets {', '.join(sets)}: {int((y == 0).sum())} good, {int((y == 1).sum())
 def figures(col: str, part: np.ndarray, good: bool = False) -> str:
     """Image AUROC / caught at 1 % / caught at 5 % of ``part`` against all good parts (``good``: and the good
     parts rejected at the 1 % threshold)."""
-    v = cascade("val", col)
+    v = cascade(d, "val", col)
     t1, t5 = false_reject_threshold(v[vg], 0.01), false_reject_threshold(v[vg], 0.05)
-    x = np.concatenate([cascade(s, col) for s in sets])
+    x = np.concatenate([cascade(d, s, col) for s in sets])
     keep = (y == 0) | part
     return (f"{auroc(y[keep], x[keep]):.3f} / {np.mean(x[part] > t1):.0%} / {np.mean(x[part] > t5):.0%}"
             + (f" / {np.mean(x[y == 0] > t1):.1%}" if good else ""))
