@@ -146,9 +146,8 @@ class Detector(nn.Module):
             return v.scores
         assert v.judged is not None
         found = self.residual.look_score(self.residual.top_logits(*self.residual_inputs(v.signed[ask], v.judged[ask])))
-        _, wl, ws = (float(c) for c in look.calibration[:3])
         scores = v.scores.clone()
-        scores[ask] = torch.maximum(scores[ask], (wl + ws * found).to(scores.dtype).to(scores.device))
+        scores[ask] = torch.maximum(scores[ask], look.from_window_sd(found).to(scores.dtype).to(scores.device))
         return scores
 
     def residual_inputs(self, signed: torch.Tensor, judged: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:

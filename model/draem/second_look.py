@@ -28,12 +28,17 @@ existed). numpy and OpenCV only at scoring time."""
 
 from __future__ import annotations
 
+from typing import TypeVar
+
 import cv2
 import numpy as np
 import torch
 from torch import nn
 
 from .errors import ModelError
+
+Scores = TypeVar("Scores", float, np.ndarray, torch.Tensor)
+"""A score or scores, in the window's units or its robust SD (``SecondLook.window_sd``)."""
 
 K = 5
 """How many of the map's highest places are tested."""
@@ -155,10 +160,20 @@ class SecondLook(nn.Module):
         gate = false_reject_threshold((np.asarray(window_scores, np.float64) - wl) / ws, GATE_FALSE_REJECT)
         self.calibration.copy_(torch.tensor([gate, wl, ws, tl, ts], dtype=torch.float64))
 
+    def window_sd(self, window_score: Scores) -> Scores:
+        """Window scores (a float, array or tensor) -> robust SD over the good validation parts' window scores (the
+        units of the gate; ``calibration``'s median and spread)."""
+        _, wl, ws = (float(v) for v in self.calibration[:3])
+        return (window_score - wl) / ws
+
+    def from_window_sd(self, sd: Scores) -> Scores:
+        """``window_sd``'s inverse: robust SD (a float, array or tensor) -> window scores."""
+        _, wl, ws = (float(v) for v in self.calibration[:3])
+        return wl + ws * sd
+
     def suspicious(self, window_score: float) -> bool:
         """Whether a part with this window score gets the second look (above the gate; never without references)."""
-        gate, wl, ws = (float(v) for v in self.calibration[:3])
-        return self.references > 0 and (window_score - wl) / ws > gate
+        return self.references > 0 and self.window_sd(window_score) > float(self.calibration[0])
 
     def score(self, window_score: float, test_score: float) -> float:
         """A suspicious part's score in the window's units: the larger of its two robust scores (module docstring,

@@ -174,13 +174,12 @@ def look_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tu
     logits (``ResidualDetector.top_logits``) and (N,) the variation model's scores in the window's robust SD."""
     assert detector.variation is not None and detector.residual is not None
     var, res = detector.variation, detector.residual
-    _, wl, ws = (float(c) for c in var.second_look.calibration[:3])
     logits, scores = [], []
     for i in range(0, len(x), batch_size):
         v = var.zmaps(x[i:i + batch_size], signed=True)
         assert v.signed is not None and v.judged is not None
         logits.append(res.top_logits(*detector.residual_inputs(v.signed, v.judged)))
-        scores.append((v.scores.double().numpy() - wl) / ws)
+        scores.append(var.second_look.window_sd(v.scores.double().numpy()))
     return torch.cat(logits), np.concatenate(scores)
 
 
