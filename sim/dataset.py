@@ -144,6 +144,8 @@ class DatasetSpec:
             object.__setattr__(self, "dome_segments", check_segments(self.dome_segments))
         except ValueError as exc:
             raise SimError(f"dome_segments {exc}") from None
+        if self.variation.panel_scale and not self.scene.ring_radiance:
+            raise SimError("variation.panel_scale needs a panel or ring light to scale (scene.ring_radiance > 0)")
         if self.dome_segments:
             if not self.scene.ambient_gradient:
                 raise SimError("dome_segments need scene.ambient_gradient > 0 (how much brighter the lit segment "
@@ -175,6 +177,8 @@ class DatasetSpec:
                 d.pop(key)  # likewise for sets without the detectability oracle or a whole-set split
         if not self.variation.active:
             d.pop("variation")  # and for sets without line variation
+        else:
+            d["variation"] = self.variation.to_dict()
         return json.loads(json.dumps(d))  # tuples -> lists, as read back from JSON
 
     @classmethod
@@ -306,6 +310,10 @@ def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw
     rng = np.random.default_rng([spec.seed, index])
     split = split_of(index, spec.whole_split)
     params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
+    panel = spec.variation.panel(spec.seed, index)
+    if panel is not None:  # the line's variation of the panel (``LineVariation.panel_scale``), recorded in the scene
+        params["ring_radiance"] *= panel
+        params["panel_scale"] = panel
     empty = is_empty(spec.seed, index, spec.empty_rate)
     defect = None
     wants_defect = (split != "train" or spec.defects_in_train) and not empty

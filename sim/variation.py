@@ -10,6 +10,11 @@ renders exactly as before and the scene of sample ``i`` is the same with or with
 Units: ``exposure_scale`` multiplies ``SensorConfig.exposure_gain`` (full scale per unit of rendered radiance);
 ``analog_gain`` is the sensor's (linear; 2 = +6 dB): fewer electrons per code, so more shot noise at the same
 brightness. A bright exposure clips highlights at the sensor's full well, as a real camera does.
+``panel_scale`` multiplies the scene's ``ring_radiance`` (a bright-field panel or ring light beside the dome): one
+lamp that ages or is replaced while the others do not, which no exposure draws (a panel at half its radiance
+rejected three times the good parts of the shipped model fitted without it:
+docs/results/2026-11-29-panel-brightness.md). It is drawn after exposure and gain from the same stream, so their
+draws are the same with or without it.
 """
 
 from __future__ import annotations
@@ -31,6 +36,8 @@ class LineVariation:
     """Multiplies the sensor's ``exposure_gain``: e.g. (0.7, 1.3) for +-30 % exposure."""
     analog_gain: tuple[float, float] | None = None
     """The sensor's analog gain (linear, >= 1); None = the sensor's own."""
+    panel_scale: tuple[float, float] | None = None
+    """Multiplies the scene's ``ring_radiance`` (the panel); None = the scene's own (``sim.dataset.draw_sample``)."""
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -54,15 +61,29 @@ class LineVariation:
         return cls(**{k: tuple(v) if isinstance(v, list) else v for k, v in d.items()})
 
     def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        d = asdict(self)
+        if d["panel_scale"] is None:
+            d.pop("panel_scale")  # manifests of sets rendered before the key stay as they were
+        return d
+
+    def _stream(self, seed: int, index: int) -> tuple[float, float | None, float | None]:
+        """Sample ``index``'s (exposure scale, analog gain or None, panel scale or None), in the stream's order."""
+        rng = np.random.default_rng([seed, index, 3])
+        scale = float(rng.uniform(*self.exposure_scale))
+        gain = float(rng.uniform(*self.analog_gain)) if self.analog_gain else None
+        panel = float(rng.uniform(*self.panel_scale)) if self.panel_scale else None
+        return scale, gain, panel
 
     def draw(self, sensor: SensorConfig, seed: int, index: int) -> tuple[SensorConfig, dict[str, float]]:
-        """The sensor of sample ``index``, and what was drawn (for ``params.json``'s ``sensor``); the sensor
+        """The sensor of sample ``index``, and what was drawn for it (for ``params.json``'s ``sensor``); the sensor
         unchanged and ``{}`` when nothing varies."""
         if not self.active:
             return sensor, {}
-        rng = np.random.default_rng([seed, index, 3])
-        scale = float(rng.uniform(*self.exposure_scale))
-        gain = float(rng.uniform(*self.analog_gain)) if self.analog_gain else sensor.analog_gain
+        scale, gain, _ = self._stream(seed, index)
+        gain = sensor.analog_gain if gain is None else gain
         drawn = replace(sensor, exposure_gain=sensor.exposure_gain * scale, analog_gain=gain)
         return drawn, {"exposure_scale": scale, "exposure_gain": drawn.exposure_gain, "analog_gain": gain}
+
+    def panel(self, seed: int, index: int) -> float | None:
+        """Sample ``index``'s factor on the scene's ``ring_radiance`` (None when ``panel_scale`` is not set)."""
+        return self._stream(seed, index)[2] if self.panel_scale else None

@@ -118,3 +118,39 @@ def test_station_render_validation_makes_an_all_val_set_and_refuses_heldout_with
     assert main(["render", "--out", str(tmp_path / "both"), "--validation", "--heldout", *tiny]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "not both" in err[0]
+
+
+def test_panel_scale_multiplies_the_panel_and_leaves_every_other_draw(tmp_path) -> None:
+    """A panel that ages or is replaced (``panel_scale``): the scene's ``ring_radiance`` times a per-sample factor,
+    recorded in the scene; exposure, gain, scene and defect draws as without it; a set without the key keeps its
+    manifest; refused without a panel to scale."""
+    from sim.scene import SceneConfig
+
+    sensor = SensorConfig(exposure_gain=2.0)
+    panel = LineVariation(exposure_scale=(0.7, 1.3), analog_gain=(1.0, 2.0), panel_scale=(0.5, 1.5))
+    assert all(panel.draw(sensor, 5, i) == VARIED.draw(sensor, 5, i) for i in range(20))
+    factors = [panel.panel(5, i) for i in range(40)]
+    assert 0.5 <= min(factors) < 0.6 and 1.4 < max(factors) <= 1.5 and VARIED.panel(5, 0) is None
+    lit = SceneConfig(ring_radiance=2.0, ring_elevation_deg=(22.0, 46.0), ring_azimuth_deg=(70.0, 110.0))
+    plain = sd.DatasetSpec(seed=3, defect_fraction=1.0, scene=lit, variation=VARIED, **TINY)
+    model = sd.prepare(plain)
+    a = sd.draw_sample(plain, model, 0)
+    for scale, brighter in (((1.0, 1.0), None), ((2.0, 2.0), True)):
+        spec = sd.DatasetSpec(seed=3, defect_fraction=1.0, scene=lit, variation=LineVariation(
+            exposure_scale=(0.7, 1.3), analog_gain=(1.0, 2.0), panel_scale=scale), **TINY)
+        b = sd.draw_sample(spec, model, 0)
+        assert b.params.pop("panel_scale") == scale[0] and b.params["ring_radiance"] == 2.0 * scale[0]
+        b.params["ring_radiance"] = a.params["ring_radiance"]
+        assert b.params == a.params and b.sensor == a.sensor and b.mitsuba_seed == a.mitsuba_seed
+        assert b.defect is not None and a.defect is not None and b.defect.info == a.defect.info
+        if brighter:
+            ra, rb = sd.generate_sample(plain, model, 0), sd.generate_sample(spec, model, 0)
+            assert rb.params["scene"]["ring_radiance"] == 4.0 and rb.s0.mean() > 1.05 * ra.s0.mean()
+        else:  # a factor of 1 renders the same pixels
+            np.testing.assert_array_equal(sd.generate_sample(spec, model, 0).raw,
+                                          sd.generate_sample(plain, model, 0).raw)
+    assert "panel_scale" not in plain.to_dict()["variation"]  # sets rendered before the key resume
+    d = spec.to_dict()
+    assert d["variation"]["panel_scale"] == [2.0, 2.0] and sd.DatasetSpec.from_dict(d) == spec
+    with pytest.raises(SimError, match="panel_scale needs a panel"):
+        sd.DatasetSpec(variation=panel)
