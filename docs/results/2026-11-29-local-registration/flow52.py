@@ -101,25 +101,12 @@ def learn_modes(vm, tr, k: int, sigma: float) -> None:
 
 
 def refine_with(sigma: float, max_px: float):
+    """The dense flow (``dense_flow``) clipped to ``max_px``."""
     def warp_to(self, reference, f, mask=None):
         w = affine_warp(self, reference, f, mask)
-        lo, hi = np.percentile(reference, [1, 99])
-        to8 = lambda a: np.clip((a - lo) / max(hi - lo, 1e-6) * 255, 0, 255).astype(np.uint8)  # noqa: E731
-        flow = cv2.calcOpticalFlowFarneback(to8(reference), to8(w[self.intensity]), None, 0.5, 3, 15, 3, 5, 1.1, 0)
-        gx = cv2.Sobel(reference, cv2.CV_32F, 1, 0)
-        gy = cv2.Sobel(reference, cv2.CV_32F, 0, 1)
-        wt = gx ** 2 + gy ** 2
-        if mask is not None:
-            wt = wt * mask
-        den = cv2.GaussianBlur(wt, (0, 0), sigma) + 1e-9
-        fx = cv2.GaussianBlur(wt * flow[..., 0], (0, 0), sigma) / den
-        fy = cv2.GaussianBlur(wt * flow[..., 1], (0, 0), sigma) / den
-        mag = np.hypot(fx, fy)
-        cut = np.minimum(1.0, max_px / np.maximum(mag, 1e-9))
-        h, ww = reference.shape
-        yy, xx = np.mgrid[0:h, 0:ww].astype(np.float32)
-        mx, my = xx + fx * cut, yy + fy * cut
-        return np.stack([cv2.remap(c, mx, my, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE) for c in w])
+        flow = dense_flow(self, reference, w, mask, sigma)[0]
+        cut = np.minimum(1.0, max_px / np.maximum(np.hypot(flow[..., 0], flow[..., 1]), 1e-9))
+        return remapped(w, flow[..., 0] * cut, flow[..., 1] * cut)
     return warp_to
 
 
