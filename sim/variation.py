@@ -5,7 +5,8 @@ material and roughness), stray light (``light_*``) and the part's pose. What a s
 side of the line: the exposure drifts (lamp ageing, a changed exposure time, a dirty dome: +-30 % is what a line
 sees between services) and the sensor's noise level changes with the gain a user sets. ``LineVariation`` draws
 those per sample from its own random stream (``default_rng([seed, index, 3])``), so a set without variation
-renders exactly as before and the scene of sample ``i`` is the same with or without it.
+renders exactly as before and the scene of sample ``i`` is the same with or without it (``panel_scale``, below,
+changes the panel's radiance in it and nothing else).
 
 Units: ``exposure_scale`` multiplies ``SensorConfig.exposure_gain`` (full scale per unit of rendered radiance);
 ``analog_gain`` is the sensor's (linear; 2 = +6 dB): fewer electrons per code, so more shot noise at the same
