@@ -4,10 +4,11 @@
 # checkpoint). Sizes and steps are environment variables; the defaults are the shipped recipe on 2 CPU cores
 # (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
 #
-#   1. render the training set: line-polar preset + line variation + bright-field panel, defects in all splits (for
-#      mixed supervision)
-#   2. render a held-out set with its own seed (every sample test, with the detectability oracle), and a validation
-#      set with another (every sample val: calibration, thresholds and selection; 600 parts, ~360 good)
+#   1. render the training set: line-polar preset + line variation + bright-field panel, its radiance drawn per
+#      part (sim/presets/panel-vary.toml), defects in all splits (for mixed supervision)
+#   2. render a held-out set with its own seed (every sample test, with the detectability oracle; the line as
+#      built, panel constant), and a validation set with another, panel drawn as in training (every sample val:
+#      calibration, thresholds and selection; 600 parts, ~360 good)
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
@@ -25,9 +26,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
-DATA=${DATA:-data/line-panel-train}
+DATA=${DATA:-data/line-pv-train}
 HELDOUT=${HELDOUT:-data/line-panel-heldout}
-VAL=${VAL:-data/line-panel-val}
+VAL=${VAL:-data/line-pv-val}
 RUNS=${RUNS:-runs/make-model}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
 HELDOUT_COUNT=${HELDOUT_COUNT:-400}
@@ -46,6 +47,7 @@ DECISION=${DECISION:-variation}
 LOOK_MEMBERS=${LOOK_MEMBERS:-1}
 LOOK_STEPS=${LOOK_STEPS:-3000}
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
+VARY=(--config sim/presets/panel-vary.toml)  # training and validation only (rule 52)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
@@ -58,9 +60,9 @@ render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
     for p in "${pids[@]}"; do wait "$p"; done
 }
 
-render "$DATA" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
+render "$DATA" "${VARY[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 --heldout --visibility
-render "$VAL" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
+render "$VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
     --eval-every 100 --out "$RUNS/base"

@@ -83,7 +83,31 @@ def test_the_shipped_drift_range_is_the_line_its_variation_model_was_fitted_on()
 
     meta = json.loads((ROOT / "model" / "weights" / "default.json").read_text())
     stats, fit = meta["train"]["frame_statistics"], meta["train"]["variation"]
-    assert stats["n_frames"] == fit["fit_parts"] and fit["data"] == "data/line-panel-train"
+    assert stats["n_frames"] == fit["fit_parts"] and fit["data"] == "data/line-pv-train"  # make-model.sh's DATA
     # the metal plug mirrors the panel at full scale in more than a quarter of the panel line's good parts; the
     # dome line's range had clipped_fraction 0.00003 at its third quartile
     assert stats["q3"]["clipped_fraction"] > 0.01
+
+
+def test_make_model_varies_the_panel_in_training_and_validation_only(tmp_path: Path) -> None:
+    """Rule 52: the sets the shipped model is fitted and thresholded on draw the panel's radiance per part
+    (sim/presets/panel-vary.toml, after the panel itself); the held-out set is the line as built. The defaults name
+    the sets the shipped sidecar records."""
+    import json
+
+    calls = tmp_path / "calls"
+    stub = tmp_path / "bin"
+    stub.mkdir()
+    (stub / "station").write_text(f'#!/bin/sh\necho "$*" >> {calls}\n')
+    (stub / "station").chmod(0o755)
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0"}
+    subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
+    renders = [line.split() for line in calls.read_text().splitlines() if line.startswith("render ")]
+    configs = {args[args.index("--out") + 1]: [args[i + 1] for i, a in enumerate(args) if a == "--config"]
+               for args in renders}
+    assert len(renders) == 6  # three sets, two shards each
+    vary = "sim/presets/panel-vary.toml"
+    fit = json.loads((ROOT / "model" / "weights" / "default.json").read_text())["train"]["variation"]
+    assert configs[fit["data"]][-2:] == ["sim/presets/panel.toml", vary]
+    assert configs[fit["calibration_data"]][-2:] == ["sim/presets/panel.toml", vary]
+    assert configs["data/line-panel-heldout"][-1] == "sim/presets/panel.toml"
