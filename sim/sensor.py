@@ -6,20 +6,26 @@ sampled by ``model.priors.mosaic.stokes_to_mosaic``, never redefined here.
 Chain, per pixel (all in full-scale units until the ADC; 1.0 = the largest code of ``bit_depth``):
   1. exposure:  ``S * exposure_gain`` (full scale per unit of rendered radiance; folds exposure time, aperture
      and quantum efficiency into one number).
+  1b. lens:     a Gaussian point spread of ``lens_blur_px`` (sigma, frame px) on S0, S1 and S2 alike, before the
+     polarizers, as a lens blurs the light that reaches the polarizer array (0: the render's own sharpness, a box
+     pixel filter). A softer image also softens the mosaic's false polarization at edges, which blurring the
+     demosaicked frame cannot undo: 0.7 px made the shipped model reject 11 % of good parts against 5 %
+     (docs/results/2026-11-29-sensor-optics.md).
   2. polarizer: ``I(t) = 0.5 * (S0 + e * (S1 cos 2t + S2 sin 2t))`` with ``e = (ER - 1) / (ER + 1)`` for an
      extinction ratio ER (``e = 1`` for an ideal polarizer, ``extinction_ratio=None``).
   3. electrons: ``I * full_scale_e`` with ``full_scale_e = full_well_e / analog_gain``; shot noise is
      Poisson, read noise is Gaussian (``read_noise_e``), the well clips at ``full_well_e``.
   4. ADC: ``round(electrons / full_scale_e * (2**bit_depth - 1)) + black_level_dn``, clipped to the code range;
      uint8 for bit depths <= 8, else uint16 (codes in the low bits, as Mono12/Mono16 cameras deliver).
-The noiseless ground truth is the exposed scene Stokes (step 1, before the polarizer's imperfection) and the
-ideal mosaic of step 2.
+The noiseless ground truth is the exposed scene Stokes (step 1, before the lens and the polarizer's imperfection)
+and the ideal mosaic of step 2.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+import cv2
 import numpy as np
 
 from model.priors.conventions import get_layout
@@ -42,6 +48,7 @@ class SensorConfig:
     analog_gain: float = 1.0
     black_level_dn: int = 0
     extinction_ratio: float | None = None
+    lens_blur_px: float = 0.0
     shot_noise: bool = True
     layout: str = "imx250mzr"
 
@@ -52,8 +59,10 @@ class SensorConfig:
             v = getattr(self, key)
             if not (np.isfinite(v) and v > 0):
                 raise SimError(f"sensor.{key} must be a positive number, got {v}")
-        if not (np.isfinite(self.read_noise_e) and self.read_noise_e >= 0):
-            raise SimError(f"sensor.read_noise_e must be >= 0, got {self.read_noise_e}")
+        for key in ("read_noise_e", "lens_blur_px"):
+            v = getattr(self, key)
+            if not (np.isfinite(v) and v >= 0):
+                raise SimError(f"sensor.{key} must be >= 0, got {v}")
         if not 0 <= self.black_level_dn < 2**self.bit_depth - 1:
             raise SimError(f"sensor.black_level_dn must be in [0, {2**self.bit_depth - 1}), got {self.black_level_dn}")
         if self.extinction_ratio is not None and not self.extinction_ratio > 1:
@@ -86,8 +95,8 @@ class SensorConfig:
 @dataclass(frozen=True)
 class SensorFrame:
     """One simulated exposure. ``raw``: (H, W) uint8/uint16 codes of ``bit_depth`` bits. ``ideal``: the noiseless
-    float32 mosaic in full-scale units (after exposure and polarizer, before noise and ADC). ``s0, s1, s2``: the
-    exposed scene Stokes, float32 full-scale units (the ground truth)."""
+    float32 mosaic in full-scale units (after exposure, lens and polarizer, before noise and ADC). ``s0, s1, s2``:
+    the exposed scene Stokes, float32 full-scale units (the ground truth, before the lens)."""
 
     raw: np.ndarray
     ideal: np.ndarray
@@ -103,6 +112,17 @@ def expose(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig
     """Rendered Stokes (radiance units) -> exposed Stokes in full-scale units (float32)."""
     g = np.float32(config.exposure_gain)
     return tuple(np.asarray(s, dtype=np.float32) * g for s in (s0, s1, s2))  # type: ignore[return-value]
+
+
+def lens_blur(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, sigma_px: float
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Exposed Stokes (full-scale units) through a Gaussian point spread of sigma ``sigma_px`` frame pixels, the
+    frame's edges reflected; unchanged (the same arrays) at 0. Linear, so it blurs S1 and S2 as the light's
+    polarized part is blurred: DoLP at an edge between differently polarized areas drops, as through a lens."""
+    if sigma_px <= 0:
+        return s0, s1, s2
+    return tuple(cv2.GaussianBlur(np.asarray(s, dtype=np.float32), (0, 0), sigma_px, borderType=cv2.BORDER_REFLECT)
+                 for s in (s0, s1, s2))  # type: ignore[return-value]
 
 
 def ideal_mosaic(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig) -> np.ndarray:
@@ -134,7 +154,7 @@ def simulate(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfi
         raise SimError(f"Stokes images must be (H, W) with even sides and equal shapes, got "
                        f"{s0.shape}, {np.shape(s1)}, {np.shape(s2)}")
     e0, e1, e2 = expose(s0, s1, s2, config)
-    ideal = ideal_mosaic(e0, e1, e2, config)
+    ideal = ideal_mosaic(*lens_blur(e0, e1, e2, config.lens_blur_px), config)
     raw = digitize(ideal, config, rng)
     n_sat = int(np.count_nonzero(raw >= config.max_code))
     return SensorFrame(raw, ideal, e0, e1, e2, config.bit_depth, n_sat)

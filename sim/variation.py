@@ -16,6 +16,10 @@ lamp that ages or is replaced while the others do not, which no exposure draws (
 rejected three times the good parts of the shipped model fitted without it:
 docs/results/2026-11-29-panel-brightness.md). It is drawn after exposure and gain from the same stream, so their
 draws are the same with or without it.
+``lens_blur_px`` draws the sensor's ``lens_blur_px`` (sigma of the lens's Gaussian point spread, frame px, before the
+polarizers; ``sim.sensor``): lenses, apertures and focus differ between lines and drift on one, and any real lens is
+softer than the renders' box filter. It is drawn last, after the panel, so every other draw is the same with or
+without it. Its range may start at 0 (a sharp frame).
 """
 
 from __future__ import annotations
@@ -39,15 +43,19 @@ class LineVariation:
     """The sensor's analog gain (linear, >= 1); None = the sensor's own."""
     panel_scale: tuple[float, float] | None = None
     """Multiplies the scene's ``ring_radiance`` (the panel); None = the scene's own (``sim.dataset.draw_sample``)."""
+    lens_blur_px: tuple[float, float] | None = None
+    """The sensor's ``lens_blur_px`` (frame px, >= 0); None = the sensor's own."""
 
     def __post_init__(self) -> None:
         for f in fields(self):
             v = getattr(self, f.name)
             if v is None:
                 continue
+            lo_ok = (lambda lo: lo >= 0) if f.name == "lens_blur_px" else (lambda lo: lo > 0)
             if (not isinstance(v, tuple) or len(v) != 2 or not all(np.isfinite(x) for x in v)
-                    or not 0 < v[0] <= v[1]):
-                raise SimError(f"variation.{f.name}: need a range [lo, hi] with 0 < lo <= hi, got {v!r}")
+                    or not (lo_ok(v[0]) and v[0] <= v[1])):
+                bound = "0 <= lo" if f.name == "lens_blur_px" else "0 < lo"
+                raise SimError(f"variation.{f.name}: need a range [lo, hi] with {bound} <= hi, got {v!r}")
 
     @property
     def active(self) -> bool:
@@ -63,27 +71,34 @@ class LineVariation:
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
-        if d["panel_scale"] is None:
-            d.pop("panel_scale")  # manifests of sets rendered before the key stay as they were
+        for key in ("panel_scale", "lens_blur_px"):
+            if d[key] is None:
+                d.pop(key)  # manifests of sets rendered before the key stay as they were
         return d
 
-    def _stream(self, seed: int, index: int) -> tuple[float, float | None, float | None]:
-        """Sample ``index``'s (exposure scale, analog gain or None, panel scale or None), in the stream's order."""
+    def _stream(self, seed: int, index: int) -> tuple[float, float | None, float | None, float | None]:
+        """Sample ``index``'s (exposure scale, analog gain, panel scale, lens blur; each None when its range is not
+        set but the first), in the stream's order."""
         rng = np.random.default_rng([seed, index, 3])
         scale = float(rng.uniform(*self.exposure_scale))
         gain = float(rng.uniform(*self.analog_gain)) if self.analog_gain else None
         panel = float(rng.uniform(*self.panel_scale)) if self.panel_scale else None
-        return scale, gain, panel
+        blur = float(rng.uniform(*self.lens_blur_px)) if self.lens_blur_px else None
+        return scale, gain, panel, blur
 
     def draw(self, sensor: SensorConfig, seed: int, index: int) -> tuple[SensorConfig, dict[str, float]]:
         """The sensor of sample ``index``, and what was drawn for it (for ``params.json``'s ``sensor``); the sensor
         unchanged and ``{}`` when nothing varies."""
         if not self.active:
             return sensor, {}
-        scale, gain, _ = self._stream(seed, index)
+        scale, gain, _, blur = self._stream(seed, index)
         gain = sensor.analog_gain if gain is None else gain
         drawn = replace(sensor, exposure_gain=sensor.exposure_gain * scale, analog_gain=gain)
-        return drawn, {"exposure_scale": scale, "exposure_gain": drawn.exposure_gain, "analog_gain": gain}
+        record = {"exposure_scale": scale, "exposure_gain": drawn.exposure_gain, "analog_gain": gain}
+        if blur is not None:
+            drawn = replace(drawn, lens_blur_px=blur)
+            record["lens_blur_px"] = blur
+        return drawn, record
 
     def panel(self, seed: int, index: int) -> float | None:
         """Sample ``index``'s factor on the scene's ``ring_radiance`` (None when ``panel_scale`` is not set)."""

@@ -4,6 +4,7 @@ them renders and resumes exactly as before."""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -154,3 +155,28 @@ def test_panel_scale_multiplies_the_panel_and_leaves_every_other_draw() -> None:
     assert d["variation"]["panel_scale"] == [2.0, 2.0] and sd.DatasetSpec.from_dict(d) == spec
     with pytest.raises(SimError, match="panel_scale needs a panel"):
         sd.DatasetSpec(variation=panel)
+
+
+def test_lens_blur_is_drawn_last_and_blurs_the_frame_not_its_truth() -> None:
+    """``lens_blur_px`` (a lens's softness, per sample): drawn after exposure, gain and panel, so those draws and the
+    scene are as without it; recorded in ``params.json``'s sensor; a range may start at 0; the frame is softer
+    while the ground-truth Stokes are the scene's; a set without the key keeps its manifest."""
+    sensor = SensorConfig(exposure_gain=2.0)
+    blur = LineVariation(exposure_scale=(0.7, 1.3), analog_gain=(1.0, 2.0), lens_blur_px=(0.0, 1.0))
+    for i in range(20):
+        (b, rb), (a, ra) = blur.draw(sensor, 5, i), VARIED.draw(sensor, 5, i)
+        assert 0.0 <= rb.pop("lens_blur_px") == b.lens_blur_px <= 1.0 and rb == ra
+        assert b == replace(a, lens_blur_px=b.lens_blur_px)
+    with pytest.raises(SimError, match=r"variation\.lens_blur_px"):
+        LineVariation(lens_blur_px=(-0.1, 1.0))
+    plain = sd.DatasetSpec(seed=3, defect_fraction=1.0, variation=VARIED, **TINY)
+    spec = sd.DatasetSpec(seed=3, defect_fraction=1.0, variation=LineVariation(
+        exposure_scale=(0.7, 1.3), analog_gain=(1.0, 2.0), lens_blur_px=(1.5, 1.5)), **TINY)
+    model = sd.prepare(plain)
+    a, b = sd.generate_sample(plain, model, 0), sd.generate_sample(spec, model, 0)
+    np.testing.assert_array_equal(b.s0, a.s0)
+    assert b.params["sensor"]["lens_blur_px"] == 1.5 and b.params["scene"] == a.params["scene"]
+    lap = [float(np.abs(np.diff(s.raw.astype(float), 2, axis=1)).mean()) for s in (a, b)]
+    assert lap[1] < 0.8 * lap[0]  # fewer sharp steps between neighbouring columns
+    assert "lens_blur_px" not in plain.to_dict()["variation"]
+    assert sd.DatasetSpec.from_dict(spec.to_dict()) == spec
