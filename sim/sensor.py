@@ -11,6 +11,9 @@ Chain, per pixel (all in full-scale units until the ADC; 1.0 = the largest code 
      pixel filter). A softer image also softens the mosaic's false polarization at edges, which blurring the
      demosaicked frame cannot undo: 0.7 px made the shipped model reject 11 % of good parts against 5 %
      (docs/results/2026-11-29-sensor-optics.md).
+  1c. vignetting: the lens's relative illumination, ``cos^4`` of the field angle, scaled so the frame's corners get
+     ``1 - vignetting`` of the centre's light (0: none, as the renders' pinhole camera), on S0, S1 and S2 alike.
+     0.2 at the corners made the shipped model reject 11 % of good parts against 5 % (the same page).
   2. polarizer: ``I(t) = 0.5 * (S0 + e * (S1 cos 2t + S2 sin 2t))`` with ``e = (ER - 1) / (ER + 1)`` for an
      extinction ratio ER (``e = 1`` for an ideal polarizer, ``extinction_ratio=None``).
   3. electrons: ``I * full_scale_e`` with ``full_scale_e = full_well_e / analog_gain``; shot noise is
@@ -49,6 +52,7 @@ class SensorConfig:
     black_level_dn: int = 0
     extinction_ratio: float | None = None
     lens_blur_px: float = 0.0
+    vignetting: float = 0.0
     shot_noise: bool = True
     layout: str = "imx250mzr"
 
@@ -65,6 +69,8 @@ class SensorConfig:
                 raise SimError(f"sensor.{key} must be >= 0, got {v}")
         if not 0 <= self.black_level_dn < 2**self.bit_depth - 1:
             raise SimError(f"sensor.black_level_dn must be in [0, {2**self.bit_depth - 1}), got {self.black_level_dn}")
+        if not (np.isfinite(self.vignetting) and 0 <= self.vignetting < 1):
+            raise SimError(f"sensor.vignetting must be in [0, 1), got {self.vignetting}")
         if self.extinction_ratio is not None and not self.extinction_ratio > 1:
             raise SimError(f"sensor.extinction_ratio must be > 1 (or None for ideal), got {self.extinction_ratio}")
         try:
@@ -125,6 +131,27 @@ def lens_blur(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, sigma_px: float
                  for s in (s0, s1, s2))  # type: ignore[return-value]
 
 
+def lens(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig
+         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Exposed Stokes (full-scale units) as the lens delivers them to the polarizers: vignetted, then blurred
+    (steps 1b-1c); the same arrays when the config has neither."""
+    if config.vignetting > 0:
+        fall = relative_illumination(*np.shape(s0), config.vignetting)
+        s0, s1, s2 = (s * fall for s in (s0, s1, s2))
+    return lens_blur(s0, s1, s2, config.lens_blur_px)
+
+
+def relative_illumination(height: int, width: int, vignetting: float) -> np.ndarray:
+    """(H, W) float32 share of the centre's irradiance each pixel gets through the lens: ``cos^4`` of the field
+    angle, with the angle at the frame's corners chosen so they get ``1 - vignetting`` (all ones at 0)."""
+    if vignetting <= 0:
+        return np.ones((height, width), np.float32)
+    yy, xx = np.mgrid[0:height, 0:width].astype(np.float64)
+    r = np.hypot(xx - (width - 1) / 2, yy - (height - 1) / 2) / np.hypot((width - 1) / 2, (height - 1) / 2)
+    tan_corner = np.tan(np.arccos((1.0 - vignetting) ** 0.25))
+    return (np.cos(np.arctan(r * tan_corner)) ** 4).astype(np.float32)
+
+
 def ideal_mosaic(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig) -> np.ndarray:
     """Exposed Stokes (full-scale units) -> noiseless float32 mosaic through the (possibly leaky) polarizers."""
     e = np.float32(config.polarizer_contrast)
@@ -154,7 +181,7 @@ def simulate(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfi
         raise SimError(f"Stokes images must be (H, W) with even sides and equal shapes, got "
                        f"{s0.shape}, {np.shape(s1)}, {np.shape(s2)}")
     e0, e1, e2 = expose(s0, s1, s2, config)
-    ideal = ideal_mosaic(*lens_blur(e0, e1, e2, config.lens_blur_px), config)
+    ideal = ideal_mosaic(*lens(e0, e1, e2, config), config)
     raw = digitize(ideal, config, rng)
     n_sat = int(np.count_nonzero(raw >= config.max_code))
     return SensorFrame(raw, ideal, e0, e1, e2, config.bit_depth, n_sat)

@@ -18,8 +18,10 @@ docs/results/2026-11-29-panel-brightness.md). It is drawn after exposure and gai
 draws are the same with or without it.
 ``lens_blur_px`` draws the sensor's ``lens_blur_px`` (sigma of the lens's Gaussian point spread, frame px, before the
 polarizers; ``sim.sensor``): lenses, apertures and focus differ between lines and drift on one, and any real lens is
-softer than the renders' box filter. It is drawn last, after the panel, so every other draw is the same with or
-without it. Its range may start at 0 (a sharp frame).
+softer than the renders' box filter. ``vignetting`` draws the sensor's ``vignetting`` (the share of light the frame's
+corners lose through the lens, ``sim.sensor``): lenses and apertures differ, and a dome or panel lights a part less
+evenly than the renders' uniform one. Each is drawn after the ones before it in the stream (exposure, gain, panel,
+blur, vignetting), so every earlier draw is the same with or without it. Their ranges may start at 0.
 """
 
 from __future__ import annotations
@@ -31,6 +33,9 @@ import numpy as np
 
 from .errors import SimError
 from .sensor import SensorConfig
+
+FROM_ZERO = ("lens_blur_px", "vignetting")
+"""The ranges that may start at 0 (none of it); the others are factors, above 0."""
 
 
 @dataclass(frozen=True)
@@ -45,17 +50,21 @@ class LineVariation:
     """Multiplies the scene's ``ring_radiance`` (the panel); None = the scene's own (``sim.dataset.draw_sample``)."""
     lens_blur_px: tuple[float, float] | None = None
     """The sensor's ``lens_blur_px`` (frame px, >= 0); None = the sensor's own."""
+    vignetting: tuple[float, float] | None = None
+    """The sensor's ``vignetting`` (share of light lost at the corners, in [0, 1)); None = the sensor's own."""
 
     def __post_init__(self) -> None:
         for f in fields(self):
             v = getattr(self, f.name)
             if v is None:
                 continue
-            lo_ok = (lambda lo: lo >= 0) if f.name == "lens_blur_px" else (lambda lo: lo > 0)
+            from_zero = f.name in FROM_ZERO
             if (not isinstance(v, tuple) or len(v) != 2 or not all(np.isfinite(x) for x in v)
-                    or not (lo_ok(v[0]) and v[0] <= v[1])):
-                bound = "0 <= lo" if f.name == "lens_blur_px" else "0 < lo"
-                raise SimError(f"variation.{f.name}: need a range [lo, hi] with {bound} <= hi, got {v!r}")
+                    or not (v[0] >= 0 if from_zero else v[0] > 0) or v[0] > v[1]
+                    or (f.name == "vignetting" and v[1] >= 1)):
+                bound = "0 <= lo" if from_zero else "0 < lo"
+                raise SimError(f"variation.{f.name}: need a range [lo, hi] with {bound} <= hi"
+                               f"{' < 1' if f.name == 'vignetting' else ''}, got {v!r}")
 
     @property
     def active(self) -> bool:
@@ -71,33 +80,33 @@ class LineVariation:
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
-        for key in ("panel_scale", "lens_blur_px"):
+        for key in ("panel_scale", *FROM_ZERO):
             if d[key] is None:
                 d.pop(key)  # manifests of sets rendered before the key stay as they were
         return d
 
-    def _stream(self, seed: int, index: int) -> tuple[float, float | None, float | None, float | None]:
-        """Sample ``index``'s (exposure scale, analog gain, panel scale, lens blur; each None when its range is not
-        set but the first), in the stream's order."""
+    def _stream(self, seed: int, index: int) -> tuple[float, float | None, float | None, float | None, float | None]:
+        """Sample ``index``'s (exposure scale, analog gain, panel scale, lens blur, vignetting; each None when its
+        range is not set but the first), in the stream's order."""
         rng = np.random.default_rng([seed, index, 3])
         scale = float(rng.uniform(*self.exposure_scale))
-        gain = float(rng.uniform(*self.analog_gain)) if self.analog_gain else None
-        panel = float(rng.uniform(*self.panel_scale)) if self.panel_scale else None
-        blur = float(rng.uniform(*self.lens_blur_px)) if self.lens_blur_px else None
-        return scale, gain, panel, blur
+        rest = [float(rng.uniform(*r)) if r else None
+                for r in (self.analog_gain, self.panel_scale, self.lens_blur_px, self.vignetting)]
+        return scale, rest[0], rest[1], rest[2], rest[3]
 
     def draw(self, sensor: SensorConfig, seed: int, index: int) -> tuple[SensorConfig, dict[str, float]]:
         """The sensor of sample ``index``, and what was drawn for it (for ``params.json``'s ``sensor``); the sensor
         unchanged and ``{}`` when nothing varies."""
         if not self.active:
             return sensor, {}
-        scale, gain, _, blur = self._stream(seed, index)
+        scale, gain, _, blur, vignetting = self._stream(seed, index)
         gain = sensor.analog_gain if gain is None else gain
         drawn = replace(sensor, exposure_gain=sensor.exposure_gain * scale, analog_gain=gain)
         record = {"exposure_scale": scale, "exposure_gain": drawn.exposure_gain, "analog_gain": gain}
-        if blur is not None:
-            drawn = replace(drawn, lens_blur_px=blur)
-            record["lens_blur_px"] = blur
+        for key, value in (("lens_blur_px", blur), ("vignetting", vignetting)):
+            if value is not None:
+                drawn = replace(drawn, **{key: value})
+                record[key] = value
         return drawn, record
 
     def panel(self, seed: int, index: int) -> float | None:

@@ -113,3 +113,23 @@ def test_lens_blur_softens_the_light_before_the_polarizers_and_keeps_the_truth_s
     np.testing.assert_allclose(b.ideal[:, far], a.ideal[:, far], atol=1e-4)
     with pytest.raises(SimError, match="lens_blur_px"):
         SensorConfig(lens_blur_px=-0.5)
+
+
+def test_vignetting_darkens_the_corners_by_its_share_and_keeps_the_truth() -> None:
+    """``vignetting``: cos^4 relative illumination, 1 at the centre and ``1 - vignetting`` at the corners, on the
+    light before the polarizers (so DoLP is unchanged); the ground truth is the scene's; outside [0, 1) refused."""
+    from sim.sensor import relative_illumination
+
+    fall = relative_illumination(48, 64, 0.2)
+    assert fall[0, 0] == pytest.approx(0.8, abs=1e-6) and fall[-1, -1] == pytest.approx(0.8, abs=1e-6)
+    assert fall.max() <= 1.0 and fall[23:25, 31:33].min() > 0.999 and (relative_illumination(4, 4, 0.0) == 1).all()
+    s0 = np.full((48, 64), 0.5, np.float32)
+    s1, s2 = 0.3 * s0, np.zeros_like(s0)
+    quiet = {"exposure_gain": 1.0, "shot_noise": False, "read_noise_e": 0.0}
+    a = simulate(s0, s1, s2, SensorConfig(**quiet), np.random.default_rng(0))
+    b = simulate(s0, s1, s2, SensorConfig(**quiet, vignetting=0.2), np.random.default_rng(0))
+    np.testing.assert_array_equal(b.s0, a.s0)
+    np.testing.assert_allclose(b.ideal, a.ideal * fall, rtol=1e-5)
+    for bad in (-0.1, 1.0):
+        with pytest.raises(SimError, match="vignetting"):
+            SensorConfig(vignetting=bad)

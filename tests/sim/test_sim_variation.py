@@ -180,3 +180,19 @@ def test_lens_blur_is_drawn_last_and_blurs_the_frame_not_its_truth() -> None:
     assert lap[1] < 0.8 * lap[0]  # fewer sharp steps between neighbouring columns
     assert "lens_blur_px" not in plain.to_dict()["variation"]
     assert sd.DatasetSpec.from_dict(spec.to_dict()) == spec
+
+
+def test_vignetting_is_drawn_after_the_lens_blur() -> None:
+    """``vignetting`` (light lost at the corners, per sample) is drawn after every other draw: with it, exposure,
+    gain and blur are as without it; it is recorded; its range may start at 0 and must stay below 1."""
+    sensor = SensorConfig(exposure_gain=2.0)
+    blur = LineVariation(exposure_scale=(0.7, 1.3), analog_gain=(1.0, 2.0), lens_blur_px=(0.0, 1.0))
+    both = replace(blur, vignetting=(0.0, 0.3))
+    for i in range(20):
+        (b, rb), (a, ra) = both.draw(sensor, 5, i), blur.draw(sensor, 5, i)
+        assert 0.0 <= rb.pop("vignetting") == b.vignetting <= 0.3 and rb == ra
+        assert b == replace(a, vignetting=b.vignetting)
+    for bad in ((-0.1, 0.2), (0.1, 1.0)):
+        with pytest.raises(SimError, match=r"variation\.vignetting"):
+            LineVariation(vignetting=bad)
+    assert "vignetting" not in blur.to_dict() and LineVariation.from_dict(both.to_dict()) == both
