@@ -1,5 +1,5 @@
 """Rule 53's training and validation sets without rendering them again: the same scenes (each sample's gt.npz, the
-exposed scene Stokes) through the sensor chain `station render` runs (sim.sensor: lens blur, polarizers, noise,
+exposed scene Stokes) through the sensor chain `station render` runs (sim.sensor: the lens, polarizers, noise,
 ADC, the noise stream [seed, index, 1]), with the sensor drawn by the new set's [variation]. `--check N` renders N
 samples with `station render`'s own code and compares them byte for byte first.
 
@@ -17,7 +17,7 @@ import cv2
 import numpy as np
 
 from sim import dataset as sd
-from sim.sensor import digitize, ideal_mosaic, lens_blur
+from sim.sensor import digitize, ideal_mosaic, lens
 
 
 def new_spec(src: Path, layer: Path) -> sd.DatasetSpec:
@@ -35,7 +35,7 @@ def expose(spec: sd.DatasetSpec, d: Path, index: int) -> tuple[np.ndarray, dict]
         {k: record[k] for k in ("exposure_scale", "analog_gain")}, d
     with np.load(d / "gt.npz") as gt:
         s = (gt["s0"], gt["s1"], gt["s2"])
-    raw = digitize(ideal_mosaic(*lens_blur(*s, sensor.lens_blur_px), sensor), sensor,
+    raw = digitize(ideal_mosaic(*lens(*s, sensor), sensor), sensor,
                    np.random.default_rng([spec.seed, index, 1]))
     return raw, {**params, "sensor": record}
 
