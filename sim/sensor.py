@@ -6,14 +6,15 @@ sampled by ``model.priors.mosaic.stokes_to_mosaic``, never redefined here.
 Chain, per pixel (all in full-scale units until the ADC; 1.0 = the largest code of ``bit_depth``):
   1. exposure:  ``S * exposure_gain`` (full scale per unit of rendered radiance; folds exposure time, aperture
      and quantum efficiency into one number).
-  1b. lens:     a Gaussian point spread of ``lens_blur_px`` (sigma, frame px) on S0, S1 and S2 alike, before the
+  1b. vignetting: the lens's relative illumination, ``cos^4`` of the field angle, scaled so the frame's corners get
+     ``1 - vignetting`` of the centre's light (0: none, as the renders' pinhole camera), on S0, S1 and S2 alike.
+     0.2 at the corners made the shipped model reject 11 % of good parts against 5 %
+     (docs/results/2026-11-29-sensor-optics.md).
+  1c. lens blur: a Gaussian point spread of ``lens_blur_px`` (sigma, frame px) on S0, S1 and S2 alike, before the
      polarizers, as a lens blurs the light that reaches the polarizer array (0: the render's own sharpness, a box
      pixel filter). A softer image also softens the mosaic's false polarization at edges, which blurring the
-     demosaicked frame cannot undo: 0.7 px made the shipped model reject 11 % of good parts against 5 %
-     (docs/results/2026-11-29-sensor-optics.md).
-  1c. vignetting: the lens's relative illumination, ``cos^4`` of the field angle, scaled so the frame's corners get
-     ``1 - vignetting`` of the centre's light (0: none, as the renders' pinhole camera), on S0, S1 and S2 alike.
-     0.2 at the corners made the shipped model reject 11 % of good parts against 5 % (the same page).
+     demosaicked frame cannot undo: 0.7 px made the shipped model reject 11 % of good parts against 5 % (the same
+     page).
   2. polarizer: ``I(t) = 0.5 * (S0 + e * (S1 cos 2t + S2 sin 2t))`` with ``e = (ER - 1) / (ER + 1)`` for an
      extinction ratio ER (``e = 1`` for an ideal polarizer, ``extinction_ratio=None``).
   3. electrons: ``I * full_scale_e`` with ``full_scale_e = full_well_e / analog_gain``; shot noise is
