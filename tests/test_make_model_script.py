@@ -10,7 +10,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
+def dry_run(tmp_path: Path) -> list[list[str]]:
+    """make-model.sh run with a `station` that only records its arguments: each call's arguments, in order."""
     calls = tmp_path / "calls"
     stub = tmp_path / "bin"
     stub.mkdir()
@@ -18,7 +19,11 @@ def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
     (stub / "station").chmod(0o755)
     env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0"}
     subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
-    variation = [line.split() for line in calls.read_text().splitlines() if line.startswith("variation ")]
+    return [line.split() for line in calls.read_text().splitlines()]
+
+
+def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
+    variation = [args for args in dry_run(tmp_path) if args[0] == "variation"]
     decisions = {args[args.index("--out") + 1].removeprefix(str(tmp_path / "runs") + "/"):
                  args[args.index("--decision") + 1] for args in variation if "--decision" in args}
     assert len(decisions) == len(variation) == 6, variation  # the shipped model and one per defect type
@@ -95,14 +100,7 @@ def test_make_model_varies_the_panel_in_training_and_validation_only(tmp_path: P
     the sets the shipped sidecar records."""
     import json
 
-    calls = tmp_path / "calls"
-    stub = tmp_path / "bin"
-    stub.mkdir()
-    (stub / "station").write_text(f'#!/bin/sh\necho "$*" >> {calls}\n')
-    (stub / "station").chmod(0o755)
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0"}
-    subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
-    renders = [line.split() for line in calls.read_text().splitlines() if line.startswith("render ")]
+    renders = [args for args in dry_run(tmp_path) if args[0] == "render"]
     configs = {args[args.index("--out") + 1]: [args[i + 1] for i, a in enumerate(args) if a == "--config"]
                for args in renders}
     assert len(renders) == 6  # three sets, two shards each
