@@ -32,7 +32,7 @@ sets() {  # wait for seed 1157 and expose its three re-exposures
     sets
     until [ -f $S/decide53.md ]; do sleep 20; done
     if grep -q "| no |" $S/decide53.md; then K=runs/r53/X-ref; KVAL=data/line-pv-val
-        cp -n model/weights/default.pt $K.pt; cp -n model/weights/default.json $K.json
+        [ -f $K.json ] || .venv/bin/python -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" model/weights/default $K
     else K=runs/r53/Y; KVAL=data/line-pvb-val; fi
     lane K $K $KVAL 1157 vignette blur all
 ) &
