@@ -11,6 +11,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from model.draem.config import GOOD_REJECTED_RATE
 from station.errors import UserError
 
 ABLATION = (("R", ("intensity",)), ("R+AoLP", ("intensity", "aolp")), ("R+AoLP+DoLP", ("intensity", "aolp", "dolp")),
@@ -87,7 +88,7 @@ def check_max_good_flagged(value: float) -> None:
         raise UserError(f"--max-good-flagged {value}: a fraction in [0, 1)")
 
 
-def set_threshold(model: str, data: str, max_good_flagged: float = 0.05, split: str = "val") -> str:
+def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED_RATE, split: str = "val") -> str:
     """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
     does there (one line)."""
     from model.draem.checkpoint import read_sidecar, save_checkpoint
@@ -161,7 +162,8 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
     return choice, ev, labels
 
 
-def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.05, val_data: str | None = None,
+def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOOD_REJECTED_RATE,
+                  val_data: str | None = None,
                   decision: str = "variation", fit_parts: int | None = None,
                   blur_copies_sigma: float | None = None, refit: bool = False,
                   global_polarization: str | None = None, clusters: int | None = None,
@@ -273,7 +275,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = 0.0
 
 
 def fit_residual(model: str, data: str, out: str, val_data: str | None = None, members: int = 3, steps: int = 3000,
-                 seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = 0.05,
+                 seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = GOOD_REJECTED_RATE,
                  look: bool = False, more_defects: Sequence[str] = ()) -> str:
     """Checkpoint ``model`` (with its variation model) plus ``members`` residual networks (``model.draem.residual``)
     deciding (``look``: as the variation model's second look instead, the model's decision kept), trained on

@@ -101,6 +101,10 @@ PRESETS: dict[str, Preset] = {
 
 DECISIONS = ("combined", "variation", "residual")
 
+# The threshold rule's default (``metrics.choose_threshold``, every command that sets a threshold): at most this share
+# of the good validation parts rejected.
+GOOD_REJECTED_RATE = 0.05
+
 
 class Alignment(StrEnum):
     """How a fit treats a frame-wide factor: the polarization's gain and turn (``VariationModel.align_polarization``,

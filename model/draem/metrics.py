@@ -19,6 +19,7 @@ from scipy import ndimage
 from scipy.stats import rankdata
 from sklearn.metrics import average_precision_score, precision_recall_curve, roc_auc_score
 
+from .config import GOOD_REJECTED_RATE
 from .errors import ModelError
 
 MAX_THRESHOLD = 0.9999
@@ -158,7 +159,8 @@ class ThresholdChoice:
     detected_fraction: float
 
 
-def choose_threshold(labels: np.ndarray, scores: np.ndarray, max_good_flagged: float = 0.05) -> ThresholdChoice:
+def choose_threshold(labels: np.ndarray, scores: np.ndarray,
+                     max_good_flagged: float = GOOD_REJECTED_RATE) -> ThresholdChoice:
     """The station's decision threshold from validation image scores.
 
     Never flags more than ``max_good_flagged`` of the good validation parts (a line cannot live with a weak

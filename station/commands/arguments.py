@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from model.draem.config import GOOD_REJECTED_RATE
 from station.config import MAX_SEED
 
 
@@ -64,3 +65,9 @@ def path_text(text: str) -> str:
     if not text.strip():
         raise argparse.ArgumentTypeError("empty: give a path")
     return text
+
+
+def add_max_good_flagged(p: argparse.ArgumentParser, of: str = "the val split's good parts") -> None:
+    """``--max-good-flagged``: the threshold rule's bound (default ``model.draem.config.GOOD_REJECTED_RATE``)."""
+    p.add_argument("--max-good-flagged", type=float, default=GOOD_REJECTED_RATE,
+                   help=f"threshold rule: at most this fraction of {of} rejected (default {GOOD_REJECTED_RATE})")

@@ -12,6 +12,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from station.commands.arguments import add_max_good_flagged
 from station.errors import UserError
 
 if TYPE_CHECKING:
@@ -24,8 +25,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="comma-separated checkpoints (without suffix), each over one prior, all trained on --data")
     p.add_argument("--data", required=True, help="the rendered set the members trained on (threshold: its val split)")
     p.add_argument("--out", required=True, help="checkpoint to write, without suffix (e.g. runs/train/ens/last)")
-    p.add_argument("--max-good-flagged", type=float, default=0.05,
-                   help="at most this fraction of good validation parts above the threshold")
+    add_max_good_flagged(p, "the good validation parts")
     p.set_defaults(func=run)
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import argparse
 
-from station.commands.arguments import seed
+from station.commands.arguments import add_max_good_flagged, seed
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -31,8 +31,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--holdout-type", default=None, metavar="TYPE",
                    help="leave this defect type's rendered parts out of training, to measure a kind of defect the "
                         "networks never saw (default: none left out)")
-    p.add_argument("--max-good-flagged", type=float, default=0.05,
-                   help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
+    add_max_good_flagged(p)
     p.add_argument("--more-defects", action="append", default=[], metavar="DATA",
                    help="another rendered set whose defective train parts the networks also learn from (its good "
                         "parts are not used); repeat for several (e.g. station render --defects 1 "

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import argparse
 
+from station.commands.arguments import add_max_good_flagged
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("threshold", help="set a checkpoint's threshold on a split of any set with good parts")
@@ -20,8 +22,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="set with good parts: the training set, or another (rendered or imported) set of the line")
     p.add_argument("--split", default="val", choices=("train", "val", "test"),
                    help="split to choose on (default val; train only on a set the model was not trained on)")
-    p.add_argument("--max-good-flagged", type=float, default=0.05,
-                   help="at most this fraction of the split's good parts above the threshold (default 0.05)")
+    add_max_good_flagged(p, "the split's good parts")
     p.set_defaults(func=run)
 
 

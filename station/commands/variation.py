@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 
 from model.draem.config import DECISIONS, Alignment
+from station.commands.arguments import add_max_good_flagged
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -64,8 +65,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")
-    p.add_argument("--max-good-flagged", type=float, default=0.05,
-                   help="threshold rule: at most this fraction of the val split's good parts flagged (default 0.05)")
+    add_max_good_flagged(p)
     p.set_defaults(func=run)
 
 
