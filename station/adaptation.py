@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from model.draem.config import GOOD_REJECTED_RATE
 from station.errors import UserError
 
 
@@ -53,7 +54,7 @@ def frames_sha256(root: str | Path, indices: list[int]) -> str:
 
 
 def adapt_model(model: str, good: str, out: str, split: str = "train", limit: int | None = None,
-                false_reject: float = 0.01, fine_tune_steps: int = 0, seed: int = 0,
+                false_reject: float = GOOD_REJECTED_RATE, fine_tune_steps: int = 0, seed: int = 0,
                 keep_networks: bool = False) -> AdaptSummary:
     """Adapt checkpoint ``model`` to the good parts of ``good``'s ``split`` (at most ``limit``), write ``out``."""
     from model.draem.adapt import AdaptConfig, adapt

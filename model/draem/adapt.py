@@ -41,6 +41,7 @@ import numpy as np
 import torch
 
 from .anomaly import AnomalyConfig, synthesize
+from .config import GOOD_REJECTED_RATE
 from .detector import Detector
 from .errors import ModelError
 from .loss import draem_loss
@@ -81,7 +82,7 @@ class AdaptConfig:
     threshold; refit_normalizer: False keeps the trained normaliser (threshold only); keep_networks: keep the
     networks in the decision even when they are out of their domain (module docstring)."""
 
-    false_reject: float = 0.01
+    false_reject: float = GOOD_REJECTED_RATE
     keep_networks: bool = False
     folds: int = 5
     fine_tune_steps: int = 0

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 
+from model.draem.config import GOOD_REJECTED_RATE
 from station.commands.arguments import positive_int, seed
 
 
@@ -15,8 +16,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--model", required=True, help="checkpoint path without suffix (e.g. model/weights/default)")
     p.add_argument("--good", required=True, metavar="DATASET", help="set with good parts of the line (station import)")
     p.add_argument("--out", required=True, help="adapted checkpoint path without suffix (e.g. runs/line/adapted)")
-    p.add_argument("--false-reject", type=float, default=0.01,
-                   help="share of good parts the threshold may reject (default 0.01)")
+    p.add_argument("--false-reject", type=float, default=GOOD_REJECTED_RATE,
+                   help=f"share of good parts the threshold may reject (default {GOOD_REJECTED_RATE})")
     p.add_argument("--split", default="train", choices=("train", "val", "test"),
                    help="split whose good parts are used (default train: an imported train/good)")
     p.add_argument("--limit", type=positive_int, default=None, help="use at most N parts of the split (default all)")

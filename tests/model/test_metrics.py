@@ -68,6 +68,16 @@ def test_weak_models_f1_threshold_is_raised_to_the_false_reject_bound():
     assert ch.flagged_good_fraction <= 0.05 and "raised" in ch.rule
 
 
+def test_the_default_rule_rejects_at_most_the_targets_one_percent_of_good_parts():
+    """Issue 19's rule: at most the target rate of good validation parts rejected, and the target is 1 % (rule 56).
+    The F1-max threshold of a model that separates by two SDs rejects about 10 % of the good parts."""
+    rng = np.random.default_rng(1)
+    y = np.r_[np.zeros(400), np.ones(200)].astype(int)
+    s = 1 / (1 + np.exp(-np.r_[rng.normal(0.0, 1.0, 400), rng.normal(2.0, 1.0, 200)]))  # scores in (0, 1)
+    ch = M.choose_threshold(y, s)
+    assert int((s[y == 0] > ch.threshold).sum()) == 4 and "1.00%" in ch.rule
+
+
 def test_threshold_on_all_good_validation_never_flags_every_part():
     s = np.linspace(0.0, 1.0, 200)
     ch = M.choose_threshold(np.zeros(200), s, max_good_flagged=0.01)

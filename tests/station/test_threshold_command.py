@@ -27,7 +27,7 @@ def test_threshold_is_chosen_on_val_and_written_to_the_sidecar(tmp_path: Path, c
     assert sp.label.tolist() == [0, 1, 0]
     expected = choose_threshold(sp.label.numpy(), ev.scores)
     assert after.threshold == pytest.approx(expected.threshold) and after.threshold != 0.5
-    assert "5.00%" in json.loads(model.with_suffix(".json").read_text())["threshold_rule"]
+    assert "1.00%" in json.loads(model.with_suffix(".json").read_text())["threshold_rule"]
     for k, v in before.detector.state_dict().items():  # the weights are untouched
         assert torch.equal(v, after.detector.state_dict()[k])
     assert "threshold" in capsys.readouterr().out
