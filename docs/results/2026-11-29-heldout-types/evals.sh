@@ -8,5 +8,5 @@ ev() { for t in "$@"; do
   [ -f runs/h58/eval-H-$t/eval.md ] || .venv/bin/station eval --model runs/h58/H-$t --data data/line-panel-heldout-1159 \
      --val-data data/line-pv-val --no-synthetic --out runs/h58/eval-H-$t > runs/h58/eval-H-$t.log 2>&1
 done; }
-ev dent scratch chip & ev stain missing_stud & wait
+ev scratch dent chip & ev missing_stud stain & wait
 echo done > runs/h58/evals.done
