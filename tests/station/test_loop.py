@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import bisect
 import dataclasses
 import threading
 import time
@@ -717,36 +718,44 @@ def test_a_model_that_never_returns_stops_the_station(tmp_path, monkeypatch):
 
 class PulsedCamera(ScriptedCamera):
     """A hardware-triggered camera: ``pulse(label)`` makes a frame that completes ``delay_s`` later (exposure,
-    readout, transfer); a pulse the camera never saw makes none and spends no frame id."""
+    readout, transfer); a pulse the camera never saw makes none and spends no frame id. A frame is there for
+    ``grab`` from its completion on, stamped with it, whenever this process's threads next run: as Aravis's
+    receiving thread, outside the interpreter, stamps and queues a buffer while the station's threads stall."""
 
     def __init__(self, delay_s=0.01):
         super().__init__([], trigger="line0")
         self.delay_s = delay_s
-        self.frames = deque()
+        self.frames = []  # (host completion, monotonic ns; frame), in completion order
         self.ready = threading.Condition()
 
-    def pulse(self, label, transfer_s=0.0, level=None, arrives=True):
+    def pulse(self, label, transfer_s=0.0, level=None, arrives=True, after_s=0.0):
         """The frame's camera timestamp is its exposure's end; the host has it ``transfer_s`` later. ``level``: its
-        brightness (default: bright for a defective part); ``arrives`` False: made (its id spent), never delivered."""
-        exposed_ns = time.monotonic_ns() + int(1e9 * self.delay_s)
-
-        def complete():
-            with self.ready:
-                self.frame_id += 1
-                if not arrives:
-                    return
-                raw = np.full((8, 8), level if level is not None else 200 if label == 1 else 20, np.uint8)
-                self.frames.append(Frame(raw, "Mono8", 8, self.frame_id, exposed_ns, time.time_ns(),
-                                         ground_truth=GroundTruth(label=label)))
-                self.ready.notify_all()
-
-        threading.Timer(self.delay_s + transfer_s, complete).start()
+        brightness (default: bright for a defective part); ``arrives`` False: made (its id spent), never delivered;
+        ``after_s``: the pulse comes that long from now (a sequencer's timing, whatever this process does)."""
+        now_ns, wall_ns = time.monotonic_ns(), time.time_ns()
+        exposed_ns = now_ns + int(1e9 * (after_s + self.delay_s))
+        arrival_ns = int(1e9 * (after_s + self.delay_s + transfer_s))
+        with self.ready:
+            self.frame_id += 1
+            if not arrives:
+                return
+            raw = np.full((8, 8), level if level is not None else 200 if label == 1 else 20, np.uint8)
+            frame = Frame(raw, "Mono8", 8, self.frame_id, exposed_ns, wall_ns + arrival_ns,
+                          ground_truth=GroundTruth(label=label))
+            bisect.insort(self.frames, (now_ns + arrival_ns, frame), key=lambda item: item[0])
+            self.ready.notify_all()
 
     def grab(self, timeout_ms=None):
+        end_ns = time.monotonic_ns() + int(1e6 * (timeout_ms or 1000))
         with self.ready:
-            if not self.ready.wait_for(lambda: self.frames, timeout=(timeout_ms or 1000) / 1e3):
-                raise CameraTimeout("no frame")
-            return self.frames.popleft()
+            while True:
+                now_ns = time.monotonic_ns()
+                if self.frames and self.frames[0][0] <= now_ns:
+                    return self.frames.pop(0)[1]
+                if now_ns >= end_ns:
+                    raise CameraTimeout("no frame")
+                due_ns = self.frames[0][0] if self.frames else end_ns
+                self.ready.wait((min(due_ns, end_ns) - now_ns) / 1e9)
 
 
 def run_line(tmp_path, labels, missed, spacing_s, slow=None, **kw):
