@@ -167,7 +167,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
                   decision: str = "variation", fit_parts: int | None = None,
                   blur_copies_sigma: float | None = None, refit: bool = False,
                   global_polarization: str | None = None, clusters: int | None = None,
-                  global_contrast: str | None = None, second_look: bool | None = None) -> str:
+                  global_contrast: str | None = None, second_look: bool | None = None,
+                  curvature_sigma: float | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
@@ -183,7 +184,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     ``Alignment`` name, how each frame's contrast (log intensity's frame-wide gain) is put onto the good parts' (None:
     the shipped recipe, ``model.draem.variation.GLOBAL_CONTRAST``). ``second_look``: keep the good parts' left-out
     residuals and look again at suspicious parts (``model.draem.second_look``; None: the shipped recipe,
-    ``model.draem.variation.SECOND_LOOK``). The sidecar's
+    ``model.draem.variation.SECOND_LOOK``). ``curvature_sigma``: the window statistic, the curvature's sigma in
+    input px, 0 for the box (None: the shipped recipe, ``model.draem.variation.CURVATURE_SIGMA``). The sidecar's
     frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
     variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
@@ -193,7 +195,9 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     from model.draem.variation import (
         APPEARANCE_CLUSTERS,
         BLUR_COPIES_SIGMA,
+        CURVATURE_SIGMA,
         GLOBAL_CONTRAST,
+        MAX_CURVATURE_SIGMA,
         MIN_FIT_PARTS,
         SECOND_LOOK,
         shipped_alignment,
@@ -206,6 +210,10 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     blur_copies_sigma = BLUR_COPIES_SIGMA if blur_copies_sigma is None else blur_copies_sigma
     clusters = APPEARANCE_CLUSTERS if clusters is None else clusters
     second_look = SECOND_LOOK if second_look is None else second_look
+    curvature_sigma = CURVATURE_SIGMA if curvature_sigma is None else curvature_sigma
+    if not 0.0 <= curvature_sigma <= MAX_CURVATURE_SIGMA:
+        raise UserError(f"--curvature {curvature_sigma}: give the curvature's sigma in input px, in [0, "
+                        f"{MAX_CURVATURE_SIGMA:g}] (0: the box window)")
     if clusters < 0:
         raise UserError(f"--clusters {clusters}: give a number of clusters, >= 0 (0: none)")
     try:
@@ -243,7 +251,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         det = add_variation(networks, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma,
                             global_polarization=alignment, clusters=clusters, global_contrast=contrast,
-                            second_look=second_look)
+                            second_look=second_look, curvature_sigma=curvature_sigma)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
@@ -251,7 +259,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         "blur_copies_sigma": blur_copies_sigma, "global_polarization": alignment.value,
         "clusters": det.variation.clusters, "global_contrast": contrast.value,
         "contrast_range": det.variation.contrast_range.tolist() if det.variation.aligns_contrast else None,
-        "second_look_references": det.variation.second_look.references},
+        "second_look_references": det.variation.second_look.references,
+        "curvature_sigma": float(det.variation.curvature_sigma)},
         StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
@@ -263,6 +272,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     copies += f", judged within {det.variation.clusters} clusters by appearance" if det.variation.clusters else ""
     copies += {Alignment.MEAN: ", each frame's contrast aligned to theirs",
                Alignment.RANGE: ", each frame's contrast aligned where beyond theirs"}.get(contrast, "")
+    if curvature_sigma:
+        copies += f", its window each channel's curvature over {curvature_sigma:g} px"
     looks = det.variation.second_look.references
     if looks:
         copies += f", a second look at suspicious parts against {looks} of them"

@@ -27,10 +27,13 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               0.788, 5 components 0.799, 10 components 0.818, 20 0.812, 30 0.812; in the shipped model, on the
               test split, 0.744 -> 0.833. More detail buys nothing here (0.798 at 0.4x and 0.5x, 0.796 at
               0.75x): what hides dents and scratches is the part-to-part variation, not the pixel size
-    z map     per pixel and channel |residual| / scale (scale = 1.4826 MAD of the good parts' residuals, each
+    z map     per pixel and channel residual / scale (scale = 1.4826 MAD of the good parts' residuals, each
               from an appearance fitted without that part (``FOLDS``), floored at the ``floor_quantile`` of the
-              scales over the region and at ``MIN_SCALE``, so flat regions do not divide by ~0), max over
-              channels, box-averaged over ``box_px``, zero outside the eroded part region
+              scales over the region and at ``MIN_SCALE``, so flat regions do not divide by ~0); the window
+              statistic is either |z| maxed over channels and box-averaged over ``box_px`` (``curvature_sigma`` 0,
+              files before 2026-11-29), or each channel's curvature: sigma^2 |LoG_sigma * z| of its signed z (the
+              Laplacian of a Gaussian of sigma ``curvature_sigma`` input px, scale-normalised), maxed over channels
+              (``CURVATURE_SIGMA``); zero outside the eroded part region
     highlights  zero where the part is lit near the sensor's full scale: I (1 + DoLP), the brightest reading
               any polarizer angle can give (``model.priors.conventions``; I alone without the DoLP prior),
               registered with the features, at or above ``HIGHLIGHT_LEVEL``, grown by ``HIGHLIGHT_GROW_PX``.
@@ -201,13 +204,15 @@ MAX_HIDDEN = 0.5
 
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
-                 "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged")
+                 "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged",
+                 "curvature_sigma")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
 polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
-clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look), which score as
-those models did. Dotted names are a submodule's (``nn.Module.get_buffer``)."""
+clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look;
+``curvature_sigma`` 0: the box window), which score as those models did. Dotted names are a submodule's
+(``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
 """``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
@@ -238,6 +243,16 @@ blurred copies (1.5 px): every frame-wide shift held (good parts rejected at the
 1.25 7.1 % against 27.6 %, under 1 px of blur 15.4 % against 56.4 %), but scratches 0.790 against 0.836 (2.3 paired
 SE): dividing the frame by its gain rescaled its noise with its contrast (a robust fit of the gain did no better),
 which the residual in the frame's own units no longer does (rule 43)."""
+
+CURVATURE_SIGMA = 0.0
+"""The recipe's window statistic for a new fit (``station variation --curvature``): 0, the box average of the largest
+channel's |z| over ``box_px``; above 0, the largest channel's scale-normalised Laplacian of a Gaussian of this sigma
+(input px) of its signed z (``curvature``). A dent tilts the surface one way on one side and the other way across
+it, and a shallow one spreads over 150-390 px at 96 x 192 (docs/results/2026-11-29-second-look.md): |z| averaged
+over a box adds its faint, opposite-signed pixels to the noise around them, the curvature of the signed residual
+adds them with their signs. Screened on the shipped file's fit, thresholds from half of the validation set's good
+parts (docs/results/2026-11-29-curvature.md): defective parts caught at 1 % of good parts rejected on the validation
+set 68.3 % with the box, 72.6 % with sigma 3 (dents 29 -> 43 %; sigma chosen there from 1.5-4)."""
 
 SECOND_LOOK = True
 """The shipped recipe's second look (``station variation --second-look``; ``model.draem.second_look``), by rule 47
@@ -276,9 +291,36 @@ WINDOW_BLUR_PX = 2.0
 percentile per pixel, ``station adapt``'s 50 parts do not, and neighbouring pixels share their place's tail."""
 
 ABS_NORMAL_SD = 0.6028
-"""Standard deviation of |n| for n standard normal. ``window_spread`` is floored at ABS_NORMAL_SD / box_px, the
-spread of a window of independent good pixels: where the good parts agree more closely than that (noise-free
-renders, floored scales), a part would otherwise be judged on differences of no physical size."""
+"""Standard deviation of |n| for n standard normal. ``window_spread`` is floored at ABS_NORMAL_SD times the
+window's gain on independent unit noise (``VariationModel.window_noise``: 1 / box_px for the box), the spread of a
+window of independent good pixels: where the good parts agree more closely than that (noise-free renders, floored
+scales), a part would otherwise be judged on differences of no physical size."""
+
+MAX_CURVATURE_SIGMA = 16.0
+"""Largest ``curvature_sigma`` ``check`` accepts (input px): a wider filter sees the part's outline, not a defect."""
+
+
+def curvature_kernels(sigma: float) -> tuple[np.ndarray, np.ndarray]:
+    """Sigma (input px, > 0) -> the 1-D Gaussian g (unit sum) and sigma^2 times its second derivative, sampled over
+    +-ceil(4 sigma) px (float32): ``curvature`` filters with g2 along one axis and g along the other, then the other
+    way round."""
+    radius = max(1, math.ceil(4.0 * sigma))
+    t = np.arange(-radius, radius + 1, dtype=np.float64)
+    g = np.exp(-0.5 * (t / sigma) ** 2)
+    g /= g.sum()
+    g2 = (t * t / sigma**2 - 1.0) * g  # sigma^2 d^2g/dt^2
+    return g.astype(np.float32), (g2 - g2.mean()).astype(np.float32)  # zero sum: a flat field gives 0
+
+
+def curvature(z: np.ndarray, sigma: float) -> np.ndarray:
+    """(H, W) a channel's signed z -> (H, W) |sigma^2 LoG_sigma * z|, the scale-normalised Laplacian of a Gaussian
+    (``curvature_kernels``, borders replicated), float32: a blob of about sigma * sqrt(2) px radius of either sign,
+    or a dip opposite across a place, answers; a smooth slope does not."""
+    g, g2 = curvature_kernels(sigma)
+    z = np.ascontiguousarray(z, np.float32)
+    out = (cv2.sepFilter2D(z, cv2.CV_32F, g2, g, borderType=cv2.BORDER_REPLICATE)
+           + cv2.sepFilter2D(z, cv2.CV_32F, g, g2, borderType=cv2.BORDER_REPLICATE))
+    return np.abs(out)
 
 MEDIAN_ABS_NORMAL = 0.6745
 """Median of |n| for n standard normal: a good part's median z on the fitted line (``scale`` is 1.4826 MAD)."""
@@ -331,7 +373,9 @@ class VariationModel(nn.Module):
     ``cluster_spread`` (COMPONENTS,): the good parts' clusters by appearance (``model.draem.appearance_clusters``;
     M = 0: none), ``cluster_mean`` and ``cluster_scale`` (M, C, P) float16: each cluster's mean residual and
     residual scale at the P pixels of ``region``, in units of ``scale``. ``second_look``: propose and test for
-    parts the window finds suspicious (``model.draem.second_look``; no references: none). ``intensity``,
+    parts the window finds suspicious (``model.draem.second_look``; no references: none). ``curvature_sigma``: the
+    window statistic (module docstring: z map; 0: the box, else the curvature's sigma in input px; ``fit``), which a
+    refit keeps. ``intensity``,
     ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's cosine (its sine follows), None when
     the model does not read that prior."""
 
@@ -357,6 +401,7 @@ class VariationModel(nn.Module):
         self.register_buffer("polarization_range", torch.tensor(NO_POLARIZATION_RANGE))
         self.register_buffer("contrast_range", torch.tensor(CONTRAST_GAIN_RANGE))
         self.register_buffer("cluster_spread", torch.ones(COMPONENTS))
+        self.register_buffer("curvature_sigma", torch.tensor(0.0))
         self._resize_clusters(0, 0)
         self.second_look = SecondLook()
 
@@ -567,7 +612,8 @@ class VariationModel(nn.Module):
     def fit(self, x: torch.Tensor, object_mask: torch.Tensor | None = None, floor_quantile: float = 5.0,
             keep_reference: bool = False, blur_copies_sigma: float | None = None,
             global_polarization: Alignment | str | bool | None = None,
-            clusters: int | None = None, global_contrast: Alignment | str | None = None) -> np.ndarray:
+            clusters: int | None = None, global_contrast: Alignment | str | None = None,
+            curvature_sigma: float | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -596,7 +642,9 @@ class VariationModel(nn.Module):
         mean taken again after the first), and so every frame it judges (``contrast_range`` (1, 1)); ``RANGE`` fits
         as ``OFF`` and then takes the lowest and highest contrast gain of the parts (not their copies) as ``zmaps``
         measures it into ``contrast_range`` (before the clusters), so only frames beyond them are aligned
-        (``align_contrast``); ``OFF`` keeps ``CONTRAST_GAIN_RANGE``, which aligns nothing."""
+        (``align_contrast``); ``OFF`` keeps ``CONTRAST_GAIN_RANGE``, which aligns nothing. ``curvature_sigma`` (input
+        px; None: the model's own, so a refit keeps it): the window statistic the fit calibrates and the model scores
+        with (0: the box; module docstring: z map)."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -605,12 +653,16 @@ class VariationModel(nn.Module):
         sigma = float(self.blur_copies_sigma) if blur_copies_sigma is None else float(blur_copies_sigma)
         if not (math.isfinite(sigma) and sigma >= 0):
             raise ModelError(f"blur_copies_sigma must be finite and >= 0, got {sigma}")
+        curvature_sigma = float(self.curvature_sigma) if curvature_sigma is None else float(curvature_sigma)
+        if not 0.0 <= curvature_sigma <= MAX_CURVATURE_SIGMA:
+            raise ModelError(f"curvature_sigma must be in [0, {MAX_CURVATURE_SIGMA:g}] input px, got {curvature_sigma}")
         wanted_clusters = self.clusters if clusters is None else int(clusters)
         if wanted_clusters < 0:
             raise ModelError(f"clusters must be >= 0, got {wanted_clusters}")
         contrast = (self.contrast_alignment if global_contrast is None
                     else Alignment.of(global_contrast, "global_contrast"))
         self.blur_copies_sigma.fill_(sigma)
+        self.curvature_sigma.fill_(curvature_sigma)
         mode = (self.polarization_alignment if global_polarization is None
                 else Alignment.of(global_polarization))
         if mode is not Alignment.OFF and (self.dolp is None or self.aolp is None):
@@ -670,7 +722,7 @@ class VariationModel(nn.Module):
         floor = np.maximum([np.percentile(s[region], floor_quantile) for s in scale], MIN_SCALE / channel_scale)
         scale = np.maximum(scale, floor[:, None, None])
         signed = np.stack([self.signed_z(r / scale, region) for r in residual])
-        windows = np.stack([self.window(np.abs(r) / scale, region)[0] for r in residual])
+        windows = np.stack([self.window(r / scale, region)[0] for r in residual])
         location, spread = self._position(windows, region, floor_quantile)
         mean = mean * channel_scale[:, None, None]
         for name, value in (("reference", ref), ("mean", mean), ("channel_scale", channel_scale),
@@ -697,7 +749,7 @@ class VariationModel(nn.Module):
         location = np.median(windows, 0)
         spread = cv2.GaussianBlur(np.percentile(windows, WINDOW_QUANTILE, 0) - location, (0, 0), WINDOW_BLUR_PX)
         spread = np.maximum(spread, max(float(np.percentile(spread[region], floor_quantile)),
-                                        ABS_NORMAL_SD / self.box_px))
+                                        ABS_NORMAL_SD * self.window_noise()))
         return location, spread
 
     def _fit_clusters(self, xs: np.ndarray, clusters: int, floor_quantile: float) -> np.ndarray | None:
@@ -719,7 +771,7 @@ class VariationModel(nn.Module):
             own[labels[i]] = appearance_clusters.residual_stats(r[others])  # its cluster without it
             z = self._unpacked(ri, *appearance_clusters.blend(appearance_clusters.weights(centres, coef / spread),
                                                               own))
-            w, level = self.window(np.abs(z), judged)
+            w, level = self.window(z, judged)
             windows.append(w)
             signed.append(self.signed_z(z, judged, level))
         self._resize_clusters(len(centres), int(part.sum()))
@@ -828,6 +880,10 @@ class VariationModel(nn.Module):
             if not (bool((value > 0).all()) and bool((value <= MAX_SPREAD).all())):
                 raise ModelError(f"variation model: {name} has values outside (0, {MAX_SPREAD:g}] "
                                  f"({float(value.min()):.3g} .. {float(value.max()):.3g})")
+        sigma = float(self.curvature_sigma)
+        if not 0.0 <= sigma <= MAX_CURVATURE_SIGMA:  # NaN fails too
+            raise ModelError(f"variation model: curvature_sigma is {sigma:g}, outside [0, {MAX_CURVATURE_SIGMA:g}] "
+                             f"input px")
         look = self.second_look
         if look.references and look.chi.shape[1] != int(self.region.sum()):
             raise ModelError(f"variation model: second_look.chi covers {look.chi.shape[1]} pixels, the part region "
@@ -853,7 +909,7 @@ class VariationModel(nn.Module):
             r, coef, judged, hidden = self._judged_residual(xi)
             highlights.append(hidden)
             r = self.clustered(r, coef)
-            w, level = self.window(np.abs(r), judged)
+            w, level = self.window(r, judged)
             noise.append(level)
             if signed:
                 signed_all.append(self.signed_z(r, judged, level))
@@ -942,11 +998,26 @@ class VariationModel(nn.Module):
         return (np.clip(r, -SIGNED_CLIP, SIGNED_CLIP) * judged).astype(np.float32)
 
     def window(self, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, float]:
-        """(C, H, W) per-channel z of a part and its (H, W) judged pixels -> ((H, W) window statistic: the largest
-        channel's z after the frame's noise level, box-averaged over ``box_px``; the noise level)."""
-        level = self.noise_level(self.used(z), judged)
-        z = (z / (level if 1.0 < level <= NOISE_CAP else 1.0)).max(0)
-        return cv2.blur(z, (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE), level
+        """(C, H, W) per-channel signed z of a part and its (H, W) judged pixels -> ((H, W) window statistic after
+        the frame's noise level: the largest channel's |z| box-averaged over ``box_px``, or with ``curvature_sigma``
+        the largest channel's ``curvature`` of its z, zero outside the judged pixels; the noise level). A channel
+        that is not a feature (DoLP when not read) takes no part."""
+        z = self.used(z)
+        level = self.noise_level(np.abs(z), judged)
+        z = z / (level if 1.0 < level <= NOISE_CAP else 1.0)
+        sigma = float(self.curvature_sigma)
+        if sigma > 0:
+            return np.max([curvature(zc * judged, sigma) for zc in z], 0), level
+        return cv2.blur(np.abs(z).max(0), (self.box_px, self.box_px), borderType=cv2.BORDER_REPLICATE), level
+
+    def window_noise(self) -> float:
+        """The window statistic's standard deviation, before its absolute value, over independent unit-normal pixels:
+        1 / box_px for the box, ||sigma^2 LoG_sigma||_2 for the curvature (``ABS_NORMAL_SD``)."""
+        sigma = float(self.curvature_sigma)
+        if sigma <= 0:
+            return 1.0 / self.box_px
+        g, g2 = curvature_kernels(sigma)
+        return float(np.sqrt(((np.outer(g2, g) + np.outer(g, g2)) ** 2).sum()))
 
     @staticmethod
     def noise_level(z: np.ndarray, judged: np.ndarray) -> float:

@@ -24,7 +24,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
                   blur_copies_sigma: float = 0.0,
                   global_polarization: Alignment | str | bool = Alignment.OFF,
                   clusters: int = 0, global_contrast: Alignment | str = Alignment.OFF,
-                  second_look: bool = False) -> Detector:
+                  second_look: bool = False, curvature_sigma: float = 0.0) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
@@ -36,7 +36,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     (``VariationModel.fit``; 0: none). ``global_contrast``: how each frame's contrast is put onto the good
     parts' (``Alignment``, ``VariationModel.fit``). ``second_look``: keep the good parts' left-out residuals as
     references for a second look at suspicious parts (``add_second_look``), when there are at least
-    ``MIN_REFERENCES`` of them (fewer: none)."""
+    ``MIN_REFERENCES`` of them (fewer: none). ``curvature_sigma``: the window statistic (``VariationModel.fit``; 0:
+    the box)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -48,7 +49,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     assert out.variation is not None
     references = out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
                                    global_polarization=global_polarization, clusters=clusters,
-                                   global_contrast=global_contrast)
+                                   global_contrast=global_contrast, curvature_sigma=curvature_sigma)
     if second_look and len(references) >= MIN_REFERENCES:
         add_second_look(out, references, val_good, batch)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration

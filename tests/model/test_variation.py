@@ -208,10 +208,12 @@ def test_too_few_parts_and_bad_buffers_are_errors() -> None:
 
 
 @pytest.mark.parametrize(("name", "value"), [("region", False), ("channel_scale", 0.0), ("window_spread", 1e30),
-                                           ("calibration", 1e30)])
+                                           ("calibration", 1e30), ("curvature_sigma", 1e30),
+                                           ("curvature_sigma", -3.0), ("curvature_sigma", float("nan"))])
 def test_buffers_that_would_pass_every_part_are_refused(name: str, value: float) -> None:
     """Finite but degenerate buffers (an empty part region, a spread of 1e30, a channel scale of 0, whose NaN
-    features were read as 0) scored a missing stud 0.05: a model file with them loaded and passed every part."""
+    features were read as 0) scored a missing stud 0.05: a model file with them loaded and passed every part. A
+    curvature filter as wide as the part sees its outline, not a defect."""
     vm = fitted()
     buf = getattr(vm, name)
     if name == "calibration":
@@ -375,6 +377,7 @@ def test_a_checkpoint_from_before_the_position_rule_loads_with_the_window_uncali
     old = load_checkpoint(path, verify_hash=False).detector.variation
     assert old is not None and not bool(old.window_location.any()) and bool((old.window_spread == 1).all())
     assert old.dolp_read  # and it reads DoLP as its fit did
+    assert float(old.curvature_sigma) == 0.0  # and its window is the box
 
 
 def test_a_cleaner_cameras_lower_dolp_is_not_read_as_a_defect(monkeypatch) -> None:
@@ -496,3 +499,65 @@ def test_a_model_whose_networks_do_not_decide_stores_them_in_float16_and_decides
     combined_state = torch.load(tmp_path / "var.pt", weights_only=True)  # networks that decide: float32
     assert all(v.dtype == torch.float32 for k, v in combined_state.items()
                if k.startswith("members.") and v.is_floating_point())
+
+
+def tilted(x: torch.Tensor, seed: int, amplitude: float) -> torch.Tensor:
+    """Parts with a shallow dent: AoLP's cosine and sine turned one way on one side of a place and the other way
+    across it (x / 4 exp(-r^2 / 32), a Gaussian bump's slope along x: 4 px), the place anywhere on the flat face."""
+    rng = np.random.default_rng(seed)
+    yy, xx = np.mgrid[0:H, 0:W].astype(np.float32)
+    out = x.clone()
+    for i in range(len(out)):
+        cy, cx = H / 2 + rng.uniform(-2, 2), W / 2 + rng.uniform(-8, 8)
+        d = torch.from_numpy((amplitude * (xx - cx) / 4.0 * np.exp(-((yy - cy) ** 2 + (xx - cx) ** 2) / 32.0))
+                             .astype(np.float32))
+        out[i, 2] += d
+        out[i, 3] -= d
+    return out
+
+
+def test_the_curvature_window_adds_up_a_shallow_dents_opposite_tilts_that_the_box_of_abs_z_loses() -> None:
+    """A shallow dent turns the polarization one way on one side and the other way across it, each pixel within the
+    good parts' noise. The box average of |z| adds those pixels to the noise around them; the curvature of the signed
+    residual (``curvature_sigma``) adds them with their signs. Same parts, same fit, only the window differs."""
+    from model.draem.metrics import auroc
+
+    x = noisier(parts(60, 0), 0, 0.02)
+    good = noisier(parts(30, 1), 1, 0.02)
+    dents = tilted(noisier(parts(30, 2), 2, 0.02), 2, 0.14)
+    labels = np.r_[np.zeros(30), np.ones(30)]
+    separation = {}
+    for sigma in (0.0, 3.0):
+        vm = VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2)
+        vm.fit(x, x[:, 0] > 0.15, curvature_sigma=sigma)
+        vm.check()
+        assert float(vm.curvature_sigma) == sigma
+        separation[sigma] = auroc(labels, np.r_[vm.zmaps(good)[1].numpy(), vm.zmaps(dents)[1].numpy()])
+    assert separation[3.0] >= 0.95 and separation[0.0] <= 0.9, separation
+    vm.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the window
+    assert float(vm.curvature_sigma) == 3.0
+    hostile = good[:2].clone()
+    hostile[0], hostile[1] = float("nan"), float("inf")
+    out = vm.zmaps(hostile)
+    assert bool(torch.isfinite(out.maps).all()) and bool(torch.isfinite(out.scores).all())
+    with pytest.raises(ModelError, match="curvature_sigma"):
+        vm.fit(x, curvature_sigma=-1.0)
+
+
+def test_the_curvature_kernel_answers_a_blob_and_a_dip_not_a_flat_field_or_a_slope() -> None:
+    """sigma^2 LoG_sigma: zero on a flat field and on a plane (a lighting gradient), largest at a blob of its
+    scale, of either sign; its gain on unit noise is what ``window_spread``'s floor assumes."""
+    from model.draem.variation import curvature
+
+    yy, xx = np.mgrid[0:64, 0:128].astype(np.float32)
+    assert float(curvature(np.full((64, 128), 3.0, np.float32), 3.0).max()) < 1e-5
+    assert float(curvature(0.05 * xx + 0.02 * yy, 3.0)[13:-13, 13:-13].max()) < 1e-5  # beyond the kernel's reach
+    blob = np.exp(-((yy - 30) ** 2 + (xx - 70) ** 2) / (2 * 3.0**2 * 2)).astype(np.float32)  # radius sigma sqrt(2)
+    c = curvature(blob, 3.0)
+    assert np.unravel_index(int(c.argmax()), c.shape) == (30, 70) and float(c.max()) > 0.2
+    assert np.allclose(curvature(-blob, 3.0), c)
+    noise = np.random.default_rng(0).standard_normal((400, 400)).astype(np.float32)
+    sd = float(np.sqrt(((curvature(noise, 3.0) ** 2)[20:-20, 20:-20]).mean()))
+    vm = VariationModel(4, (H, W), intensity=0)
+    vm.curvature_sigma.fill_(3.0)
+    assert sd == pytest.approx(vm.window_noise(), rel=0.05)

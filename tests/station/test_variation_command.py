@@ -200,3 +200,26 @@ def test_clusters_and_the_contrast_range_are_recorded_as_fitted_and_a_negative_c
     assert "contrast aligned to theirs" in capsys.readouterr().out
     fitted = json.loads((tmp_path / "m.json").read_text())["train"]["variation"]
     assert fitted["global_contrast"] == "mean" and fitted["contrast_range"] == [1.0, 1.0]
+
+
+def test_the_curvature_window_is_fitted_recorded_kept_by_a_refit_and_a_bad_sigma_is_refused(tmp_path: Path,
+                                                                                           capsys) -> None:
+    """``--curvature SIGMA``: the window statistic is each channel's curvature over SIGMA input px; the model file,
+    its sidecar and the command's line say so, and a refit without the flag keeps the shipped recipe's. A negative,
+    NaN or part-wide sigma is one line naming the flag, before any loading."""
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.variation import CURVATURE_SIGMA
+
+    data, model = trained(tmp_path, capsys)
+    out = tmp_path / "k"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--curvature", "3", "--out", str(out)]) == 0
+    assert "its window each channel's curvature over 3 px" in capsys.readouterr().out
+    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["curvature_sigma"] == 3.0
+    vm = load_checkpoint(out).detector.variation
+    assert vm is not None and float(vm.curvature_sigma) == 3.0
+    assert main(["variation", "--model", str(out), "--data", str(data), "--refit", "--out", str(tmp_path / "r")]) == 0
+    capsys.readouterr()
+    vm = load_checkpoint(tmp_path / "r").detector.variation
+    assert vm is not None and float(vm.curvature_sigma) == CURVATURE_SIGMA
+    for bad in ("-1", "nan", "100"):
+        refused_naming(capsys, "--curvature", bad, model, data, tmp_path / "w")
