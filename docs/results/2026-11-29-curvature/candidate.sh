@@ -9,3 +9,7 @@ R=runs/r59
 [ -f $R/K.json ] || .venv/bin/station residual --model $R/K0 --data data/line-pv-train --val-data data/line-pv-val \
   --members 1 --steps 3000 --second-look --out $R/K > $R/K.log 2>&1
 echo done > $R/candidate.done
+# amendment: K1, the curvature window without the second look (and so without its network)
+[ -f $R/K1.json ] || .venv/bin/station variation --model runs/r52/F/default --refit --data data/line-pv-train \
+  --val-data data/line-pv-val --decision variation --curvature 3 --no-second-look --out $R/K1 > $R/K1.log 2>&1
+echo done > $R/candidate1.done
