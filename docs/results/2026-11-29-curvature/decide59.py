@@ -11,9 +11,9 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "2026-11-29-panel-brightness"))
-from decide52 import boot, read  # noqa: E402
+from decide52 import boot, read
 
-from model.draem.metrics import auroc  # noqa: E402
+from model.draem.metrics import auroc
 
 TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
 
@@ -41,10 +41,12 @@ def main(k1: str, c1: str, k_half: str, k_imp: str, model: str) -> None:
         guards.append(float(np.mean(sg[lg == 0] > tg)))
     size = os.path.getsize(f"{model}.pt") / 1e6
     checks = {
-        "(a) caught at the own threshold": (a > 0 and a >= 2 * ase, f"K - C {100 * a:+.1f} points (SE {100 * ase:.1f});"
-                                            f" K {100 * caught(sk, tk, every):.1f} %, C {100 * caught(sc, tc, every):.1f} %"),
+        "(a) caught at the own threshold": (
+            a > 0 and a >= 2 * ase, f"K - C {100 * a:+.1f} points (SE {100 * ase:.1f}); "
+                                    f"K {100 * caught(sk, tk, every):.1f} %, C {100 * caught(sc, tc, every):.1f} %"),
         "(b) good rejected at the own threshold": (rk <= rc + 0.015, f"K {100 * rk:.1f} %, C {100 * rc:.1f} %"),
-        "(c) image AUROC": (u >= -2 * use, f"K - C {u:+.4f} (SE {use:.4f}); K {auroc(y, sk):.4f}, C {auroc(y, sc):.4f}"),
+        "(c) image AUROC": (u >= -2 * use,
+                            f"K - C {u:+.4f} (SE {use:.4f}); K {auroc(y, sk):.4f}, C {auroc(y, sc):.4f}"),
         "(d) guards, good rejected at K's threshold": (
             guards[0] <= 0.03 and guards[1] <= 0.05,
             f"half panel (1154) {100 * guards[0]:.1f} % (C 0.6 %), imperfect camera (1159) {100 * guards[1]:.1f} % "

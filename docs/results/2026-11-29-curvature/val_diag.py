@@ -1,8 +1,15 @@
-import numpy as np, torch, sys
+"""Rule 59 amendment's check: each fit's variation scores on data/line-pv-val, the window alone (no second look) and
+as the file scores (with it); caught at 1 % of the set's own good parts. Usage: python val_diag.py MODEL..."""
+import sys
+
+import numpy as np
+import torch
+
 from model.draem.checkpoint import load_checkpoint
-from model.draem.second_look import SecondLook
 from model.draem.metrics import auroc
+from model.draem.second_look import SecondLook
 from station.evaluation import model_split
+
 for m in sys.argv[1:]:
     ck = load_checkpoint(m)
     vm = ck.detector.variation
@@ -14,5 +21,5 @@ for m in sys.argv[1:]:
         win = vm.zmaps(s.priors).scores.numpy()
     for name, sc in (("window", win), ("with look", full)):
         th = np.percentile(sc[y == 0], 99)
-        print(m, name, "auroc %.3f caught@1%% %.3f dents %.3f" % (auroc(y, sc), (sc[y == 1] > th).mean(),
-              (sc[t == "dent"] > th).mean()), flush=True)
+        print(m, name, f"auroc {auroc(y, sc):.3f} caught@1% {(sc[y == 1] > th).mean():.3f} "
+              f"dents {(sc[t == 'dent'] > th).mean():.3f}", flush=True)

@@ -1,6 +1,9 @@
 import sys
+
 import numpy as np
+
 from model.draem import appearance_clusters as ac
+
 for name in sys.argv[1:]:
     d = np.load(f"runs/s59/{name}.npz")
     c = d["coefs"]

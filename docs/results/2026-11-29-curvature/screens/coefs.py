@@ -1,8 +1,10 @@
 """Screen: what do the appearance clusters group the good parts by? (stop 59)"""
-import json, sys
+import json
+import sys
+
 import numpy as np
+
 from model.draem.checkpoint import load_checkpoint
-from model.draem import appearance_clusters
 from station.evaluation import model_split
 
 model, data, out = sys.argv[1:4]
@@ -19,6 +21,8 @@ for i in tr.index:
                    "yaw": s["pose"]["yaw_rad"], "alpha": s["materials"]["plastic"]["alpha"],
                    "finish": s["materials"]["plastic"]["finish"] == "smooth",
                    "lx": s["light"]["origin"][0], "ly": s["light"]["origin"][1],
-                   "cx": s["camera"]["origin"][0], "exposure": p["sensor"]["exposure_scale"] * p["sensor"]["exposure_gain"]})
-np.savez(out, coefs=coefs, index=np.asarray(tr.index), **{k: np.array([q[k] for q in params], float) for k in params[0]})
+                   "cx": s["camera"]["origin"][0],
+                   "exposure": p["sensor"]["exposure_scale"] * p["sensor"]["exposure_gain"]})
+np.savez(out, coefs=coefs, index=np.asarray(tr.index),
+         **{k: np.array([q[k] for q in params], float) for k in params[0]})
 print("saved", out, coefs.shape)

@@ -7,6 +7,7 @@ import sys
 
 import cv2
 import numpy as np
+
 from model.draem.checkpoint import load_checkpoint
 from model.draem.metrics import auroc
 from model.draem.variation import NOISE_CAP, WINDOW_BLUR_PX, WINDOW_QUANTILE
@@ -68,7 +69,7 @@ for k in vmaps:
     spread = cv2.GaussianBlur(np.percentile(w, WINDOW_QUANTILE, 0) - loc, (0, 0), WINDOW_BLUR_PX)
     spread = np.maximum(spread, max(float(np.percentile(spread[region], 5.0)), 1e-3))
 
-    def score(maps, judged):
+    def score(maps, judged, loc=loc, spread=spread):
         z = np.maximum((maps - loc) / spread, 0) * (region & judged)
         return z.reshape(len(z), -1).max(1)
 
@@ -91,9 +92,11 @@ def report(name, sv, st):
 
 
 rows = {k: report(k, *res[k]) for k in res}
-combos = (("abs5", "tilt1.5"), ("abs5", "tilt3.0"), ("abs5", "tilt5.0"), ("abs5", "log1.5"), ("abs5", "log3.0"),
-          ("abs5", "tilt3.0", "log3.0")) if KIND == "tilt" else (("abs5", "abs9", "abs15"), ("abs5", "sgn5"), ("abs5", "sgn9"), ("abs5", "sgn9", "sgn15"),
-              ("abs5", "abs9", "sgn9", "sgn15"))
+combos = (
+    (("abs5", "tilt1.5"), ("abs5", "tilt3.0"), ("abs5", "tilt5.0"), ("abs5", "log1.5"), ("abs5", "log3.0"),
+     ("abs5", "tilt3.0", "log3.0")) if KIND == "tilt" else
+    (("abs5", "abs9", "abs15"), ("abs5", "sgn5"), ("abs5", "sgn9"), ("abs5", "sgn9", "sgn15"),
+     ("abs5", "abs9", "sgn9", "sgn15")))
 for combo in combos:
     sv = np.max([norm_v[k] for k in combo], 0)
     st = np.max([norm_t[k] for k in combo], 0)

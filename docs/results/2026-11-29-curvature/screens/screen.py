@@ -4,7 +4,9 @@ direction is the least-squares fit of the rendered ring radiance on the coeffici
 the distance along it is the same to every centre, so the weights are unchanged by it). mode kN: N clusters, one per
 20 parts allowed."""
 import sys
+
 import numpy as np
+
 from model.draem import appearance_clusters as ac
 from station.evaluation import fit_variation
 
