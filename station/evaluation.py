@@ -168,7 +168,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
                   blur_copies_sigma: float | None = None, refit: bool = False,
                   global_polarization: str | None = None, clusters: int | None = None,
                   global_contrast: str | None = None, second_look: bool | None = None,
-                  curvature_sigma: float | None = None) -> str:
+                  curvature_sigma: float | None = None, second_look_test: bool | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
@@ -185,7 +185,9 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     the shipped recipe, ``model.draem.variation.GLOBAL_CONTRAST``). ``second_look``: keep the good parts' left-out
     residuals and look again at suspicious parts (``model.draem.second_look``; None: the shipped recipe,
     ``model.draem.variation.SECOND_LOOK``). ``curvature_sigma``: the window statistic, the curvature's sigma in
-    input px, 0 for the box (None: the shipped recipe, ``model.draem.variation.CURVATURE_SIGMA``). The sidecar's
+    input px, 0 for the box (None: the shipped recipe, ``model.draem.variation.CURVATURE_SIGMA``).
+    ``second_look_test``: the second look tests where the map points (False: it only gates the parts a look network
+    is asked about; None: the shipped recipe, ``model.draem.variation.SECOND_LOOK_TEST``). The sidecar's
     frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
     variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
@@ -200,6 +202,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         MAX_CURVATURE_SIGMA,
         MIN_FIT_PARTS,
         SECOND_LOOK,
+        SECOND_LOOK_TEST,
         shipped_alignment,
     )
     from model.draem.with_variation import add_variation, without_variation
@@ -211,6 +214,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     clusters = APPEARANCE_CLUSTERS if clusters is None else clusters
     second_look = SECOND_LOOK if second_look is None else second_look
     curvature_sigma = CURVATURE_SIGMA if curvature_sigma is None else curvature_sigma
+    second_look_test = SECOND_LOOK_TEST if second_look_test is None else second_look_test
     if not 0.0 <= curvature_sigma <= MAX_CURVATURE_SIGMA:
         raise UserError(f"--curvature {curvature_sigma}: give the curvature's sigma in input px, in [0, "
                         f"{MAX_CURVATURE_SIGMA:g}] (0: the box window)")
@@ -251,7 +255,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         det = add_variation(networks, tr.priors, tr.object_mask if tr.object_masks_known else None,
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma,
                             global_polarization=alignment, clusters=clusters, global_contrast=contrast,
-                            second_look=second_look, curvature_sigma=curvature_sigma)
+                            second_look=second_look, curvature_sigma=curvature_sigma,
+                            second_look_test=second_look_test)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
@@ -260,7 +265,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         "clusters": det.variation.clusters, "global_contrast": contrast.value,
         "contrast_range": det.variation.contrast_range.tolist() if det.variation.aligns_contrast else None,
         "second_look_references": det.variation.second_look.references,
-        "curvature_sigma": float(det.variation.curvature_sigma)},
+        "curvature_sigma": float(det.variation.curvature_sigma),
+        "second_look_test": det.variation.second_look.testing if det.variation.second_look.references else None},
         StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
@@ -275,8 +281,10 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     if curvature_sigma:
         copies += f", its window each channel's curvature over {curvature_sigma:g} px"
     looks = det.variation.second_look.references
-    if looks:
+    if looks and det.variation.second_look.testing:
         copies += f", a second look at suspicious parts against {looks} of them"
+    elif looks:
+        copies += ", a second look's gate only (no test: a look network, when added, is asked above it)"
     elif second_look:
         copies += f", no second look (it needs >= {MIN_REFERENCES} good parts)"
     return (f"{out}: variation model fitted on {len(tr.index)} good parts{copies}{decides}; threshold "

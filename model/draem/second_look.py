@@ -18,12 +18,18 @@ model's own map and tests there:
    parts (``gate``) keeps its window score; a part above it scores the larger of the two. Every part the window
    passes at 5 % is judged as without the second look, and so is that threshold; the look can only raise a part
    already suspicious. The score comes back in the window score's units.
+4. **Gate only** (``tests`` 0; ``station variation --no-second-look-test``): steps 1 and 2 are skipped, and a part
+   above the gate keeps its window score; only the residual networks' look (``model.draem.residual``, asked about
+   the parts above the gate) can raise it. For a window that already reads a defect's shape (the curvature,
+   ``model.draem.variation.CURVATURE_SIGMA``), the test raised good parts more than defective ones
+   (docs/results/2026-11-29-curvature.md).
 
 Buffers (sized by the fit, saved with the checkpoint): ``chi`` (R, P) float16, each of R reference parts'
 chi-square at the P pixels of the variation model's region (7.5 MB for 376 parts over 9966 pixels); ``judged``
 (R, ceil(P / 8)) uint8, their judged pixels as bits (``numpy.packbits``); ``calibration`` (5,) float64 (so that a
 good validation part at the gate is not above it by rounding): the gate and the window's and the test's median and
-spread over the good validation parts (``CALIBRATION``). R = 0: no second look (the model scores as before it
+spread over the good validation parts (``CALIBRATION``); ``tests`` 1.0 (propose and test) or 0.0 (the gate only, step
+4), which files before it load as 1.0. R = 0: no second look (the model scores as before it
 existed). numpy and OpenCV only at scoring time."""
 
 from __future__ import annotations
@@ -93,6 +99,7 @@ class SecondLook(nn.Module):
     def __init__(self) -> None:
         super().__init__()
         self.register_buffer("calibration", torch.tensor([np.inf, 0.0, 1.0, 0.0, 1.0], dtype=torch.float64))
+        self.register_buffer("tests", torch.tensor(1.0))
         self.resize(0, 0)
 
     def resize(self, references: int, pixels: int) -> None:
@@ -114,6 +121,12 @@ class SecondLook(nn.Module):
                 raise ModelError(f"variation model: second_look.{name} has shape {got}, {r} references over the "
                                  f"{pixels} pixels of the part region need {shape}")
         self.resize(r, pixels if r else 0)
+
+    @property
+    def testing(self) -> bool:
+        """Whether a suspicious part's proposed regions are tested (steps 1-2), or only gated for the residual
+        networks' look (step 4: ``tests`` 0)."""
+        return bool(self.tests > 0)
 
     @property
     def references(self) -> int:

@@ -205,13 +205,14 @@ MAX_HIDDEN = 0.5
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
                  "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged",
-                 "curvature_sigma")
+                 "curvature_sigma", "second_look.tests")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
 polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
 clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look;
-``curvature_sigma`` 0: the box window), which score as those models did. Dotted names are a submodule's
+``curvature_sigma`` 0: the box window; ``second_look.tests`` 1: a second look tests), which score as those models
+did. Dotted names are a submodule's
 (``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
@@ -255,6 +256,10 @@ parts (docs/results/2026-11-29-curvature.md): the window alone catches 72.6 % of
 rejected with sigma 3, 68.3 % with the box (dents 43 % and 29 %; sigma chosen there from 1.5-4). Not the recipe: the
 second look's test undoes the gain, and without it (``--no-second-look``) sigma 3 caught 68.9 % on held-out seed
 1160 against the shipped file's 68.0 % (paired SE 1.4; rule 59 asked for 2 SE), at 17.4 MB against 25.6 MB."""
+
+SECOND_LOOK_TEST = True
+"""Whether a new fit's second look tests the regions its map points at (``station variation --second-look-test``;
+``model.draem.second_look``, step 2), or only gates the parts its look network is asked about (step 4)."""
 
 SECOND_LOOK = True
 """The shipped recipe's second look (``station variation --second-look``; ``model.draem.second_look``), by rule 47
@@ -673,7 +678,9 @@ class VariationModel(nn.Module):
         self.polarization_range.copy_(torch.tensor(NO_POLARIZATION_RANGE))
         self.contrast_range.copy_(torch.tensor(CONTRAST_GAIN_RANGE))
         self._resize_clusters(0, 0)
+        tests = self.second_look.tests.clone()  # the recipe's, which a refit keeps
         self.second_look = SecondLook()  # a new fit's references are its own (``with_variation.add_second_look``)
+        self.second_look.tests.copy_(tests)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
             if object_mask is not None:
@@ -920,7 +927,7 @@ class VariationModel(nn.Module):
             # a NaN here is a number the model could not make: fail closed (it used to read as 0, a pass)
             maps.append(np.where(region & judged, np.nan_to_num(z, nan=1e6, posinf=1e6), 0.0).astype(np.float32))
             scores.append(float(maps[-1].max()))
-            if self.second_look.suspicious(scores[-1]):
+            if self.second_look.suspicious(scores[-1]) and self.second_look.testing:
                 s = signed_all[-1] if signed else self.signed_z(r, judged, level)
                 t = self.second_look.test(maps[-1], (s.astype(np.float32) ** 2).sum(0), judged, part)
                 scores[-1] = self.second_look.score(scores[-1], t)

@@ -24,7 +24,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
                   blur_copies_sigma: float = 0.0,
                   global_polarization: Alignment | str | bool = Alignment.OFF,
                   clusters: int = 0, global_contrast: Alignment | str = Alignment.OFF,
-                  second_look: bool = False, curvature_sigma: float = 0.0) -> Detector:
+                  second_look: bool = False, curvature_sigma: float = 0.0, second_look_test: bool = True) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
@@ -37,7 +37,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     parts' (``Alignment``, ``VariationModel.fit``). ``second_look``: keep the good parts' left-out residuals as
     references for a second look at suspicious parts (``add_second_look``), when there are at least
     ``MIN_REFERENCES`` of them (fewer: none). ``curvature_sigma``: the window statistic (``VariationModel.fit``; 0:
-    the box)."""
+    the box). ``second_look_test``: the second look tests the regions its map points at (False: it only gates the
+    parts a look network is asked about; ``model.draem.second_look``)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -51,20 +52,24 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
                                    global_polarization=global_polarization, clusters=clusters,
                                    global_contrast=global_contrast, curvature_sigma=curvature_sigma)
     if second_look and len(references) >= MIN_REFERENCES:
-        add_second_look(out, references, val_good, batch)
+        add_second_look(out, references, val_good, batch, test=second_look_test)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()
     return out
 
 
 @torch.no_grad()
-def add_second_look(detector: Detector, references: np.ndarray, val_good: torch.Tensor, batch: int = 16) -> None:
+def add_second_look(detector: Detector, references: np.ndarray, val_good: torch.Tensor, batch: int = 16,
+                    test: bool | None = None) -> None:
     """Give ``detector``'s variation model its second look (``model.draem.second_look``), in place: ``references``
     (R, C, H, W) the good training parts' left-out signed residuals (``VariationModel.fit``'s return), gate and units
-    from ``val_good`` (N, C, H, W) good validation parts' window and test scores."""
+    from ``val_good`` (N, C, H, W) good validation parts' window and test scores. ``test``: whether it tests (None:
+    as the model's second look already says, ``SecondLook.tests``)."""
     assert detector.variation is not None
     var = detector.variation
     var.second_look.fit(references, var.region.numpy())
+    if test is not None:
+        var.second_look.tests.fill_(1.0 if test else 0.0)
     var.second_look.calibrate(*second_look_scores(var, val_good, batch))
 
 

@@ -62,6 +62,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "window's 5 %% threshold: test the regions around its map's 5 highest places against them "
                         "(model.draem.second_look; default: the shipped recipe, "
                         "model.draem.variation.SECOND_LOOK)")
+    p.add_argument("--second-look-test", action=argparse.BooleanOptionalAction, default=None,
+                   help="the second look tests the regions around its map's highest places; without "
+                        "(--no-second-look-test) it only gates the parts a look network (station residual "
+                        "--second-look) is asked about (default: the shipped recipe, "
+                        "model.draem.variation.SECOND_LOOK_TEST)")
     p.add_argument("--curvature", type=float, default=None, metavar="SIGMA",
                    help="the window statistic: each channel's curvature (its signed residual's Laplacian of a "
                         "Gaussian of SIGMA input px), where a dent's faint opposite tilts add up; 0: the box average "
@@ -78,5 +83,5 @@ def run(args: argparse.Namespace) -> int:
 
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
                         args.fit_parts, args.blur_copies, args.refit, args.global_polarization, args.clusters,
-                        args.global_contrast, args.second_look, args.curvature))
+                        args.global_contrast, args.second_look, args.curvature, args.second_look_test))
     return 0

@@ -174,3 +174,32 @@ def test_adapting_fits_the_second_look_on_the_lines_parts_or_drops_it_when_too_f
     few = parts(15, 9)  # each fold's fit has 12 parts, under MIN_REFERENCES
     adapted, _ = adapt(looked, few, torch.ones(len(few), *few.shape[2:], dtype=torch.bool), progress=False)
     assert adapted.variation.second_look.references == 0
+
+
+def test_a_gate_only_second_look_keeps_every_window_score_survives_a_checkpoint_and_a_refit(tmp_path: Path) -> None:
+    """``second_look_test=False`` (step 4): the second look only gates the parts a look network is asked about, so
+    every part keeps its window score, above the gate too; the file and a refit (``station adapt``) keep it, and a
+    file from before it tests, as it did."""
+    plain, looked, path = with_second_look(tmp_path)
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    det.eval()
+    gated = add_variation(det, parts(40, 0), None, parts(30, 3), second_look=True, second_look_test=False)
+    assert gated.variation is not None and plain.variation is not None and looked.variation is not None
+    look = gated.variation.second_look
+    assert look.references == 40 and not look.testing and looked.variation.second_look.testing
+    x = torch.cat([parts(30, 4), parts(10, 5, defect=True)])
+    window = plain.variation.zmaps(x).scores
+    assert sum(look.suspicious(float(s)) for s in window) >= 10  # the gate is there: the defects are above it
+    assert torch.equal(gated.variation.zmaps(x).scores, window)
+    assert not torch.equal(looked.variation.zmaps(x).scores, window)  # the testing look raised some
+    save_checkpoint(tmp_path / "gate", gated, threshold=0.5, threshold_rule="test")
+    loaded = load_checkpoint(tmp_path / "gate").detector.variation
+    assert loaded is not None and not loaded.second_look.testing
+    loaded.fit(parts(30, 8), keep_reference=True)
+    assert not loaded.second_look.testing
+    state = torch.load(path.with_suffix(".pt"), weights_only=True)
+    del state["variation.second_look.tests"]
+    torch.save(state, path.with_suffix(".pt"))
+    old = load_checkpoint(path, verify_hash=False).detector.variation
+    assert old is not None and old.second_look.testing

@@ -223,3 +223,18 @@ def test_the_curvature_window_is_fitted_recorded_kept_by_a_refit_and_a_bad_sigma
     assert vm is not None and float(vm.curvature_sigma) == CURVATURE_SIGMA
     for bad in ("-1", "nan", "100"):
         refused_naming(capsys, "--curvature", bad, model, data, tmp_path / "w")
+
+
+def test_a_second_look_without_its_test_is_recorded_and_said(tmp_path: Path, capsys) -> None:
+    """``--no-second-look-test``: the second look only gates the parts a look network is asked about; the file, its
+    sidecar and the command's line say so (this set's ~30 good parts make 20 or more references)."""
+    from model.draem.checkpoint import load_checkpoint
+
+    data, model = trained(tmp_path, capsys)
+    out = tmp_path / "g"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--no-second-look-test",
+                 "--out", str(out)]) == 0
+    assert "a second look's gate only" in capsys.readouterr().out
+    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["second_look_test"] is False
+    vm = load_checkpoint(out).detector.variation
+    assert vm is not None and vm.second_look.references and not vm.second_look.testing
