@@ -10,4 +10,4 @@ ev() { [ -f $R/eval-$1/eval.md ] || .venv/bin/station eval --model $2 --data dat
 (ev K3-1161 $R/K3 line-panel-heldout-1161; ev K3-half $R/K3 pb-half-1154 --no-synthetic) &
 (ev C-1161 model/weights/default line-panel-heldout-1161; ev K3-all $R/K3 so-all-1159 --no-synthetic) &
 wait
-.venv/bin/python $S/decide59.py $R/eval-K1-1160 $R/eval-C-1160 $R/eval-K1-half $R/eval-K3-all $R/K3 | tee $S/decide59.md
+.venv/bin/python $S/decide59.py $R/eval-K3-1161 $R/eval-C-1161 $R/eval-K3-half $R/eval-K3-all $R/K3 | tee $S/decide60.md
