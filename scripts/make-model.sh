@@ -13,12 +13,14 @@
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
 #   6. variation: the registered variation model added (fitted on good train parts, calibrated and thresholded on
-#      the validation set; with station variation's defaults: contrast divided out, 8 clusters, blurred copies, a
-#      second look at suspicious parts); the shipped model decides on its finding alone (DECISION, chosen on the validation set:
+#      the validation set; with station variation's defaults: contrast divided out, 8 clusters, blurred copies, each
+#      place judged by the curvature of its residual over 3 px, a second look's gate for the look network); the
+#      shipped model decides on its finding alone (DECISION, chosen on the validation set:
 #      model/weights/README.md); station eval still reports the networks, the station skips them
 #   6b. look: one residual network (trained on the variation model's residuals of good parts with synthetic
 #      anomalies and of the rendered defective parts) asked about the parts above the second look's gate, beside it
-#      at each one's own 1 % threshold (station residual --second-look; rule 49, docs/results/2026-11-29-second-look.md)
+#      at each one's own 1 % threshold (station residual --second-look; rule 49, docs/results/2026-11-29-second-look.md;
+#      with the curvature window and no test of its own since rule 60, docs/results/2026-11-29-curvature.md)
 #   7. held-out types: the networks without one type, decision combined, so the comparison shows what the networks
 #      do with a type they never saw (the variation model never sees any defect)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
