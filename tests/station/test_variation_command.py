@@ -42,8 +42,10 @@ def test_variation_is_fitted_recorded_thresholded_and_evaluated(tmp_path: Path, 
     assert meta["model"]["decision"] == "variation"  # the default is the shipped recipe
     rec = meta["train"]["variation"]
     assert rec["fit_parts"] > 8 and rec["calibration_parts"] >= 2 and rec["from"].endswith("last")
-    # the shipped recipe looks again at suspicious parts, against every good part fitted
-    assert rec["second_look_references"] == rec["fit_parts"] and "a second look at suspicious parts" in line
+    # the shipped recipe keeps every good part fitted for a second look, whose gate (no test since rule 60) chooses
+    # the parts a look network is asked about, and judges each place by its residual's curvature
+    assert rec["second_look_references"] == rec["fit_parts"] and "a second look's gate only" in line
+    assert rec["second_look_test"] is False and rec["curvature_sigma"] == 3.0
     assert main(["eval", "--model", str(out), "--data", str(data), "--no-plots", "--no-synthetic",
                  "--out", str(tmp_path / "ev")]) == 0
     report = json.loads((tmp_path / "ev" / "eval.json").read_text())
