@@ -60,16 +60,15 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
 
 @torch.no_grad()
 def add_second_look(detector: Detector, references: np.ndarray, val_good: torch.Tensor, batch: int = 16,
-                    test: bool | None = None) -> None:
+                    test: bool = True) -> None:
     """Give ``detector``'s variation model its second look (``model.draem.second_look``), in place: ``references``
     (R, C, H, W) the good training parts' left-out signed residuals (``VariationModel.fit``'s return), gate and units
-    from ``val_good`` (N, C, H, W) good validation parts' window and test scores. ``test``: whether it tests (None:
-    as the model's second look already says, ``SecondLook.tests``)."""
+    from ``val_good`` (N, C, H, W) good validation parts' window and test scores. ``test``: whether it tests the
+    regions its map points at (``SecondLook.tests``; False: it only gates the parts a look network is asked about)."""
     assert detector.variation is not None
     var = detector.variation
     var.second_look.fit(references, var.region.numpy())
-    if test is not None:
-        var.second_look.tests.fill_(1.0 if test else 0.0)
+    var.second_look.tests.fill_(1.0 if test else 0.0)
     var.second_look.calibrate(*second_look_scores(var, val_good, batch))
 
 
