@@ -42,6 +42,7 @@ from station.config import frame_delay_limit_ms
 from station.decision import Decision, Verdict, decide, late
 from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
+from station.heap import CollectorPauses, frozen_heap
 from station.inspection_log import InspectionLog, InspectionRecord
 from station.inspector import Inspection, Inspector
 from station.line_link import LineLink
@@ -69,6 +70,11 @@ MAX_MODEL_BUSY_PARTS = 50
 """Parts rejected as "model busy" while the model is still on one earlier part's frame (``station.model_thread``)
 before the station stops as for a lost camera: a model that never returns must not keep the line running on rejects.
 A model that is merely slower than the cycle answers between parts and never reaches this."""
+
+COLLECTOR_PAUSE_SHARE = 0.25
+"""Share of the cycle time a garbage collection may hold the station before the run's end warns of it (``station.heap``;
+the run summary's ``collector_pause_max_ms`` gives the longest): the station freezes its heap at the start of a run so
+that none should come near it."""
 
 SLOW_PRIORS_SHARE = 0.5
 """Share of ``[acquisition] cycle_time_ms`` that a frame's demosaic and priors may take before the station warns once
@@ -243,6 +249,8 @@ class Station:
         self._answered: Part | None = None  # ... and whether the PLC was told (``_process_failed``)
         self.stale_frames = 0
         """Frames skipped because they were completed before their part could have been imaged."""
+        self.collector_pauses: CollectorPauses | None = None
+        """The garbage collector's pauses during ``run`` (``station.heap``), once it has started."""
         self.fatal: str | None = None
 
     # -- acquisition thread -------------------------------------------------------------------------------
@@ -611,7 +619,18 @@ class Station:
 
     def run(self, max_parts: int | None = None, progress_every_s: float = 5.0) -> LiveStats:
         """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; answer every part
-        announced until the link is closed; return the statistics."""
+        announced until the link is closed; return the statistics. What is alive when it starts (the model, the
+        libraries) is frozen out of the garbage collector's sight until it ends (``station.heap``)."""
+        with frozen_heap(long_ms=COLLECTOR_PAUSE_SHARE * self.cycle_time_ms) as pauses:
+            self.collector_pauses = pauses
+            self._run(max_parts, progress_every_s)
+        if pauses.long:
+            log.warning("the garbage collector held the station %d time(s) for %.0f ms or more (longest %.0f ms)",
+                        pauses.long, pauses.long_ms, pauses.longest_ms)
+        return self.stats
+
+    def _run(self, max_parts: int | None, progress_every_s: float) -> None:
+        """``run``'s threads and loop."""
         acq = threading.Thread(target=self._acquire, args=(max_parts,), name="acquisition", daemon=True)
         self._model = ModelThread(self.inspector.inspect)
         self.camera.start()
@@ -639,7 +658,6 @@ class Station:
             self._finish_dropped()
             self._shut_down_link()
             self._model.close()
-        return self.stats
 
     def _shut_down_link(self) -> None:
         """Every part announced from now on is recorded and rejected until the port closes; wait (up to

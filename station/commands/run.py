@@ -107,6 +107,7 @@ def run(args: argparse.Namespace) -> int:
     summary = {**stats.summary(), "confusion": dict(stats.confusion), "camera": camera_stats,
                "model_id": detector.model_id, "threshold": detector.threshold, "log": cfg.log.path,
                "stale_frames": station.stale_frames, "unrecorded_rows": station.unrecorded_rows,
+               "collector_pause_max_ms": station.collector_pauses.longest_ms if station.collector_pauses else None,
                "plc_link": dataclasses.asdict(link.stats_snapshot()) if hasattr(link, "stats_snapshot") else None}
     print("\nsummary: " + ", ".join(f"{k} {v:.4g}" if isinstance(v, float) else f"{k} {v}"
                                     for k, v in stats.summary().items()))

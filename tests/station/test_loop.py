@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import bisect
 import dataclasses
+import gc
 import threading
 import time
 from collections import deque
@@ -1024,3 +1025,45 @@ def test_an_error_answering_a_dropped_part_costs_no_part_its_row(tmp_path):
     assert station.fatal is not None
     assert sorted(r["part_id"] for r in rows) == sorted(dict(link.reports)) == sorted(set(r["part_id"] for r in rows))
     assert len(rows) == n  # every part announced: taken and answered, or refused at the stop, each with its row
+
+
+class CollectingDetector(BrightnessDetector):
+    """Runs a full garbage collection while judging its third part, as the collector does on its own when the
+    allocations of a part tip it over its thresholds."""
+
+    def __init__(self):
+        super().__init__()
+        self.calls = 0
+        self.collect_ms = None
+
+    def infer(self, priors):
+        self.calls += 1
+        if self.calls == 3:
+            t = time.perf_counter()
+            gc.collect()
+            self.collect_ms = 1e3 * (time.perf_counter() - t)
+        return super().infer(priors)
+
+
+def test_a_full_garbage_collection_while_a_part_is_judged_does_not_make_it_late(tmp_path):
+    """A full collection walks every live object and stops every thread meanwhile: with the model and libraries
+    loaded that was 70-145 ms here, with millions of objects 170-340 ms, enough to push a part past its cycle. The
+    station freezes what is alive when its run starts (``station.heap``), so the collection walks only what the run
+    allocated since, and it records the collector's pauses."""
+    heap = [[i] for i in range(2_000_000)]  # long-lived objects, as a loaded model's and libraries' are
+    t = time.perf_counter()
+    gc.collect()
+    unfrozen_ms = 1e3 * (time.perf_counter() - t)
+    cycle_ms = max(40.0, unfrozen_ms / 2)  # a collection of this heap, unfrozen, overruns the cycle
+    detector = CollectingDetector()
+    station, log = make_station(tmp_path, ScriptedCamera([0] * 5), detector, queue_size=8, backpressure="block",
+                                cycle_time_ms=cycle_ms)
+    station.run(max_parts=5)
+    rows = list(log.rows())
+    assert len(heap) == 2_000_000 and detector.collect_ms is not None
+    assert [r["decision"] for r in rows] == ["pass"] * 5, (unfrozen_ms, detector.collect_ms,
+                                                           [r["reason"] for r in rows])
+    assert detector.collect_ms < unfrozen_ms / 4, (unfrozen_ms, detector.collect_ms)
+    assert station.collector_pauses is not None and station.collector_pauses.count >= 1
+    assert station.collector_pauses.longest_ms >= detector.collect_ms * 0.5
+    assert gc.get_freeze_count() == 0  # unfrozen when the run ended
