@@ -97,6 +97,7 @@ def test_sim_run_logs_every_part_and_scores_against_ground_truth(setup, capsys) 
             assert image is None
     summary = json.loads((tmp / "s.json").read_text())
     assert summary["parts"] == 8 and sum(summary["confusion"].values()) == 8
+    assert 0.0 <= summary["collector_pause_max_ms"] < 1000.0  # the run's longest garbage collection (station.heap)
     truths = [r[5] for r in rows]
     assert summary["confusion"].get("bad_pass", 0) + summary["confusion"].get("bad_reject", 0) == sum(truths)
     assert "good part" in capsys.readouterr().out
