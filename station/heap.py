@@ -2,12 +2,12 @@
 
 A full collection walks every object the collector tracks and holds the interpreter while it does, so every thread
 of the station stops with it. With the model, torch and the libraries loaded, the station's process tracks about
-180,000 objects, and one full collection took 70-145 ms on these 2 cores with other work on them (stop 60); with
-3 million objects alive it took 170-340 ms. A part in flight then overruns a 100 ms cycle and is rejected "not judged
-in time" (fail closed, but a good part lost). Those objects live as long as the station does. ``frozen_heap``
-collects once, before the first part, and moves everything alive out of the collector's sight (``gc.freeze``) for
-the run; what the loop allocates afterwards is still collected, quickly. ``CollectorPauses`` records how long each
-collection held the process, so a run can say what its longest pause was.
+180,000 objects, and one full collection took 70-145 ms on these 2 cores with other work on them; with 3 million
+objects alive it took 170-340 ms (docs/platform-facts.md). A part in flight then overruns a 100 ms cycle and is
+rejected "not judged in time" (fail closed, but a good part lost). Those objects live as long as the station does.
+``frozen_heap`` collects once, before the first part, and moves everything alive out of the collector's sight
+(``gc.freeze``) for the run; what the loop allocates afterwards is still collected, quickly. ``CollectorPauses``
+records how long each collection held the process, so a run can say what its longest pause was.
 """
 
 from __future__ import annotations
