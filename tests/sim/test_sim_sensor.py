@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import dataclasses
+
+import cv2
 import numpy as np
 import pytest
 
 from model.priors.conventions import IMX250MZR
 from sim.errors import SimError
-from sim.sensor import SensorConfig, digitize, simulate
+from sim.sensor import FULL_SCALE_S0, SensorConfig, digitize, simulate, suppress_fireflies
 
 
 def flat(value: float, shape=(200, 200)) -> np.ndarray:
@@ -133,3 +136,30 @@ def test_vignetting_darkens_the_corners_by_its_share_and_keeps_the_truth() -> No
     for bad in (-0.1, 1.0):
         with pytest.raises(SimError, match="vignetting"):
             SensorConfig(vignetting=bad)
+
+
+def test_a_lens_blur_does_not_spread_a_renders_firefly_into_a_clipped_spot_but_keeps_a_highlight() -> None:
+    """A firefly (one Monte Carlo sample that found a light: one pixel 300 times full scale beside 0.6) clips to one
+    pixel on a sharp sensor; blurred as it was rendered it became a patch of clipped pixels, a bright spot that
+    raised good parts over the shipped threshold. It is brought to full scale before the blur, its polarization
+    kept. A highlight (a bright patch) still clips after the blur; a sharp exposure still clips the firefly to its one
+    pixel."""
+    h, w = 32, 32
+    s0 = np.full((h, w), 0.6, np.float32)
+    s0[10, 10] = 300.0  # a firefly
+    s0[20:27, 20:27] = 6.0  # a highlight
+    s1, s2 = 0.3 * s0, -0.2 * s0
+    cfg = SensorConfig(bit_depth=12, exposure_gain=1.0, shot_noise=False, read_noise_e=0.0, lens_blur_px=0.7)
+    raw = simulate(s0, s1, s2, cfg, np.random.default_rng(0)).raw
+    full = 2**12 - 1
+    assert (raw[6:15, 6:15] < full).all()  # no clipped spot around the firefly
+    assert (raw[22:25, 22:25] == full).all()  # the highlight's middle still clips
+    f0, f1, f2 = suppress_fireflies(s0, s1, s2)
+    assert f0[10, 10] == pytest.approx(FULL_SCALE_S0) and f1[10, 10] / f0[10, 10] == pytest.approx(0.3)
+    assert f2[10, 10] / f0[10, 10] == pytest.approx(-0.2)
+    np.testing.assert_array_equal(f0[20:27, 20:27], s0[20:27, 20:27])  # a patch is no firefly
+    sharp = dataclasses.replace(cfg, lens_blur_px=0.0)
+    spread = cv2.GaussianBlur(s0, (0, 0), 0.7)  # what the blur made of it before: a clipped spot
+    assert spread[9:12, 9:12].min() > FULL_SCALE_S0
+    a = simulate(s0, s1, s2, sharp, np.random.default_rng(0))
+    assert a.raw[10, 10] == full and a.n_saturated > 0  # the sharp sensor clips the firefly to its one pixel
