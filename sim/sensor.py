@@ -122,10 +122,11 @@ def expose(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig
 
 
 FIREFLY_RATIO = 10.0
-"""A rendered pixel brighter than this many times the median of its ``FIREFLY_WINDOW`` neighbourhood, and above
-``FULL_SCALE_S0``, is a firefly (``suppress_fireflies``): one Monte Carlo sample that found a light. In 60 renders
-of the shipped line (seed 1157, 16 spp) 66 pixels in 24 of them, up to 300 times full scale beside neighbours at
-0.6; a real highlight is a patch, whose own median is bright."""
+"""A rendered pixel brighter than this many times the median of its ``FIREFLY_WINDOW`` neighbourhood, above
+``FULL_SCALE_S0``, and with no neighbour above it, is a firefly (``suppress_fireflies``): one Monte Carlo sample that
+found a light. In seed 1157's 400 renders of the shipped line (16 spp), one pixel at 297 times full scale beside
+neighbours at 0.65. A highlight is a patch: where it is noisy, bright pixels sit beside each other (a missing stud's
+opening: pixels at 20 next to pixels at 1 and at 20), and none of them is taken for a firefly."""
 
 FIREFLY_WINDOW = 5
 """Side (px) of the neighbourhood whose median ``suppress_fireflies`` compares a pixel with."""
@@ -136,15 +137,19 @@ FULL_SCALE_S0 = 2.0
 
 def suppress_fireflies(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Exposed Stokes (full-scale units) -> the same with each firefly (``FIREFLY_RATIO``) scaled down to S0 =
-    ``FULL_SCALE_S0``, its DoLP and AoLP kept (float32). A sharp sensor clips such a pixel at about that level, so it
-    shows no more of it than this; a lens blur of the raw render would spread the sample's whole weight (300 times
-    full scale) over a patch of clipped pixels, a bright spot no real lens shows. Of the shipped file's good parts
-    the 0.7 px lens blur pushed over its threshold on seed 1157, 5 of 6 had one within 16 px of their highest place
-    (docs/results/2026-11-29-other-means-curvature.md)."""
+    """Exposed Stokes (full-scale units) -> the same with each firefly (``FIREFLY_RATIO``: a lone pixel far brighter
+    than its neighbourhood and above full scale) scaled down to S0 = ``FULL_SCALE_S0``, its DoLP and AoLP kept
+    (float32). A sharp sensor clips such a pixel at about that level, so it shows no more of it than this; a lens blur
+    of the raw render would spread the sample's whole weight (300 times full scale) over a patch of clipped pixels, a
+    bright spot no real lens shows. Of the shipped file's good parts the 0.7 px lens blur pushed over its threshold on
+    seed 1157, 5 of 6 had a firefly within 16 px of their highest place (docs/results/2026-11-29-fireflies.md)."""
     s0 = np.asarray(s0, dtype=np.float32)
     median = cv2.medianBlur(s0, FIREFLY_WINDOW)
-    firefly = (s0 > FULL_SCALE_S0) & (s0 > FIREFLY_RATIO * np.maximum(median, 0.0))
+    ring = np.ones((3, 3), np.uint8)
+    ring[1, 1] = 0
+    brightest_neighbour = cv2.dilate(s0, ring, borderType=cv2.BORDER_REFLECT)
+    firefly = ((s0 > FULL_SCALE_S0) & (s0 > FIREFLY_RATIO * np.maximum(median, 0.0))
+               & (brightest_neighbour <= FULL_SCALE_S0))
     scale = np.where(firefly, FULL_SCALE_S0 / np.where(firefly, s0, 1.0), 1.0).astype(np.float32)
     return tuple(np.asarray(s, dtype=np.float32) * scale for s in (s0, s1, s2))  # type: ignore[return-value]
 

@@ -142,12 +142,13 @@ def test_a_lens_blur_does_not_spread_a_renders_firefly_into_a_clipped_spot_but_k
     """A firefly (one Monte Carlo sample that found a light: one pixel 300 times full scale beside 0.6) clips to one
     pixel on a sharp sensor; blurred as it was rendered it became a patch of clipped pixels, a bright spot that
     raised good parts over the shipped threshold. It is brought to full scale before the blur, its polarization
-    kept. A highlight (a bright patch) still clips after the blur; a sharp exposure still clips the firefly to its one
-    pixel."""
+    kept. A highlight (a bright patch, also one rendered noisily) still clips after the blur; a sharp exposure still
+    clips the firefly to its one pixel."""
     h, w = 32, 32
     s0 = np.full((h, w), 0.6, np.float32)
     s0[10, 10] = 300.0  # a firefly
     s0[20:27, 20:27] = 6.0  # a highlight
+    s0[4:11, 20:27] = np.where(np.indices((7, 7)).sum(0) % 2, 20.0, 1.0)  # a highlight rendered noisily
     s1, s2 = 0.3 * s0, -0.2 * s0
     cfg = SensorConfig(bit_depth=12, exposure_gain=1.0, shot_noise=False, read_noise_e=0.0, lens_blur_px=0.7)
     raw = simulate(s0, s1, s2, cfg, np.random.default_rng(0)).raw
@@ -158,6 +159,8 @@ def test_a_lens_blur_does_not_spread_a_renders_firefly_into_a_clipped_spot_but_k
     assert f0[10, 10] == pytest.approx(FULL_SCALE_S0) and f1[10, 10] / f0[10, 10] == pytest.approx(0.3)
     assert f2[10, 10] / f0[10, 10] == pytest.approx(-0.2)
     np.testing.assert_array_equal(f0[20:27, 20:27], s0[20:27, 20:27])  # a patch is no firefly
+    np.testing.assert_array_equal(f0[4:11, 20:27], s0[4:11, 20:27])  # nor are a noisy patch's bright pixels
+    assert (raw[6:9, 22:25] == full).all()  # which clip after the blur as the light they average does
     sharp = dataclasses.replace(cfg, lens_blur_px=0.0)
     spread = cv2.GaussianBlur(s0, (0, 0), 0.7)  # what the blur made of it before: a clipped spot
     assert spread[9:12, 9:12].min() > FULL_SCALE_S0
