@@ -124,9 +124,10 @@ def expose(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig
 FIREFLY_RATIO = 10.0
 """A rendered pixel brighter than this many times the median of its ``FIREFLY_WINDOW`` neighbourhood, above
 ``FULL_SCALE_S0``, and with no neighbour above it, is a firefly (``suppress_fireflies``): one Monte Carlo sample that
-found a light. In seed 1157's 400 renders of the shipped line (16 spp), one pixel at 297 times full scale beside
-neighbours at 0.65. A highlight is a patch: where it is noisy, bright pixels sit beside each other (a missing stud's
-opening: pixels at 20 next to pixels at 1 and at 20), and none of them is taken for a firefly."""
+found a light. In seed 1157's 400 renders of the shipped line (16 spp): 255 such pixels in 127 renders, one at S0 =
+297 (the sensor clips at 2) beside neighbours at 0.65. A highlight is a patch: where it is noisy, bright pixels sit
+beside each other (a missing stud's opening: pixels at 20 next to pixels at 1 and at 20), and none of them is taken
+for a firefly."""
 
 FIREFLY_WINDOW = 5
 """Side (px) of the neighbourhood whose median ``suppress_fireflies`` compares a pixel with."""
@@ -140,7 +141,7 @@ def suppress_fireflies(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray
     """Exposed Stokes (full-scale units) -> the same with each firefly (``FIREFLY_RATIO``: a lone pixel far brighter
     than its neighbourhood and above full scale) scaled down to S0 = ``FULL_SCALE_S0``, its DoLP and AoLP kept
     (float32). A sharp sensor clips such a pixel at about that level, so it shows no more of it than this; a lens blur
-    of the raw render would spread the sample's whole weight (300 times full scale) over a patch of clipped pixels, a
+    of the raw render would spread the sample's whole weight (S0 up to 300) over a patch of clipped pixels, a
     bright spot no real lens shows. Of the shipped file's good parts the 0.7 px lens blur pushed over its threshold on
     seed 1157, 5 of 6 had a firefly within 16 px of their highest place (docs/results/2026-11-29-fireflies.md)."""
     s0 = np.asarray(s0, dtype=np.float32)

@@ -139,11 +139,11 @@ def test_vignetting_darkens_the_corners_by_its_share_and_keeps_the_truth() -> No
 
 
 def test_a_lens_blur_does_not_spread_a_renders_firefly_into_a_clipped_spot_but_keeps_a_highlight() -> None:
-    """A firefly (one Monte Carlo sample that found a light: one pixel 300 times full scale beside 0.6) clips to one
-    pixel on a sharp sensor; blurred as it was rendered it became a patch of clipped pixels, a bright spot that
-    raised good parts over the shipped threshold. It is brought to full scale before the blur, its polarization
-    kept. A highlight (a bright patch, also one rendered noisily) still clips after the blur; a sharp exposure still
-    clips the firefly to its one pixel."""
+    """A firefly (one Monte Carlo sample that found a light: one pixel at S0 = 300 beside 0.6, where the sensor clips
+    at 2) clips to one pixel on a sharp sensor; blurred as it was rendered it became a patch of clipped pixels, a
+    bright spot that raised good parts over the shipped threshold. It is brought to full scale before the blur, its
+    polarization kept. A highlight (a bright patch, also one rendered noisily) still clips after the blur; a sharp
+    exposure still clips the firefly to its one pixel."""
     h, w = 32, 32
     s0 = np.full((h, w), 0.6, np.float32)
     s0[10, 10] = 300.0  # a firefly
