@@ -145,14 +145,17 @@ class SimulatedPLC:
         while not self._stop.is_set():
             now = time.monotonic()
             try:
-                if (self.trigger_period_s and now >= next_trig
-                        and (self.max_triggers is None or len(self.record.triggers_sent) < self.max_triggers)):
+                feeding = self.trigger_period_s and (self.max_triggers is None
+                                                     or len(self.record.triggers_sent) < self.max_triggers)
+                if feeding and now >= next_trig:
                     self.trigger()
                     next_trig += self.trigger_period_s
                 if self.heartbeat_s and now >= next_hb:
                     self.send(f"{Command.HB}\n".encode())
                     next_hb = now + self.heartbeat_s
-                wait = min(t for t in (next_trig if self.trigger_period_s else now + 0.05, next_hb if
+                # the next trigger counts only while parts are still to come (once they are out, a next_trig left
+                # in the past made this loop poll without pause)
+                wait = min(t for t in (next_trig if feeding else now + 0.05, next_hb if
                                        self.heartbeat_s else now + 0.05, now + 0.05)) - now
                 buf += self._transport.read(max(wait, 0.0))
             except OSError as exc:  # the station closed its end: keep the pty, wait for it to come back

@@ -315,3 +315,23 @@ def test_an_id_reused_after_the_duplicate_window_is_a_new_part(pair: Socat) -> N
         assert io.next_trigger(2.0).part_id == "1"
     assert (io.stats.triggers, io.stats.duplicates) == (2, 1)
     peer.close()
+
+
+def test_a_simulated_plc_that_has_sent_its_parts_waits_instead_of_spinning() -> None:
+    """Once ``max_triggers`` parts are out, the PLC only beats its heart and listens. Its wait used to count the next
+    trigger time, left in the past, so it polled its port without pause and took a whole core (100 % for minutes in a
+    hung test run, 2026-11-29), on a machine whose 2 cores the station under test needs."""
+    with SimulatedPLC(trigger_period_s=0.01, heartbeat_s=0.2, max_triggers=2) as plc:
+        time.sleep(0.1)  # both parts out
+        reads = 0
+        read = plc._transport.read
+
+        def counted(timeout_s: float) -> bytes:
+            nonlocal reads
+            reads += 1
+            return read(timeout_s)
+
+        plc._transport.read = counted
+        time.sleep(0.5)
+    assert plc.record.triggers_sent == ["P1", "P2"]
+    assert reads <= 30, reads  # about one per 50 ms (0.5 s); spinning made tens of thousands
