@@ -5,9 +5,12 @@ of the station stops with it. With the model, torch and the libraries loaded, th
 180,000 objects, and one full collection took 70-145 ms on these 2 cores with other work on them; with 3 million
 objects alive it took 170-340 ms (docs/platform-facts.md). A part in flight then overruns a 100 ms cycle and is
 rejected "not judged in time" (fail closed, but a good part lost). Those objects live as long as the station does.
-``frozen_heap`` collects once, before the first part, and moves everything alive out of the collector's sight
-(``gc.freeze``) for the run; what the loop allocates afterwards is still collected, quickly. ``CollectorPauses``
-records how long each collection held the process, so a run can say what its longest pause was.
+``frozen_heap`` moves everything alive out of the collector's sight (``gc.freeze``) for the run; what the loop
+allocates afterwards is still collected, quickly. ``collect`` is the one full collection before it, made before any
+device is opened: a collection runs the finalizers of whatever garbage the process holds. Collecting inside the run,
+after the PLC port had opened, hung the full test run twice (2026-11-29): the simulated PLC sent its triggers and
+the station never received them, likeliest because a finalizer closed a file number the new pty had since taken.
+``CollectorPauses`` records how long each collection held the process, so a run can say what its longest pause was.
 """
 
 from __future__ import annotations
@@ -41,12 +44,18 @@ class CollectorPauses:
         self.long += ms >= self.long_ms
 
 
+def collect() -> int:
+    """One full collection, before the station opens its camera, PLC link and log (``station run``); the number of
+    objects it found unreachable."""
+    return gc.collect()
+
+
 @contextlib.contextmanager
 def frozen_heap(long_ms: float) -> Iterator[CollectorPauses]:
-    """Collect, freeze what is alive (``gc.freeze``) and watch the collector's pauses until the block ends; then
-    unfreeze (the frozen objects return to the oldest generation, so a process that goes on, as a test session does,
-    collects them again). ``long_ms``: the pause that counts as long (``CollectorPauses.long``)."""
-    gc.collect()
+    """Freeze what is alive (``gc.freeze``; garbage not yet collected stays until the block ends) and watch the
+    collector's pauses until the block ends; then unfreeze (the frozen objects return to the oldest generation, so a
+    process that goes on, as a test session does, collects them again). ``long_ms``: the pause that counts as long
+    (``CollectorPauses.long``)."""
     gc.freeze()
     pauses = CollectorPauses(long_ms)
     gc.callbacks.append(pauses)

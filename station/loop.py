@@ -620,7 +620,8 @@ class Station:
     def run(self, max_parts: int | None = None, progress_every_s: float = 5.0) -> LiveStats:
         """Inspect until ``max_parts`` parts arrived, ``stop()``, or a fatal camera error; answer every part
         announced until the link is closed; return the statistics. What is alive when it starts (the model, the
-        libraries) is frozen out of the garbage collector's sight until it ends (``station.heap``)."""
+        libraries) is frozen out of the garbage collector's sight until it ends (``station.heap``; ``station run``
+        collects before it opens any device)."""
         with frozen_heap(long_ms=COLLECTOR_PAUSE_SHARE * self.cycle_time_ms) as pauses:
             self.collector_pauses = pauses
             self._run(max_parts, progress_every_s)

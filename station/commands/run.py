@@ -62,6 +62,9 @@ def run(args: argparse.Namespace) -> int:
     if detector.threshold >= 1.0:  # scores lie in [0, 1] and reject when above the threshold
         log.warning("threshold %.4g rejects no part on its score: only parts that cannot be judged are rejected "
                     "([decision] threshold or the model's own)", detector.threshold)
+    from station.heap import collect
+
+    collect()  # what loading left, before any device opens (station.heap); the run then freezes what is alive
     if cfg.log.save_rejects and Path(cfg.log.image_dir).exists() and not Path(cfg.log.image_dir).is_dir():
         raise ConfigError(f"{cfg.source}: [log] image_dir: {cfg.log.image_dir} is a file, not a folder")
     with ExitStack() as stack:
