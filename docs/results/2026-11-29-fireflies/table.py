@@ -2,11 +2,12 @@
 caught at the validation set's 1 % threshold as each eval's note states it (the shipped file's threshold and the file
 before's are those points; rule 56's reports ran when that file's threshold was its 5 % point), and image AUROC.
 Usage: python table.py NAME=FOLDER ..."""
-import csv
 import json
 import re
 import sys
 from pathlib import Path
+
+from station.eval_compare import read_scores
 
 print("| file, set | good parts rejected at 1 % | defective parts caught at 1 % | image AUROC |")
 print("|---|---|---|---|")
@@ -15,9 +16,9 @@ for arg in sys.argv[1:]:
     d = Path(folder)
     ev = json.loads((d / "eval.json").read_text())
     th = float(re.search(r"1 % -> ([0-9.]+)", ev["industrial_note"]).group(1))  # the validation set's 1 % point
-    rows = list(csv.DictReader(open(d / "scores.csv")))
-    good = [float(r["score"]) for r in rows if r["label"] == "0"]
-    bad = [float(r["score"]) for r in rows if r["label"] == "1"]
+    scores = read_scores(d).values()
+    good = [s for label, _, s in scores if label == 0]
+    bad = [s for label, _, s in scores if label == 1]
     rej = sum(s > th for s in good)
     caught = sum(s > th for s in bad)
     auroc = next(r for r in ev["industrial"] if r["type"] == "all")["image_auroc"]

@@ -1,6 +1,5 @@
 """Check 61 (plan.md): each file on S, G and R at its own threshold, paired over the same parts.
 Usage: python decide61.py RUNS_DIR  (reads RUNS_DIR/eval-{K3,C,A}-{S,G,R}/scores.csv and eval.json)."""
-import csv
 import json
 import sys
 from pathlib import Path
@@ -8,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from model.draem.metrics import auroc
+from station.eval_compare import read_scores
 
 runs = Path(sys.argv[1])
 rng = np.random.default_rng(0)
@@ -15,20 +15,14 @@ BOOT = 1000
 
 
 def read(name):
+    """(labels, decision scores) in dataset order and the file's threshold, or None when not evaluated."""
     d = runs / f"eval-{name}"
     if not (d / "scores.csv").exists():
         return None
-    rows = list(csv.DictReader(open(d / "scores.csv")))
-    idx = np.array([int(r["index"]) for r in rows])
-    order = np.argsort(idx)
-    y = np.array([int(r["label"]) for r in rows])[order]
-    s = np.array([float(r["score"]) for r in rows])[order]
-    t = np.array([r["defect_type"] for r in rows])[order]
-    return y, s, t, json.load(open(d / "eval.json"))
-
-
-def threshold(ev):
-    return float(ev["threshold"]) if "threshold" in ev else None
+    scores = read_scores(d)
+    idx = sorted(scores)
+    return (np.array([scores[i][0] for i in idx]), np.array([scores[i][2] for i in idx]),
+            float(json.loads((d / "eval.json").read_text())["threshold"]))
 
 
 def figures(y, s, th):
@@ -42,15 +36,14 @@ for f in ("K3", "C", "A"):
     base = read(f"{f}-S")
     if base is None:
         continue
-    y, s0, _, ev = base
-    th = threshold(ev)
+    y, s0, th = base
     a0, g0, c0 = figures(y, s0, th)
     print(f"| {f} | S | {a0:.3f} | {100 * g0:.1f} % | {100 * c0:.1f} % | | | |")
     for k in ("G", "R"):
         other = read(f"{f}-{k}")
         if other is None:
             continue
-        y1, s1, _, _ = other
+        y1, s1, _ = other
         assert (y1 == y).all(), "the sets' parts differ"
         a1, g1, c1 = figures(y, s1, th)
         da, dg = [], []

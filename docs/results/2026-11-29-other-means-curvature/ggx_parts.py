@@ -1,7 +1,6 @@
 """The good parts of seed 1163 that the shipped file rejects rendered with GGX microfacets (data/om-ggx-1163) but
 not as built (data/line-panel-heldout-1163): both renders' intensity prior, signed z of intensity and window map, and
 what the z is there per channel. Writes ggx-parts.png. Usage: python ggx_parts.py RUNS_DIR OUT.png"""
-import csv
 import sys
 
 import matplotlib
@@ -12,6 +11,7 @@ import numpy as np
 import torch
 
 from model.draem.checkpoint import load_checkpoint
+from station.eval_compare import read_scores
 from station.evaluation import model_split
 
 runs, out = sys.argv[1:3]
@@ -22,8 +22,7 @@ T = float(ck.threshold)
 
 
 def good_over(name):
-    rows = list(csv.DictReader(open(f"{runs}/eval-{name}/scores.csv")))
-    return {int(r["index"]) for r in rows if r["label"] == "0" and float(r["score"]) > T}
+    return {i for i, (label, _, score) in read_scores(f"{runs}/eval-{name}").items() if label == 0 and score > T}
 
 
 parts = sorted(good_over("K3-G") - good_over("K3-S"))

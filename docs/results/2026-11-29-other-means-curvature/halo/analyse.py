@@ -2,20 +2,21 @@
 of its 370 good parts, as ``station threshold`` chooses), what it catches there, and the good parts it rejects on
 check 61's sets (S: as built; G and R from check 61, 5 px; 8 and 11 px from run.sh).
 Usage: python analyse.py HALO_RUNS C61_RUNS"""
-import csv
 import sys
 
 import numpy as np
 
 from model.draem.metrics import auroc
+from station.errors import UserError
+from station.eval_compare import read_scores
 
 halo, c61 = sys.argv[1:3]
 
 
 def read(folder):
-    rows = list(csv.DictReader(open(f"{folder}/scores.csv")))
-    return (np.array([int(r["label"]) for r in rows]), np.array([float(r["score"]) for r in rows]),
-            np.array([r["defect_type"] for r in rows]))
+    """(labels, scores, defect types) of a report's parts (``read_scores``); UserError when it has none."""
+    label, kind, score = zip(*read_scores(folder).values(), strict=True)
+    return np.array(label), np.array(score), np.array(kind)
 
 
 print("| growth (input px) | val: AUROC | val: caught at 1 % | dents / scratches | R: good rejected |"
@@ -24,7 +25,7 @@ print("|---|---|---|---|---|---|")
 for g in (5, 8, 11):
     try:
         y, s, t = read(f"{halo}/eval-{g}-val")
-    except FileNotFoundError:
+    except UserError:
         continue
     good = np.sort(s[y == 0])[::-1]
     th = good[int(np.floor(0.01 * len(good)))]  # flags the scores above it: at most 1 % of good parts
@@ -35,7 +36,7 @@ for g in (5, 8, 11):
         try:
             yk, sk, _ = read(folder)
             other.append(f"{100 * (sk[yk == 0] > th).mean():.1f} %")
-        except FileNotFoundError:
+        except UserError:
             other.append("(not run)")
     print(f"| {g} | {auroc(y, s):.3f} | {100 * (s[y == 1] > th).mean():.1f} % | {' / '.join(out)} |"
           f" {' | '.join(other)} |")
