@@ -124,3 +124,25 @@ def test_brick_materials_override_keeps_the_draws() -> None:
         object_from_config(None, {"body": "pplastic"})
     with pytest.raises(SimError, match="'plastic'"):
         material_keys_check(object_from_config(None, {"plastic": {"type": "pplastic", "distribution": "ggz"}}))
+
+
+def test_finish_vary_preset_widens_only_the_plastics_roughness() -> None:
+    """sim/presets/finish-vary.toml (rule 62): layered after the line's presets, each part keeps every draw but the
+    smooth plastic's roughness alpha, which comes from the same random number mapped onto [0.001, 0.03] instead of
+    the preset's [0.001, 0.011]."""
+    from sim.dataset import read_layers
+
+    presets = LINE_PRESET.parent
+    line = [presets / f"{name}.toml" for name in ("line-polar", "variation", "panel", "panel-vary")]
+    built = SceneConfig.from_dict(read_layers(line)["scene"])
+    wide = SceneConfig.from_dict(read_layers([*line, presets / "finish-vary.toml"])["scene"])
+    assert (built.alpha_smooth, wide.alpha_smooth) == ((0.001, 0.011), (0.001, 0.03))
+    alphas = []
+    for seed in range(20):
+        a = sample_scene(np.random.default_rng([101, seed]), built, usb_brick())
+        b = sample_scene(np.random.default_rng([101, seed]), wide, usb_brick())
+        ka, kb = a["materials"]["plastic"].pop("alpha"), b["materials"]["plastic"].pop("alpha")
+        assert json.dumps(a, sort_keys=True) == json.dumps(b, sort_keys=True)
+        assert (kb - 0.001) == pytest.approx((ka - 0.001) * 0.029 / 0.010, rel=1e-9)
+        alphas.append(kb)
+    assert max(alphas) > 0.011  # the wider range is drawn, not just allowed
