@@ -1,6 +1,7 @@
 """Rule 62 (plan.md): K3 and F on S, G and R at each file's own threshold, paired over the same parts.
-Usage: python decide62.py K3_PATTERN F_PATTERN, each an eval report folder with {} for S, G or R
-(e.g. runs/c61/eval-K3-{} runs/r62/eval-F-{}63 for the screen)."""
+Usage: python decide62.py K3_PATTERN F_PATTERN [--f-threshold SIDECAR], each pattern an eval report folder with {}
+for S, G or R (e.g. runs/c61/eval-K3-{} runs/r62/eval-F-{}63 for the screen). --f-threshold: F's threshold from that
+checkpoint sidecar instead of the reports' (rule 63: F thresholded again, its scores unchanged)."""
 import json
 import sys
 from pathlib import Path
@@ -13,6 +14,8 @@ from station.eval_compare import read_scores
 BOOT = 1000
 rng = np.random.default_rng(0)
 pattern = {"K3": sys.argv[1], "F": sys.argv[2]}
+f_threshold = (float(json.loads(Path(sys.argv[4]).read_text())["threshold"])
+               if sys.argv[3:4] == ["--f-threshold"] else None)
 
 
 def read(name, k):
@@ -20,8 +23,9 @@ def read(name, k):
     d = Path(pattern[name].format(k))
     scores = read_scores(d)
     idx = sorted(scores)
+    th = float(json.loads((d / "eval.json").read_text())["threshold"])
     return (np.array([scores[i][0] for i in idx]), np.array([scores[i][2] for i in idx]),
-            np.array([scores[i][1] for i in idx]), float(json.loads((d / "eval.json").read_text())["threshold"]))
+            np.array([scores[i][1] for i in idx]), f_threshold if name == "F" and f_threshold is not None else th)
 
 
 def figures(y, s, th):
@@ -83,7 +87,10 @@ print(f"G and R together, good parts rejected: K3 {rejected['K3']}, F {rejected[
 c1 = d_caught >= -0.02 and d_auc >= -0.01
 c2 = rejected["F"] < rejected["K3"]
 c3 = held["F", "G"] and held["F", "R"]
+c4 = (fs[y == 0] > tf).mean() - (k3[y == 0] > tk).mean() <= 0.02
 print(f"rule 62: 1 (S) {'yes' if c1 else 'no'}; 2 (fewer rejected under G and R) {'yes' if c2 else 'no'};"
       f" 3 (F holds under G and R) {'yes' if c3 else 'no'} -> {'F replaces K3' if c1 and c2 and c3 else 'K3 stays'}")
+print(f"rule 63 adds 4 (S: at most 2 points more of good parts rejected) {'yes' if c4 else 'no'} ->"
+      f" {'F63 replaces K3' if c1 and c2 and c3 and c4 else 'K3 stays'}")
 print(f"screen: {'passes' if rejected['F'] < rejected['K3'] and d_caught >= -0.03 else 'fails'}"
       f" (fewer rejected under G and R, and at most 3 points fewer caught on S)")
