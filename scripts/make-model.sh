@@ -5,22 +5,26 @@
 # (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
 #
 #   1. render the training set: line-polar preset + line variation + bright-field panel, its radiance drawn per
-#      part (sim/presets/panel-vary.toml), defects in all splits (for mixed supervision)
+#      part (sim/presets/panel-vary.toml), the plastic's finish drawn wider (sim/presets/finish-vary.toml), defects
+#      in all splits (for mixed supervision)
 #   2. render a held-out set with its own seed (every sample test, with the detectability oracle; the line as
-#      built, panel constant), and a validation set with another, panel drawn as in training (every sample val:
-#      calibration, thresholds and selection; 600 parts, ~360 good)
+#      built, panel constant), and with another seed two validation sets of the same parts (every sample val; 600
+#      parts, ~370 good): one with the panel and the finish drawn as in training (calibration: CALIBRATION), one
+#      with the panel drawn and the finish as built (thresholds and selection: VAL)
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
-#   6. variation: the registered variation model added (fitted on good train parts, calibrated and thresholded on
-#      the validation set; with station variation's defaults: contrast divided out, 8 clusters, blurred copies, each
-#      place judged by the curvature of its residual over 3 px, a second look's gate for the look network); the
-#      shipped model decides on its finding alone (DECISION, chosen on the validation set:
-#      model/weights/README.md); station eval still reports the networks, the station skips them
+#   6. variation: the registered variation model added (fitted on good train parts, calibrated on CALIBRATION;
+#      with station variation's defaults: contrast divided out, 8 clusters, blurred copies, each place judged by the
+#      curvature of its residual over 3 px, a second look's gate for the look network); the shipped model decides on
+#      its finding alone (DECISION, chosen on the validation set: model/weights/README.md); station eval still
+#      reports the networks, the station skips them
 #   6b. look: one residual network (trained on the variation model's residuals of good parts with synthetic
 #      anomalies and of the rendered defective parts) asked about the parts above the second look's gate, beside it
 #      at each one's own 1 % threshold (station residual --second-look; rule 49, docs/results/2026-11-29-second-look.md;
 #      with the curvature window and no test of its own since rule 60, docs/results/2026-11-29-curvature.md)
+#   6c. threshold: the shipped model's threshold set again on VAL, the finish as built (rule 63,
+#      docs/results/2026-11-29-finish-vary.md: the fit knows a range of finishes, the operating point is the line's)
 #   7. held-out types: the networks without one type, decision combined, so the comparison shows what the networks
 #      do with a type they never saw (the variation model never sees any defect)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
@@ -28,9 +32,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
-DATA=${DATA:-data/line-pv-train}
+DATA=${DATA:-data/line-pf-train}
 HELDOUT=${HELDOUT:-data/line-panel-heldout}
 VAL=${VAL:-data/line-pv-val}
+CALIBRATION=${CALIBRATION:-data/line-pf-val}
 RUNS=${RUNS:-runs/make-model}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
 HELDOUT_COUNT=${HELDOUT_COUNT:-400}
@@ -50,6 +55,7 @@ LOOK_MEMBERS=${LOOK_MEMBERS:-1}
 LOOK_STEPS=${LOOK_STEPS:-3000}
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
 VARY=(--config sim/presets/panel-vary.toml)  # training and validation only (rule 52)
+FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only (rules 62-63)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
@@ -62,8 +68,9 @@ render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
     for p in "${pids[@]}"; do wait "$p"; done
 }
 
-render "$DATA" "${VARY[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
+render "$DATA" "${VARY[@]}" "${FINISH[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 --heldout --visibility
+render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 render "$VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
@@ -73,15 +80,17 @@ render "$VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --valid
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
     --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
 variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exists (resumable)
-    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$VAL" --out "$2" "${@:3}"
+    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
+        "${@:3}"
 }
 variation "$RUNS/band/best" "$RUNS/band-variation" --decision "$DECISION"
 SHIPPED=band-variation
 if [ "$DECISION" = variation ]; then  # step 6b: the look joins a model its variation model decides
     [ -f "$RUNS/band-look.json" ] || "$BIN/station" residual --model "$RUNS/band-variation" --data "$DATA" \
-        --val-data "$VAL" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/band-look"
+        --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/band-look"
     SHIPPED=band-look
 fi
+"$BIN/station" threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
     "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
         --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \

@@ -88,24 +88,35 @@ def test_the_shipped_drift_range_is_the_line_its_variation_model_was_fitted_on()
 
     meta = json.loads((ROOT / "model" / "weights" / "default.json").read_text())
     stats, fit = meta["train"]["frame_statistics"], meta["train"]["variation"]
-    assert stats["n_frames"] == fit["fit_parts"] and fit["data"] == "data/line-pv-train"  # make-model.sh's DATA
+    assert stats["n_frames"] == fit["fit_parts"] and fit["data"] == "data/line-pf-train"  # make-model.sh's DATA
     # the metal plug mirrors the panel at full scale in more than a quarter of the panel line's good parts; the
     # dome line's range had clipped_fraction 0.00003 at its third quartile
     assert stats["q3"]["clipped_fraction"] > 0.01
 
 
 def test_make_model_varies_the_panel_in_training_and_validation_only(tmp_path: Path) -> None:
-    """Rule 52: the sets the shipped model is fitted and thresholded on draw the panel's radiance per part
-    (sim/presets/panel-vary.toml, after the panel itself); the held-out set is the line as built. The defaults name
-    the sets the shipped sidecar records."""
+    """Rule 52: the sets the shipped model is fitted, calibrated and thresholded on draw the panel's radiance per part
+    (sim/presets/panel-vary.toml, after the panel itself); rules 62-63: the sets it is fitted and calibrated on also
+    draw the plastic's finish wider (sim/presets/finish-vary.toml, last), and its threshold is set on the same
+    validation parts with the finish as built. The held-out set is the line as built. The defaults name the sets the
+    shipped sidecar records."""
     import json
 
-    renders = [args for args in dry_run(tmp_path) if args[0] == "render"]
+    calls = dry_run(tmp_path)
+    renders = [args for args in calls if args[0] == "render"]
     configs = {args[args.index("--out") + 1]: [args[i + 1] for i, a in enumerate(args) if a == "--config"]
                for args in renders}
-    assert len(renders) == 6  # three sets, two shards each
-    vary = "sim/presets/panel-vary.toml"
-    fit = json.loads((ROOT / "model" / "weights" / "default.json").read_text())["train"]["variation"]
-    assert configs[fit["data"]][-2:] == ["sim/presets/panel.toml", vary]
-    assert configs[fit["calibration_data"]][-2:] == ["sim/presets/panel.toml", vary]
+    seeds = {args[args.index("--out") + 1]: args[args.index("--seed") + 1] for args in renders}
+    assert len(renders) == 8  # four sets, two shards each
+    vary, finish = "sim/presets/panel-vary.toml", "sim/presets/finish-vary.toml"
+    train = json.loads((ROOT / "model" / "weights" / "default.json").read_text())["train"]
+    fit, look, threshold = train["variation"], train["residual"], train["threshold_set"]
+    assert configs[fit["data"]][-3:] == ["sim/presets/panel.toml", vary, finish]
+    assert configs[fit["calibration_data"]][-3:] == ["sim/presets/panel.toml", vary, finish]
+    assert look["calibration_data"] == fit["calibration_data"] and look["data"] == fit["data"]
+    assert configs[threshold["data"]][-2:] == ["sim/presets/panel.toml", vary]
+    assert seeds[threshold["data"]] == seeds[fit["calibration_data"]]  # the same parts, the finish as built
     assert configs["data/line-panel-heldout"][-1] == "sim/presets/panel.toml"
+    shipped = [args[args.index("--data") + 1] for args in calls
+               if args[0] == "threshold" and args[args.index("--model") + 1].endswith("runs/band-look")]
+    assert shipped == [threshold["data"]]
