@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from model.draem.metrics import auroc
+from model.draem.metrics import auroc, paired_auroc_gains
 from station.eval_compare import read_scores
 
 rng = np.random.default_rng(0)
@@ -32,11 +32,11 @@ print(f"| defective parts caught | {100 * (new[bad] > tn).mean():.1f} % | {100 *
 for t in sorted(set(types[bad])):
     m = bad & (types == t)
     print(f"| {t} ({int(m.sum())}) | {100 * (new[m] > tn).mean():.0f} % | {100 * (old[m] > to).mean():.0f} % |")
-dc, da = [], []
+dc = []
 for _ in range(1000):
     b = rng.integers(len(y), size=len(y))
     yb = y[b]
     dc.append((new[b][yb == 1] > tn).mean() - (old[b][yb == 1] > to).mean())
-    da.append(auroc(yb, new[b]) - auroc(yb, old[b]))
+gain = paired_auroc_gains(y, types, old, new)[0]  # the project's paired bootstrap (good and defective apart)
 print(f"\nnew - before: caught {100 * ((new[bad] > tn).mean() - (old[bad] > to).mean()):+.1f} points (SE "
-      f"{100 * np.std(dc):.1f}), image AUROC {auroc(y, new) - auroc(y, old):+.3f} (SE {np.std(da):.3f})")
+      f"{100 * np.std(dc):.1f}), image AUROC {gain['gain']:+.3f} (SE {gain['se']:.3f})")
