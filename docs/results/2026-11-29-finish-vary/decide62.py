@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from model.draem.metrics import auroc
+from model.draem.metrics import auroc, paired_auroc_gains
 from station.eval_compare import read_scores
 
 BOOT = 1000
@@ -56,23 +56,21 @@ for f in pattern:
         s1 = data[f, k][1]
         a1, g1, c1 = figures(y, s1, th)
 
-        def d_auroc(b, s1=s1, s0=s0):
-            return None if y[b].min() == y[b].max() else auroc(y[b], s1[b]) - auroc(y[b], s0[b])
-
         def d_good(b, s1=s1, s0=s0, th=th):
             g = y[b] == 0
             return float((s1[b][g] > th).mean() - (s0[b][g] > th).mean())
 
+        se_auroc = paired_auroc_gains(y, types, s0, s1)[0]["se"]  # the project's paired bootstrap
         held[f, k] = (a0 - a1 < 0.03) and (g1 <= 2 * g0 + 0.02)
         print(f"| {f} | {k} | {a1:.3f} | {100 * g1:.1f} % ({round(g1 * good)}) | {100 * c1:.1f} % |"
-              f" {a1 - a0:+.3f} ({boot_se(d_auroc):.3f}) | {100 * (g1 - g0):+.1f} ({100 * boot_se(d_good):.1f}) |"
+              f" {a1 - a0:+.3f} ({se_auroc:.3f}) | {100 * (g1 - g0):+.1f} ({100 * boot_se(d_good):.1f}) |"
               f" {'yes' if held[f, k] else 'no'} |")
 
 (_, k3, _, tk), (_, fs, _, tf) = data["K3", "S"], data["F", "S"]
 d_caught = float((fs[y == 1] > tf).mean() - (k3[y == 1] > tk).mean())
-d_auc = auroc(y, fs) - auroc(y, k3)
+gain = paired_auroc_gains(y, types, k3, fs)[0]  # the project's paired bootstrap (good and defective apart)
+d_auc, se_a = gain["gain"], gain["se"]
 se_c = boot_se(lambda b: float((fs[b][y[b] == 1] > tf).mean() - (k3[b][y[b] == 1] > tk).mean()))
-se_a = boot_se(lambda b: None if y[b].min() == y[b].max() else auroc(y[b], fs[b]) - auroc(y[b], k3[b]))
 rejected = {f: sum(int((data[f, k][1][y == 0] > data[f, "S"][3]).sum()) for k in "GR") for f in pattern}
 print()
 print("| S, by type (caught at each file's threshold) | parts | K3 | F |")
