@@ -2,6 +2,7 @@
 # After rule 63 (from anywhere; resumable): the shipped file's look network trained without each defect type
 # (held-out types), from rule 62's fit (runs/r62/Fv) as the shipped network was made, thresholded on the line as
 # built as the shipped file was (station threshold on data/line-pv-val), then each scored on the report set, seed 1165.
+# Its sets and fit: heldout/sets.sh. Arguments: the types (default all five), shared between two workers in turn.
 set -euo pipefail
 cd "$(dirname "$0")/../../../.."  # the repository root
 export OMP_NUM_THREADS=1
@@ -20,5 +21,6 @@ worker() {
       --val-data data/line-pv-val --no-synthetic --no-plots --out $H/eval-H-$t > $H/eval-H-$t.log 2>&1
   done
 }
-worker dent stain & worker scratch chip missing_stud & wait
+types=(${@:-dent scratch stain chip missing_stud})
+worker "${types[@]:0:1}" "${types[@]:2:1}" "${types[@]:4:1}" & worker "${types[@]:1:1}" "${types[@]:3:1}" & wait
 echo done > $H/nets.done
