@@ -39,11 +39,14 @@ class _PtyMaster:
         os.write(self.fd, data)
 
     def close(self) -> None:
-        for fd in (self.fd, self._slave):
-            try:
-                os.close(fd)
-            except OSError:
-                pass
+        """Close both ends, once: a second call must not close the numbers the system has handed out since."""
+        fds, self.fd, self._slave = (self.fd, self._slave), -1, -1
+        for fd in fds:
+            if fd >= 0:
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass
 
 
 class _SerialPort:
@@ -126,9 +129,15 @@ class SimulatedPLC:
         return len(self.record.decisions) >= n
 
     def close(self) -> None:
+        """Stop the PLC's thread, then close its port; safe to call twice. A thread still running 2 s later (a write
+        blocked on a station that no longer reads) keeps its port open: closed under it, its next read could take
+        whatever file the system gives that number next."""
         self._stop.set()
         if self._thread.is_alive():
             self._thread.join(timeout=2)
+            if self._thread.is_alive():
+                log.warning("plc-sim: its thread did not stop within 2 s; its port is left open")
+                return
         self._transport.close()
 
     def __enter__(self) -> SimulatedPLC:

@@ -335,3 +335,42 @@ def test_a_simulated_plc_that_has_sent_its_parts_waits_instead_of_spinning() -> 
         time.sleep(0.5)
     assert plc.record.triggers_sent == ["P1", "P2"]
     assert reads <= 30, reads  # about one per 50 ms (0.5 s); spinning made tens of thousands
+
+
+def test_closing_the_simulated_plc_twice_leaves_file_numbers_reused_since_alone() -> None:
+    import os
+
+    plc = SimulatedPLC(trigger_period_s=None, heartbeat_s=0.05).start()
+    plc.close()
+    r, w = os.pipe()  # the lowest free numbers: those the PLC's pty pair just gave back
+    try:
+        plc.close()  # a second close (an exit stack and a finally, say) must not close the pipe
+        os.write(w, b"x")
+        assert os.read(r, 1) == b"x"
+    finally:
+        os.close(r)
+        os.close(w)
+
+
+def test_the_simulated_plc_keeps_its_port_open_while_its_thread_is_stuck_in_a_write() -> None:
+    import os
+    import threading
+
+    plc = SimulatedPLC(trigger_period_s=None, heartbeat_s=0.01)
+    release, entered = threading.Event(), threading.Event()
+
+    def stuck(data: bytes) -> None:  # a write blocked on a station that no longer reads
+        entered.set()
+        release.wait()
+
+    plc._transport.write = stuck
+    plc.start()
+    assert entered.wait(2)
+    fd = plc._transport.fd
+    plc.close()  # gives up on the thread after 2 s
+    os.fstat(fd)  # still open: the thread may still read it
+    release.set()
+    plc._thread.join(2)
+    plc.close()
+    with pytest.raises(OSError):
+        os.fstat(fd)
