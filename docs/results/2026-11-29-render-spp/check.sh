@@ -7,7 +7,8 @@ R=runs/c62
 mkdir -p $R
 export OMP_NUM_THREADS=1
 V="--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml"
-while [ ! -f runs/r62/Fv.json ] || [ "$(pgrep -fc 'station (residual|eval|threshold)' || true)" -ge 2 ]; do
+busy() { [ ! -f runs/r62/Fv.json ] || [ "$(pgrep -fc 'station (residual|eval|threshold)' || true)" -ge 2 ]; }
+while busy || { sleep 60; busy; }; do  # a free core twice, a minute apart (not a worker between two steps)
   sleep 30
 done
 for spp in 16 64 8; do
