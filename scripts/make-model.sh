@@ -25,8 +25,11 @@
 #      with the curvature window and no test of its own since rule 60, docs/results/2026-11-29-curvature.md)
 #   6c. threshold: the shipped model's threshold set again on VAL, the finish as built (rule 63,
 #      docs/results/2026-11-29-finish-vary.md: the fit knows a range of finishes, the operating point is the line's)
-#   7. held-out types: the networks without one type, decision combined, so the comparison shows what the networks
-#      do with a type they never saw (the variation model never sees any defect)
+#   7. held-out types: the shipped model without one type's rendered defects. With DECISION=variation (the shipped
+#      recipe) the look network is the only part that learns from defects, so it is trained again without the type,
+#      as in 6b, and thresholded as in 6c (station residual --holdout-type; the variation model never sees a defect).
+#      With another DECISION the networks decide: they are trained without the type (from the base's last step) and
+#      their variation model counts them (decision combined)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
 #      int8 networks of an earlier model scored a hostile frame across the threshold, see model/weights/README.md)
 set -euo pipefail
@@ -91,15 +94,25 @@ if [ "$DECISION" = variation ]; then  # step 6b: the look joins a model its vari
     SHIPPED=band-look
 fi
 "$BIN/station" threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
-for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
-    "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
-        --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
-        --out "$RUNS/holdout-$t"
-    variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation" --decision combined  # step 7: the networks count
+HELD=()
+for t in $HOLDOUT_TYPES; do  # step 7
+    if [ "$DECISION" = variation ]; then  # the look network without the type, thresholded as the shipped model
+        [ -f "$RUNS/holdout-$t.json" ] || "$BIN/station" residual --model "$RUNS/band-variation" --data "$DATA" \
+            --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look \
+            --holdout-type "$t" --out "$RUNS/holdout-$t"
+        "$BIN/station" threshold --model "$RUNS/holdout-$t" --data "$VAL"
+        HELD+=("holdout-$t")
+    else  # from the base's last step: keep-best there saw every type in validation
+        "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
+            --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
+            --out "$RUNS/holdout-$t"
+        variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation" --decision combined  # the networks count
+        HELD+=("holdout-$t/variation")
+    fi
 done
 
 "$BIN/station" threshold --model "$RUNS/base/last" --data "$DATA"
-for m in base/last mixed/best band/best band-variation ${SHIPPED/band-variation/} $(for t in $HOLDOUT_TYPES; do echo "holdout-$t/variation"; done)
+for m in base/last mixed/best band/best band-variation ${SHIPPED/band-variation/} "${HELD[@]}"
 do
     name=${m%/last}; name=${name%/best}; name=${name//\//-}
     "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-$name"

@@ -45,6 +45,19 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
                       normals=normals, frame_aspect=cfg.frame_aspect, dome_segments=cfg.dome_segments)
 
 
+def without_held_out_type(sp, train: Mapping):
+    """The split ``sp`` without the defective parts of the type the sidecar record ``train`` held out of training
+    (``model.draem.holdout.held_out_type``): a threshold or calibration chosen on them would have seen that type."""
+    from model.draem.holdout import held_out_type
+    from station.datasets import subset
+
+    held = held_out_type(train)
+    if held is None:
+        return sp
+    return subset(sp, [i for i, (y, t) in enumerate(zip(sp.label.tolist(), sp.defect_type, strict=True))
+                       if not (y and t == held)])
+
+
 def inference_net(ck, model: str, precision: str):
     """What runs the checkpoint (``model.draem.predictor.inference_network``: its torch detector, "fp32", or its
     int8 networks from ``station quantize``, "int8"), the model's error as the station's one-line ``UserError``."""
@@ -107,6 +120,7 @@ def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED
 
     ck = load_checkpoint(model)
     sp, left_out = judged_part_of(model_split(ck, model, data, split))
+    sp = without_held_out_type(sp, ck.meta.get("train", {}))
     if not sp.index:
         raise UserError(f"{data}: the station would judge none of split {split!r}'s frames "
                         f"({describe_left_out(left_out)})")
@@ -149,13 +163,14 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
     from model.draem.metrics import choose_threshold
     from station.datasets import manifest_sha256
 
+    train = {**ck.meta.get("train", {}), key: record}
+    va = without_held_out_type(va, train)
     _, ev = evaluate_tensors(det, va)
     labels = va.label.numpy()
     choice = choose_threshold(labels, ev.scores, max_good_flagged)
-    train = {**ck.meta.get("train", {}), key: {
-        **record, "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
-        "calibration_parts": int((labels == 0).sum()), "date": time.strftime("%Y-%m-%dT%H:%M:%S"),
-        "from": str(model)}}
+    train[key] = {**record, "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
+                  "calibration_parts": int((labels == 0).sum()), "calibration_defective": int(labels.sum()),
+                  "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}
     if frame_statistics is not None:
         train["frame_statistics"] = frame_statistics
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)

@@ -10,25 +10,55 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def dry_run(tmp_path: Path) -> list[list[str]]:
-    """make-model.sh run with a `station` that only records its arguments: each call's arguments, in order."""
+def dry_run(tmp_path: Path, **env_vars: str) -> list[list[str]]:
+    """make-model.sh run with a `station` that only records its arguments (and ``env_vars`` set): each call's
+    arguments, in order."""
     calls = tmp_path / "calls"
     stub = tmp_path / "bin"
     stub.mkdir()
     (stub / "station").write_text(f'#!/bin/sh\necho "$*" >> {calls}\n')
     (stub / "station").chmod(0o755)
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0"}
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", **env_vars}
     subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
     return [line.split() for line in calls.read_text().splitlines()]
 
 
+def out_name(args: list[str], tmp_path: Path) -> str:
+    """The ``--out`` (or else ``--model``) of one recorded call, relative to the dry run's RUNS."""
+    flag = "--out" if "--out" in args else "--model"
+    return args[args.index(flag) + 1].removeprefix(str(tmp_path / "runs") + "/")
+
+
 def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
-    variation = [args for args in dry_run(tmp_path) if args[0] == "variation"]
-    decisions = {args[args.index("--out") + 1].removeprefix(str(tmp_path / "runs") + "/"):
-                 args[args.index("--decision") + 1] for args in variation if "--decision" in args}
-    assert len(decisions) == len(variation) == 6, variation  # the shipped model and one per defect type
-    assert decisions.pop("band-variation") == "variation"  # the shipped decision (model/weights/README.md)
-    assert set(decisions.values()) == {"combined"}  # held-out types: what the networks do with an unseen type
+    calls = dry_run(tmp_path)
+    variation = [args for args in calls if args[0] == "variation"]
+    assert [(out_name(a, tmp_path), a[a.index("--decision") + 1]) for a in variation] == [("band-variation",
+                                                                                           "variation")]
+    # the shipped decision (model/weights/README.md): its look network, and one per held-out type, all second looks
+    # of the same variation model, each thresholded on the line as built
+    residual = {out_name(a, tmp_path): a for a in calls if a[0] == "residual"}
+    types = ["dent", "scratch", "stain", "chip", "missing_stud"]
+    assert list(residual) == ["band-look", *(f"holdout-{t}" for t in types)]
+    for name, args in residual.items():
+        assert "--second-look" in args and args[args.index("--model") + 1] == str(tmp_path / "runs/band-variation")
+        assert args[args.index("--holdout-type") + 1] == name.removeprefix("holdout-") if "holdout" in name else (
+            "--holdout-type" not in args)
+    thresholded = [(out_name(a, tmp_path), a[a.index("--data") + 1]) for a in calls if a[0] == "threshold"]
+    assert [f"holdout-{t}" for t in types] == [n for n, d in thresholded if n.startswith("holdout-")]
+    assert {d for n, d in thresholded if n != "base/last"} == {"data/line-pv-val"}
+    evals = [out_name(a, tmp_path) for a in calls if a[0] == "eval"]
+    assert [f"eval-holdout-{t}" for t in types] == [e for e in evals if "holdout" in e]
+
+
+def test_make_model_with_networks_deciding_holds_types_out_of_the_networks(tmp_path: Path) -> None:
+    """DECISION=combined: the networks decide, so each held-out type is left out of their training and their
+    variation model counts them."""
+    calls = dry_run(tmp_path, DECISION="combined")
+    decisions = {out_name(a, tmp_path): a[a.index("--decision") + 1] for a in calls if a[0] == "variation"}
+    assert decisions.pop("band-variation") == "combined" and len(decisions) == 5
+    assert set(decisions.values()) == {"combined"} and not [a for a in calls if a[0] == "residual"]
+    held = [a for a in calls if a[0] == "train" and "--holdout-type" in a]
+    assert [a[a.index("--holdout-type") + 1] for a in held] == ["dent", "scratch", "stain", "chip", "missing_stud"]
 
 
 def test_station_train_defaults_are_the_networks_make_model_trains() -> None:

@@ -5,7 +5,7 @@ Pure functions over per-sample defect types; good samples carry an empty type ("
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -25,3 +25,11 @@ def indices_without_type(types: Sequence[str | None], holdout: str | Iterable[st
         known = sorted(set(names.tolist()) - {""})
         raise ValueError(f"holdout: no sample of type {sorted(missing)} (types present: {known})")
     return np.flatnonzero(~np.isin(names, list(held))).astype(np.int64)
+
+
+def held_out_type(train: Mapping) -> str | None:
+    """The defect type a checkpoint's sidecar record ``train`` says was left out of what learned from rendered
+    defects: its residual networks' (``train.residual``) when it has them, which then decide or look; else its
+    networks' (``train.rendered_defects``). None when no type was held out."""
+    record = train.get("residual") or train.get("rendered_defects") or {}
+    return record.get("holdout_type") or None

@@ -14,6 +14,7 @@ import json
 import math
 from pathlib import Path
 
+from model.draem.holdout import held_out_type
 from model.draem.runtime import EVAL_PRECISIONS
 from station.commands.arguments import positive_int
 from station.errors import UserError
@@ -173,13 +174,13 @@ def industrial_rows(report, train_meta: dict) -> list[dict]:
     """``model.draem.metrics.detection_by_type``'s report as table rows: per defect type (and all), parts, image
     AUROC and the share caught at each of ``FALSE_REJECTS``, and whether the type was among the model's rendered
     training defects ("trained on"), left out of them ("held out") or the model saw none ("synthetic only")."""
-    rd = train_meta.get("rendered_defects") or {}
-    if train_meta.get("residual"):  # the residual networks decide: what they trained on is what counts
-        rd = {"fraction": 1.0, "holdout_type": train_meta["residual"].get("holdout_type")}
+    # the residual networks, where there are any, learned from rendered defects whatever the networks did
+    learned = bool(train_meta.get("residual") or train_meta.get("rendered_defects"))
+    held = held_out_type(train_meta)
     rows = []
     for det in [report.overall, *report.per_type.values()]:
-        seen = ("" if det.defect_type == "all" else "synthetic only" if not rd
-                else "held out" if det.defect_type == rd.get("holdout_type") else "trained on")
+        seen = ("" if det.defect_type == "all" else "synthetic only" if not learned
+                else "held out" if det.defect_type == held else "trained on")
         rows.append({"type": det.defect_type, "parts": det.n_defective, "in_training": seen,
                      "image_auroc": det.image_auroc,
                      **{f"caught_at_{100 * fr:g}%_false_rejects": det.caught[fr] for fr in FALSE_REJECTS}})

@@ -112,3 +112,24 @@ def test_more_defects_are_learned_from_and_recorded_and_a_set_without_them_refus
     err = capsys.readouterr().err
     assert "the training set itself" in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / "r2.json").exists()
+
+
+def test_a_held_out_type_stays_out_of_the_parts_that_threshold_the_model(tmp_path: Path, capsys) -> None:
+    """Held out means held out: the val parts of the type left out of the residual networks' training set no
+    threshold, neither `station residual`'s nor a later `station threshold`'s; the other types' do."""
+    data, model = trained(tmp_path, capsys)
+    var = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(var)]) == 0
+    val = make_line_set(tmp_path / "val", n=60, defective=lambda i: i % 3 == 1, validation=True, seed=1,
+                        kind=lambda i: "chip" if i % 2 else "stain")
+    n_chips = sum(1 for i in range(60) if i % 3 == 1 and i % 2)  # 10 chips, 10 stains
+    for held, defective in (("stain", n_chips), (None, 20)):
+        out = tmp_path / f"r-{held}"
+        assert main(["residual", "--model", str(var), "--data", str(data), "--val-data", str(val), "--out", str(out),
+                     "--members", "1", "--steps", "2", "--second-look",
+                     *(["--holdout-type", held] if held else [])]) == 0
+        rec = json.loads(out.with_suffix(".json").read_text())["train"]["residual"]
+        assert rec["calibration_defective"] == defective and rec["calibration_parts"] == 40
+        assert main(["threshold", "--model", str(out), "--data", str(val)]) == 0
+        assert json.loads(out.with_suffix(".json").read_text())["train"]["threshold_set"]["n_defective"] == defective
+    capsys.readouterr()
