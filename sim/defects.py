@@ -33,6 +33,32 @@ DEFECT_TYPES = ("dent", "scratch", "stain", "chip", "missing_stud")
 DEFECT_PART = "defect"
 
 
+def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
+    """(name, value) of the one physical size that governs how visible a rendered defect is, from ``params.json``'s
+    ``defect`` record; None for a good part, a missing stud (all alike) or a record without the fields.
+
+    - dent: ``slope_deg``, its steepest tilt, atan(pi/2 * depth / radius) in degrees (the cosine profile's largest
+      slope): what turns a mirrored light or the shading away;
+    - scratch: ``area_mm2``, length x width: the rough stripe that scatters a mirrored light away;
+    - stain: ``radius_mm``;
+    - chip: ``size_mm``, the cut's depth along the edge's bisector."""
+    if not defect:
+        return None
+    kind = defect.get("type")
+    try:
+        if kind == "dent":
+            return "slope_deg", float(np.degrees(np.arctan(np.pi / 2 * defect["depth_mm"] / defect["radius_mm"])))
+        if kind == "scratch":
+            return "area_mm2", float(defect["length_mm"] * defect["width_mm"])
+        if kind == "stain":
+            return "radius_mm", float(defect["radius_mm"])
+        if kind == "chip":
+            return "size_mm", float(defect["size_mm"])
+    except (KeyError, TypeError, ZeroDivisionError):
+        return None
+    return None
+
+
 @dataclass(frozen=True)
 class DefectConfig:
     types: tuple[str, ...] = DEFECT_TYPES

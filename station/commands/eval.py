@@ -293,6 +293,9 @@ def run(args: argparse.Namespace) -> int:
     from sim.dataset import open_dataset
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256
+    from station.defect_size import COLUMNS as SIZE_COLUMNS
+    from station.defect_size import defect_sizes, detection_by_size
+    from station.defect_size import plot as size_plot
     from station.detectability import COLUMNS as DETECTABILITY_COLUMNS
     from station.detectability import detection_by_detectability, oracle_snr
     from station.told_where import COLUMNS as TOLD_WHERE_COLUMNS
@@ -343,6 +346,10 @@ def run(args: argparse.Namespace) -> int:
         files.append(_ablation_plot(out, ablation))
     by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(args.data, sp.index),
                                         sp.defect_type)
+    by_size = (detection_by_size(sp.label.numpy(), ev.scores, thr, defect_sizes(args.data, sp.index), sp.defect_type)
+               if source == "rendered" else [])
+    if by_size and not args.no_plots:
+        files.append(size_plot(out, by_size))
     industrial, industrial_note, rep = [], "", None
     if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
         val_data = args.val_data or args.data
@@ -376,7 +383,7 @@ def run(args: argparse.Namespace) -> int:
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": normal_prior_record(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "detectors": detectors, "channels": channels,
-               "by_detectability": by_snr, "told_where": where,
+               "by_detectability": by_snr, "by_size": by_size, "told_where": where,
                "industrial": industrial, "industrial_note": industrial_note,
                "industrial_val_data": str(args.val_data or args.data), "plots": files}
     cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",
@@ -394,6 +401,11 @@ def run(args: argparse.Namespace) -> int:
         table += ("\n\nDetection by detectability (the oracle's best-prior SNR, station/detectability.py; caught: "
                   "score > threshold, the station's rule; image AUROC: these defects against all good parts):\n\n"
                   + markdown_table(by_snr, DETECTABILITY_COLUMNS))
+    if by_size:
+        table += ("\n\nDetection by defect size (each type's defects in thirds by the size that governs its "
+                  "visibility, sim.defects.defect_size: a dent's steepest tilt, a scratch's area, a stain's radius, a "
+                  "chip's cut; caught: score > threshold, the station's rule; image AUROC: these defects against all "
+                  "good parts):\n\n" + markdown_table(by_size, SIZE_COLUMNS))
     if where:
         table += (f"\n\nTold where to look (station/told_where.py): the share of each type's defects whose "
                   f"residual at their own pixels lies above {100 * TOLD_WHERE_FALSE_REJECT:g} % of this split's good "

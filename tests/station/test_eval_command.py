@@ -83,3 +83,23 @@ def test_eval_reports_detection_by_detectability_on_a_set_with_oracle_values(set
     assert {(row["type"], row["snr_bin"], row["defects"]) for row in rows} == {
         ("all", "<1", 1), ("all", ">10", 1), ("stain", "<1", 1), ("stain", ">10", 1)}
     assert "Detection by detectability" in (tmp_path / "rep" / "eval.md").read_text()
+
+
+def test_eval_reports_detection_by_defect_size_with_its_plot(setup, tmp_path) -> None:
+    """Rendered defects' sizes in params.json (as station render writes them) add the by-size table and plot."""
+    import shutil
+
+    _, data, r, _ = setup
+    ds = tmp_path / "ds"
+    shutil.copytree(data, ds)
+    for i, radius in ((1, 1.2), (11, 3.1)):  # the two defective test samples
+        p = ds / f"samples/{i:06d}/params.json"
+        params = json.loads(p.read_text())
+        params["defect"].update(radius_mm=radius)
+        p.write_text(json.dumps(params))
+    assert main(["eval", "--model", str(r), "--data", str(ds), "--no-synthetic", "--out", str(tmp_path / "rep")]) == 0
+    rep = json.loads((tmp_path / "rep" / "eval.json").read_text())
+    assert [(row["type"], row["size"], row["range"], row["defects"]) for row in rep["by_size"]] == [
+        ("stain", "radius_mm", "1.2-1.2", 1), ("stain", "radius_mm", "3.1-3.1", 1)]
+    assert "by-size.png" in rep["plots"] and (tmp_path / "rep" / "by-size.png").stat().st_size > 1000
+    assert "Detection by defect size" in (tmp_path / "rep" / "eval.md").read_text()
