@@ -402,6 +402,15 @@ def sample_dir(root: str | Path, index: int) -> Path:
     return Path(root) / "samples" / f"{index:06d}"
 
 
+def defect_records(root: str | Path, indices: Sequence[int]) -> list[dict[str, Any] | None]:
+    """Each sample's ``params.json`` ``defect`` record (None for a good part)."""
+    out = []
+    for i in indices:
+        params = json.loads((sample_dir(root, i) / "params.json").read_text())
+        out.append(params.get("defect") if params.get("label") else None)
+    return out
+
+
 def write_sample(root: str | Path, sample: Sample) -> Path:
     """Write ``sample`` under ``root`` atomically (temporary directory, fsync, rename); returns its folder."""
     final = sample_dir(root, sample.index)

@@ -9,14 +9,13 @@ Rows per type with sizes (missing studs are all alike): each third of that type'
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
-from sim.dataset import sample_dir
+from sim.dataset import defect_records
 from sim.defects import defect_size
 
 COLUMNS = ["type", "size", "range", "defects", "caught", "image_auroc"]
@@ -26,11 +25,7 @@ PARTS = 3
 
 def defect_sizes(root: str | Path, indices: Sequence[int]) -> list[tuple[str, float] | None]:
     """Each sample's ``defect_size`` (None for good parts and defects without one), from its ``params.json``."""
-    out = []
-    for i in indices:
-        params = json.loads((sample_dir(root, i) / "params.json").read_text())
-        out.append(defect_size(params.get("defect")) if params.get("label") else None)
-    return out
+    return [defect_size(d) for d in defect_records(root, indices)]
 
 
 def detection_by_size(labels: Sequence[int], scores: Sequence[float], threshold: float | None,

@@ -8,14 +8,13 @@ image AUROC of those defects against every good part of the split.
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
-from sim.dataset import sample_dir
+from sim.dataset import defect_records
 from sim.detectability import SNR_BINS, best_snr, snr_bin
 
 COLUMNS = ["type", "snr_bin", "defects", "caught", "image_auroc"]
@@ -23,11 +22,7 @@ COLUMNS = ["type", "snr_bin", "defects", "caught", "image_auroc"]
 
 def oracle_snr(root: str | Path, indices: Sequence[int]) -> list[float | None]:
     """The best camera prior's SNR of each sample's defect (None for good parts and sets without oracle values)."""
-    out = []
-    for i in indices:
-        params = json.loads((sample_dir(root, i) / "params.json").read_text())
-        out.append(best_snr(params.get("defect")) if params.get("label") else None)
-    return out
+    return [best_snr(d) for d in defect_records(root, indices)]
 
 
 def detection_by_detectability(labels: Sequence[int], scores: Sequence[float], threshold: float | None,

@@ -65,18 +65,26 @@ def test_eval_refuses_several_models_without_ablation_and_an_ensemble_among_them
     assert "--model A,B" in capsys.readouterr().err
 
 
-def test_eval_reports_detection_by_detectability_on_a_set_with_oracle_values(setup, tmp_path) -> None:
-    """Oracle values in params.json (as station render --visibility writes them) add the by-detectability table."""
+def with_defect_records(data: Path, ds: Path, updates: dict[int, dict]) -> Path:
+    """A copy of set ``data`` at ``ds`` whose samples' ``params.json`` defect records are updated with
+    ``updates[index]``, as station render writes such keys."""
     import shutil
 
-    _, data, r, _ = setup
-    ds = tmp_path / "ds"
     shutil.copytree(data, ds)
-    for i, snr in ((1, 0.5), (11, 42.0)):  # the two defective test samples
+    for i, keys in updates.items():
         p = ds / f"samples/{i:06d}/params.json"
         params = json.loads(p.read_text())
-        params["defect"].update(snr={"intensity": snr, "dolp": 0.1, "aolp": 0.2, "normal": 0.0}, snr_best="intensity")
+        params["defect"].update(keys)
         p.write_text(json.dumps(params))
+    return ds
+
+
+def test_eval_reports_detection_by_detectability_on_a_set_with_oracle_values(setup, tmp_path) -> None:
+    """Oracle values in params.json (as station render --visibility writes them) add the by-detectability table."""
+    _, data, r, _ = setup
+    ds = with_defect_records(data, tmp_path / "ds", {  # the two defective test samples
+        i: {"snr": {"intensity": snr, "dolp": 0.1, "aolp": 0.2, "normal": 0.0}, "snr_best": "intensity"}
+        for i, snr in ((1, 0.5), (11, 42.0))})
     assert main(["eval", "--model", str(r), "--data", str(ds), "--no-plots", "--no-synthetic",
                  "--out", str(tmp_path / "rep")]) == 0
     rows = json.loads((tmp_path / "rep" / "eval.json").read_text())["by_detectability"]
@@ -87,16 +95,8 @@ def test_eval_reports_detection_by_detectability_on_a_set_with_oracle_values(set
 
 def test_eval_reports_detection_by_defect_size_with_its_plot(setup, tmp_path) -> None:
     """Rendered defects' sizes in params.json (as station render writes them) add the by-size table and plot."""
-    import shutil
-
     _, data, r, _ = setup
-    ds = tmp_path / "ds"
-    shutil.copytree(data, ds)
-    for i, radius in ((1, 1.2), (11, 3.1)):  # the two defective test samples
-        p = ds / f"samples/{i:06d}/params.json"
-        params = json.loads(p.read_text())
-        params["defect"].update(radius_mm=radius)
-        p.write_text(json.dumps(params))
+    ds = with_defect_records(data, tmp_path / "ds", {1: {"radius_mm": 1.2}, 11: {"radius_mm": 3.1}})
     assert main(["eval", "--model", str(r), "--data", str(ds), "--no-synthetic", "--out", str(tmp_path / "rep")]) == 0
     rep = json.loads((tmp_path / "rep" / "eval.json").read_text())
     assert [(row["type"], row["size"], row["range"], row["defects"]) for row in rep["by_size"]] == [
