@@ -59,6 +59,14 @@ def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
     return None
 
 
+def apparent_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
+    """("visible_px", the defect's pixels in the rendered frame: its mask's area, what the camera gives a detector
+    of it, whatever its type; a defect on a face seen at a grazing angle or partly hidden has few) from
+    ``params.json``'s ``defect`` record; None for a good part or a record without it."""
+    px = (defect or {}).get("visible_px")
+    return None if px is None else ("visible_px", float(px))
+
+
 @dataclass(frozen=True)
 class DefectConfig:
     types: tuple[str, ...] = DEFECT_TYPES

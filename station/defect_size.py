@@ -1,10 +1,12 @@
-"""Detection by defect size: a detector's image-level results per defect type, split into thirds by the physical
-size that governs each type's visibility (``sim.defects.defect_size``: a dent's steepest tilt, a scratch's area, a
-stain's radius, a chip's cut), so a line can state which defects of a type it catches, not only how many.
+"""Detection by defect size: a detector's image-level results per defect type, split into thirds by a size, so a
+line can state which defects of a type it catches, not only how many. Two sizes (``MEASURES``): the physical one
+that governs each type's visibility (``sim.defects.defect_size``: a dent's steepest tilt, a scratch's area, a
+stain's radius, a chip's cut; missing studs are all alike) and the apparent one, the defect's pixels in the frame
+(``sim.defects.apparent_size``), which also says how squarely its face is seen and how much of it is hidden.
 
-Rows per type with sizes (missing studs are all alike): each third of that type's defects in the split, by size
-(equal counts; the last third takes the remainder), with the size range, the defects, the share caught (image score
-> the threshold, as ``station eval``'s ``detected``) and the image AUROC of those defects against every good part.
+Rows per size and type: each third of that type's defects in the split, by size (equal counts), with the size
+range, the defects, the share caught (image score > the threshold, as ``station eval``'s ``detected``) and the image
+AUROC of those defects against every good part.
 """
 
 from __future__ import annotations
@@ -16,16 +18,21 @@ from pathlib import Path
 import numpy as np
 
 from sim.dataset import defect_records
-from sim.defects import defect_size
+from sim.defects import apparent_size, defect_size
 
 COLUMNS = ["type", "size", "range", "defects", "caught", "image_auroc"]
 PARTS = 3
 """Size bins per type: thirds (with about 45 defects of a type in a 400-part set, 15 a bin)."""
+MEASURES = (defect_size, apparent_size)
+"""The sizes reported, each a function of a ``params.json`` defect record: (name, value) or None."""
 
 
-def defect_sizes(root: str | Path, indices: Sequence[int]) -> list[tuple[str, float] | None]:
-    """Each sample's ``defect_size`` (None for good parts and defects without one), from its ``params.json``."""
-    return [defect_size(d) for d in defect_records(root, indices)]
+def by_size(root: str | Path, indices: Sequence[int], labels: Sequence[int], scores: Sequence[float],
+            threshold: float | None, types: Sequence[str]) -> list[dict]:
+    """``detection_by_size`` for each of ``MEASURES``, read from the samples ``indices`` of set ``root``."""
+    records = defect_records(root, indices)
+    return [row for measure in MEASURES
+            for row in detection_by_size(labels, scores, threshold, [measure(d) for d in records], types)]
 
 
 def detection_by_size(labels: Sequence[int], scores: Sequence[float], threshold: float | None,
@@ -60,17 +67,16 @@ def plot(out: Path, rows: list[dict]) -> str:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    types = list(dict.fromkeys(r["type"] for r in rows))
-    fig, ax = plt.subplots(figsize=(6.5, 3.2))
+    groups = list(dict.fromkeys((r["size"], r["type"]) for r in rows))
+    fig, ax = plt.subplots(figsize=(1.0 + 0.75 * len(groups), 3.2))
     width = 0.8 / PARTS
-    for k, typ in enumerate(types):
-        mine = [r for r in rows if r["type"] == typ]
+    for k, group in enumerate(groups):
+        mine = [r for r in rows if (r["size"], r["type"]) == group]
         for j, r in enumerate(mine):
             x = k - 0.4 + width * (j + 0.5)
             ax.bar(x, r["caught"], width * 0.9, color=f"C{j}")
             ax.text(x, 0.01, r["range"], rotation=90, fontsize=6, ha="center", va="bottom")
-    ax.set_xticks(range(len(types)), [f"{t.replace('_', ' ')}\n({next(r['size'] for r in rows if r['type'] == t)})"
-                                      for t in types], fontsize=8)
+    ax.set_xticks(range(len(groups)), [f"{t.replace('_', ' ')}\n{size}" for size, t in groups], fontsize=7)
     ax.set(ylim=(0, 1), ylabel="share caught at the threshold",
            title="defects caught by size: each type's thirds, smallest first")
     fig.savefig(out / "by-size.png", dpi=120, bbox_inches="tight")

@@ -294,7 +294,7 @@ def run(args: argparse.Namespace) -> int:
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256
     from station.defect_size import COLUMNS as SIZE_COLUMNS
-    from station.defect_size import defect_sizes, detection_by_size
+    from station.defect_size import by_size as detection_by_sizes
     from station.defect_size import plot as size_plot
     from station.detectability import COLUMNS as DETECTABILITY_COLUMNS
     from station.detectability import detection_by_detectability, oracle_snr
@@ -346,7 +346,7 @@ def run(args: argparse.Namespace) -> int:
         files.append(_ablation_plot(out, ablation))
     by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(args.data, sp.index),
                                         sp.defect_type)
-    by_size = (detection_by_size(sp.label.numpy(), ev.scores, thr, defect_sizes(args.data, sp.index), sp.defect_type)
+    by_size = (detection_by_sizes(args.data, sp.index, sp.label.numpy(), ev.scores, thr, sp.defect_type)
                if source == "rendered" else [])
     if by_size and not args.no_plots:
         files.append(size_plot(out, by_size))
@@ -402,10 +402,11 @@ def run(args: argparse.Namespace) -> int:
                   "score > threshold, the station's rule; image AUROC: these defects against all good parts):\n\n"
                   + markdown_table(by_snr, DETECTABILITY_COLUMNS))
     if by_size:
-        table += ("\n\nDetection by defect size (each type's defects in thirds by the size that governs its "
-                  "visibility, sim.defects.defect_size: a dent's steepest tilt, a scratch's area, a stain's radius, a "
-                  "chip's cut; caught: score > threshold, the station's rule; image AUROC: these defects against all "
-                  "good parts):\n\n" + markdown_table(by_size, SIZE_COLUMNS))
+        table += ("\n\nDetection by defect size (each type's defects in thirds by a size, station/defect_size.py: "
+                  "the one that governs the type's visibility, a dent's steepest tilt, a scratch's area, a stain's "
+                  "radius, a chip's cut; and visible_px, its pixels in the frame; caught: score > threshold, the "
+                  "station's rule; image AUROC: these defects against all good parts):\n\n"
+                  + markdown_table(by_size, SIZE_COLUMNS))
     if where:
         table += (f"\n\nTold where to look (station/told_where.py): the share of each type's defects whose "
                   f"residual at their own pixels lies above {100 * TOLD_WHERE_FALSE_REJECT:g} % of this split's good "

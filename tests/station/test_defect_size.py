@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from sim.defects import defect_size
+from sim.defects import apparent_size, defect_size
 from station.defect_size import detection_by_size
 
 
@@ -20,6 +20,8 @@ def test_each_type_has_the_size_that_governs_it() -> None:
     assert defect_size({"type": "chip", "size_mm": 0.7}) == ("size_mm", 0.7)
     assert defect_size({"type": "missing_stud", "radius_mm": 2.4}) is None  # all alike
     assert defect_size(None) is None and defect_size({"type": "dent", "radius_mm": 2.0}) is None
+    assert apparent_size({"type": "missing_stud", "visible_px": 1600}) == ("visible_px", 1600.0)  # every type
+    assert apparent_size({"type": "dent"}) is None and apparent_size(None) is None
 
 
 def test_thirds_by_size_say_which_defects_are_caught() -> None:

@@ -96,10 +96,12 @@ def test_eval_reports_detection_by_detectability_on_a_set_with_oracle_values(set
 def test_eval_reports_detection_by_defect_size_with_its_plot(setup, tmp_path) -> None:
     """Rendered defects' sizes in params.json (as station render writes them) add the by-size table and plot."""
     _, data, r, _ = setup
-    ds = with_defect_records(data, tmp_path / "ds", {1: {"radius_mm": 1.2}, 11: {"radius_mm": 3.1}})
+    ds = with_defect_records(data, tmp_path / "ds", {1: {"radius_mm": 1.2, "visible_px": 900},
+                                                      11: {"radius_mm": 3.1, "visible_px": 40}})
     assert main(["eval", "--model", str(r), "--data", str(ds), "--no-synthetic", "--out", str(tmp_path / "rep")]) == 0
     rep = json.loads((tmp_path / "rep" / "eval.json").read_text())
     assert [(row["type"], row["size"], row["range"], row["defects"]) for row in rep["by_size"]] == [
-        ("stain", "radius_mm", "1.2-1.2", 1), ("stain", "radius_mm", "3.1-3.1", 1)]
+        ("stain", "radius_mm", "1.2-1.2", 1), ("stain", "radius_mm", "3.1-3.1", 1),
+        ("stain", "visible_px", "40-40", 1), ("stain", "visible_px", "900-900", 1)]
     assert "by-size.png" in rep["plots"] and (tmp_path / "rep" / "by-size.png").stat().st_size > 1000
     assert "Detection by defect size" in (tmp_path / "rep" / "eval.md").read_text()
