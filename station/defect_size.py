@@ -55,9 +55,14 @@ def detection_by_size(labels: Sequence[int], scores: Sequence[float], threshold:
             caught = float(np.mean(s[sel] > threshold)) if threshold is not None else math.nan
             both = sel | ~y
             roc = auroc(y[both], s[both]) if (~y).any() else math.nan
-            rows.append({"type": typ, "size": known[int(part[0])][0], "range": f"{min(vals):.3g}-{max(vals):.3g}",
+            rows.append({"type": typ, "size": known[int(part[0])][0], "range": f"{_num(min(vals))}-{_num(max(vals))}",
                          "defects": int(sel.sum()), "caught": caught, "image_auroc": float(roc)})
     return rows
+
+
+def _num(v: float) -> str:
+    """A size as a range bound: 3 significant digits, whole numbers from 1000 up (pixels: 1840, not 1.84e+03)."""
+    return f"{v:.3g}" if abs(v) < 1000 else f"{v:.0f}"
 
 
 def plot(out: Path, rows: list[dict]) -> str:

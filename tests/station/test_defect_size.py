@@ -37,5 +37,8 @@ def test_thirds_by_size_say_which_defects_are_caught() -> None:
     assert rows[0]["image_auroc"] == pytest.approx(0.125) and rows[2]["image_auroc"] == 1.0
     assert math.isnan(detection_by_size(labels, scores, None, slopes, types)[0]["caught"])
     assert detection_by_size(labels, scores, 0.45, [None] * 11, types) == []
+    big = [None] * 4 + [("visible_px", v) for v in (1840.0, 12.0, 2720.0, 950.0, 99.5, 1000.0)] + [None]
+    assert [r["range"] for r in detection_by_size(labels, scores, 0.45, big, types)] == ["12-99.5", "950-1000",
+                                                                                         "1840-2720"]
     assert np.isnan(detection_by_size([1, 1], [0.5, 0.6], 0.4, [("size_mm", 1.0), ("size_mm", 2.0)],
                                       ["chip", "chip"])[0]["image_auroc"])  # no good parts
