@@ -45,6 +45,14 @@ def main() -> None:
 
         print(f"| {key[0]} | {key[1]} | {len(idx)} | {auroc(s, good):.3f} | {np.mean(s > thr):.0%} | "
               f"{caught(small)} | {caught(large)} |")
+    well = [i for i, k in groups.items() if k[1] == "top" and visible[i] >= SMALL_PX]
+    parts = {"shown well (top face, >= 400 px)": well,
+             "shown well, without missing studs": [i for i in well if groups[i][0] != "missing_stud"],
+             "the rest": [i for i in groups if i not in well]}
+    print()
+    for name, part in parts.items():
+        n = sum(scores[i] > thr for i in part)
+        print(f"{name}: {n} of {len(part)} caught ({n / len(part):.1%})" if part else f"{name}: none")
 
 
 if __name__ == "__main__":
