@@ -17,7 +17,6 @@ from pathlib import Path
 
 import numpy as np
 
-from sim.dataset import defect_records
 from sim.defects import apparent_size, defect_size
 
 COLUMNS = ["type", "size", "range", "defects", "caught", "image_auroc"]
@@ -27,10 +26,10 @@ MEASURES = (defect_size, apparent_size)
 """The sizes reported, each a function of a ``params.json`` defect record: (name, value) or None."""
 
 
-def by_size(root: str | Path, indices: Sequence[int], labels: Sequence[int], scores: Sequence[float],
+def by_size(records: Sequence[dict | None], labels: Sequence[int], scores: Sequence[float],
             threshold: float | None, types: Sequence[str]) -> list[dict]:
-    """``detection_by_size`` for each of ``MEASURES``, read from the samples ``indices`` of set ``root``."""
-    records = defect_records(root, indices)
+    """``detection_by_size`` for each of ``MEASURES``, from the samples' defect records
+    (``sim.dataset.defect_records``)."""
     return [row for measure in MEASURES
             for row in detection_by_size(labels, scores, threshold, [measure(d) for d in records], types)]
 

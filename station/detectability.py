@@ -10,19 +10,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from pathlib import Path
 
 import numpy as np
 
-from sim.dataset import defect_records
 from sim.detectability import SNR_BINS, best_snr, snr_bin
 
 COLUMNS = ["type", "snr_bin", "defects", "caught", "image_auroc"]
 
 
-def oracle_snr(root: str | Path, indices: Sequence[int]) -> list[float | None]:
-    """The best camera prior's SNR of each sample's defect (None for good parts and sets without oracle values)."""
-    return [best_snr(d) for d in defect_records(root, indices)]
+def oracle_snr(records: Sequence[dict | None]) -> list[float | None]:
+    """The best camera prior's SNR of each sample's defect record (``sim.dataset.defect_records``; None for good
+    parts and sets without oracle values)."""
+    return [best_snr(d) for d in records]
 
 
 def detection_by_detectability(labels: Sequence[int], scores: Sequence[float], threshold: float | None,

@@ -48,14 +48,17 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
 def without_held_out_type(sp, train: Mapping):
     """The split ``sp`` without the defective parts of the type the sidecar record ``train`` held out of training
     (``model.draem.holdout.held_out_type``): a threshold or calibration chosen on them would have seen that type."""
-    from model.draem.holdout import held_out_type
+    from model.draem.holdout import held_out_type, indices_without_type
     from station.datasets import subset
 
     held = held_out_type(train)
     if held is None:
         return sp
-    return subset(sp, [i for i, (y, t) in enumerate(zip(sp.label.tolist(), sp.defect_type, strict=True))
-                       if not (y and t == held)])
+    try:
+        keep = indices_without_type(sp.defect_type, held)
+    except ValueError:  # the split has no part of that type: nothing to leave out
+        return sp
+    return subset(sp, keep.tolist())
 
 
 def inference_net(ck, model: str, precision: str):

@@ -290,7 +290,7 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.evaluate import evaluate, synthetic_eval_data
     from model.draem.metrics import detection_by_type, summary
     from model.draem.train import TensorData
-    from sim.dataset import open_dataset
+    from sim.dataset import defect_records, open_dataset
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256
     from station.defect_size import COLUMNS as SIZE_COLUMNS
@@ -344,9 +344,9 @@ def run(args: argparse.Namespace) -> int:
     detectors = detector_rows(ev, sp.label.numpy(), sp.defect_type) if cfg.variation else []
     if ablation and not args.no_plots:
         files.append(_ablation_plot(out, ablation))
-    by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(args.data, sp.index),
-                                        sp.defect_type)
-    by_size = (detection_by_sizes(args.data, sp.index, sp.label.numpy(), ev.scores, thr, sp.defect_type)
+    records = defect_records(args.data, sp.index)  # read once, for both tables
+    by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(records), sp.defect_type)
+    by_size = (detection_by_sizes(records, sp.label.numpy(), ev.scores, thr, sp.defect_type)
                if source == "rendered" else [])
     if by_size and not args.no_plots:
         files.append(size_plot(out, by_size))
