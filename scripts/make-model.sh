@@ -86,20 +86,22 @@ variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exi
     [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
         "${@:3}"
 }
+look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/NAME unless it exists (resumable)
+    [ -f "$RUNS/$1.json" ] || "$BIN/station" residual --model "$RUNS/band-variation" --data "$DATA" \
+        --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/$1" \
+        "${@:2}"
+}
 variation "$RUNS/band/best" "$RUNS/band-variation" --decision "$DECISION"
 SHIPPED=band-variation
 if [ "$DECISION" = variation ]; then  # step 6b: the look joins a model its variation model decides
-    [ -f "$RUNS/band-look.json" ] || "$BIN/station" residual --model "$RUNS/band-variation" --data "$DATA" \
-        --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/band-look"
+    look band-look
     SHIPPED=band-look
 fi
 "$BIN/station" threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 HELD=()
 for t in $HOLDOUT_TYPES; do  # step 7
     if [ "$DECISION" = variation ]; then  # the look network without the type, thresholded as the shipped model
-        [ -f "$RUNS/holdout-$t.json" ] || "$BIN/station" residual --model "$RUNS/band-variation" --data "$DATA" \
-            --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look \
-            --holdout-type "$t" --out "$RUNS/holdout-$t"
+        look "holdout-$t" --holdout-type "$t"
         "$BIN/station" threshold --model "$RUNS/holdout-$t" --data "$VAL"
         HELD+=("holdout-$t")
     else  # from the base's last step: keep-best there saw every type in validation
