@@ -56,6 +56,14 @@ log = logging.getLogger(__name__)
 MAX_LOST_ROWS = 10000
 """At most this many rows for one gap in frame ids (a camera reset can jump its counter by millions)."""
 
+CLOCK_READS = 5
+"""Attempts at reading the wall clock and ``time.perf_counter`` together (``perf_from_host_ns``)."""
+
+CLOCK_PAIR_S = 0.0005
+"""A pair of clock reads is trusted when the wall clock's two reads around ``perf_counter`` lie this close (s): a
+thread preempted between them (a loaded machine) would otherwise shift a frame's time by the preemption. A frame
+taken up to this long before its part's earliest time still counts as the part's (the pairing's error)."""
+
 MAX_HELD_GAP = 16
 """Line trigger: the most frames that may go missing between two frames for the newer one to be kept for the part it
 belongs to (``Station._grab_for``); a larger jump in frame ids (a reset or misread counter) cannot be matched to a
@@ -91,6 +99,22 @@ class SetIncomplete(Exception):
 class FramesLost(Exception):
     """Line trigger: the part being grabbed has no frame: it was lost in transport (a gap in frame ids), or the camera
     never saw its pulse (the next frame was exposed too long after its TRIG)."""
+
+
+def perf_from_host_ns(host_ns: int) -> float:
+    """A host wall-clock time (``time.time_ns``, ns) on ``time.perf_counter``'s clock (s). The two clocks are read
+    together, the wall clock before and after ``perf_counter``; the pair with the closest wall reads of up to
+    ``CLOCK_READS`` is used, the first within ``CLOCK_PAIR_S`` at once. Its error is half that pair's spread."""
+    best = None
+    for _ in range(CLOCK_READS):
+        before = time.time_ns()
+        perf = time.perf_counter()
+        after = time.time_ns()
+        if best is None or after - before < best[0]:
+            best = (after - before, perf - ((before + after) / 2 - host_ns) / 1e9)
+        if after - before <= CLOCK_PAIR_S * 1e9:
+            break
+    return best[1]
 
 
 class TransferClock:
@@ -362,7 +386,7 @@ class Station:
                     self._check_line_frame(frame)
             if (not self.link.triggered and self.frames_per_part == 1) or frame.host_timestamp_ns <= 0:
                 return frame
-            completed = time.perf_counter() - (time.time_ns() - frame.host_timestamp_ns) / 1e9
+            completed = perf_from_host_ns(frame.host_timestamp_ns)
             exposed = self._transfer.fastest(frame, completed)  # less a slow transfer: when it was taken
             delay_ms = 1e3 * (exposed - part.t_trigger) if line else 0.0
             if delay_ms > self.max_frame_delay_ms:
@@ -370,7 +394,7 @@ class Station:
                 raise FramesLost(f"the camera missed its trigger pulse: the next frame ({frame.frame_id}) was "
                                  f"exposed {delay_ms:.0f} ms after its TRIG, over [acquisition] max_frame_delay_ms "
                                  f"({self.max_frame_delay_ms:.0f} ms); the frame is kept for the next part")
-            if exposed >= earliest:
+            if exposed >= earliest - CLOCK_PAIR_S:  # within the clocks' pairing error: its own part's
                 return frame
             self.stale_frames += 1
             log.warning("frame %d was taken %.0f ms before part %s could be imaged: an earlier part's, skipped",

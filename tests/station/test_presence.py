@@ -192,6 +192,36 @@ def test_an_announced_part_not_in_view_is_rejected_at_the_plc_and_in_its_row(tmp
     assert rows[1]["io_delivered"] and rows[1]["image_path"]  # kept, to see what was in front of the camera
 
 
+def test_a_frame_is_its_own_parts_when_the_host_clocks_are_read_a_moment_apart(tmp_path, monkeypatch) -> None:
+    """The loop maps a frame's host time (wall clock) onto its own clock (perf_counter) by reading both. Preempted
+    between the two reads (a loaded machine), a frame taken just after its trigger came out "taken before the part
+    could be imaged": skipped as an earlier part's, each part was judged on the next one's frame, and the part not
+    in view passed (seen once in a clean-clone run under load)."""
+    import types
+
+    import station.loop as loop
+
+    clock = types.SimpleNamespace(**{k: getattr(time, k) for k in dir(time) if not k.startswith("_")})
+    preempted = {"after_perf": False, "times": 0}
+
+    def perf_counter() -> float:
+        preempted["after_perf"] = True
+        return time.perf_counter()
+
+    def time_ns() -> int:  # the first few reads right after perf_counter's: preempted for 30 ms in between
+        if preempted["after_perf"] and preempted["times"] < 3:
+            preempted["times"] += 1
+            time.sleep(0.03)
+        preempted["after_perf"] = False
+        return time.time_ns()
+
+    clock.perf_counter, clock.time_ns = perf_counter, time_ns
+    monkeypatch.setattr(loop, "time", clock)
+    rows, detector, link, _ = run_station(tmp_path, ["part", "empty", "part"], triggered=True)
+    assert [r["decision"] for r in rows] == ["pass", "reject", "pass"] and detector.calls == 2
+    assert [(p, d) for p, d, _ in link.reports] == [("T0", "pass"), ("T1", "reject"), ("T2", "pass")]
+
+
 def test_without_the_check_empty_frames_go_to_the_model(tmp_path) -> None:
     rows, detector, _, stats = run_station(tmp_path, ["part", "empty"], triggered=False, presence=False)
     assert [r["decision"] for r in rows] == ["pass", "pass"] and detector.calls == 2
