@@ -2,7 +2,7 @@
 
 Usage (repository root): python docs/results/2026-11-30-report-1167/compare64d.py EVAL_U EVAL_S
 Prints good parts rejected and defective parts caught at each report's own threshold, per type, and the paired image
-AUROC change S - U with its bootstrap SE (model.draem.metrics.paired_auroc_gains).
+AUROC change S - U with its bootstrap SE (score64c's tables).
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from score64c import paired_table, row
 
-from model.draem.metrics import paired_auroc_gains
 from station.eval_compare import read_scores
 
 
@@ -30,15 +30,9 @@ def main() -> None:
     print(f"{len(idx)} parts: {int((~y).sum())} good, {int(y.sum())} defective.\n")
     print("| file | own threshold | good parts rejected | defective parts caught | " + " | ".join(types) + " |")
     print("|---|---|---|---|" + "---|" * len(types))
-    for name, sc, th in (("U " + dirs[0], a, thr[0]), ("S " + dirs[1], b, thr[1])):
-        per = " | ".join(f"{np.mean(sc[y & (t == k)] > th):.0%}" for k in types)
-        print(f"| {name} | {th:.4f} | {int((sc[~y] > th).sum())} of {int((~y).sum())} ({np.mean(sc[~y] > th):.1%}) | "
-              f"{int((sc[y] > th).sum())} of {int(y.sum())} ({np.mean(sc[y] > th):.1%}) | {per} |")
-    print("\n| type | defective | image AUROC, U | S | S - U (paired SE) |\n|---|---|---|---|---|")
-    for r in paired_auroc_gains(y, np.where(y, t, ""), a, b):
-        print(f"| {r['type']} | {r['defective']} | {r['base']:.3f} | {r['other']:.3f} | {r['gain']:+.3f} "
-              f"({r['se']:.3f}) |")
-
+    print(row("U " + dirs[0], y, t, a, thr[0]))
+    print(row("S " + dirs[1], y, t, b, thr[1]))
+    paired_table(y, t, a, b, "U", "S", "S - U")
 
 if __name__ == "__main__":
     main()

@@ -39,6 +39,15 @@ def row(name: str, y: np.ndarray, t: np.ndarray, s: np.ndarray, thr: float) -> s
             f"{int((s[y] > thr).sum())} of {int(y.sum())} ({np.mean(s[y] > thr):.1%}) | {per} |")
 
 
+def paired_table(y: np.ndarray, t: np.ndarray, a: np.ndarray, b: np.ndarray, base: str, other: str,
+                 change: str) -> None:
+    """Print image AUROC of scores ``a`` and ``b`` on the same parts, in all and per type, with the paired change."""
+    print(f"\n| type | defective | image AUROC, {base} | {other} | {change} (paired SE) |\n|---|---|---|---|---|")
+    for r in paired_auroc_gains(y, np.where(y, t, ""), a, b):
+        print(f"| {r['type']} | {r['defective']} | {r['base']:.3f} | {r['other']:.3f} | {r['gain']:+.3f} "
+              f"({r['se']:.3f}) |")
+
+
 def main() -> None:
     ck = load_checkpoint(MODEL)
     own = float(ck.meta["threshold"])
@@ -56,10 +65,7 @@ def main() -> None:
     print(row("as built, own threshold (check 64)", y, t, a, own))
     print(row("shielded, own threshold", y, t, b, own))
     print(row("shielded, shielded line's 1 % threshold", y, t, b, shielded_thr))
-    print("\n| type | defective | image AUROC, as built | shielded | change (paired SE) |\n|---|---|---|---|---|")
-    for r in paired_auroc_gains(y, np.where(y, t, ""), a, b):
-        print(f"| {r['type']} | {r['defective']} | {r['base']:.3f} | {r['other']:.3f} | {r['gain']:+.3f} "
-              f"({r['se']:.3f}) |")
+    paired_table(y, t, a, b, "as built", "shielded", "change")
 
 
 if __name__ == "__main__":
