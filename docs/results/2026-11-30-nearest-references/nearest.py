@@ -1,6 +1,7 @@
 """Validation screen (stop 65): each place's reference taken from the K calibration good parts most like the part,
 not from all of them: neighbours by the window statistic at a coarse scale (what a station could compute), or by
-the true stray-light vector (intensity times direction, from params.json: the best a stray-light estimate could do).
+the true stray-light vector (intensity times direction, from params.json: the best a stray-light estimate could do),
+with or without the part's true pose.
 
 Reads runs/a64/w-pf.npz (calibration, data/line-pf-val) and w-pv.npz (screen, data/line-pv-val), written by
 ../2026-11-30-place-tail/windows.py. Usage (repository root):
@@ -31,6 +32,15 @@ def light(data: str, index: np.ndarray) -> np.ndarray:
     return np.array(out)
 
 
+def pose(data: str, index: np.ndarray) -> np.ndarray:
+    """(N, 3): each sample's pose on the belt, yaw (rad) and x, y (m)."""
+    out = []
+    for i in index:
+        p = json.load(open(f"data/{data}/samples/{i:06d}/params.json"))["scene"]["pose"]
+        out.append([p["yaw_rad"], *p["xy_m"]])
+    return np.array(out)
+
+
 def coarse(d: dict, loc: np.ndarray, spread: np.ndarray) -> np.ndarray:
     """(N, cells): the per-place score (w - loc) / spread over judged places, averaged over COARSE x COARSE cells."""
     z = np.where(d["judged"], (d["w"].astype(np.float32) - loc) / spread, 0)
@@ -53,8 +63,11 @@ def main() -> None:
     y, t = pv["label"], pv["dtype"]
     twin = pv["index"][:, None] == pf["index"][good][None]  # the two sets are the same parts: never a part's twin
     lc, lv = light("line-pf-val", pf["index"][good]), light("line-pv-val", pv["index"])
+    pc, pp = pose("line-pf-val", pf["index"][good]), pose("line-pv-val", pv["index"])
+    lp = [np.concatenate([a / lc.std(), 3 * b / pc.std(0)], 1) for a, b in ((lc, pc), (lv, pp))]  # pose weighs 3x
     by = {"coarse window statistic": ((coarse(pv, loc, spread)[:, None] - coarse(pf, loc, spread)[good][None]) ** 2),
-          "true stray-light vector": ((lv[:, None] - lc[None]) ** 2)}
+          "true stray-light vector": ((lv[:, None] - lc[None]) ** 2),
+          "true stray-light vector and pose": ((lp[1][:, None] - lp[0][None]) ** 2)}
     print(f"screen: {int((y == 0).sum())} good, {int(y.sum())} defective parts of data/line-pv-val; "
           f"references: {len(cal)} good parts of data/line-pf-val\n")
     print("| reference | image AUROC | caught at 1 % | dents at 1 % |")
