@@ -22,23 +22,17 @@ def load(name: str) -> dict:
     return {k: d[k] for k in d}
 
 
-def light(data: str, index: np.ndarray) -> np.ndarray:
-    """(N, 3): each sample's stray-light intensity times its unit direction (towards the lamp)."""
-    out = []
+def light_and_pose(data: str, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(N, 3) each sample's stray-light intensity times its unit direction (towards the lamp), and (N, 3) its pose on
+    the belt, yaw (rad) and x, y (m); from its params.json."""
+    light, pose = [], []
     for i in index:
-        p = json.load(open(f"data/{data}/samples/{i:06d}/params.json"))["scene"]["light"]
+        scene = json.load(open(f"data/{data}/samples/{i:06d}/params.json"))["scene"]
+        p, q = scene["light"], scene["pose"]
         d = np.array(p["origin"]) - np.array(p["target"])
-        out.append(p["intensity"] * d / np.linalg.norm(d))
-    return np.array(out)
-
-
-def pose(data: str, index: np.ndarray) -> np.ndarray:
-    """(N, 3): each sample's pose on the belt, yaw (rad) and x, y (m)."""
-    out = []
-    for i in index:
-        p = json.load(open(f"data/{data}/samples/{i:06d}/params.json"))["scene"]["pose"]
-        out.append([p["yaw_rad"], *p["xy_m"]])
-    return np.array(out)
+        light.append(p["intensity"] * d / np.linalg.norm(d))
+        pose.append([q["yaw_rad"], *q["xy_m"]])
+    return np.array(light), np.array(pose)
 
 
 def coarse(d: dict, loc: np.ndarray, spread: np.ndarray) -> np.ndarray:
@@ -62,8 +56,7 @@ def main() -> None:
     w = pv["w"].astype(np.float32)
     y, t = pv["label"], pv["dtype"]
     twin = pv["index"][:, None] == pf["index"][good][None]  # the two sets are the same parts: never a part's twin
-    lc, lv = light("line-pf-val", pf["index"][good]), light("line-pv-val", pv["index"])
-    pc, pp = pose("line-pf-val", pf["index"][good]), pose("line-pv-val", pv["index"])
+    (lc, pc), (lv, pp) = light_and_pose("line-pf-val", pf["index"][good]), light_and_pose("line-pv-val", pv["index"])
     lp = [np.concatenate([a / lc.std(), 3 * b / pc.std(0)], 1) for a, b in ((lc, pc), (lv, pp))]  # pose weighs 3x
     by = {"coarse window statistic": ((coarse(pv, loc, spread)[:, None] - coarse(pf, loc, spread)[good][None]) ** 2),
           "true stray-light vector": ((lv[:, None] - lc[None]) ** 2),
