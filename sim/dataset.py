@@ -66,7 +66,7 @@ from .errors import SimError
 from .meshes import ObjectModel, object_from_config
 from .oracle import DefectSNR, defect_snr
 from .render import RENDERER_VERSION, RenderSettings, render_sample
-from .scene import SceneConfig, material_keys_check, object_to_world, sample_scene, sampler_spp
+from .scene import SceneConfig, material_keys_check, object_to_world, sample_scene, sampler_spp, second_view
 from .sensor import SensorConfig, simulate
 from .variation import LineVariation
 
@@ -127,7 +127,22 @@ class DatasetSpec:
     on the line presets); the scene's ``ambient_gradient`` sets how much brighter the lit side is. Empty (default):
     one frame per sample under the scene's dome. See ``generate_sample`` for what the frames share."""
 
+    view: dict[str, Any] = field(default_factory=dict)
+    """A second camera of the station (``[view]``: any of ``VIEW_KEYS``, the scene's camera ranges): each sample is
+    drawn exactly as without it, the defect placed for the line's camera, then seen from a camera drawn from these
+    ranges on the sample's own stream ``default_rng([seed, index, 5])`` (``sim.scene.second_view``). The same seed
+    with and without ``view`` renders the same parts, defects, light and sensor draws from two cameras. Empty: the
+    line's camera."""
+
     def __post_init__(self) -> None:
+        bad = sorted(set(self.view) - set(VIEW_KEYS))
+        if bad:
+            raise SimError(f"view: unknown keys {bad}; use {', '.join(VIEW_KEYS)}")
+        if self.view:
+            try:
+                self.view_scene()  # checks the ranges
+            except SimError as exc:
+                raise SimError(f"view: {exc}") from None
         # the config states the spp that is rendered: the sampler rounds some counts up (32 -> 35)
         object.__setattr__(self, "spp", sampler_spp(self.spp) if self.spp >= 1 else self.spp)
         if not 0.0 <= self.defect_fraction <= 1.0:
@@ -152,6 +167,10 @@ class DatasetSpec:
                                "is): under a uniform dome every segment's frame is the same")
         self.render_settings()  # checks size and spp
 
+    def view_scene(self) -> SceneConfig:
+        """The scene with the second camera's ranges (``view``) in place of the line camera's."""
+        return SceneConfig.from_dict({**self.scene.to_dict(), **self.view})
+
     @property
     def whole_split(self) -> str | None:
         """The split every sample is in (``WHOLE_SET_RULES``), None for the index rule (``SPLIT_RULE``)."""
@@ -172,7 +191,7 @@ class DatasetSpec:
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
-        for key in ("visibility", "heldout", "validation", "dome_segments"):
+        for key in ("visibility", "heldout", "validation", "dome_segments", "view"):
             if not d[key]:
                 d.pop(key)  # likewise for sets without the detectability oracle or a whole-set split
         if not self.variation.active:
@@ -225,13 +244,15 @@ class Sample:
         return self.segment_raws or (self.raw,)
 
 
-OVERRIDE_SECTIONS = ("scene", "defects", "sensor", "variation")
+OVERRIDE_SECTIONS = ("scene", "defects", "sensor", "variation", "view")
+VIEW_KEYS = ("camera_radius_m", "camera_polar_deg", "camera_azimuth_deg")
+"""The keys of ``[view]`` (``DatasetSpec.view``): a second camera's ranges, as the scene's camera keys."""
 
 
 def read_overrides(path: str | Path) -> dict[str, dict[str, Any]]:
-    """A JSON or TOML file of ``[scene]``, ``[defects]``, ``[sensor]``, ``[variation]`` overrides (``station render
-    --config``, ``sim/presets/*.toml``), for ``DatasetSpec.from_dict``; a missing, unparsable or unknown-section
-    file is a SimError naming it."""
+    """A JSON or TOML file of ``[scene]``, ``[defects]``, ``[sensor]``, ``[variation]``, ``[view]`` overrides
+    (``station render --config``, ``sim/presets/*.toml``), for ``DatasetSpec.from_dict``; a missing, unparsable
+    or unknown-section file is a SimError naming it."""
     path = Path(path)
     if not path.is_file():
         raise SimError(f"--config {path}: no such file")
@@ -322,6 +343,8 @@ def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw
         to_world = object_to_world(params["pose"])
         cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
         defect = apply_defect(model, kind, rng, spec.defects, cam_obj, params["materials"])
+    if spec.view:  # a second camera of the same part: everything above drawn as for the line's camera
+        params = second_view(params, spec.view_scene(), model, np.random.default_rng([spec.seed, index, 5]))
     sensor, sensor_record = spec.variation.draw(spec.sensor, spec.seed, index)
     return SampleDraw(index, split, params, defect, int(rng.integers(2**32)), empty, sensor, sensor_record)
 

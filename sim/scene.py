@@ -297,6 +297,31 @@ def _up_for(forward: np.ndarray) -> list[float]:
     return [0.0, 0.0, 1.0] if abs(f[2]) < 0.999 else [0.0, 1.0, 0.0]
 
 
+def part_centre(model: ObjectModel, pose: dict) -> np.ndarray:
+    """(3,) world metres: the centre of the posed part's bounding box, where the cameras aim (before jitter)."""
+    to_world = object_to_world(pose)
+    verts = np.concatenate([p.vertices for p in model.parts])
+    world = verts @ to_world[:3, :3].T + to_world[:3, 3]
+    return 0.5 * (world.min(0) + world.max(0))
+
+
+def camera_dict(origin: np.ndarray, target: np.ndarray, cfg: SceneConfig) -> dict[str, Any]:
+    """A scene's ``camera`` entry: origin and target (world metres), up, and the lens's horizontal field of view."""
+    fov_deg = float(np.degrees(2 * np.arctan(cfg.sensor_width_mm / 2 / cfg.focal_length_mm)))
+    return {"origin": origin.tolist(), "target": target.tolist(), "up": _up_for(target - origin), "fov_x_deg": fov_deg}
+
+
+def second_view(params: dict[str, Any], cfg: SceneConfig, model: ObjectModel,
+                rng: np.random.Generator) -> dict[str, Any]:
+    """The scene ``params`` seen by another camera of the same station: the same part, pose, defect, light and
+    materials; the camera drawn from ``cfg``'s camera ranges on ``rng`` about the part's centre and aimed at the
+    line camera's target. The line camera's entry is kept as ``line_camera``."""
+    centre = part_centre(model, params["pose"])
+    cam = centre + _on_shell(rng, cfg.camera_radius_m, cfg.camera_polar_deg, cfg.camera_azimuth_deg)
+    return {**params, "camera": camera_dict(cam, np.asarray(params["camera"]["target"]), cfg),
+            "line_camera": params["camera"]}
+
+
 def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel) -> dict[str, Any]:
     """Draw every scene parameter (JSON-serialisable): pose, camera, light, materials, background."""
     transforms, probs = stable_poses(model)
@@ -310,10 +335,7 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
     pose = {"index": k, "probability": float(probs[k]), "rest_transform": transforms[k].tolist(),
             "yaw_rad": float(yaw_lo + (yaw_hi - yaw_lo) * rng.random()),
             "xy_m": [float(x) for x in rng.uniform(-cfg.object_xy_m, cfg.object_xy_m, 2)]}
-    to_world = object_to_world(pose)
-    verts = np.concatenate([p.vertices for p in model.parts])
-    world = verts @ to_world[:3, :3].T + to_world[:3, 3]
-    centre = 0.5 * (world.min(0) + world.max(0))
+    centre = part_centre(model, pose)
     target = centre + rng.uniform(-cfg.camera_target_jitter_m, cfg.camera_target_jitter_m, 3)
     cam = centre + _on_shell(rng, cfg.camera_radius_m, cfg.camera_polar_deg, cfg.camera_azimuth_deg)
     light = centre + _on_shell(rng, cfg.light_radius_m, cfg.light_polar_deg, cfg.light_azimuth_deg)
@@ -330,11 +352,9 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
         "scale": float(rng.uniform(5, 60)),  # checker squares / noise blobs per metre... per plane side
         "noise_seed": int(rng.integers(2**31)),
     }
-    fov_deg = float(np.degrees(2 * np.arctan(cfg.sensor_width_mm / 2 / cfg.focal_length_mm)))
     return {
         "pose": pose,
-        "camera": {"origin": cam.tolist(), "target": target.tolist(), "up": _up_for(target - cam),
-                   "fov_x_deg": fov_deg},
+        "camera": camera_dict(cam, target, cfg),
         "light": {"origin": light.tolist(), "target": centre.tolist(), "intensity": _uniform(rng, cfg.light_intensity),
                   "cutoff_deg": cfg.light_cutoff_deg},
         "ambient_radiance": cfg.ambient_radiance,

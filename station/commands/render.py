@@ -132,6 +132,7 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "mesh_scale": args.mesh_scale, "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
         "variation": extra.get("variation", {}), "dome_segments": getattr(args, "dome_segments", ()),
+        "view": extra.get("view", {}),
     })
 
 
