@@ -61,3 +61,16 @@ def test_bad_views_are_refused_by_name(tmp_path) -> None:
         sd.DatasetSpec(view={"camera_polar_deg": [40.0, 95.0]})
     (tmp_path / "v.toml").write_text('[view]\ncamera_polar_deg = [32.0, 36.0]\n')
     assert sd.read_layers([tmp_path / "v.toml"]) == {"view": STEEP}
+
+
+def test_station_render_takes_a_view_from_a_config_file(tmp_path) -> None:
+    import json
+
+    from station.cli import main
+
+    (tmp_path / "v.toml").write_text('[view]\ncamera_polar_deg = [32.0, 36.0]\n')
+    tiny = ["--count", "2", "--width", "32", "--height", "24", "--spp", "1", "--no-ground-truth"]
+    assert main(["render", "--out", str(tmp_path / "set"), *tiny, "--config", str(tmp_path / "v.toml")]) == 0
+    assert json.loads((tmp_path / "set" / "manifest.json").read_text())["config"]["view"] == STEEP
+    params = json.loads((tmp_path / "set" / "samples" / "000000" / "params.json").read_text())
+    assert 32.0 <= polar_deg(params["scene"]["camera"]) <= 36.0 and "line_camera" in params["scene"]
