@@ -3,6 +3,8 @@ defects, light and sensor draws seen from another camera; a set without it rende
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -64,8 +66,6 @@ def test_bad_views_are_refused_by_name(tmp_path) -> None:
 
 
 def test_station_render_takes_a_view_from_a_config_file(tmp_path) -> None:
-    import json
-
     from station.cli import main
 
     (tmp_path / "v.toml").write_text('[view]\ncamera_polar_deg = [32.0, 36.0]\n')
