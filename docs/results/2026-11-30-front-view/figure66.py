@@ -7,9 +7,7 @@ Usage (repository root): python docs/results/2026-11-30-front-view/figure66.py O
 
 from __future__ import annotations
 
-import json
 import sys
-from pathlib import Path
 
 import cv2
 import matplotlib
@@ -19,6 +17,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from model.priors.api import compute_priors
+from sim.dataset import Dataset, Sample
 
 SETS = {"line camera": "data/line-panel-heldout-1167", "second camera": "data/fv-heldout-1167"}
 SMOOTH_PX = 2.5
@@ -27,26 +26,31 @@ HALF = 60
 """Half the side of the crop around the defect's centre, frame px."""
 
 
+def frame_maps(sample: Sample, bit_depth: int) -> tuple[np.ndarray, np.ndarray]:
+    """A loaded sample's frame: its intensity and DoLP as the station demosaics them (full-scale units, DoLP in
+    [0, 1]), the DoLP smoothed by ``SMOOTH_PX``. ``bit_depth``: the set's (its manifest's)."""
+    p = compute_priors(sample.raw, bit_depth=bit_depth, priors=("intensity", "dolp"))
+    return p["intensity"], cv2.GaussianBlur(p["dolp"], (0, 0), SMOOTH_PX)
+
+
 def crop(a: np.ndarray, cy: int, cx: int) -> np.ndarray:
     return a[max(cy - HALF, 0):cy + HALF, max(cx - HALF, 0):cx + HALF]
 
 
 def main() -> None:
     out, parts = sys.argv[1], [int(i) for i in sys.argv[2:]]
+    sets = {name: Dataset(root) for name, root in SETS.items()}
     fig, ax = plt.subplots(len(parts), 4, figsize=(10, 2.6 * len(parts)), squeeze=False)
     for r, i in enumerate(parts):
-        for c, (name, data) in enumerate(SETS.items()):
-            d = Path(data) / "samples" / f"{i:06d}"
-            meta = json.loads((Path(data) / "manifest.json").read_text())
-            raw = cv2.imread(str(d / "raw.png"), cv2.IMREAD_UNCHANGED)
-            p = compute_priors(raw, bit_depth=meta["bit_depth"], priors=("intensity", "dolp"))
-            mask = np.load(d / "gt.npz")["defect_mask"] > 0
+        for c, (name, ds) in enumerate(sets.items()):
+            sample = ds.load(i)
+            intensity, dolp = frame_maps(sample, ds.manifest["bit_depth"])
+            mask = sample.defect_mask > 0
             ys, xs = np.nonzero(mask)
-            cy, cx = (int(ys.mean()), int(xs.mean())) if ys.size else (raw.shape[0] // 2, raw.shape[1] // 2)
-            defect = json.loads((d / "params.json").read_text())["defect"] or {}
-            for k, (img, kw, what) in enumerate(((p["intensity"], {"cmap": "gray", "vmin": 0, "vmax": 1}, "intensity"),
-                                                 (cv2.GaussianBlur(p["dolp"], (0, 0), SMOOTH_PX),
-                                                  {"cmap": "viridis", "vmin": 0, "vmax": 0.12}, "DoLP"))):
+            cy, cx = (int(ys.mean()), int(xs.mean())) if ys.size else (mask.shape[0] // 2, mask.shape[1] // 2)
+            defect = sample.params["defect"] or {}
+            for k, (img, kw, what) in enumerate(((intensity, {"cmap": "gray", "vmin": 0, "vmax": 1}, "intensity"),
+                                                 (dolp, {"cmap": "viridis", "vmin": 0, "vmax": 0.12}, "DoLP"))):
                 a = ax[r, 2 * c + k]
                 a.imshow(crop(img, cy, cx), **kw)
                 if ys.size:
