@@ -9,7 +9,6 @@ the twins of one set: the same parts). Prints the plan's tables in Markdown.
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -19,14 +18,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-27-brig
 from faces import faces_of
 
 from model.draem.metrics import false_reject_threshold, paired_auroc_gains
-from station.eval_compare import read_scores
+from station.eval_compare import read_report, read_scores
 
 RATE = 0.01
 """The issue's rate of good parts rejected."""
-
-
-def threshold(eval_dir: str) -> float:
-    return float(json.loads((Path(eval_dir) / "eval.json").read_text())["threshold"])
 
 
 def aligned(a: dict, b: dict) -> tuple[list[int], np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -54,9 +49,10 @@ def paired_caught(y: np.ndarray, base: np.ndarray, other: np.ndarray) -> tuple[f
 
 def main() -> None:
     line_eval, line_data, f_eval, line_val, f_val = sys.argv[1:6]
-    tl, tf = threshold(line_eval), threshold(f_eval)
-    idx, y, t, sl, sf = aligned(read_scores(line_eval), read_scores(f_eval))
-    seen_line = np.array([read_scores(line_eval)[i][0] == 1 for i in idx])
+    tl, tf = (float(read_report(d)["threshold"]) for d in (line_eval, f_eval))
+    line = read_scores(line_eval)
+    idx, y, t, sl, sf = aligned(line, read_scores(f_eval))
+    seen_line = np.array([line[i][0] == 1 for i in idx])
     _, groups = faces_of(line_eval, line_data)
     face = np.array([groups[i][1] if i in groups else ("unseen by the line camera" if y[k] else "")
                      for k, i in enumerate(idx)])
