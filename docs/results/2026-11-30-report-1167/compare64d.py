@@ -7,20 +7,18 @@ AUROC change S - U with its bootstrap SE (score64c's tables). Check 65 names its
 
 from __future__ import annotations
 
-import json
 import sys
-from pathlib import Path
 
 import numpy as np
 from score64c import paired_table, row
 
-from station.eval_compare import read_scores
+from station.eval_compare import read_report, read_scores
 
 
 def main() -> None:
     dirs = sys.argv[1:3]
     nu, ns = sys.argv[3:5] or ("U", "S")
-    thr = [json.loads((Path(d) / "eval.json").read_text())["threshold"] for d in dirs]
+    thr = [read_report(d)["threshold"] for d in dirs]
     u, s = (read_scores(d) for d in dirs)
     idx = sorted(u)
     assert sorted(s) == idx and all(u[i][:2] == s[i][:2] for i in idx), "the reports are not on the same parts"

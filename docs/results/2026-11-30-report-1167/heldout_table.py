@@ -8,13 +8,12 @@ shipped file, which saw every type.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
 from model.draem.metrics import auroc
-from station.eval_compare import read_scores
+from station.eval_compare import read_report, read_scores
 
 TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
 SETS = {  # report set -> (the shipped file's report, the folder holding eval-H-<type>)
@@ -27,7 +26,7 @@ def cells(folder: str, kind: str) -> str:
     """'AUROC (caught at 1 %; good rejected)' of one type in one report."""
     if not (Path(folder) / "scores.csv").exists():
         return "not measured | "
-    thr = json.loads((Path(folder) / "eval.json").read_text())["threshold"]
+    thr = read_report(folder)["threshold"]
     r = read_scores(folder)
     y = np.array([v[0] for v in r.values()], bool)
     t = np.array([v[1] for v in r.values()])
