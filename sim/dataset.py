@@ -66,7 +66,16 @@ from .errors import SimError
 from .meshes import ObjectModel, object_from_config
 from .oracle import DefectSNR, defect_snr
 from .render import RENDERER_VERSION, RenderSettings, render_sample
-from .scene import SceneConfig, material_keys_check, object_to_world, sample_scene, sampler_spp, second_view
+from .scene import (
+    VIEW_CAMERA_KEYS,
+    SceneConfig,
+    ViewConfig,
+    material_keys_check,
+    object_to_world,
+    sample_scene,
+    sampler_spp,
+    second_view,
+)
 from .sensor import SensorConfig, simulate
 from .variation import LineVariation
 
@@ -128,11 +137,11 @@ class DatasetSpec:
     one frame per sample under the scene's dome. See ``generate_sample`` for what the frames share."""
 
     view: dict[str, Any] = field(default_factory=dict)
-    """A second camera of the station (``[view]``: any of ``VIEW_KEYS``, the scene's camera ranges): each sample is
-    drawn exactly as without it, the defect placed for the line's camera, then seen from a camera drawn from these
-    ranges on the sample's own stream ``default_rng([seed, index, 5])`` (``sim.scene.second_view``). The same seed
-    with and without ``view`` renders the same parts, defects, light and sensor draws from two cameras. Empty: the
-    line's camera."""
+    """A second camera of the station (``[view]``: any of ``VIEW_KEYS``: the scene's camera ranges, a height above
+    the belt, a flat dome; ``sim.scene.ViewConfig``): each sample is drawn exactly as without it, the defect placed
+    for the line's camera, then seen from a camera drawn from these ranges on the sample's own stream
+    ``default_rng([seed, index, 5])`` (``sim.scene.second_view``). The same seed with and without ``view`` renders
+    the same parts, defects, light and sensor draws from two cameras. Empty: the line's camera."""
 
     def __post_init__(self) -> None:
         bad = sorted(set(self.view) - set(VIEW_KEYS))
@@ -140,7 +149,7 @@ class DatasetSpec:
             raise SimError(f"view: unknown keys {bad}; use {', '.join(VIEW_KEYS)}")
         if self.view:
             try:
-                self.view_scene()  # checks the ranges
+                self.view_config()  # checks the ranges
             except SimError as exc:
                 raise SimError(f"view: {exc}") from None
         # the config states the spp that is rendered: the sampler rounds some counts up (32 -> 35)
@@ -167,9 +176,10 @@ class DatasetSpec:
                                "is): under a uniform dome every segment's frame is the same")
         self.render_settings()  # checks size and spp
 
-    def view_scene(self) -> SceneConfig:
-        """The scene with the second camera's ranges (``view``) in place of the line camera's."""
-        return SceneConfig.from_dict({**self.scene.to_dict(), **self.view})
+    def view_config(self) -> ViewConfig:
+        """The second camera (``view``): its ranges in place of the line camera's, its height above the belt and
+        its flat dome (``sim.scene.ViewConfig``)."""
+        return ViewConfig.from_dict(self.view, self.scene)
 
     @property
     def whole_split(self) -> str | None:
@@ -245,8 +255,11 @@ class Sample:
 
 
 OVERRIDE_SECTIONS = ("scene", "defects", "sensor", "variation", "view")
-VIEW_KEYS = ("camera_radius_m", "camera_polar_deg", "camera_azimuth_deg")
-"""The keys of ``[view]`` (``DatasetSpec.view``): a second camera's ranges, as the scene's camera keys."""
+VIEW_KEYS = (*VIEW_CAMERA_KEYS, "camera_height_m", "flat_dome_radiance", "flat_dome_distance_m", "flat_dome_width_m",
+             "flat_dome_top_m")
+"""The keys of ``[view]`` (``DatasetSpec.view``): a second camera's ranges, as the scene's camera keys; its height
+above the belt, for a camera that looks level at the part; a flat dome it looks through (``sim.scene.ViewConfig``,
+``FlatDome``)."""
 
 
 def read_overrides(path: str | Path) -> dict[str, dict[str, Any]]:
@@ -344,7 +357,7 @@ def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw
         cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
         defect = apply_defect(model, kind, rng, spec.defects, cam_obj, params["materials"])
     if spec.view:  # a second camera of the same part: everything above drawn as for the line's camera
-        params = second_view(params, spec.view_scene(), model, np.random.default_rng([spec.seed, index, 5]))
+        params = second_view(params, spec.view_config(), model, np.random.default_rng([spec.seed, index, 5]))
     sensor, sensor_record = spec.variation.draw(spec.sensor, spec.seed, index)
     return SampleDraw(index, split, params, defect, int(rng.integers(2**32)), empty, sensor, sensor_record)
 

@@ -311,15 +311,99 @@ def camera_dict(origin: np.ndarray, target: np.ndarray, cfg: SceneConfig) -> dic
     return {"origin": origin.tolist(), "target": target.tolist(), "up": _up_for(target - origin), "fov_x_deg": fov_deg}
 
 
-def second_view(params: dict[str, Any], cfg: SceneConfig, model: ObjectModel,
+VIEW_CAMERA_KEYS = ("camera_radius_m", "camera_polar_deg", "camera_azimuth_deg")
+"""``[view]`` keys that are the scene's own camera ranges (``SceneConfig``), for the second camera."""
+
+FLAT_DOME_BOTTOM_M = 5e-4
+"""Height of the flat dome's lower edge above the belt (clear of the ground plane's own surface)."""
+
+
+@dataclass(frozen=True)
+class FlatDome:
+    """A flat dome in front of a second camera (``[view] flat_dome_*``): a diffuse panel facing the part that the
+    camera looks through, as a flat-dome light (or a large coaxial one) is built, modelled as a one-sided area
+    emitter of ``radiance`` on a rectangle with a null BSDF. It stands ``distance_m`` from the part's centre toward
+    the camera (horizontally), ``width_m`` wide, from ``FLAT_DOME_BOTTOM_M`` above the belt to ``top_m``. A
+    camera at belt level looking square at a vertical front face sees the face mirror the camera's own side, so the
+    face shows the dome (bright field): a dent's slope or a scratch's roughness sends its mirror image off the dome
+    and it reads dark. A face turned by theta mirrors a direction 2 theta away: ``width_m`` at ``distance_m`` covers
+    +-atan(width / 2 / distance) / 2 of the face's turn (the part's yaw plus the camera's azimuth)."""
+
+    radiance: float
+    distance_m: float = 0.30
+    width_m: float = 0.22
+    top_m: float = 0.03
+
+    def __post_init__(self) -> None:
+        for key in ("radiance", "distance_m", "width_m"):
+            v = getattr(self, key)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise SimError(f"flat_dome_{key}: must be a number > 0, got {v!r}")
+        if not (isinstance(self.top_m, (int, float)) and self.top_m > FLAT_DOME_BOTTOM_M):
+            raise SimError(f"flat_dome_top_m: must be above {FLAT_DOME_BOTTOM_M:g} m, got {self.top_m!r}")
+
+    def placed(self, centre: np.ndarray, toward_camera: np.ndarray) -> dict[str, Any]:
+        """The scene's ``flat_dome`` entry for a part centred at ``centre`` (world metres) seen from the horizontal
+        unit direction ``toward_camera``: the rectangle's centre, its facing (toward the part), size and radiance."""
+        mid = 0.5 * (self.top_m + FLAT_DOME_BOTTOM_M)
+        at = np.array([centre[0], centre[1], mid]) + self.distance_m * toward_camera
+        return {"centre": at.tolist(), "toward": (-toward_camera).tolist(), "width_m": self.width_m,
+                "height_m": self.top_m - FLAT_DOME_BOTTOM_M, "radiance": self.radiance}
+
+
+@dataclass(frozen=True)
+class ViewConfig:
+    """A second camera of the station (``[view]``): ``scene`` holds its camera ranges (``VIEW_CAMERA_KEYS``, the
+    rest as the line's scene). With ``height_m`` (``camera_height_m``, metres above the belt) the camera stands at
+    that height, ``camera_radius_m`` from the part's centre horizontally, and looks level at the part (its polar
+    range is not used); else it is drawn on the shell as the line camera is. ``flat_dome``: a light it looks
+    through (``FlatDome``), or None."""
+
+    scene: SceneConfig
+    height_m: tuple[float, float] | None = None
+    flat_dome: FlatDome | None = None
+
+    def __post_init__(self) -> None:
+        h = self.height_m
+        if h is not None and not (len(h) == 2 and all(isinstance(v, (int, float)) and math.isfinite(v) for v in h)
+                                  and 0 < h[0] <= h[1]):
+            raise SimError(f"camera_height_m: need a range (lo, hi) of metres above the belt, 0 < lo <= hi; "
+                           f"got {h!r}")
+        if self.flat_dome and self.flat_dome.distance_m >= self.scene.camera_radius_m[0]:
+            raise SimError(f"flat_dome_distance_m: the camera looks through the dome, so it stands nearer the "
+                           f"part than the camera ({self.scene.camera_radius_m[0]} m); got {self.flat_dome.distance_m}")
+
+    @classmethod
+    def from_dict(cls, view: dict[str, Any], scene: SceneConfig) -> ViewConfig:
+        """``[view]``'s keys over the line's ``scene``; SimError names a bad key."""
+        cameras = {k: v for k, v in view.items() if k in VIEW_CAMERA_KEYS}
+        dome = {k.removeprefix("flat_dome_"): v for k, v in view.items() if k.startswith("flat_dome_")}
+        if dome and "radiance" not in dome:
+            raise SimError("flat_dome_radiance: the flat dome's other keys need its radiance")
+        height = view.get("camera_height_m")
+        return cls(SceneConfig.from_dict({**scene.to_dict(), **cameras}),
+                   None if height is None else tuple(height), FlatDome(**dome) if dome else None)
+
+
+def second_view(params: dict[str, Any], view: ViewConfig, model: ObjectModel,
                 rng: np.random.Generator) -> dict[str, Any]:
     """The scene ``params`` seen by another camera of the same station: the same part, pose, defect, light and
-    materials; the camera drawn from ``cfg``'s camera ranges on ``rng`` about the part's centre and aimed at the
-    line camera's target. The line camera's entry is kept as ``line_camera``."""
+    materials; the camera drawn from ``view``'s ranges on ``rng`` about the part's centre (on the shell, or at belt
+    level: ``ViewConfig``) and aimed at the line camera's target, with ``view``'s flat dome placed before it. The
+    line camera's entry is kept as ``line_camera``."""
+    cfg = view.scene
     centre = part_centre(model, params["pose"])
-    cam = centre + _on_shell(rng, cfg.camera_radius_m, cfg.camera_polar_deg, cfg.camera_azimuth_deg)
-    return {**params, "camera": camera_dict(cam, np.asarray(params["camera"]["target"]), cfg),
-            "line_camera": params["camera"]}
+    if view.height_m is None:
+        cam = centre + _on_shell(rng, cfg.camera_radius_m, cfg.camera_polar_deg, cfg.camera_azimuth_deg)
+    else:
+        r, az = _uniform(rng, cfg.camera_radius_m), math.radians(_uniform(rng, cfg.camera_azimuth_deg))
+        cam = np.array([centre[0] + r * math.cos(az), centre[1] + r * math.sin(az), _uniform(rng, view.height_m)])
+    out = {**params, "camera": camera_dict(cam, np.asarray(params["camera"]["target"]), cfg),
+           "line_camera": params["camera"]}
+    if view.flat_dome is not None:
+        toward = np.array([cam[0] - centre[0], cam[1] - centre[1], 0.0])
+        out["flat_dome"] = view.flat_dome.placed(centre, toward / np.linalg.norm(toward))
+    return out
 
 
 def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel) -> dict[str, Any]:
@@ -606,6 +690,24 @@ def front_light_dict(light: dict) -> dict:
                         "sampling_weight": float(FRONT_LIGHT_SAMPLING * np.pi * light["radiance"])}}
 
 
+def flat_dome_dict(dome: dict) -> dict:
+    """The flat dome (``FlatDome.placed``'s entry): a rectangle with a null BSDF, which the camera's rays pass
+    through, and a one-sided area emitter of ``radiance`` facing ``toward`` (the part): the camera behind it sees
+    its unlit back. It shades the dome light behind it, as a real panel does. Its light-sampling weight is its
+    irradiance on a face square to it, radiance times its solid angle from the fixture's centre (the world origin;
+    ``emitter_weights``' units).
+    The mask passes must not see it (``sim.render.render_sample`` renders them without it)."""
+    import mitsuba as mi
+
+    c, toward = np.asarray(dome["centre"], float), np.asarray(dome["toward"], float)
+    w, h, radiance = float(dome["width_m"]), float(dome["height_m"]), float(dome["radiance"])
+    frame = mi.ScalarTransform4f().look_at(origin=c.tolist(), target=(c + toward).tolist(), up=[0, 0, 1])
+    return {"type": "rectangle", "bsdf": {"type": "null"},
+            "to_world": frame @ mi.ScalarTransform4f().scale([w / 2, h / 2, 1.0]),
+            "emitter": {"type": "area", "radiance": {"type": "spectrum", "value": radiance},
+                        "sampling_weight": radiance * w * h / float(np.linalg.norm(c[:2])) ** 2}}
+
+
 def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,
                 background_size_m: float = 1.0, lights: bool = True, window: tuple[int, int, int, int] | None = None
                 ) -> tuple[dict, list[str]]:
@@ -641,6 +743,8 @@ def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], wid
             scene["ambient"]["sampling_weight"] = ambient_w
         if params.get("front_light"):
             scene["front_light"] = front_light_dict(params["front_light"])
+        if params.get("flat_dome"):
+            scene["flat_dome"] = flat_dome_dict(params["flat_dome"])
     else:
         scene["ground"] = {"type": "rectangle",
                            "to_world": mi.ScalarTransform4f().scale([background_size_m / 2, background_size_m / 2, 1])}
