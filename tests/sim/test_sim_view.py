@@ -74,3 +74,57 @@ def test_station_render_takes_a_view_from_a_config_file(tmp_path) -> None:
     assert json.loads((tmp_path / "set" / "manifest.json").read_text())["config"]["view"] == STEEP
     params = json.loads((tmp_path / "set" / "samples" / "000000" / "params.json").read_text())
     assert 32.0 <= polar_deg(params["scene"]["camera"]) <= 36.0 and "line_camera" in params["scene"]
+
+
+SIDE = {"camera_radius_m": [0.38, 0.40], "camera_azimuth_deg": [265.0, 275.0], "camera_height_m": [0.0015, 0.0025]}
+DOME = {"flat_dome_radiance": 5.0, "flat_dome_distance_m": 0.30, "flat_dome_width_m": 0.22, "flat_dome_top_m": 0.03}
+LINE = SceneConfig(camera_radius_m=(0.38, 0.40), camera_polar_deg=(54.0, 58.0), camera_azimuth_deg=(265.0, 275.0),
+                   yaw_deg=(-5.0, 5.0), rest_pose=0, camera_target_jitter_m=0.0)
+
+
+def test_a_belt_level_view_stands_at_its_height_and_keeps_every_draw() -> None:
+    from sim.scene import part_centre
+
+    line = sd.DatasetSpec(seed=5, defect_fraction=1.0, heldout=True, scene=LINE, **TINY)
+    side = sd.DatasetSpec(seed=5, defect_fraction=1.0, heldout=True, scene=LINE, view={**SIDE, **DOME}, **TINY)
+    model = sd.prepare(line)
+    for i in range(8):
+        a, b = sd.draw_sample(line, model, i), sd.draw_sample(side, model, i)
+        camera, dome = b.params.pop("camera"), b.params.pop("flat_dome")
+        assert b.params.pop("line_camera") == a.params.pop("camera")
+        assert b.params == a.params and b.sensor == a.sensor and b.defect.info == a.defect.info
+        centre = part_centre(model, a.params["pose"])
+        origin = np.asarray(camera["origin"])
+        assert 0.0015 <= origin[2] <= 0.0025
+        assert 0.38 <= np.hypot(*(origin[:2] - centre[:2])) <= 0.40
+        # the dome stands between the camera and the part, facing the part, 0.30 m from it
+        toward = np.asarray(dome["toward"])
+        assert np.allclose(np.asarray(dome["centre"])[:2] - 0.30 * -toward[:2], centre[:2])
+        assert np.dot(origin[:2] - centre[:2], toward[:2]) < 0 and dome["radiance"] == 5.0
+
+
+def test_a_flat_dome_lights_the_front_face_and_the_masks_see_through_it() -> None:
+    from sim.render import render_sample
+
+    spec = sd.DatasetSpec(seed=5, defect_fraction=0.0, scene=LINE, view={**SIDE, **DOME}, width=96, height=72, spp=4)
+    model = sd.prepare(spec)
+    draw = sd.draw_sample(spec, model, 0)
+    lit = render_sample(model, draw.params, None, spec.render_settings(), draw.mitsuba_seed)
+    dark = render_sample(model, {k: v for k, v in draw.params.items() if k != "flat_dome"}, None,
+                         spec.render_settings(), draw.mitsuba_seed)
+    assert lit.object_mask.sum() > 100  # the camera's rays pass the dome: the masks are the part's
+    assert np.array_equal(lit.object_mask, dark.object_mask) and np.array_equal(lit.normal, dark.normal)
+    face = lit.object_mask & (lit.normal[..., 2] > 0.9)  # square to the camera: the front face
+    assert face.sum() > 50
+    assert np.median(lit.s0[face]) > 1.5 * np.median(dark.s0[face])  # bright field: the face mirrors the dome
+
+
+def test_bad_belt_views_and_domes_are_refused_by_key() -> None:
+    with pytest.raises(SimError, match=r"view: camera_height_m"):
+        sd.DatasetSpec(view={**SIDE, "camera_height_m": [0.0, 0.002]})
+    with pytest.raises(SimError, match=r"view: flat_dome_radiance: the flat dome's other keys"):
+        sd.DatasetSpec(view={**SIDE, "flat_dome_width_m": 0.2})
+    with pytest.raises(SimError, match=r"view: flat_dome_width_m: must be a number > 0"):
+        sd.DatasetSpec(view={**SIDE, **DOME, "flat_dome_width_m": -1.0})
+    with pytest.raises(SimError, match=r"view: flat_dome_distance_m: the camera looks through the dome"):
+        sd.DatasetSpec(view={**SIDE, **DOME, "flat_dome_distance_m": 0.5})
