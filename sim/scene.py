@@ -693,10 +693,9 @@ def front_light_dict(light: dict) -> dict:
 def flat_dome_dict(dome: dict) -> dict:
     """The flat dome (``FlatDome.placed``'s entry): a rectangle with a null BSDF, which the camera's rays pass
     through, and a one-sided area emitter of ``radiance`` facing ``toward`` (the part): the camera behind it sees
-    its unlit back. It shades the dome light behind it, as a real panel does. Its light-sampling weight is its
-    irradiance on a face square to it, radiance times its solid angle from the fixture's centre (the world origin;
-    ``emitter_weights``' units).
-    The mask passes must not see it (``sim.render.render_sample`` renders them without it)."""
+    its unlit back. Its light-sampling weight is its irradiance on a face square to it, radiance times its solid
+    angle from the fixture's centre (the world origin; ``emitter_weights``' units). The mask passes must not see it
+    (``sim.render.render_sample`` renders them without it)."""
     import mitsuba as mi
 
     c, toward = np.asarray(dome["centre"], float), np.asarray(dome["toward"], float)
