@@ -1,10 +1,10 @@
 """Check 66 (plan.md): the line camera's file and the second camera's file F on the same parts of seed 1167.
 
 Usage (repository root):
-    python docs/results/2026-11-30-front-view/compare66.py LINE_EVAL LINE_DATA F_EVAL LINE_VAL_EVAL F_VAL_EVAL
-LINE_EVAL, F_EVAL: `station eval` reports on seed 1167 from each camera; LINE_DATA: the line camera's set (its
-ground-truth normals give each defect's face); *_VAL_EVAL: each file's report on its validation set (`--split val`;
-the twins of one set: the same parts). Prints the plan's tables in Markdown.
+    python docs/results/2026-11-30-front-view/compare66.py LINE_EVAL LINE_DATA F_EVAL LINE_VAL_EVAL F_VAL_EVAL [SEED]
+LINE_EVAL, F_EVAL: `station eval` reports on seed SEED (default 1167) from each camera; LINE_DATA: the line camera's
+set (its ground-truth normals give each defect's face); *_VAL_EVAL: each file's report on its validation set
+(`--split val`; the twins of one set: the same parts). Prints the plan's tables in Markdown.
 """
 
 from __future__ import annotations
@@ -49,6 +49,7 @@ def paired_caught(y: np.ndarray, base: np.ndarray, other: np.ndarray) -> tuple[f
 
 def main() -> None:
     line_eval, line_data, f_eval, line_val, f_val = sys.argv[1:6]
+    seed = sys.argv[6] if len(sys.argv) > 6 else "1167"
     tl, tf = (float(read_report(d)["threshold"]) for d in (line_eval, f_eval))
     line = read_scores(line_eval)
     idx, y, t, sl, sf = aligned(line, read_scores(f_eval))
@@ -59,7 +60,7 @@ def main() -> None:
     vidx, vy, _, vl, vf = aligned(read_scores(line_val), read_scores(f_val))
     tc = false_reject_threshold(np.maximum(vl / tl, vf / tf)[~vy], RATE)
     comb = np.maximum(sl / tl, sf / tf)
-    print(f"Seed 1167: {len(idx)} parts, {int((~y).sum())} good, {int(y.sum())} defective "
+    print(f"Seed {seed}: {len(idx)} parts, {int((~y).sum())} good, {int(y.sum())} defective "
           f"({int((y & ~seen_line).sum())} of them seen by the second camera only). Thresholds: line {tl:.4f}, "
           f"F {tf:.4f}; combined {tc:.4f} (1 % of the {int((~vy).sum())} good validation parts, "
           f"{len(vidx)} parts).\n")

@@ -20,5 +20,5 @@ until [ -f $R/done ]; do sleep 30; done
 [ -f $R/eval-S-1169/scores.csv ] || .venv/bin/station eval --model $R/S --data data/sv-heldout-1169 \
   --val-data data/sv-pv-val --no-synthetic --no-plots --out $R/eval-S-1169 > $R/eval-S-1169.log 2>&1
 .venv/bin/python docs/results/2026-11-30-front-view/compare66.py $R/eval-line-1169 data/line-panel-heldout-1169 \
-  $R/eval-S-1169 $R/val-default $R/val-S > docs/results/2026-11-30-side-view/compare67-1169.md
+  $R/eval-S-1169 $R/val-default $R/val-S 1169 > docs/results/2026-11-30-side-view/compare67-1169.md
 echo done > $R/done-1169
