@@ -37,6 +37,18 @@ def crop(a: np.ndarray, cy: int, cx: int) -> np.ndarray:
     return a[max(cy - HALF, 0):cy + HALF, max(cx - HALF, 0):cx + HALF]
 
 
+def show(a, img: np.ndarray, mask: np.ndarray, title: str, **kw) -> None:
+    """Axis ``a``: ``img`` cropped around the centre of the defect ``mask`` (the frame's centre when it is empty),
+    the mask outlined, titled ``title``; ``kw`` go to ``imshow``."""
+    ys, xs = np.nonzero(mask)
+    cy, cx = (int(ys.mean()), int(xs.mean())) if ys.size else (mask.shape[0] // 2, mask.shape[1] // 2)
+    a.imshow(crop(img, cy, cx), **kw)
+    if ys.size:
+        a.contour(crop(mask, cy, cx), [0.5], colors="r", linewidths=0.6)
+    a.set_title(title, fontsize=8)
+    a.axis("off")
+
+
 def main() -> None:
     out, parts = sys.argv[1], [int(i) for i in sys.argv[2:]]
     sets = {name: Dataset(root) for name, root in SETS.items()}
@@ -45,18 +57,11 @@ def main() -> None:
         for c, (name, ds) in enumerate(sets.items()):
             sample = ds.load(i)
             intensity, dolp = frame_maps(sample, ds.manifest["bit_depth"])
-            mask = sample.defect_mask > 0
-            ys, xs = np.nonzero(mask)
-            cy, cx = (int(ys.mean()), int(xs.mean())) if ys.size else (mask.shape[0] // 2, mask.shape[1] // 2)
             defect = sample.params["defect"] or {}
             for k, (img, kw, what) in enumerate(((intensity, {"cmap": "gray", "vmin": 0, "vmax": 1}, "intensity"),
                                                  (dolp, {"cmap": "viridis", "vmin": 0, "vmax": 0.12}, "DoLP"))):
-                a = ax[r, 2 * c + k]
-                a.imshow(crop(img, cy, cx), **kw)
-                if ys.size:
-                    a.contour(crop(mask, cy, cx), [0.5], colors="r", linewidths=0.6)
-                a.set_title(f"{i} {defect.get('type', '')}: {name}, {what}", fontsize=8)
-                a.axis("off")
+                show(ax[r, 2 * c + k], img, sample.defect_mask > 0, f"{i} {defect.get('type', '')}: {name}, {what}",
+                     **kw)
     fig.tight_layout()
     fig.savefig(out, dpi=80)
 

@@ -15,12 +15,11 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-30-front-view"))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-27-bright-field"))
 from faces import faces_of
-from figure66 import crop, frame_maps
+from figure66 import frame_maps, show
 
 from sim.dataset import Dataset
 from station.eval_compare import read_report
@@ -46,15 +45,8 @@ def main() -> None:
         for c, (name, ds) in enumerate(sets.items()):
             sample = ds.load(i)
             intensity, _ = frame_maps(sample, ds.manifest["bit_depth"])
-            mask = sample.defect_mask > 0
-            ys, xs = np.nonzero(mask)
-            cy, cx = (int(ys.mean()), int(xs.mean())) if ys.size else (mask.shape[0] // 2, mask.shape[1] // 2)
-            a = ax[r, c]
-            a.imshow(crop(intensity, cy, cx), cmap="gray", vmin=0, vmax=1)
-            if ys.size:
-                a.contour(crop(mask, cy, cx), [0.5], colors="r", linewidths=0.6)
-            a.set_title(f"{i} {(sample.params['defect'] or {}).get('type', '')}: {name}", fontsize=8)
-            a.axis("off")
+            show(ax[r, c], intensity, sample.defect_mask > 0,
+                 f"{i} {(sample.params['defect'] or {}).get('type', '')}: {name}", cmap="gray", vmin=0, vmax=1)
     fig.tight_layout()
     fig.savefig(out, dpi=80)
 
