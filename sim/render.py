@@ -180,10 +180,8 @@ def render_sample(model: ObjectModel, params: dict, defect: DefectResult | None,
     out.seconds = {"build_s": t1 - t0, "stokes_s": t2 - t1}
     if not settings.ground_truth and defect is None:
         return out
-    if params.get("flat_dome"):  # the camera looks through the flat dome: the mask passes see the part, not it
-        geometry = {k: v for k, v in params.items() if k != "flat_dome"}
-        scene = load_scene(build_scene(geometry, parts, materials, settings.width, settings.height, settings.spp,
-                                       settings.background_size_m, window=settings.window)[0])
+    if "flat_dome" in scene_dict:  # the camera looks through the flat dome: the mask passes see the part, not it
+        scene = load_scene({k: v for k, v in scene_dict.items() if k != "flat_dome"})
     # without ground truth a defect still needs its visibility (the label): a shape-index-only pass
     mi.render(scene, integrator=_integrator("aov" if settings.ground_truth else "sid"), spp=1, seed=seed ^ 0x5EED)
     ch = _channels(scene)
