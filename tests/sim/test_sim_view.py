@@ -14,6 +14,9 @@ from sim.scene import SceneConfig
 
 TINY = {"width": 64, "height": 48, "spp": 4}
 STEEP = {"camera_polar_deg": [32.0, 36.0]}
+LINE = SceneConfig(camera_radius_m=(0.38, 0.40), camera_polar_deg=(54.0, 58.0), camera_azimuth_deg=(265.0, 275.0),
+                   yaw_deg=(-5.0, 5.0), rest_pose=0, camera_target_jitter_m=0.0)
+"""The line presets' camera and part pose (``sim/presets/line-polar.toml``), without target jitter."""
 
 
 def polar_deg(camera: dict) -> float:
@@ -23,10 +26,8 @@ def polar_deg(camera: dict) -> float:
 
 
 def test_a_second_view_sees_the_same_draws_from_its_own_camera() -> None:
-    scene = SceneConfig(camera_polar_deg=(54.0, 58.0), camera_azimuth_deg=(265.0, 275.0), yaw_deg=(-5.0, 5.0),
-                        rest_pose=0, camera_target_jitter_m=0.0)
-    line = sd.DatasetSpec(seed=11, defect_fraction=1.0, heldout=True, scene=scene, **TINY)
-    view = sd.DatasetSpec(seed=11, defect_fraction=1.0, heldout=True, scene=scene, view=STEEP, **TINY)
+    line = sd.DatasetSpec(seed=11, defect_fraction=1.0, heldout=True, scene=LINE, **TINY)
+    view = sd.DatasetSpec(seed=11, defect_fraction=1.0, heldout=True, scene=LINE, view=STEEP, **TINY)
     model = sd.prepare(line)
     moved = 0
     for i in range(12):
@@ -41,7 +42,7 @@ def test_a_second_view_sees_the_same_draws_from_its_own_camera() -> None:
         assert a.defect is not None and b.defect is not None and b.defect.info == a.defect.info
         # a config override of the scene's own camera instead moves the defect for the new camera (why [view] exists)
         c = sd.draw_sample(sd.DatasetSpec(seed=11, defect_fraction=1.0, heldout=True, **TINY,
-                                          scene=SceneConfig.from_dict({**scene.to_dict(), **STEEP})), model, i)
+                                          scene=SceneConfig.from_dict({**LINE.to_dict(), **STEEP})), model, i)
         moved += c.defect is None or c.defect.info != a.defect.info
     assert moved > 0
 
@@ -78,8 +79,6 @@ def test_station_render_takes_a_view_from_a_config_file(tmp_path) -> None:
 
 SIDE = {"camera_radius_m": [0.38, 0.40], "camera_azimuth_deg": [265.0, 275.0], "camera_height_m": [0.0015, 0.0025]}
 DOME = {"flat_dome_radiance": 5.0, "flat_dome_distance_m": 0.30, "flat_dome_width_m": 0.22, "flat_dome_top_m": 0.03}
-LINE = SceneConfig(camera_radius_m=(0.38, 0.40), camera_polar_deg=(54.0, 58.0), camera_azimuth_deg=(265.0, 275.0),
-                   yaw_deg=(-5.0, 5.0), rest_pose=0, camera_target_jitter_m=0.0)
 
 
 def test_a_belt_level_view_stands_at_its_height_and_keeps_every_draw() -> None:
