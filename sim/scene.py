@@ -326,12 +326,14 @@ class FlatDome:
     the camera (horizontally), ``width_m`` wide, from ``FLAT_DOME_BOTTOM_M`` above the belt to ``top_m``. A
     camera at belt level looking square at a vertical front face sees the face mirror the camera's own side, so the
     face shows the dome (bright field): a dent's slope or a scratch's roughness sends its mirror image off the dome
-    and it reads dark. A face turned by theta mirrors a direction 2 theta away: ``width_m`` at ``distance_m`` covers
-    +-atan(width / 2 / distance) / 2 of the face's turn (the part's yaw plus the camera's azimuth)."""
+    and it reads dark. A face turned by theta against the camera's line of sight (the part's yaw less the camera's
+    azimuth) mirrors a direction 2 theta away, and a point of the face x off its centre mirrors that direction from
+    x: the whole face stays in bright field while width / 2 >= x_end + distance tan(2 theta_max + its view angle),
+    with some degrees more for a rough finish's lobe (``sim/presets/side-view.toml`` works it out for the line)."""
 
     radiance: float
     distance_m: float = 0.30
-    width_m: float = 0.22
+    width_m: float = 0.36
     top_m: float = 0.03
 
     def __post_init__(self) -> None:
