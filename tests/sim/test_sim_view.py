@@ -127,3 +127,35 @@ def test_bad_belt_views_and_domes_are_refused_by_key() -> None:
         sd.DatasetSpec(view={**SIDE, **DOME, "flat_dome_width_m": -1.0})
     with pytest.raises(SimError, match=r"view: flat_dome_distance_m: the camera looks through the dome"):
         sd.DatasetSpec(view={**SIDE, **DOME, "flat_dome_distance_m": 0.5})
+
+
+def front_face_thirds(yaw_deg: float, azimuth_deg: float, width_m: float | None = None) -> list[float]:
+    """The body's front face under ``sim/presets/side-view.toml``'s camera and dome, the part at ``yaw_deg`` and the
+    camera at ``azimuth_deg`` (a dome ``width_m`` wide instead of the preset's): its median rendered S0 in the left,
+    middle and right thirds of its columns."""
+    from sim.render import render_sample
+
+    view = sd.read_layers(["sim/presets/side-view.toml"])["view"]
+    view = {**view, "camera_azimuth_deg": [azimuth_deg, azimuth_deg]}
+    if width_m is not None:
+        view["flat_dome_width_m"] = width_m
+    scene = SceneConfig.from_dict({**LINE.to_dict(), "yaw_deg": [yaw_deg, yaw_deg]})
+    spec = sd.DatasetSpec(seed=5, defect_fraction=0.0, scene=scene, view=view, width=160, height=120, spp=4)
+    model = sd.prepare(spec)
+    draw = sd.draw_sample(spec, model, 0)
+    out = render_sample(model, draw.params, None, spec.render_settings(), draw.mitsuba_seed)
+    body = [p.name for p in model.parts].index("body") + 1  # part_index: 0 is the background
+    face = (out.part_index == body) & (out.normal[..., 2] > 0.9)
+    thirds = np.array_split(np.flatnonzero(face.any(0)), 3)
+    return [float(np.median(out.s0[:, c][face[:, c]])) for c in thirds]
+
+
+@pytest.mark.parametrize(("yaw_deg", "azimuth_deg"), [(-5.0, 275.0), (5.0, 265.0)])
+def test_the_presets_flat_dome_fills_the_whole_front_face_at_the_lines_worst_turns(yaw_deg, azimuth_deg) -> None:
+    # The face's mirror turns by twice the face's turn against the camera's line of sight: the part's yaw and the
+    # camera's azimuth at opposite ends of their ranges turn it most (the preset's header works out the width).
+    levels = front_face_thirds(yaw_deg, azimuth_deg)
+    assert min(levels) > 0.85 * max(levels), levels
+    if yaw_deg < 0:  # check 67's dome, 0.22 m: two thirds of the face mirror past its edge and read dark
+        narrow = front_face_thirds(yaw_deg, azimuth_deg, width_m=0.22)
+        assert min(narrow) < 0.6 * max(narrow), narrow
