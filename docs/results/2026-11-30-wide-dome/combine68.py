@@ -61,9 +61,9 @@ def main() -> None:
     print("| side camera's good parts above a_s (k) | a_l | a_s | defective caught (validation) |\n|---|---|---|---|")
     for i, (k, a_l, a_s, c) in enumerate(rows):
         print(f"| {k}{' (chosen)' if i == best else ''} | {a_l:.4f} | {a_s:.4f} | {c:.1%} |")
-    if len(sys.argv) < 8:
+    if len(sys.argv) < 7:
         return
-    line_eval, side_eval, line_data, seed = sys.argv[3:7] + sys.argv[7:8]
+    line_eval, side_eval, line_data, seed = sys.argv[3:7]
     from faces import faces_of
 
     tl, ts = (float(read_report(d)["threshold"]) for d in (line_eval, side_eval))
