@@ -47,6 +47,23 @@ def paired_caught(y: np.ndarray, base: np.ndarray, other: np.ndarray) -> tuple[f
     return 100 * d.mean(), 100 * d.std(ddof=1) / np.sqrt(d.size)
 
 
+def faces(line_eval: str, line_data: str, idx: list[int], y: np.ndarray) -> np.ndarray:
+    """Each part's face by the line camera's ground-truth normals ("" for good parts; "unseen by the line camera"
+    for a defect only the second camera sees)."""
+    _, groups = faces_of(line_eval, line_data)
+    return np.array([groups[i][1] if i in groups else ("unseen by the line camera" if y[k] else "")
+                     for k, i in enumerate(idx)])
+
+
+def print_by_face(face: np.ndarray, y: np.ndarray, rows: dict[str, np.ndarray], header: str) -> None:
+    """The share of each face's defective parts each rule rejects, a Markdown table under ``header``'s columns."""
+    print("\nBy face (the line camera's ground truth), caught:\n")
+    print(f"| face | defective | {header} |\n|---|---|" + "---|" * len(rows))
+    for f in sorted(set(face[y])):
+        m = y & (face == f)
+        print(f"| {f} | {int(m.sum())} | " + " | ".join(f"{rows[k][m].mean():.0%}" for k in rows) + " |")
+
+
 def main() -> None:
     line_eval, line_data, f_eval, line_val, f_val = sys.argv[1:6]
     seed = sys.argv[6] if len(sys.argv) > 6 else "1167"
@@ -54,9 +71,7 @@ def main() -> None:
     line = read_scores(line_eval)
     idx, y, t, sl, sf = aligned(line, read_scores(f_eval))
     seen_line = np.array([line[i][0] == 1 for i in idx])
-    _, groups = faces_of(line_eval, line_data)
-    face = np.array([groups[i][1] if i in groups else ("unseen by the line camera" if y[k] else "")
-                     for k, i in enumerate(idx)])
+    face = faces(line_eval, line_data, idx, y)
     vidx, vy, _, vl, vf = aligned(read_scores(line_val), read_scores(f_val))
     tc = false_reject_threshold(np.maximum(vl / tl, vf / tf)[~vy], RATE)
     comb = np.maximum(sl / tl, sf / tf)
@@ -75,11 +90,7 @@ def main() -> None:
     for name in ("either camera rejects", "combined at 1 %"):
         g, se = paired_caught(y, rows["line camera alone (the shipped file)"], rows[name])
         print(f"- {name}, caught minus the line camera alone: {g:+.1f} points (paired SE {se:.1f})")
-    print("\nBy face (the line camera's ground truth), caught:\n")
-    print("| face | defective | line camera | F | either | combined at 1 % |\n|---|---|---|---|---|---|")
-    for f in sorted(set(face[y])):
-        m = y & (face == f)
-        print(f"| {f} | {int(m.sum())} | " + " | ".join(f"{rows[k][m].mean():.0%}" for k in rows) + " |")
+    print_by_face(face, y, rows, "line camera | F | either | combined at 1 %")
     print("\nImage AUROC by face and type (each group's defective parts against all good parts), F against the line "
           "camera, paired bootstrap:\n")
     print("| group | defective | line camera | F | F - line (SE) | combined | combined - line (SE) |")

@@ -24,7 +24,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-27-bright-field"))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-30-front-view"))
-from compare66 import RATE, aligned, caught_row, paired_caught
+from compare66 import RATE, aligned, caught_row, faces, paired_caught, print_by_face
 
 from model.draem.metrics import false_reject_threshold
 from station.eval_compare import read_report, read_scores
@@ -64,7 +64,6 @@ def main() -> None:
     if len(sys.argv) < 7:
         return
     line_eval, side_eval, line_data, seed = sys.argv[3:7]
-    from faces import faces_of
 
     tl, ts = (float(read_report(d)["threshold"]) for d in (line_eval, side_eval))
     line = read_scores(line_eval)
@@ -85,14 +84,8 @@ def main() -> None:
     for name in ("either camera", "combined at 1 %", "split at 1 % (chosen on validation)"):
         g, se = paired_caught(y, rules["line camera alone"], rules[name])
         print(f"- {name} minus the line camera alone: {g:+.1f} points caught (paired SE {se:.1f})")
-    _, groups = faces_of(line_eval, line_data)
-    face = np.array([groups[i][1] if i in groups else ("unseen by the line camera" if y[k] else "")
-                     for k, i in enumerate(idx)])
-    print("\nBy face (the line camera's ground truth), caught:\n")
-    print("| face | defective | " + " | ".join(rules) + " |\n|---|---|" + "---|" * len(rules))
-    for f in sorted(set(face[y])):
-        m = y & (face == f)
-        print(f"| {f} | {int(m.sum())} | " + " | ".join(f"{rules[k][m].mean():.0%}" for k in rules) + " |")
+    face = faces(line_eval, line_data, idx, y)
+    print_by_face(face, y, rules, " | ".join(rules))
 
 
 if __name__ == "__main__":

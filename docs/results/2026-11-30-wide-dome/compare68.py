@@ -17,8 +17,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-27-bright-field"))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-30-front-view"))
-from compare66 import RATE, aligned, caught_row, paired_caught
-from faces import faces_of
+from compare66 import RATE, aligned, caught_row, faces, paired_caught, print_by_face
 
 from model.draem.metrics import false_reject_threshold, paired_auroc_gains
 from station.eval_compare import read_report, read_scores
@@ -31,9 +30,7 @@ def main() -> None:
     idx, y, t, sl, so = aligned(line, read_scores(o_eval))
     idx_w, y_w, _, _, sw = aligned(line, read_scores(w_eval))
     assert idx_w == idx and (y_w == y).all(), "the two domes' reports are not on the same parts and truths"
-    _, groups = faces_of(line_eval, line_data)
-    face = np.array([groups[i][1] if i in groups else ("unseen by the line camera" if y[k] else "")
-                     for k, i in enumerate(idx)])
+    face = faces(line_eval, line_data, idx, y)
     vl_all = read_scores(line_val)
     combined, tails = {}, {}
     for name, val, ts, s in (("O", o_val, to, so), ("W", w_val, tw, sw)):
@@ -61,11 +58,7 @@ def main() -> None:
                  ("combined at 1 %, O", "combined at 1 %, W")):
         g, se = paired_caught(y, rows[a], rows[b])
         print(f"- {b} minus {a}: {g:+.1f} points caught (paired SE {se:.1f})")
-    print("\nBy face (the line camera's ground truth), caught:\n")
-    print("| face | defective | " + " | ".join(rows) + " |\n|---|---|" + "---|" * len(rows))
-    for f in sorted(set(face[y])):
-        m = y & (face == f)
-        print(f"| {f} | {int(m.sum())} | " + " | ".join(f"{rows[k][m].mean():.0%}" for k in rows) + " |")
+    print_by_face(face, y, rows, " | ".join(rows))
     print("\nImage AUROC of the side camera's file, W against O, by face and type (each group's defective parts "
           "against all good parts), paired bootstrap:\n")
     print("| group | defective | O | W | W - O (SE) |\n|---|---|---|---|---|")
