@@ -47,6 +47,12 @@ def paired_caught(y: np.ndarray, base: np.ndarray, other: np.ndarray) -> tuple[f
     return 100 * d.mean(), 100 * d.std(ddof=1) / np.sqrt(d.size)
 
 
+def combined_score(line: np.ndarray, second: np.ndarray, t_line: float, t_second: float) -> np.ndarray:
+    """The combined rule's score (check 66's plan): each file's score over its own threshold, the larger of the two.
+    The rule thresholds it at ``RATE`` of the good validation parts' combined scores."""
+    return np.maximum(line / t_line, second / t_second)
+
+
 def faces(line_eval: str, line_data: str, idx: list[int], y: np.ndarray) -> np.ndarray:
     """Each part's face by the line camera's ground-truth normals ("" for good parts; "unseen by the line camera"
     for a defect only the second camera sees)."""
@@ -73,8 +79,8 @@ def main() -> None:
     seen_line = np.array([line[i][0] == 1 for i in idx])
     face = faces(line_eval, line_data, idx, y)
     vidx, vy, _, vl, vf = aligned(read_scores(line_val), read_scores(f_val))
-    tc = false_reject_threshold(np.maximum(vl / tl, vf / tf)[~vy], RATE)
-    comb = np.maximum(sl / tl, sf / tf)
+    tc = false_reject_threshold(combined_score(vl, vf, tl, tf)[~vy], RATE)
+    comb = combined_score(sl, sf, tl, tf)
     print(f"Seed {seed}: {len(idx)} parts, {int((~y).sum())} good, {int(y.sum())} defective "
           f"({int((y & ~seen_line).sum())} of them seen by the second camera only). Thresholds: line {tl:.4f}, "
           f"F {tf:.4f}; combined {tc:.4f} (1 % of the {int((~vy).sum())} good validation parts, "

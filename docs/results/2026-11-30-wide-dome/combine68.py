@@ -22,9 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-27-bright-field"))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-30-front-view"))
-from compare66 import RATE, aligned, caught_row, faces, paired_caught, print_by_face
+from compare66 import RATE, aligned, caught_row, combined_score, faces, paired_caught, print_by_face
 
 from model.draem.metrics import false_reject_threshold
 from station.eval_compare import read_report, read_scores
@@ -64,14 +63,13 @@ def main() -> None:
     if len(sys.argv) < 7:
         return
     line_eval, side_eval, line_data, seed = sys.argv[3:7]
-
     tl, ts = (float(read_report(d)["threshold"]) for d in (line_eval, side_eval))
     line = read_scores(line_eval)
     idx, y, t, sl, ss = aligned(line, read_scores(side_eval))
-    tc = false_reject_threshold(np.maximum(vl / tl, vs / ts)[~vy], RATE)
+    tc = false_reject_threshold(combined_score(vl, vs, tl, ts)[~vy], RATE)
     _, a_l, a_s, _ = rows[best]
     rules = {"line camera alone": sl > tl, "side camera alone (W)": ss > ts, "either camera": (sl > tl) | (ss > ts),
-             "combined at 1 %": np.maximum(sl / tl, ss / ts) > tc, "split at 1 % (chosen on validation)":
+             "combined at 1 %": combined_score(sl, ss, tl, ts) > tc, "split at 1 % (chosen on validation)":
              (sl > a_l) | (ss > a_s)}
     print(f"\nSeed {seed}: {len(idx)} parts, {int((~y).sum())} good, {int(y.sum())} defective. Thresholds: line "
           f"{tl:.4f}, W {ts:.4f}; combined {tc:.4f}; split a_l {a_l:.4f}, a_s {a_s:.4f}.\n")

@@ -15,9 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-27-bright-field"))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-30-front-view"))
-from compare66 import RATE, aligned, caught_row, faces, paired_caught, print_by_face
+from compare66 import RATE, aligned, caught_row, combined_score, faces, paired_caught, print_by_face
 
 from model.draem.metrics import false_reject_threshold, paired_auroc_gains
 from station.eval_compare import read_report, read_scores
@@ -35,8 +34,8 @@ def main() -> None:
     combined, tails = {}, {}
     for name, val, ts, s in (("O", o_val, to, so), ("W", w_val, tw, sw)):
         _, vy, _, vl, vs = aligned(vl_all, read_scores(val))
-        tc = false_reject_threshold(np.maximum(vl / tl, vs / ts)[~vy], RATE)
-        combined[name] = np.maximum(sl / tl, s / ts) > tc
+        tc = false_reject_threshold(combined_score(vl, vs, tl, ts)[~vy], RATE)
+        combined[name] = combined_score(sl, s, tl, ts) > tc
         tails[name] = (ts, np.sort(vs[~vy])[-5:][::-1], int((~vy).sum()))
     print(f"Seed 1169: {len(idx)} parts, {int((~y).sum())} good, {int(y.sum())} defective. Thresholds: line "
           f"{tl:.4f}, O {to:.4f}, W {tw:.4f}.\n")
