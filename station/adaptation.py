@@ -55,20 +55,23 @@ def frames_sha256(root: str | Path, indices: list[int]) -> str:
 
 def adapt_model(model: str, good: str, out: str, split: str = "train", limit: int | None = None,
                 false_reject: float = GOOD_REJECTED_RATE, fine_tune_steps: int = 0, seed: int = 0,
-                keep_networks: bool = False) -> AdaptSummary:
-    """Adapt checkpoint ``model`` to the good parts of ``good``'s ``split`` (at most ``limit``), write ``out``."""
+                keep_networks: bool = False, presence_rule: str = "dolp_contrast") -> AdaptSummary:
+    """Adapt checkpoint ``model`` to the good parts of ``good``'s ``split`` (at most ``limit``), write ``out``; the
+    frames the station would not judge, with the presence check's ``presence_rule`` at its defaults, left out."""
     from model.draem.adapt import AdaptConfig, adapt
     from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
     from model.priors.frame_stats import StatisticsRange
     from station.datasets import judged_part_of, manifest_sha256
     from station.evaluation import describe_left_out, model_split
+    from station.presence import PresenceCheck
 
     if paths(out)[1].resolve() == paths(model)[1].resolve():
         raise UserError(f"--out {out}: the same checkpoint as --model; write the adapted model beside it")
     cfg = AdaptConfig(false_reject=false_reject, fine_tune_steps=fine_tune_steps, seed=seed,
                       keep_networks=keep_networks)
     ck = load_checkpoint(model)
-    sp, left_out = judged_part_of(model_split(ck, model, good, split, limit))
+    sp, left_out = judged_part_of(model_split(ck, model, good, split, limit,
+                                              presence=PresenceCheck(rule=presence_rule)))
     keep = (sp.label == 0).nonzero().flatten()
     if len(keep) == 0:
         raise UserError(f"{good}: split {split!r} has no good parts the station would judge"
@@ -80,7 +83,7 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     record = {**res.record(), "data": str(good), "split": split, "manifest_sha256": manifest_sha256(good),
               "frames_sha256": frames_sha256(good, used), "date": time.strftime("%Y-%m-%dT%H:%M:%S"),
               "false_reject_target": false_reject, "base_model": str(model),
-              "left_out": {str(i): why for i, why in left_out.items()},
+              "left_out": {str(i): why for i, why in left_out.items()}, "presence_rule": str(presence_rule),
               "base_weights_sha256": ck.meta.get("weights_sha256"), "frame_statistics": stats.describe()}
     train = {**ck.meta.get("train", {}), "adapted": record, "frame_statistics": stats.to_dict()}
     save_checkpoint(out, det, res.threshold.threshold, res.threshold.rule, ck.meta.get("data_manifest_sha256"),

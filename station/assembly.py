@@ -173,7 +173,7 @@ def check_line_segments(cfg: StationConfig, segments: tuple[float, ...], what: s
 def presence_check(cfg: StationConfig) -> PresenceCheck | None:
     """The ``[presence]`` check, or None when disabled."""
     p = cfg.presence
-    return PresenceCheck(p.min_dolp_contrast, p.cell_px) if p.enabled else None
+    return PresenceCheck(p.min_dolp_contrast, p.cell_px, p.rule, p.min_row_contrast) if p.enabled else None
 
 
 def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, link: LineLink,

@@ -109,7 +109,9 @@ class DecisionConfig:
 @dataclass(frozen=True)
 class PresenceConfig:
     enabled: bool = True
+    rule: str = _opt("dolp_contrast", choices=("dolp_contrast", "row_contrast"))
     min_dolp_contrast: float = _opt(0.10, range=(0.0, 1.0))
+    min_row_contrast: float = _opt(0.10, range=(0.0, 10.0))
     cell_px: int = _opt(12, range=(1, 4096))
 
 

@@ -23,6 +23,7 @@ from station.errors import UserError
 if TYPE_CHECKING:
     from model.normals.estimator import NormalEstimator
     from model.priors.frame_stats import FrameStatistics
+    from station.presence import PresenceCheck
 
 log = logging.getLogger(__name__)
 
@@ -48,17 +49,17 @@ class SplitTensors:
     ``unjudged_reason``), None when it would."""
 
 
-def unjudged_reason(priors: Any, n_pixels: int) -> str | None:
-    """Why the station would not judge a frame whose ``model.priors.Priors`` (with DoLP) these are, None when it
-    would: more than ``station.decision.MAX_INVALID_FRACTION`` of its pixels invalid, or no part in view for the
-    presence check at its defaults (``station.presence.PresenceCheck``)."""
+def unjudged_reason(priors: Any, n_pixels: int, presence: PresenceCheck | None = None) -> str | None:
+    """Why the station would not judge a frame whose ``model.priors.Priors`` (with intensity and DoLP) these are,
+    None when it would: more than ``station.decision.MAX_INVALID_FRACTION`` of its pixels invalid, or no part in
+    view for ``presence`` (default: the presence check at its defaults, ``station.presence.PresenceCheck``)."""
     from station.decision import MAX_INVALID_FRACTION
     from station.presence import PresenceCheck
 
     invalid = (priors.n_nonfinite + priors.n_out_of_range) / n_pixels
     if invalid > MAX_INVALID_FRACTION:
         return f"{100 * invalid:.2f} % of input pixels invalid"
-    return None if PresenceCheck()(priors).present else "no part in view"
+    return None if (presence or PresenceCheck())(priors).present else "no part in view"
 
 
 def judged_part_of(sp: SplitTensors) -> tuple[SplitTensors, dict[int, str]]:
@@ -102,14 +103,15 @@ def defect_type_of(params: dict) -> str:
 def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int | tuple[int, int],
                limit: int | None = None, good_only: bool = False, progress: bool = True, roi: str = "center",
                normals: NormalEstimator | None = None, frame_aspect: float = 0.0,
-               dome_segments: tuple[float, ...] = ()) -> SplitTensors:
+               dome_segments: tuple[float, ...] = (), presence: PresenceCheck | None = None) -> SplitTensors:
     """Read one split of a set into tensors at the network input size (``size_px``: (height, width) or a square's
     side), cropped to ``roi`` (see ``model.draem.config.ModelConfig.roi``) as a model trained on frames of
     ``frame_aspect`` (``ModelConfig.frame_aspect``) crops them. Object and defect masks come along (for
     anomaly synthesis and the pixel metrics) whatever the roi. The normal prior comes from ``normals`` (its field
     of view must be the set's), or from the rendered ground truth when it is None. ``dome_segments``: the model's
     (``ModelConfig.dome_segments``); the set's parts must have been imaged under the same (UserError otherwise), and
-    each part's frames give one set of priors (``model.priors.api.compute_set_priors``)."""
+    each part's frames give one set of priors (``model.priors.api.compute_set_priors``). ``presence``: the check that
+    decides which frames the station would judge (``SplitTensors.unjudged``; default: ``unjudged_reason``'s)."""
     import numpy as np
     import torch
     from tqdm import tqdm
@@ -178,7 +180,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         used.append(i)
         known.append(not s.label or s.defect_mask is not None)
         stats.append(frame_statistics(maps, raw=s.raw, bit_depth=bit_depth))
-        unjudged.append(unjudged_reason(computed, s.raw.size))
+        unjudged.append(unjudged_reason(computed, s.raw.size, presence))
     if not xs:
         raise UserError(f"{root}: split {split!r} has no usable samples")
     if no_object:

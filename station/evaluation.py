@@ -24,10 +24,12 @@ def normal_prior_record(ck) -> dict | None:
     return ck.meta.get("train", {}).get("normal_prior") if "normal" in ck.detector.config.priors else None
 
 
-def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None, good_only: bool = False):
+def model_split(ck, model: str, data: str | Path, split: str, limit: int | None = None, good_only: bool = False,
+                presence=None):
     """``data``'s split (only its good parts with ``good_only``) as checkpoint ``ck`` (loaded from ``model``) sees
-    it at the station: its roi, its input size, its learned normal prior. Returns
-    ``station.datasets.SplitTensors``."""
+    it at the station: its roi, its input size, its learned normal prior; ``presence`` (a
+    ``station.presence.PresenceCheck``, default the station's default) marks the frames the station would not
+    judge. Returns ``station.datasets.SplitTensors``."""
     from station.datasets import load_split
 
     cfg = ck.detector.config
@@ -42,7 +44,8 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
     return load_split(data, split, cfg.priors, cfg.input_shape, limit, good_only=good_only, roi=cfg.roi,
-                      normals=normals, frame_aspect=cfg.frame_aspect, dome_segments=cfg.dome_segments)
+                      normals=normals, frame_aspect=cfg.frame_aspect, dome_segments=cfg.dome_segments,
+                      presence=presence)
 
 
 def without_held_out_type(sp, train: Mapping):
@@ -104,9 +107,12 @@ def check_max_good_flagged(value: float) -> None:
         raise UserError(f"--max-good-flagged {value}: a fraction in [0, 1)")
 
 
-def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED_RATE, split: str = "val") -> str:
+def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED_RATE, split: str = "val",
+                  presence_rule: str = "dolp_contrast") -> str:
     """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
-    does there (one line)."""
+    does there (one line). Frames the station would not judge are left out, with the presence check's
+    ``presence_rule`` (``station.presence.PresenceRule``: the one the camera's ``[presence]`` uses) at its
+    defaults."""
     from model.draem.checkpoint import read_sidecar, save_checkpoint
     from model.draem.metrics import choose_threshold
     from station.datasets import manifest_sha256
@@ -122,7 +128,9 @@ def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED
     from station.datasets import judged_part_of
 
     ck = load_checkpoint(model)
-    sp, left_out = judged_part_of(model_split(ck, model, data, split))
+    from station.presence import PresenceCheck
+
+    sp, left_out = judged_part_of(model_split(ck, model, data, split, presence=PresenceCheck(rule=presence_rule)))
     sp = without_held_out_type(sp, ck.meta.get("train", {}))
     if not sp.index:
         raise UserError(f"{data}: the station would judge none of split {split!r}'s frames "
@@ -139,6 +147,7 @@ def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED
         train["threshold_set"] = {"data": str(data), "manifest_sha256": data_sha, "split": split,
                                   "n_good": len(labels) - n_bad, "n_defective": n_bad,
                                   "left_out": {str(i): why for i, why in left_out.items()},
+                                  "presence_rule": str(presence_rule),
                                   "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
     save_checkpoint(model, ck.detector, choice.threshold, choice.rule, trained_sha, ev.metrics, train)
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else " (no defective parts there)"

@@ -93,8 +93,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     class TimedCheck(PresenceCheck):
         """Keeps the check's own time per frame in ms (the log folds it into ``priors_ms``)."""
 
-        def __init__(self, min_dolp_contrast: float, cell_px: int) -> None:
-            super().__init__(min_dolp_contrast, cell_px)
+        def __init__(self, cfg: PresenceConfig) -> None:
+            super().__init__(cfg.min_dolp_contrast, cfg.cell_px, cfg.rule, cfg.min_row_contrast)
             self.ms: list[float] = []
 
         def __call__(self, priors: Mapping[str, np.ndarray]) -> Presence:
@@ -104,7 +104,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
             return out
 
     cfg = PresenceConfig()
-    check = TimedCheck(cfg.min_dolp_contrast, cfg.cell_px) if presence else None
+    check = TimedCheck(cfg) if presence else None
     with tempfile.TemporaryDirectory() as tmp, InspectionLog(Path(tmp) / "log.sqlite") as log:
         camera.open()
         try:

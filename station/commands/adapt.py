@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 
 from model.draem.config import GOOD_REJECTED_RATE
-from station.commands.arguments import positive_int, seed
+from station.commands.arguments import add_presence_rule, positive_int, seed
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -27,6 +27,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--keep-networks", action="store_true",
                    help="keep the networks in the decision even when their good-part scores on this line are out of "
                         "their domain (default: the adapted model then decides on the variation model alone)")
+    add_presence_rule(p)
     p.set_defaults(func=run)
 
 
@@ -34,5 +35,5 @@ def run(args: argparse.Namespace) -> int:
     from station.adaptation import adapt_model
 
     print(adapt_model(args.model, args.good, args.out, args.split, args.limit, args.false_reject,
-                      args.fine_tune_steps, args.seed, args.keep_networks).describe())
+                      args.fine_tune_steps, args.seed, args.keep_networks, args.presence_rule).describe())
     return 0

@@ -71,3 +71,12 @@ def add_max_good_flagged(p: argparse.ArgumentParser, of: str = "the val split's 
     """``--max-good-flagged``: the threshold rule's bound (default ``model.draem.config.GOOD_REJECTED_RATE``)."""
     p.add_argument("--max-good-flagged", type=float, default=GOOD_REJECTED_RATE,
                    help=f"threshold rule: at most this fraction of {of} rejected (default {GOOD_REJECTED_RATE})")
+
+
+def add_presence_rule(p: argparse.ArgumentParser) -> None:
+    """``--presence-rule``: the presence check that decides which frames the station would judge (``[presence]
+    rule`` of the camera's station.toml; ``station.presence.PresenceRule``)."""
+    p.add_argument("--presence-rule", default="dolp_contrast", choices=("dolp_contrast", "row_contrast"),
+                   help="the presence rule of the camera's station.toml [presence]: frames it calls empty are left "
+                        "out (default dolp_contrast, a camera looking down at the belt; row_contrast for a camera "
+                        "looking level at the part)")

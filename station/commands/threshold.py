@@ -5,14 +5,16 @@
 .choose_threshold``: F1-max on the split's parts, raised so that at most ``--max-good-flagged`` of the good ones
 are flagged; with good parts only, that bound alone) and writes it into the checkpoint's sidecar. On another set
 than the training set (frames captured at the line, ``station import``) the sidecar records which set and split
-set the threshold (``train.threshold_set``). To adapt the input normalisation as well, use ``station adapt``.
+set the threshold (``train.threshold_set``). Frames the station would not judge (no part in view for the camera's
+presence rule, ``--presence-rule``; too many invalid pixels) are left out and listed. To adapt the input
+normalisation as well, use ``station adapt``.
 """
 
 from __future__ import annotations
 
 import argparse
 
-from station.commands.arguments import add_max_good_flagged
+from station.commands.arguments import add_max_good_flagged, add_presence_rule
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -22,6 +24,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="set with good parts: the training set, or another (rendered or imported) set of the line")
     p.add_argument("--split", default="val", choices=("train", "val", "test"),
                    help="split to choose on (default val; train only on a set the model was not trained on)")
+    add_presence_rule(p)
     add_max_good_flagged(p, "the split's good parts")
     p.set_defaults(func=run)
 
@@ -29,5 +32,5 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from station.evaluation import set_threshold
 
-    print(set_threshold(args.model, args.data, args.max_good_flagged, args.split))
+    print(set_threshold(args.model, args.data, args.max_good_flagged, args.split, args.presence_rule))
     return 0

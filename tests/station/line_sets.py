@@ -24,8 +24,11 @@ W, H = 96, 64
 def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8, seed: int = 0,
                   defective: Callable[[int], bool] = lambda i: i % 10 == 1, object_masks: bool = True,
                   kind: Callable[[int], str] = lambda i: "stain", heldout: bool = False,
-                  validation: bool = False, blank: Callable[[int], bool] = lambda i: False) -> Path:
-    """``blank`` samples are all-black good frames (a camera not ready, no part in view)."""
+                  validation: bool = False, blank: Callable[[int], bool] = lambda i: False,
+                  polar_only: Callable[[int], bool] = lambda i: False) -> Path:
+    """``blank`` samples are all-black good frames (a camera not ready, no part in view); ``polar_only`` ones are
+    of one intensity everywhere with a patch polarized unlike the rest (in view for the DoLP presence rule, not for
+    the row rule: ``station.presence``)."""
     spec = DatasetSpec(width=W, height=H, seed=seed, sensor=SensorConfig(bit_depth=bit_depth), heldout=heldout,
                        validation=validation)
     init_dataset(root, spec, n)
@@ -38,6 +41,11 @@ def make_line_set(root: Path, n: int = 20, gain: float = 1.0, bit_depth: int = 8
         raw = np.clip(np.round(frame * full), 0, full).astype(np.uint8 if bit_depth <= 8 else np.uint16)
         if blank(i):
             raw[:] = 0
+        if polar_only(i):
+            flat = np.full((H, W), 0.5)
+            q = np.zeros((H, W))
+            q[16:48, 24:72] = 0.3  # DoLP 0.6 at AoLP 0 on an unpolarized field
+            raw = np.round(stokes_to_mosaic(flat, q, np.zeros((H, W))) * full).astype(raw.dtype)
         mask = np.zeros((H, W), bool)
         if defective(i):
             mask[20:30, 40:50] = True

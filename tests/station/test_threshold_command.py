@@ -68,3 +68,21 @@ def test_frames_the_station_would_not_judge_set_no_threshold(tmp_path: Path, cap
     meta = load_checkpoint(model).meta
     assert meta["train"]["threshold_set"]["n_good"] == len(val) - 2
     assert meta["train"]["threshold_set"]["left_out"] == {"2": "no part in view", "12": "no part in view"}
+
+
+def test_the_cameras_presence_rule_decides_which_frames_set_no_threshold(tmp_path: Path, capsys) -> None:
+    """A camera looking level at the part uses the row rule at the station (``[presence] rule``); its threshold
+    must leave out the frames that rule calls empty, not the DoLP rule's."""
+    from line_sets import make_line_set
+
+    data = make_line_set(tmp_path / "ds", 60, defective=lambda i: False, blank=lambda i: i == 2,
+                         polar_only=lambda i: i == 12)
+    model = make_model(tmp_path / "m" / "last", ("intensity", "aolp"))
+    assert main(["threshold", "--model", str(model), "--data", str(data)]) == 0
+    assert load_checkpoint(model).meta["train"]["threshold_set"]["left_out"] == {"2": "no part in view"}
+    capsys.readouterr()
+    assert main(["threshold", "--model", str(model), "--data", str(data), "--presence-rule", "row_contrast"]) == 0
+    assert "left out 2 frames" in capsys.readouterr().out
+    threshold_set = load_checkpoint(model).meta["train"]["threshold_set"]
+    assert threshold_set["left_out"] == {"2": "no part in view", "12": "no part in view"}
+    assert threshold_set["presence_rule"] == "row_contrast"
