@@ -76,20 +76,21 @@ def inference_net(ck, model: str, precision: str):
         raise UserError(str(exc)) from None
 
 
-def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None, precision: str = "fp32"):
-    """Checkpoint ``model`` on ``data``'s split, as the station feeds it (``model_split``), run at ``precision``:
-    (checkpoint, the network that ran it (``inference_net``), split tensors, EvalData, evaluation)."""
+def load_and_evaluate(model: str, data: str | Path, split: str, limit: int | None = None, precision: str = "fp32",
+                      presence=None):
+    """Checkpoint ``model`` on ``data``'s split, as the station feeds it (``model_split``, with ``presence``), run at
+    ``precision``: (checkpoint, the network that ran it (``inference_net``), split tensors, EvalData, evaluation)."""
     from model.draem.checkpoint import load_checkpoint
 
     ck = load_checkpoint(model)
     net = inference_net(ck, model, precision)
-    return ck, net, *evaluate_split(ck, net, model, data, split, limit)
+    return ck, net, *evaluate_split(ck, net, model, data, split, limit, presence)
 
 
-def evaluate_split(ck, net, model: str, data: str | Path, split: str, limit: int | None = None):
+def evaluate_split(ck, net, model: str, data: str | Path, split: str, limit: int | None = None, presence=None):
     """A loaded checkpoint ``ck`` (from ``model``) and the network that runs it on another split of ``data``:
     (split tensors, EvalData, evaluation), without loading the model again."""
-    sp = model_split(ck, model, data, split, limit)
+    sp = model_split(ck, model, data, split, limit, presence=presence)
     return sp, *evaluate_tensors(net, sp)
 
 

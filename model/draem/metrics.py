@@ -276,27 +276,35 @@ class DetectionReport:
 
 def detection_by_type(labels: np.ndarray, scores: np.ndarray, types: np.ndarray | list[str],
                       false_rejects: tuple[float, ...] = (0.01, 0.05),
-                      validation: tuple[np.ndarray, np.ndarray] | None = None) -> DetectionReport:
+                      validation: tuple[np.ndarray, np.ndarray] | None = None,
+                      rejected: np.ndarray | None = None) -> DetectionReport:
     """Per defect type: image AUROC against all good parts, and the share caught at each false-reject rate.
 
     labels: (N,) {0, 1}, 1 = defective; scores: (N,) image scores (higher = more anomalous; rejected when
     ``score > threshold``, as the station); types: (N,) defect type per part (ignored for good parts). For each
     rate in ``false_rejects`` one threshold is set on good parts only (``false_reject_threshold``): on
     ``validation = (labels, scores)`` when given (held fixed: the honest figure), else on this set's good parts;
-    the same threshold is applied to every type. Raises ValueError when the threshold's set has no good parts."""
+    the same threshold is applied to every type. ``rejected``: (N,) bool, parts rejected whatever their score (the
+    station could not judge them: it fails closed); they count as caught or as good parts rejected at every rate,
+    and the AUROC (the scores' ranking) leaves them as scored. Raises ValueError when the threshold's set has no
+    good parts."""
     y, s = _check_scores("detection_by_type", labels, scores)
     ty = np.asarray(types, dtype=object).reshape(-1)
     if ty.size != y.size:
         raise ValueError(f"detection_by_type: {ty.size} types for {y.size} parts")
+    forced = np.zeros(y.size, bool) if rejected is None else np.asarray(rejected, bool).reshape(-1)
+    if forced.size != y.size:
+        raise ValueError(f"detection_by_type: {forced.size} rejected flags for {y.size} parts")
     vy, vs = (y, s) if validation is None else _check_scores("detection_by_type validation", *validation)
     thresholds = {fr: false_reject_threshold(vs[~vy], fr) for fr in false_rejects}
-    good = s[~y]
-    observed = {fr: float((good > t).mean()) if good.size else math.nan for fr, t in thresholds.items()}
+    good, good_forced = s[~y], forced[~y]
+    observed = {fr: float(((good > t) | good_forced).mean()) if good.size else math.nan
+                for fr, t in thresholds.items()}
 
     def one(name: str, sel: np.ndarray) -> TypeDetection:
-        d = s[sel]
+        d, f = s[sel], forced[sel]
         lab = np.r_[np.zeros(good.size, bool), np.ones(d.size, bool)]
-        caught = {fr: float((d > t).mean()) if d.size else math.nan for fr, t in thresholds.items()}
+        caught = {fr: float(((d > t) | f).mean()) if d.size else math.nan for fr, t in thresholds.items()}
         return TypeDetection(name, int(d.size), auroc(lab, np.r_[good, d]), caught)
 
     names = sorted({str(t) for t in ty[y]})

@@ -4,7 +4,10 @@ Reports image AUROC, pixel AUROC, AUPRO (FPR <= 0.3), pixel AP, image F1-max and
 effect, separately on rendered physical defects (all, and per defect type against all good parts) and on
 DRAEM-style synthetic anomalies on the good test parts; on sets rendered with ``--visibility``, caught share and image
 AUROC per detectability bin (``station.detectability``). Writes JSON + Markdown, ROC curves and example heatmaps on
-a fixed [0, 1] scale (never per-image min-max, which makes good parts look bad).
+a fixed [0, 1] scale (never per-image min-max, which makes good parts look bad). In the industrial figures (caught
+at a fixed share of good parts rejected), a frame the station would not judge (no part in view for the camera's
+presence rule, ``--presence-rule``; too many invalid pixels) counts as rejected, as a triggered station rejects it;
+the validation thresholds leave such frames out, as ``station threshold`` does.
 """
 
 from __future__ import annotations
@@ -16,9 +19,9 @@ from pathlib import Path
 
 from model.draem.holdout import held_out_type
 from model.draem.runtime import EVAL_PRECISIONS
-from station.commands.arguments import positive_int
+from station.commands.arguments import add_presence_rule, positive_int
 from station.errors import UserError
-from station.evaluation import ABLATION, evaluate_split, load_and_evaluate, normal_prior_record
+from station.evaluation import ABLATION, describe_left_out, evaluate_split, load_and_evaluate, normal_prior_record
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -41,6 +44,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "the set the model was trained and selected on)")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
+    add_presence_rule(p)
     p.set_defaults(func=run)
 
 
@@ -187,6 +191,17 @@ def industrial_rows(report, train_meta: dict) -> list[dict]:
     return rows
 
 
+def unjudged_note(unjudged: dict[int, str], sp, rule: str) -> str:
+    """The industrial note's clause on the evaluated frames the station would not judge ("" when none): rejected
+    whatever their score, as a triggered station rejects an announced part it cannot judge."""
+    if not unjudged:
+        return ""
+    labels = dict(zip(sp.index, sp.label.tolist(), strict=True))
+    bad = sum(labels[i] for i in unjudged)
+    return (f"; {len(unjudged)} evaluated frames the station would not judge ({len(unjudged) - bad} good, {bad} "
+            f"defective; presence rule {rule}) count as rejected: {describe_left_out(unjudged, 5)}")
+
+
 def prior_set_name(priors: tuple[str, ...]) -> str:
     """The ablation's name for a set of priors ("R+AoLP", ...), or the priors joined by "+" outside it."""
     return next((name for name, members in ABLATION if set(members) == set(priors)), "+".join(priors))
@@ -315,7 +330,12 @@ def run(args: argparse.Namespace) -> int:
                         f"fused models, train one per prior set and pass them all: --model A,B,...)")
     out = Path(args.out or Path(args.model).parent / f"eval-{args.split}")
     out.mkdir(parents=True, exist_ok=True)
-    ck, net, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision)
+    from station.presence import PresenceCheck
+
+    presence = PresenceCheck(rule=args.presence_rule)
+    ck, net, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision,
+                                              presence)
+    unjudged = {i: why for i, why in zip(sp.index, sp.unjudged, strict=True) if why is not None}
     cfg, thr = ck.detector.config, ck.threshold
     evaluated = open_dataset(args.data)
     source = "imported" if evaluated.manifest.get("source") else "rendered"
@@ -357,9 +377,11 @@ def run(args: argparse.Namespace) -> int:
             if not args.val_data and not evaluated.indices("val"):
                 raise ValueError(f"{args.data} has no val split (a held-out set): give the set the model was "
                                  f"selected on with --val-data")
-            vsp, _, vev = evaluate_split(ck, net, args.model, val_data, "val", args.limit)
+            vsp, _, vev = evaluate_split(ck, net, args.model, val_data, "val", args.limit, presence)
+            judged = np.array([why is None for why in vsp.unjudged], bool)  # as `station threshold` sets it
             rep = detection_by_type(sp.label.numpy(), ev.scores, sp.defect_type, FALSE_REJECTS,
-                                    validation=(vsp.label.numpy(), vev.scores))
+                                    validation=(vsp.label.numpy()[judged], vev.scores[judged]),
+                                    rejected=np.array([why is not None for why in sp.unjudged], bool))
         except ValueError as exc:
             industrial_note = f"no industrial figures: {exc}"
         else:
@@ -368,7 +390,8 @@ def run(args: argparse.Namespace) -> int:
                                "val split's good parts and held fixed: " + ", ".join(
                                    f"{100 * fr:g} % -> {t:.4g}, observed here {100 * rep.false_reject_observed[fr]:.1f}"
                                    " %" for fr, t in rep.thresholds.items())
-                               + f"; val split of {val_data}, {int((vsp.label == 0).sum())} good parts):")
+                               + f"; val split of {val_data}, {int((vsp.label[judged] == 0).sum())} good parts"
+                               + unjudged_note(unjudged, sp, args.presence_rule) + "):")
     where, separable = told_where(
         ck.detector.variation, sp.priors, sp.label.numpy(), sp.defect_mask, sp.mask_known.numpy(), sp.defect_type,
         ev.scores, rep.thresholds.get(TOLD_WHERE_FALSE_REJECT) if rep else None
@@ -385,7 +408,8 @@ def run(args: argparse.Namespace) -> int:
                "ablation": ablation, "early_exit": early, "detectors": detectors, "channels": channels,
                "by_detectability": by_snr, "by_size": by_size, "told_where": where,
                "industrial": industrial, "industrial_note": industrial_note,
-               "industrial_val_data": str(args.val_data or args.data), "plots": files}
+               "industrial_val_data": str(args.val_data or args.data), "presence_rule": args.presence_rule,
+               "unjudged": {str(i): why for i, why in unjudged.items()}, "plots": files}
     cols = ["set", "n", "anomalous", "with_mask", "image_auroc", "pixel_auroc", "aupro_0.3", "pixel_ap",
             "image_f1_max", "flagged_good", "detected"]
     table = markdown_table(rows, cols)

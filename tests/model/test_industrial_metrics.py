@@ -92,6 +92,23 @@ def test_detection_by_type():
         M.detection_by_type(y, s, types[:-1])
 
 
+def test_parts_the_station_could_not_judge_count_as_rejected_not_as_scored():
+    """A frame the station would not judge (no part in view, invalid pixels) is rejected at the line whatever the
+    model would have scored it: the caught and good-rejected figures count it so, the ranking (AUROC) does not."""
+    y = np.array([0, 0, 0, 0, 1, 1, 1, 1, 1])
+    s = np.array([0.1, 0.2, 0.3, 0.4, 0.9, 0.8, 0.25, 0.05, 0.45])
+    types = ["", "", "", "", "dent", "dent", "scratch", "scratch", "stud"]
+    plain = M.detection_by_type(y, s, types, (0.0,))
+    forced = M.detection_by_type(y, s, types, (0.0,), rejected=np.array([1, 0, 0, 0, 0, 0, 0, 1, 0], bool))
+    assert forced.thresholds == plain.thresholds == {0.0: 0.4}
+    assert plain.false_reject_observed[0.0] == 0.0 and forced.false_reject_observed[0.0] == 0.25
+    assert plain.per_type["scratch"].caught[0.0] == 0.0 and forced.per_type["scratch"].caught[0.0] == 0.5
+    assert forced.overall.caught[0.0] == pytest.approx(0.8) and plain.overall.caught[0.0] == pytest.approx(0.6)
+    assert forced.overall.image_auroc == plain.overall.image_auroc
+    with pytest.raises(ValueError, match="rejected flags for"):
+        M.detection_by_type(y, s, types, rejected=np.zeros(3, bool))
+
+
 def test_holdout_indices_drop_only_the_held_out_type():
     types = ["", "dent", None, "scratch", "dent", "stud", ""]
     assert indices_without_type(types, "dent").tolist() == [0, 2, 3, 5, 6]
