@@ -59,7 +59,9 @@ def pixel_metrics_scope(n_anomalous: int, n_with_mask: int) -> str:
             f"parts); image metrics on all.")
 
 
-def _rows(name: str, m: dict, threshold: float | None, scores, labels) -> dict:
+def _rows(name: str, m: dict, threshold: float | None, scores, labels, rejected=None) -> dict:
+    """One row of the first table; ``flagged_good`` and ``detected`` at ``threshold`` count the parts ``rejected``
+    whatever their score (frames the station would not judge) as flagged."""
     import numpy as np
 
     row = {"set": name, "n": m["n"], "anomalous": m["n_anomalous"],
@@ -68,8 +70,9 @@ def _rows(name: str, m: dict, threshold: float | None, scores, labels) -> dict:
         row[k] = m[k]
     if threshold is not None:
         y = np.asarray(labels, bool)
-        row["flagged_good"] = float((scores[~y] > threshold).mean()) if (~y).any() else math.nan
-        row["detected"] = float((scores[y] > threshold).mean()) if y.any() else math.nan
+        flagged = (np.asarray(scores) > threshold) | (False if rejected is None else np.asarray(rejected, bool))
+        row["flagged_good"] = float(flagged[~y].mean()) if (~y).any() else math.nan
+        row["detected"] = float(flagged[y].mean()) if y.any() else math.nan
     return row
 
 
@@ -336,10 +339,11 @@ def run(args: argparse.Namespace) -> int:
     ck, net, sp, data, ev = load_and_evaluate(args.model, args.data, args.split, args.limit, args.precision,
                                               presence)
     unjudged = {i: why for i, why in zip(sp.index, sp.unjudged, strict=True) if why is not None}
+    not_judged = np.array([why is not None for why in sp.unjudged], bool)
     cfg, thr = ck.detector.config, ck.threshold
     evaluated = open_dataset(args.data)
     source = "imported" if evaluated.manifest.get("source") else "rendered"
-    rows = [_rows(f"{source}, all defects", ev.metrics, thr, ev.scores, sp.label.numpy())]
+    rows = [_rows(f"{source}, all defects", ev.metrics, thr, ev.scores, sp.label.numpy(), not_judged)]
     roc = {"rendered": (sp.label.numpy(), ev.scores)}
     good = sp.label == 0
     for t in sorted({t for t in sp.defect_type if t}):
@@ -347,7 +351,7 @@ def run(args: argparse.Namespace) -> int:
         label = sp.label.numpy()[sel]  # the full pass's scores and maps: the network runs once per part
         m = summary(label, ev.scores[sel], ev.maps[sel], sp.defect_mask.numpy()[sel], sp.object_mask.numpy()[sel],
                     sp.mask_known.numpy()[sel])
-        rows.append(_rows(f"{source}, {t}", m, thr, ev.scores[sel], label))
+        rows.append(_rows(f"{source}, {t}", m, thr, ev.scores[sel], label, not_judged[sel]))
         roc[t] = (label, ev.scores[sel])
     if not args.no_synthetic and bool(good.any()):
         syn = synthetic_eval_data(TensorData(sp.priors[good], sp.object_mask[good]), cfg.priors, seed=4242)
@@ -381,7 +385,7 @@ def run(args: argparse.Namespace) -> int:
             judged = np.array([why is None for why in vsp.unjudged], bool)  # as `station threshold` sets it
             rep = detection_by_type(sp.label.numpy(), ev.scores, sp.defect_type, FALSE_REJECTS,
                                     validation=(vsp.label.numpy()[judged], vev.scores[judged]),
-                                    rejected=np.array([why is not None for why in sp.unjudged], bool))
+                                    rejected=not_judged)
         except ValueError as exc:
             industrial_note = f"no industrial figures: {exc}"
         else:

@@ -35,3 +35,4 @@ def test_frames_the_station_would_not_judge_count_as_rejected_in_the_industrial_
         observed = [float(x.split("observed here ")[1].split(" %")[0])
                     for x in report["industrial_note"].split(", ") if "observed here" in x]
         assert len(observed) == 2 and min(observed) >= 100 * n_forced / 8 - 0.05, report["industrial_note"]
+        assert report["rows"][0]["flagged_good"] >= n_forced / 8  # and at the model's own threshold
