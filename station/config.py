@@ -106,10 +106,15 @@ class DecisionConfig:
     threshold: float | None = _opt(None, range=(0.0, 1.0))
 
 
+PRESENCE_RULES = ("dolp_contrast", "row_contrast")
+"""``[presence] rule`` and ``--presence-rule``: ``station.presence.PresenceRule``'s values, the default first (named
+here so that the config and the CLI need not import the check, which imports OpenCV)."""
+
+
 @dataclass(frozen=True)
 class PresenceConfig:
     enabled: bool = True
-    rule: str = _opt("dolp_contrast", choices=("dolp_contrast", "row_contrast"))
+    rule: str = _opt(PRESENCE_RULES[0], choices=PRESENCE_RULES)
     min_dolp_contrast: float = _opt(0.10, range=(0.0, 1.0))
     min_row_contrast: float = _opt(0.10, range=(0.0, 10.0))
     cell_px: int = _opt(12, range=(1, 4096))

@@ -6,7 +6,7 @@ import argparse
 import math
 
 from model.draem.config import GOOD_REJECTED_RATE
-from station.config import MAX_SEED
+from station.config import MAX_SEED, PRESENCE_RULES
 
 
 def _integer(text: str) -> int:
@@ -76,7 +76,7 @@ def add_max_good_flagged(p: argparse.ArgumentParser, of: str = "the val split's 
 def add_presence_rule(p: argparse.ArgumentParser) -> None:
     """``--presence-rule``: the presence check that decides which frames the station would judge (``[presence]
     rule`` of the camera's station.toml; ``station.presence.PresenceRule``)."""
-    p.add_argument("--presence-rule", default="dolp_contrast", choices=("dolp_contrast", "row_contrast"),
+    p.add_argument("--presence-rule", default=PRESENCE_RULES[0], choices=PRESENCE_RULES,
                    help="the presence rule of the camera's station.toml [presence]: frames it calls empty are left "
                         "out (default dolp_contrast, a camera looking down at the belt; row_contrast for a camera "
                         "looking level at the part)")

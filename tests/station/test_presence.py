@@ -15,7 +15,7 @@ from drivers.line_io import Trigger
 from model.priors import IMX250MZR, compute_priors
 from model.priors.mosaic import stokes_to_mosaic
 from model.priors.testing import detailed_stokes
-from station.config import ConfigError, StationConfig, parse_config
+from station.config import PRESENCE_RULES, ConfigError, StationConfig, parse_config
 from station.inspection_log import InspectionLog
 from station.inspector import Inference, Inspector
 from station.line_link import NoLink
@@ -127,6 +127,7 @@ def test_presence_config_and_its_errors() -> None:
     assert (check.rule, check.threshold, check.priors) == (PresenceRule.ROW_CONTRAST, 0.2, ("intensity",))
     assert {r.value for r in PresenceRule} == set(StationConfig.__dataclass_fields__["presence"].default_factory()
                                                   .__dataclass_fields__["rule"].metadata["choices"])
+    assert [r.value for r in PresenceRule] == list(PRESENCE_RULES)  # the CLI's --presence-rule, the default first
     for text, message in [
         ("[presence]\nrule = \"dolp\"", r"\[presence\] rule: 'dolp' is not one of"),
         ("[presence]\nmin_dolp_contrast = 2", r"station.toml: \[presence\] min_dolp_contrast: 2.0 is out of range"),
