@@ -4,7 +4,8 @@ validation twins pooled (seeds 303 and 304).
 Rules, all at the 1 % budget of the pooled good validation parts (floor of 1 % of them):
 - line camera alone: its threshold at 1 % of the pooled good validation parts (the baseline of the plan's bar);
 - line camera alone at the shipped file's own threshold (from seed 303's validation only), reported;
-- split: check 68's rule (``combine68.choose_split``) on the pooled validation scores;
+- split: check 68's rule on the pooled validation scores (``model.draem.camera_split.split_thresholds``, which gives
+  ``combine68.choose_split``'s rows; this script called the latter when check 70 was read, with the same output);
 - either camera, each at 1 % of its pooled good validation parts (a 2 % rule by design), reported.
 A frame either camera's station would not judge (`station eval`'s ``unjudged``, with that camera's presence rule)
 is rejected by every rule that reads that camera.
@@ -26,10 +27,9 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-30-front-view"))
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "2026-11-30-wide-dome"))
-from combine68 import choose_split
 from compare66 import RATE, aligned, caught_row, faces, paired_caught, print_by_face
 
+from model.draem.camera_split import split_rejects, split_thresholds
 from model.draem.metrics import false_reject_threshold
 from station.eval_compare import read_report, read_scores
 
@@ -56,14 +56,14 @@ def main() -> None:
     line_vals, side_vals = sys.argv[1].split(","), sys.argv[2].split(",")
     vy, vl, vs = pooled(line_vals, side_vals)
     budget = int(np.floor(RATE * (~vy).sum()))
-    rows, best = choose_split(vy, vl, vs)
+    rows, best = split_thresholds(vy, vl, vs, RATE)
     t_line, t_side = (false_reject_threshold(v[~vy], RATE) for v in (vl, vs))
     print(f"Pooled validation ({len(line_vals)} twins): {vy.size} parts, {int((~vy).sum())} good (budget {budget} "
           f"good parts), {int(vy.sum())} defective. Each camera alone at 1 %: line {t_line:.4f}, side "
           f"{t_side:.4f}.\n")
     print("| side camera's good parts above a_s (k) | a_l | a_s | defective caught (validation) |\n|---|---|---|---|")
-    for i, (k, a_l, a_s, c) in enumerate(rows):
-        print(f"| {k}{' (chosen)' if i == best else ''} | {a_l:.4f} | {a_s:.4f} | {c:.1%} |")
+    for i, r in enumerate(rows):
+        print(f"| {r.k}{' (chosen)' if i == best else ''} | {r.first:.4f} | {r.second:.4f} | {r.caught:.1%} |")
     line_alone = vl > t_line
     print(f"\nLine camera alone at 1 % on validation: {line_alone[vy].mean():.1%} of defective parts, "
           f"{int(line_alone[~vy].sum())} good parts.")
@@ -73,16 +73,16 @@ def main() -> None:
     idx, y, t, sl, ss = aligned(read_scores(line_eval), read_scores(side_eval))
     ul, us = unjudged(line_eval, idx), unjudged(side_eval, idx)
     shipped = float(read_report(line_eval)["threshold"])
-    _, a_l, a_s, _ = rows[best]
+    split = rows[best]
     line_rej = (sl > t_line) | ul
     rules = {"line camera alone (pooled 1 %)": line_rej,
              "line camera alone (the shipped threshold)": (sl > shipped) | ul,
              "side camera alone (pooled 1 %)": (ss > t_side) | us,
              "either camera (each pooled 1 %)": line_rej | (ss > t_side) | us,
-             "split at 1 % (chosen on validation)": (sl > a_l) | ul | (ss > a_s) | us}
+             "split at 1 % (chosen on validation)": split_rejects(sl, ss, split) | ul | us}
     print(f"\nSeed {seed}: {len(idx)} parts, {int((~y).sum())} good, {int(y.sum())} defective; frames not judged: "
           f"line {int(ul.sum())}, side {int(us.sum())}. Thresholds: line {t_line:.4f} (shipped {shipped:.4f}), side "
-          f"{t_side:.4f}; split a_l {a_l:.4f}, a_s {a_s:.4f}.\n")
+          f"{t_side:.4f}; split a_l {split.first:.4f}, a_s {split.second:.4f}.\n")
     types = sorted(set(t[y]))
     print("| rule | good parts rejected | defective parts caught | " + " | ".join(types) + " |")
     print("|---|---|---|" + "---|" * len(types))
