@@ -50,6 +50,8 @@ class Frame:
     timestamp_ns      the camera's timestamp in nanoseconds (its own clock; 0 if it sends none).
     host_timestamp_ns ``time.time_ns()``-clock time when the host completed the frame.
     ground_truth      set for simulated frames only.
+    companion         the second camera's frame of the same part (``drivers.camera_pair.CameraPair``); None with
+                      one camera.
     """
 
     raw: np.ndarray
@@ -60,6 +62,7 @@ class Frame:
     host_timestamp_ns: int
     device_frame_id: int | None = None
     ground_truth: GroundTruth | None = None
+    companion: Frame | None = None
 
     def __post_init__(self) -> None:
         if self.raw.ndim != 2 or self.raw.dtype not in (np.uint8, np.uint16):

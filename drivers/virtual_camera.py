@@ -14,6 +14,11 @@ A set rendered with one frame per dome segment (``station render --dome-segments
 the camera's ``frames_per_part`` must equal its number of segments, and each part's frames come in the segments' order,
 one per ``trigger()``, before the next part is drawn.
 
+A second camera's virtual camera plays the same parts seen from its own viewpoint: made with ``leader=`` the first
+camera's, it holds the twin set's samples of the leader's parts (a set rendered with the same seed and indices by the
+second camera's preset; each sample must agree with the leader's on label and on whether a part is in view) and shows,
+on each new part, the part the leader shows (``drivers.camera_pair`` grabs the leader first).
+
 Timing follows the camera config: ``free_run`` paces frames at ``frame_rate_hz``; ``software`` delivers one
 frame per ``trigger()`` (at most ``frame_rate_hz``); hardware line triggers do not exist here (config error).
 Dataset errors are ``sim.errors.SimError`` naming the file; a dataset unfit for the config is a
@@ -67,9 +72,14 @@ class _Cached:
 class VirtualCamera(CameraBase):
     """See the module docstring."""
 
-    def __init__(self, config: CameraConfig, sim: VirtualCameraConfig) -> None:
+    def __init__(self, config: CameraConfig, sim: VirtualCameraConfig, leader: VirtualCamera | None = None) -> None:
         super().__init__(config)
         self.sim = sim
+        self.leader = leader
+        """The first camera's virtual camera, whose parts this one shows from its own viewpoint (module docstring)."""
+        self._twins: dict[int, _Cached] = {}  # with a leader: its parts' samples in this set, by sample index
+        self.current: _Cached | None = None
+        """The part in view (drawn at the grab that started it)."""
         self._good: list[_Cached] = []
         self._bad: list[_Cached] = []
         self._empty: list[_Cached] = []
@@ -111,7 +121,10 @@ class VirtualCamera(CameraBase):
             raise CameraConfigError(f"virtual camera: camera region {self.config.width}x{self.config.height} but "
                                     f"{self.sim.dataset} holds {w}x{h} frames (set width = height = 0)")
         self.pixel_format = "Mono8" if self.bit_depth <= 8 else "Mono16"
-        self._load_pool(ds, indices, frames * w * h * (1 if self.bit_depth <= 8 else 2))
+        if self.leader is not None:
+            self._load_twins(ds, set(indices))
+        else:
+            self._load_pool(ds, indices, frames * w * h * (1 if self.bit_depth <= 8 else 2))
         self._opened = True
         self._t0_ns = time.monotonic_ns()
 
@@ -146,6 +159,29 @@ class VirtualCamera(CameraBase):
             (self._empty if not gt.present else self._bad if gt.label else self._good).append(c)
         log.info("virtual camera: %d good + %d defective parts + %d empty views of %d in memory (%s, %d-bit)",
                  len(self._good), len(self._bad), len(self._empty), len(indices), self.sim.dataset, self.bit_depth)
+
+    def _load_twins(self, ds: object, indices: set[int]) -> None:
+        """This set's samples of the leader's parts; CameraConfigError when one is missing or is not the same part."""
+        leader = self.leader
+        assert leader is not None
+        if not leader._opened:
+            raise CameraConfigError("virtual camera: open the first camera before its twin")
+        for c in leader._good + leader._bad + leader._empty:
+            if c.index not in indices:
+                raise CameraConfigError(f"virtual camera: {self.sim.dataset} has no sample {c.index}, which the first "
+                                        f"camera's set {leader.sim.dataset} shows: render the twin set with the same "
+                                        "seed and number of samples")
+            twin = self._load(ds, c.index)
+            a, b = c.ground_truth, twin.ground_truth
+            if (a.label, a.present) != (b.label, b.present):
+                raise CameraConfigError(f"virtual camera: sample {c.index} of {self.sim.dataset} (label {b.label}, "
+                                        f"{'a part' if b.present else 'no part'} in view) is not the part sample "
+                                        f"{c.index} of {leader.sim.dataset} shows (label {a.label}, "
+                                        f"{'a part' if a.present else 'no part'}): not a twin set (same seed, same "
+                                        "parts, another camera)")
+            self._twins[c.index] = twin
+        log.info("virtual camera: %d twin samples of %s's parts in memory (%s)", len(self._twins),
+                 leader.sim.dataset, self.sim.dataset)
 
     @staticmethod
     def _label(ds: object, index: int) -> int | None:
@@ -228,6 +264,7 @@ class VirtualCamera(CameraBase):
         self._next_due = max(self._next_due + 1.0 / self.config.frame_rate_hz, now - 1.0 / self.config.frame_rate_hz)
         if not self._playing:  # the next part: its frames come one per grab
             part = self._draw()
+            self.current = part
             self._playing, self._truth = list(part.raws), part.ground_truth
         raw = self._playing.pop(0)
         self._frame_id += 1
@@ -237,7 +274,14 @@ class VirtualCamera(CameraBase):
                      device_frame_id=self._frame_id, ground_truth=self._truth)
 
     def _draw(self) -> _Cached:
-        """A part at random: an empty view at ``empty_rate``, else defective at ``defect_rate``."""
+        """A part at random: an empty view at ``empty_rate``, else defective at ``defect_rate``; with a leader, the
+        leader's part."""
+        if self.leader is not None:
+            shown = self.leader.current
+            if shown is None:
+                raise CameraError("virtual camera: its first camera has shown no part yet (grab the first camera "
+                                  "first)")
+            return self._twins[shown.index]
         if self._empty and (not (self._good or self._bad) or self._rng.random() < self.sim.empty_rate):
             pool = self._empty
         else:
@@ -251,4 +295,5 @@ class VirtualCamera(CameraBase):
     def close(self) -> None:
         self.stop()
         self._good, self._bad, self._empty, self._playing = [], [], [], []
+        self._twins, self.current = {}, None
         self._opened = False

@@ -22,6 +22,7 @@ from station.loop import Station
 from station.model_detector import DraemDetector
 from station.presence import PresenceCheck
 from station.reject_store import RejectStore
+from station.second_camera import PairInspector
 from station.viewer import ViewerFeed
 
 log = logging.getLogger(__name__)
@@ -42,11 +43,13 @@ DEMO_EMPTY_DATASET = "data/sim-demo-line-panel-empty"
 DEMO_EMPTY_RATE = 0.25
 
 
-def driver_camera_config(cfg: StationConfig) -> DriverCameraConfig:
-    """``[camera]`` -> the drivers' ``CameraConfig`` (same names and units; ``kind`` picks the driver)."""
+def driver_camera_config(cfg: StationConfig, second: bool = False) -> DriverCameraConfig:
+    """``[camera]`` (``second``: ``[second_camera]``) -> the drivers' ``CameraConfig`` (same names and units;
+    ``kind`` picks the driver)."""
+    camera = cfg.second_camera if second else cfg.camera
     names = {f.name for f in dataclasses.fields(DriverCameraConfig)}
-    return DriverCameraConfig(**{k: v for k, v in dataclasses.asdict(cfg.camera).items() if k in names},
-                              frames_per_part=cfg.camera.frames_per_part)
+    return DriverCameraConfig(**{k: v for k, v in dataclasses.asdict(camera).items() if k in names},
+                              frames_per_part=camera.frames_per_part)
 
 
 def ensure_sim_dataset(cfg: StationConfig) -> str:
@@ -98,8 +101,10 @@ def _link_demo_parts(src: Path, dst: Path) -> None:
 
 
 def open_camera(cfg: StationConfig) -> Camera:
-    """Open the camera ``[camera] kind`` names (not started)."""
+    """Open the camera ``[camera] kind`` names (not started); with ``[second_camera]`` enabled, both cameras as a
+    ``drivers.camera_pair.CameraPair`` (the virtual second camera showing the first's parts from its twin set)."""
     dcfg = driver_camera_config(cfg)
+    second: Camera | None = None
     if cfg.camera.kind == "sim":
         from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
         from sim.dataset import open_dataset
@@ -108,10 +113,26 @@ def open_camera(cfg: StationConfig) -> Camera:
         check_line_segments(cfg, open_dataset(dataset).dome_segments, f"the set {dataset} holds")
         camera: Camera = VirtualCamera(dcfg, VirtualCameraConfig(dataset, cfg.sim.defect_rate,
                                                                  seed=cfg.sim.seed, empty_rate=cfg.sim.empty_rate))
+        if cfg.second_camera.enabled:
+            twin = cfg.second_camera.dataset
+            if not (Path(twin) / "manifest.json").is_file():
+                raise ConfigError(f"{cfg.source}: [second_camera] dataset = {twin!r} is not a rendered set (no "
+                                  "manifest.json)")
+            second = VirtualCamera(driver_camera_config(cfg, second=True), VirtualCameraConfig(twin),
+                                   leader=camera)  # type: ignore[arg-type]
     else:
         from drivers.aravis_camera import AravisCamera
 
         camera = AravisCamera(dcfg)
+        if cfg.second_camera.enabled:
+            second = AravisCamera(driver_camera_config(cfg, second=True))
+    if second is not None:
+        from drivers.camera_pair import CameraPair
+        from station.config import frame_delay_limit_ms
+        from station.second_camera import SECOND_NAME
+
+        camera = CameraPair(camera, second, frame_delay_limit_ms(cfg.acquisition.max_frame_delay_ms,
+                                                                 cfg.acquisition.cycle_time_ms), SECOND_NAME)
     camera.open()
     return camera
 
@@ -158,6 +179,20 @@ def load_detector(cfg: StationConfig) -> DraemDetector:
     return detector
 
 
+def load_second_detector(cfg: StationConfig) -> DraemDetector | None:
+    """The second camera's model (``[second_camera] model``, its ``threshold`` over the model's own, ``[model]``'s
+    device and precision), or None without a second camera."""
+    second = cfg.second_camera
+    if not second.enabled:
+        return None
+    detector = DraemDetector(second.model, cfg.model.device, cfg.model.precision, second.threshold,
+                             cfg.model.early_exit_margin, cfg.model.fov_x_deg)
+    if detector.dome_segments:
+        raise ConfigError(f"{cfg.source}: [second_camera] model: {second.model} reads a frame per dome segment; the "
+                          "second camera takes one frame per part")
+    return detector
+
+
 def check_line_segments(cfg: StationConfig, segments: tuple[float, ...], what: str) -> None:
     """ConfigError unless ``what`` ("the model M reads", "the set S holds") ``segments``, the frames ``[camera]
     dome_segments`` takes."""
@@ -170,22 +205,28 @@ def check_line_segments(cfg: StationConfig, segments: tuple[float, ...], what: s
                           f"{describe_segments(segments)}: set dome_segments {'= ' if segments else ''}{want}")
 
 
-def presence_check(cfg: StationConfig) -> PresenceCheck | None:
-    """The ``[presence]`` check, or None when disabled."""
+def presence_check(cfg: StationConfig, rule: str | None = None) -> PresenceCheck | None:
+    """The ``[presence]`` check (``rule``: another than ``[presence] rule``, the second camera's), or None when
+    disabled."""
     p = cfg.presence
-    return PresenceCheck(p.min_dolp_contrast, p.cell_px, p.rule, p.min_row_contrast) if p.enabled else None
+    return PresenceCheck(p.min_dolp_contrast, p.cell_px, rule or p.rule, p.min_row_contrast) if p.enabled else None
 
 
 def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, link: LineLink,
                   inspection_log: InspectionLog, *, viewer: ViewerFeed | None = None,
-                  rejects: RejectStore | None = None) -> Station:
+                  rejects: RejectStore | None = None, second_detector: DraemDetector | None = None) -> Station:
     """The inspection loop with the ``[priors]``, ``[presence]``, ``[acquisition]`` and ``[camera]`` settings;
-    with a viewer, the priors it shows are computed too."""
+    with a viewer, the priors it shows are computed too. With ``second_detector`` (``load_second_detector``), the
+    second camera's frames are judged by it (``station.second_camera``)."""
     drift = drift_monitor(detector)
-    inspector = Inspector(detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
-                          display_priors=("intensity", "dolp", "aolp") if viewer else (),
-                          presence=presence_check(cfg), statistics=drift is not None, bit_depth=cfg.priors.bit_depth,
-                          segments=detector.dome_segments)
+    inspector: Inspector | PairInspector = Inspector(
+        detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
+        display_priors=("intensity", "dolp", "aolp") if viewer else (), presence=presence_check(cfg),
+        statistics=drift is not None, bit_depth=cfg.priors.bit_depth, segments=detector.dome_segments)
+    if second_detector is not None:
+        inspector = PairInspector(inspector, Inspector(
+            second_detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
+            presence=presence_check(cfg, cfg.second_camera.presence_rule), bit_depth=cfg.priors.bit_depth))
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
                    grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,

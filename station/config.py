@@ -121,6 +121,24 @@ class PresenceConfig:
 
 
 @dataclass(frozen=True)
+class SecondCameraConfig(CameraConfig):
+    """``[second_camera]``: a second camera imaging each part with the first (``station.second_camera``). The
+    camera keys are ``[camera]``'s, for this camera (``dome_segments`` not: one frame per part), and the rest are its
+    own model, threshold, presence rule and, on the virtual camera, its twin of ``[sim] dataset``."""
+
+    enabled: bool = False
+    model: str = ""
+    """Its model's checkpoint stem, as ``[model] path``; the ``[model]`` device and precision apply to both."""
+    threshold: float | None = _opt(None, range=(0.0, 1.0))
+    """Its threshold (``station split``), over its model's own."""
+    presence_rule: str = _opt(PRESENCE_RULES[1], choices=PRESENCE_RULES)
+    """Its presence rule, with ``[presence]``'s bounds and cell size: ``row_contrast`` for a camera looking level
+    at the part."""
+    dataset: str = ""
+    """Virtual camera: the twin of ``[sim] dataset`` (the same seed and parts, rendered from this camera)."""
+
+
+@dataclass(frozen=True)
 class IOConfig:
     mode: str = _opt("sim_plc", choices=("none", "sim_plc", "serial"))
     port: str = ""
@@ -153,6 +171,7 @@ class StationConfig:
     model: ModelConfig = field(default_factory=ModelConfig)
     decision: DecisionConfig = field(default_factory=DecisionConfig)
     presence: PresenceConfig = field(default_factory=PresenceConfig)
+    second_camera: SecondCameraConfig = field(default_factory=SecondCameraConfig)
     io: IOConfig = field(default_factory=IOConfig)
     log: LogConfig = field(default_factory=LogConfig)
     sim: SimConfig = field(default_factory=SimConfig)
@@ -256,6 +275,35 @@ def _check_timing(cfg: StationConfig, source: str) -> None:
                           "gives up before its frame arrives leaves that frame to be taken for the next part")
 
 
+def _check_second_camera(cfg: StationConfig, source: str) -> None:
+    """``[second_camera]`` keys that cannot work with ``[camera]``'s."""
+    second, where = cfg.second_camera, f"{source}: [second_camera]"
+    if not second.enabled:
+        return
+    if not second.model:
+        raise ConfigError(f"{where} model: must name the second camera's model when enabled = true")
+    if second.dome_segments is not None:
+        raise ConfigError(f"{where} dome_segments: the second camera takes one frame per part")
+    if second.kind != cfg.camera.kind:
+        raise ConfigError(f"{where} kind: {second.kind!r}, but [camera] kind is {cfg.camera.kind!r}: both cameras "
+                          "must be virtual or both real")
+    if second.kind == "sim" and not second.dataset:
+        raise ConfigError(f"{where} dataset: the virtual second camera needs its twin of [sim] dataset (the same "
+                          "seed and parts rendered from this camera)")
+    if second.kind == "sim" and not cfg.sim.dataset:
+        raise ConfigError(f"{source}: [sim] dataset: a virtual second camera needs a set of its own parts, not the "
+                          "demo set, and its twin in [second_camera] dataset")
+    if "free_run" in (cfg.camera.trigger, second.trigger):
+        raise ConfigError(f"{where} trigger: two cameras need a trigger that starts each part ('software' or a line) "
+                          "on both, not 'free_run': nothing would tell which frames are one part's")
+    if (second.trigger == "software") != (cfg.camera.trigger == "software"):
+        raise ConfigError(f"{where} trigger: {second.trigger!r} with [camera] trigger {cfg.camera.trigger!r}: both "
+                          "'software' (the station triggers both) or both a line wired to the part's pulse")
+    if second.timeout_ms < second.exposure_us / 1e3 + GRAB_MARGIN_MS:
+        raise ConfigError(f"{where} timeout_ms: {second.timeout_ms} ms does not cover the exposure "
+                          f"({second.exposure_us / 1e3:g} ms) plus {GRAB_MARGIN_MS:g} ms for readout and transfer")
+
+
 def parse_config(text: str, source: str = "<string>") -> StationConfig:
     """Parse TOML ``text`` into a validated StationConfig; errors name ``source``."""
     try:
@@ -265,6 +313,7 @@ def parse_config(text: str, source: str = "<string>") -> StationConfig:
     cfg = _build_table(StationConfig, data, f"{source}: ")
     _check_layout(cfg, source)
     _check_timing(cfg, source)
+    _check_second_camera(cfg, source)
     return dataclasses.replace(cfg, source=source)
 
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from drivers.line_io import Verdict
 
-__all__ = ["MAX_INVALID_FRACTION", "Decision", "Verdict", "decide", "late"]
+__all__ = ["MAX_INVALID_FRACTION", "Decision", "Verdict", "decide", "join", "late"]
 
 MAX_INVALID_FRACTION = 0.01
 """The share of a frame's pixels that may be invalid (NaN/Inf, out of range) for the part to be judged."""
@@ -60,4 +60,27 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
         return late(elapsed_ms, cycle_time_ms)
     if score > threshold:
         return Decision(Verdict.REJECT, f"score {score:.4f} > threshold {threshold:.4f}")
+    return Decision(Verdict.PASS)
+
+
+def join(first: Decision, second: Decision, second_name: str = "second camera") -> Decision:
+    """One part's decision from its two cameras' (``station.second_camera``), failing closed. A reject by either
+    rejects, with both reasons when both reject (the second's after ``second_name``). EMPTY only when neither camera
+    sees a part. A part one camera sees and the other does not cannot be judged (misplaced, or a view the check cannot
+    read): rejected, naming the camera that saw none. Otherwise pass."""
+    named = f"{second_name}: {second.reason}"
+    if first.decision == Verdict.REJECT and second.decision == Verdict.REJECT:
+        return Decision(Verdict.REJECT, f"{first.reason}; {named}")
+    if first.decision == Verdict.REJECT:
+        return first
+    if second.decision == Verdict.REJECT:
+        return Decision(Verdict.REJECT, named)
+    if first.decision == Verdict.EMPTY and second.decision == Verdict.EMPTY:
+        return Decision(Verdict.EMPTY, f"{first.reason}; {named}")
+    if first.decision == Verdict.EMPTY:
+        return Decision(Verdict.REJECT, f"not judged: the first camera sees no part ({first.reason}), the "
+                                        f"{second_name} sees one")
+    if second.decision == Verdict.EMPTY:
+        return Decision(Verdict.REJECT, f"not judged: the {second_name} sees no part ({second.reason}), the first "
+                                        "camera sees one")
     return Decision(Verdict.PASS)

@@ -6,7 +6,9 @@ inspection log (another program's tables, a newer schema) is refused before anyt
 The schema version is ``PRAGMA user_version``; columns carry their unit in the name. Version 2 added
 ``ground_truth_present``, version 3 the frame statistics (``median_level``, ``high_level``, ``clipped_fraction``,
 ``dolp_level``: ``model.priors.frame_stats``) and ``drift`` (the drift warning in force when the part was judged,
-``station.drift``), version 4 the model's frame checks (``highlight_fraction``, ``noise_level``: ``FRAME_CHECKS``).
+``station.drift``), version 4 the model's frame checks (``highlight_fraction``, ``noise_level``: ``FRAME_CHECKS``),
+version 5 the second camera's (``second_score``, ``second_threshold``, ``second_model_id``, ``second_frame_id``:
+``station.second_camera``).
 Opening an older log for writing adds the missing columns (NULL in the old rows); opened
 read-only, they read as NULL. Decisions (``station.decision.Verdict``, stored as its values):
 
@@ -30,16 +32,17 @@ from typing import Any
 from station.decision import Verdict
 from station.errors import UserError
 
-SCHEMA_VERSION = 4
+SCHEMA_VERSION = 5
 WAL_CHECKPOINT_PAGES = 64
 """Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
 WAL_SIZE_LIMIT_BYTES = 256 * 1024
 """... and truncate it back to this size afterwards: a small disk holds rows, not a stale WAL."""
 ADDED_IN_VERSION = {2: ("ground_truth_present",),
                     3: ("median_level", "high_level", "clipped_fraction", "dolp_level", "drift"),
-                    4: ("highlight_fraction", "noise_level")}
+                    4: ("highlight_fraction", "noise_level"),
+                    5: ("second_score", "second_threshold", "second_model_id", "second_frame_id")}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
-READABLE_VERSIONS = (1, 2, 3, 4)
+READABLE_VERSIONS = (1, 2, 3, 4, 5)
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
@@ -96,6 +99,13 @@ class InspectionRecord:
     """The frame's noise against the good parts the model was fitted on (about 1 there): the model reads a frame up
     to ``model.draem.variation.NOISE_CAP`` times noisier as noise and judges a noisier one as it is (it rejects).
     Parts well above 1 come from a line unlike the model's: ``station adapt``. None as for highlight_fraction."""
+    second_score: float | None = None
+    """A station with a second camera (``[second_camera]``): its model's score, threshold, model id and frame id for
+    the part (``score``, ``threshold``, ``model_id`` and ``camera_frame_id`` are the first camera's); None with one
+    camera, or where the second camera gave no frame or score."""
+    second_threshold: float | None = None
+    second_model_id: str | None = None
+    second_frame_id: int | None = None
 
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:
@@ -107,7 +117,8 @@ COLUMNS = tuple(f.name for f in fields(InspectionRecord))
 _SQL_TYPES = {"decision": "TEXT NOT NULL", "time_unix_s": "REAL NOT NULL", "part_id": "TEXT", "model_id": "TEXT",
               "reason": "TEXT", "image_path": "TEXT", "camera_frame_id": "INTEGER", "camera_timestamp_ns": "INTEGER",
               "io_delivered": "INTEGER", "ground_truth_label": "INTEGER",
-              "ground_truth_present": "INTEGER", "drift": "TEXT"}
+              "ground_truth_present": "INTEGER", "drift": "TEXT", "second_model_id": "TEXT",
+              "second_frame_id": "INTEGER"}
 _BOOL_COLUMNS = ("io_delivered", "ground_truth_present")
 
 

@@ -84,6 +84,8 @@ class Inspection:
     timings_ms: dict[str, float] = field(default_factory=dict)
     checks: dict[str, float] = field(default_factory=dict)
     """The detector's frame checks (``Inference.checks``)."""
+    second: Inspection | None = None
+    """The second camera's inspection of the same part (``station.second_camera``); None with one camera."""
 
     @property
     def present(self) -> bool:

@@ -39,7 +39,7 @@ from drivers.frame import Frame
 from drivers.line_io import Trigger
 from model.draem.frame_checks import FRAME_CHECKS
 from station.config import frame_delay_limit_ms
-from station.decision import Decision, Verdict, decide, late
+from station.decision import Decision, Verdict, decide, join, late
 from station.drift import DriftMonitor
 from station.frame_queue import Closed, FrameQueue
 from station.heap import CollectorPauses, frozen_heap
@@ -49,6 +49,7 @@ from station.line_link import LineLink
 from station.model_thread import ModelThread, NoAnswer
 from station.records import RecordKeeper
 from station.reject_store import RejectStore
+from station.second_camera import SECOND_NAME, PairInspector
 from station.viewer import ViewerFeed, ViewFrame
 
 log = logging.getLogger(__name__)
@@ -225,7 +226,8 @@ class Station:
     ``[decision] threshold`` over it (chosen in one place, ``model.draem.predictor.load_predictor``), the same the
     model's early exit stops on. A test's fake detector may be given another."""
 
-    def __init__(self, camera: Camera, inspector: Inspector, link: LineLink, inspection_log: InspectionLog, *,
+    def __init__(self, camera: Camera, inspector: Inspector | PairInspector, link: LineLink,
+                 inspection_log: InspectionLog, *,
                  cycle_time_ms: float, threshold: float | None = None, queue_size: int = 4,
                  backpressure: str = "drop_oldest",
                  grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
@@ -233,6 +235,8 @@ class Station:
                  drift: DriftMonitor | None = None, max_frame_delay_ms: float | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold = inspector.detector.threshold if threshold is None else threshold
+        self.second_threshold = inspector.second.detector.threshold if isinstance(inspector, PairInspector) else None
+        """The second camera's threshold (``[second_camera]``); None with one camera."""
         self.frames_per_part = camera.config.frames_per_part
         """Frames that make one part (the camera's ``frames_per_part``, from ``[camera] dome_segments``): the station
         triggers each (software trigger)."""
@@ -488,6 +492,8 @@ class Station:
             decision = decide(inspection.score, self.threshold, elapsed_ms=1e3 * (t - part.t_trigger),
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
                               invalid_fraction=inspection.invalid_fraction, empty=empty)
+            if inspection.second is not None:
+                decision = join(decision, self._second_decision(inspection.second), SECOND_NAME)
             if decision.decision == Verdict.EMPTY and self.link.triggered:  # an announced part not seen: rejected,
                 decision = Decision(Verdict.REJECT, decision.reason)  # at the PLC and in its row
             inspection.timings_ms["decision"] = 1e3 * (time.perf_counter() - t)
@@ -500,6 +506,13 @@ class Station:
         else:
             decision = decide(None, self.threshold, error=part.error or "no frame")
         self._finish(part, inspection, decision)
+
+    def _second_decision(self, second: Inspection) -> Decision:
+        """The second camera's own decision on its threshold (its time is the part's, judged on the first's)."""
+        empty = second.presence.reason if second.presence and not second.present else None
+        assert self.second_threshold is not None
+        return decide(second.score, self.second_threshold, error=second.error,
+                      invalid_fraction=second.invalid_fraction, empty=empty)
 
     def _no_answer(self, part: Part, answer: NoAnswer) -> None:
         """The model did not answer by the part's deadline, or is still on an earlier part: reject it now;
@@ -566,7 +579,10 @@ class Station:
                 and (not empty or tell_plc)):
             image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
                                            inspection.heatmap if inspection else None,
-                                           later=tuple(f.raw for f in part.frames[1:]))
+                                           later=tuple(f.raw for f in part.frames[1:])
+                                           + ((frame.companion.raw,) if frame.companion is not None else ()))
+        second = inspection.second if inspection is not None else None
+        companion = frame.companion if frame is not None else None
         record = InspectionRecord(
             decision=Verdict.NOT_INSPECTED if not_inspected else decision.decision, time_unix_s=time.time(),
             part_id=part.part_id, camera_frame_id=frame.frame_id if frame else None,
@@ -579,7 +595,10 @@ class Station:
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path,
             **(inspection.frame_stats.as_dict() if inspection is not None and inspection.frame_stats else {}),
             drift=self.drift.warning if self.drift is not None else None,
-            **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks})
+            **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks},
+            second_score=second.score if second is not None else None, second_threshold=self.second_threshold,
+            second_model_id=self.inspector.second.detector.model_id if isinstance(self.inspector, PairInspector)
+            else None, second_frame_id=companion.frame_id if companion is not None else None)
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
         self._written = (part, record, tell_plc)
         if tell_plc and record.decision == Verdict.PASS:

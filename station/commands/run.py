@@ -45,7 +45,8 @@ def confusion_table(confusion: dict[str, int]) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from station.assembly import build_station, load_detector, open_camera, open_link
+    from drivers.camera_pair import CameraPair
+    from station.assembly import build_station, load_detector, load_second_detector, open_camera, open_link
     from station.config import ConfigError, load_config
     from station.errors import UserError
     from station.inspection_log import InspectionLog
@@ -54,11 +55,16 @@ def run(args: argparse.Namespace) -> int:
     if args.frames is not None and args.frames < 1:
         raise UserError(f"--frames must be >= 1, got {args.frames}")
     cfg = load_config(args.config)
-    if args.camera:
-        cfg = dataclasses.replace(cfg, camera=dataclasses.replace(cfg.camera, kind=args.camera))
+    if args.camera:  # both cameras' kind
+        cfg = dataclasses.replace(cfg, camera=dataclasses.replace(cfg.camera, kind=args.camera),
+                                  second_camera=dataclasses.replace(cfg.second_camera, kind=args.camera))
     detector = load_detector(cfg)
     print(f"model {detector.model_id}: priors {', '.join(detector.config.priors)}, threshold "
           f"{detector.threshold:.4g}, warm-up {detector.warm_up():.0f} ms per part on {detector.device}")
+    second = load_second_detector(cfg)
+    if second is not None:
+        print(f"second camera's model {second.model_id}: priors {', '.join(second.config.priors)}, threshold "
+              f"{second.threshold:.4g}, warm-up {second.warm_up():.0f} ms per part")
     if detector.threshold >= 1.0:  # scores lie in [0, 1] and reject when above the threshold
         log.warning("threshold %.4g rejects no part on its score: only parts that cannot be judged are rejected "
                     "([decision] threshold or the model's own)", detector.threshold)
@@ -81,7 +87,8 @@ def run(args: argparse.Namespace) -> int:
 
             viewer = ViewerFeed()
         link = open_link(cfg, stack, args.frames)
-        station = build_station(cfg, detector, camera, link, inspection_log, viewer=viewer, rejects=rejects)
+        station = build_station(cfg, detector, camera, link, inspection_log, viewer=viewer, rejects=rejects,
+                                second_detector=second)
         print(f"inspecting with camera {cfg.camera.kind}, PLC {cfg.io.mode}, log {cfg.log.path}"
               + (f", {args.frames} parts" if args.frames else ", until Ctrl-C"))
         if viewer is None:
@@ -107,6 +114,8 @@ def run(args: argparse.Namespace) -> int:
                 raise failed[0]
             stats = station.stats
         camera_stats = camera.statistics().as_dict()
+        if isinstance(camera, CameraPair):
+            camera_stats["second_camera"] = {**camera.second_statistics().as_dict(), "unpaired": camera.unpaired}
     summary = {**stats.summary(), "confusion": dict(stats.confusion), "camera": camera_stats,
                "model_id": detector.model_id, "threshold": detector.threshold, "log": cfg.log.path,
                "stale_frames": station.stale_frames, "unrecorded_rows": station.unrecorded_rows,

@@ -1,0 +1,173 @@
+"""A station with a second camera: one answer and one true row per part, a reject by either camera rejects, and any
+fault of the second camera rejects the part (fail closed)."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+from drivers.camera_pair import CameraPair
+from drivers.errors import CameraTimeout
+from model.priors import IMX250MZR
+from station.cli import main
+from station.config import ConfigError, parse_config
+from station.decision import Decision, Verdict, join
+from station.inspection_log import InspectionLog
+from station.inspector import Inspector
+from station.loop import Station
+from station.presence import Presence, PresenceRule
+from station.second_camera import PairInspector
+from tests.station.test_loop import BrightnessDetector, ScriptedCamera, ScriptedLink
+
+PASS, REJECT, EMPTY = Decision(Verdict.PASS), Decision(Verdict.REJECT, "score 0.9 > threshold 0.5"), \
+    Decision(Verdict.EMPTY, "no part in view: x")
+
+
+@pytest.mark.parametrize(("first", "second", "verdict", "reason"), [
+    (PASS, PASS, Verdict.PASS, None),
+    (REJECT, PASS, Verdict.REJECT, "score 0.9 > threshold 0.5"),
+    (PASS, REJECT, Verdict.REJECT, "side: score 0.9 > threshold 0.5"),
+    (REJECT, REJECT, Verdict.REJECT, "score 0.9 > threshold 0.5; side: score 0.9"),
+    (EMPTY, EMPTY, Verdict.EMPTY, "no part in view: x; side: no part in view: x"),
+    (EMPTY, PASS, Verdict.REJECT, "not judged: the first camera sees no part (no part in view: x), the side sees one"),
+    (PASS, EMPTY, Verdict.REJECT, "not judged: the side sees no part (no part in view: x), the first camera sees one"),
+    (EMPTY, REJECT, Verdict.REJECT, "side: score 0.9"),
+])
+def test_two_cameras_decisions_join_failing_closed(first, second, verdict, reason):
+    joined = join(first, second, "side")
+    assert joined.decision == verdict
+    assert joined.reason == reason if reason is None else joined.reason.startswith(reason)
+
+
+class DarkIsEmpty:
+    """A presence check for the scripted frames: a frame darker than 10 codes shows no part."""
+
+    priors = ("intensity",)
+
+    def __call__(self, priors):
+        level = float(priors["intensity"].mean())
+        return Presence(level >= 10 / 255, level, 10 / 255, PresenceRule.ROW_CONTRAST)
+
+
+class SideCamera(ScriptedCamera):
+    """``ScriptedCamera`` whose 'dark' entries are black frames (no part in view)."""
+
+    def next_item(self):
+        self.last = super().next_item()
+        return self.last
+
+    def grab(self, timeout_ms=None):
+        frame = super().grab(timeout_ms)
+        return dataclasses.replace(frame, raw=np.zeros_like(frame.raw)) if self.last == "dark" else frame
+
+
+class SecondDetector(BrightnessDetector):
+    model_id = "test-side"
+    threshold = 0.6
+
+
+def two_camera_station(tmp_path, first, second, n, second_detector=None):
+    """``n`` announced parts; items 0/1 are good/defective as each camera sees the part, 'dark' no part in view."""
+    log = InspectionLog(tmp_path / "log.sqlite")
+    link = ScriptedLink(n, log=log)
+    pair = CameraPair(ScriptedCamera(first, trigger="software"), SideCamera(second, trigger="software"),
+                      max_skew_ms=1000.0)
+    inspector = PairInspector(Inspector(BrightnessDetector(), IMX250MZR),
+                              Inspector(second_detector or SecondDetector(), IMX250MZR, presence=DarkIsEmpty()))
+    station = Station(pair, inspector, link, log, cycle_time_ms=10_000.0, queue_size=16, backpressure="block")
+    return station, link, log
+
+
+def test_a_part_only_the_second_camera_finds_defective_is_rejected_and_its_row_says_which(tmp_path):
+    station, link, log = two_camera_station(tmp_path, [0, 0, 1, 1], [0, 1, 0, 1], 4)
+    station.run(max_parts=4)
+    rows = list(log.rows())
+    assert [r["decision"] for r in rows] == ["pass", "reject", "reject", "reject"]
+    assert dict(link.reports) == {"T0": "pass", "T1": "reject", "T2": "reject", "T3": "reject"}
+    assert rows[1]["reason"].startswith("second camera: score 1.5686 > threshold 0.6000")
+    assert rows[2]["reason"].startswith("score 1.5686 > threshold 0.5000") and "second camera" not in rows[2]["reason"]
+    assert "; second camera: score" in rows[3]["reason"]
+    for r in rows:
+        assert r["model_id"] == "test-brightness" and r["threshold"] == 0.5
+        assert r["second_model_id"] == "test-side" and r["second_threshold"] == 0.6
+        assert r["second_frame_id"] == r["camera_frame_id"]
+    assert [round(r["second_score"], 4) for r in rows] == [0.1569, 1.5686, 0.1569, 1.5686]
+
+
+def test_any_fault_of_the_second_camera_rejects_the_part(tmp_path):
+    # part T1: the second camera gives no frame; T2: it sees no part where the first camera sees one
+    station, link, log = two_camera_station(tmp_path, [0, 0, 0, 0], [0, CameraTimeout("no frame in 5 ms"), "dark", 0],
+                                            4)
+    station.run(max_parts=4)
+    rows = {r["part_id"]: r for r in log.rows()}
+    assert len(rows) == 4 and dict(link.reports) == {"T0": "pass", "T1": "reject", "T2": "reject", "T3": "pass"}
+    assert "no frame for part T1: second camera: no frame in 5 ms" in rows["T1"]["reason"]
+    assert rows["T1"]["second_score"] is None and rows["T1"]["second_frame_id"] is None
+    assert rows["T2"]["reason"].startswith("not judged: the second camera sees no part (no part in view")
+    assert rows["T2"]["second_score"] is None  # its model did not run
+
+
+def test_a_failing_second_model_rejects_the_part(tmp_path):
+    station, link, log = two_camera_station(tmp_path, [0, 0], [0, 0], 2, SecondDetector(fail=True))
+    station.run(max_parts=2)
+    rows = list(log.rows())
+    assert [r["decision"] for r in rows] == ["reject", "reject"] and set(dict(link.reports).values()) == {"reject"}
+    assert all(r["reason"].startswith("second camera: not judged: frame") and "weights corrupt" in r["reason"]
+               for r in rows)
+
+
+def test_both_cameras_time_their_stages_in_the_row(tmp_path):
+    station, _, log = two_camera_station(tmp_path, [0], [0], 1, SecondDetector(delay_s=0.05))
+    station.run(max_parts=1)
+    (row,) = log.rows()
+    assert row["model_ms"] >= 50.0 and np.isfinite(row["total_ms"])
+
+
+def test_station_run_with_a_virtual_second_camera_showing_the_same_parts(tmp_path, capsys):
+    from tests.station.test_run import make_dataset, make_model, write_config
+
+    model, side = make_model(tmp_path / "model" / "best"), make_model(tmp_path / "side" / "side")
+    ds, twin = make_dataset(tmp_path / "ds"), make_dataset(tmp_path / "twin")
+    cfg = write_config(tmp_path, model, ds, f'[second_camera]\nenabled = true\nmodel = "{side}"\ndataset = "{twin}"\n'
+                                            'threshold = 0.55\nframe_rate_hz = 20.0\npresence_rule = "dolp_contrast"\n')
+    assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "6",
+                 "--summary-json", str(tmp_path / "s.json")]) == 0
+    assert "second camera's model side-tiny-fused" in capsys.readouterr().out
+    rows = list(InspectionLog(tmp_path / "log.sqlite", readonly=True).rows())
+    assert len(rows) == 6
+    for r in rows:
+        assert r["second_model_id"].startswith("side-tiny-fused-") and r["second_threshold"] == 0.55
+        assert r["second_frame_id"] == r["camera_frame_id"] and r["io_delivered"] == 1
+        assert (r["decision"] == "reject") == (r["score"] > 0.5 or r["second_score"] > 0.55)
+    summary = json.loads((tmp_path / "s.json").read_text())
+    assert summary["camera"]["second_camera"]["completed"] == 6 and summary["camera"]["second_camera"]["unpaired"] == 0
+
+
+def test_a_twin_set_of_other_parts_stops_the_station_before_the_first_part(tmp_path, capsys):
+    from tests.station.test_run import make_dataset, make_model, write_config
+
+    model = make_model(tmp_path / "model" / "best")
+    ds, twin = make_dataset(tmp_path / "ds"), make_dataset(tmp_path / "twin", defective=lambda i: i % 2 == 0)
+    cfg = write_config(tmp_path, model, ds, f'[second_camera]\nenabled = true\nmodel = "{model}"\n'
+                                            f'dataset = "{twin}"\n')
+    assert main(["run", "--config", str(cfg), "--frames", "2"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "not a twin set" in err[0], err
+    assert not list(InspectionLog(tmp_path / "log.sqlite", readonly=True).rows())
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("enabled = true", r"\[second_camera\] model: must name"),
+    ('enabled = true\nmodel = "m"\nkind = "aravis"', r"\[second_camera\] kind: 'aravis', but \[camera\] kind is 'sim'"),
+    ('enabled = true\nmodel = "m"', r"\[second_camera\] dataset: the virtual second camera needs its twin"),
+    ('enabled = true\nmodel = "m"\ndataset = "d"\ndome_segments = [0, 180]', "one frame per part"),
+    ('enabled = true\nmodel = "m"\ndataset = "d"\ntrigger = "line0"', r"trigger: 'line0' with \[camera\] trigger"),
+    ('enabled = true\nmodel = "m"\ndataset = "d"\nexposure_us = 90000\ntimeout_ms = 100', "timeout_ms: 100 ms"),
+    ('presence_rule = "magic"', r"presence_rule: 'magic' is not one of"),
+])
+def test_bad_second_camera_keys_name_the_key(text, message):
+    with pytest.raises(ConfigError, match=message):
+        parse_config(f'[sim]\ndataset = "s"\n[second_camera]\n{text}\n', "station.toml")
