@@ -1,7 +1,7 @@
 """Evaluating a checkpoint on a dataset split as the station feeds it: the split at the model's roi, input size and
 normal prior, the network that runs it (torch fp32, or the int8 networks of ``station quantize``), the evaluation.
 Shared by ``station eval``, ``threshold``, ``ensemble``, ``quantize``, ``adapt`` and the pipeline benchmark;
-``set_threshold`` is ``station threshold``'s rule."""
+``set_threshold`` is ``station threshold``'s rule, ``split_camera_thresholds`` ``station split``'s."""
 
 from __future__ import annotations
 
@@ -393,3 +393,60 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     return (f"{out}: {members} residual networks {role}; threshold {choice.threshold:.4g} ({choice.rule}); on "
             f"{len(labels)} val parts it flags {choice.flagged_good_fraction:.1%} of good parts{detected}; image "
             f"AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")
+
+
+def split_camera_thresholds(first_model: str, first_data: str, second_model: str, second_data: str,
+                            rate: float = GOOD_REJECTED_RATE, split: str = "val",
+                            first_presence: str = "dolp_contrast", second_presence: str = "row_contrast") -> dict:
+    """Two cameras' thresholds from one budget of good parts rejected (``model.draem.camera_split``), on the twin
+    validation sets ``first_data`` and ``second_data`` (the same parts, each seen by its camera; their samples are
+    matched by index and must agree on the label). Parts either camera's presence rule (or invalid pixels) would
+    leave unjudged are left out and listed, as ``station threshold`` does. Returns the report ``station split``
+    prints and writes: every split of the budget, the chosen one, and what each camera alone does at the whole
+    budget."""
+    import dataclasses
+
+    import numpy as np
+
+    from model.draem.camera_split import split_thresholds
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.metrics import choose_threshold
+    from station.datasets import judged_part_of
+    from station.presence import PresenceCheck
+
+    check_max_good_flagged(rate)
+    scores, labels, left_out = [], [], {}
+    for name, model, data, rule in (("first", first_model, first_data, first_presence),
+                                    ("second", second_model, second_data, second_presence)):
+        ck = load_checkpoint(model)
+        sp, unjudged = judged_part_of(model_split(ck, model, data, split, presence=PresenceCheck(rule=rule)))
+        sp = without_held_out_type(sp, ck.meta.get("train", {}))
+        _, ev = evaluate_tensors(inference_net(ck, model, "fp32"), sp)
+        scores.append(dict(zip(sp.index, np.asarray(ev.scores, np.float64).tolist(), strict=True)))
+        labels.append(dict(zip(sp.index, sp.label.numpy().astype(int).tolist(), strict=True)))
+        left_out.update({i: f"{name} camera: {why}" for i, why in unjudged.items()})
+    both = sorted(set(scores[0]) & set(scores[1]))
+    wrong = [i for i in both if labels[0][i] != labels[1][i]]
+    if wrong:
+        raise UserError(f"{first_data} and {second_data} are not twin sets: sample {wrong[0]} is labelled "
+                        f"{labels[0][wrong[0]]} in one and {labels[1][wrong[0]]} in the other ({len(wrong)} such)")
+    if not both:
+        raise UserError(f"{first_data} and {second_data}: no sample of split {split!r} is judged by both cameras")
+    y = np.array([labels[0][i] for i in both], bool)
+    a = np.array([scores[0][i] for i in both])
+    b = np.array([scores[1][i] for i in both])
+    try:
+        rows, best = split_thresholds(y, a, b, rate)
+    except ValueError as exc:
+        raise UserError(f"{first_data}, {second_data}: {exc}") from None
+    alone = {}
+    for name, s in (("first", a), ("second", b)):
+        choice = choose_threshold(y.astype(int), s, rate)
+        alone[name] = {"threshold": choice.threshold, "good_rejected": choice.flagged_good_fraction,
+                       "caught": choice.detected_fraction}
+    return {"first": {"model": first_model, "data": first_data, "presence_rule": first_presence},
+            "second": {"model": second_model, "data": second_data, "presence_rule": second_presence},
+            "split": split, "rate": rate, "parts": len(both), "good": int((~y).sum()), "defective": int(y.sum()),
+            "budget": int(np.floor(rate * (~y).sum() + 1e-9)),
+            "left_out": {str(i): why for i, why in sorted(left_out.items())},
+            "splits": [dataclasses.asdict(r) for r in rows], "chosen": best, "alone": alone}

@@ -171,3 +171,26 @@ def test_a_twin_set_of_other_parts_stops_the_station_before_the_first_part(tmp_p
 def test_bad_second_camera_keys_name_the_key(text, message):
     with pytest.raises(ConfigError, match=message):
         parse_config(f'[sim]\ndataset = "s"\n[second_camera]\n{text}\n', "station.toml")
+
+
+def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
+    from tests.station.test_run import make_dataset, make_model
+
+    model, side = make_model(tmp_path / "model" / "best"), make_model(tmp_path / "side" / "side", ("intensity",))
+    ds, twin = make_dataset(tmp_path / "ds", n=30), make_dataset(tmp_path / "twin", n=30)
+    args = ["split", "--model", str(model), "--data", str(ds), "--second-model", str(side), "--second-data", str(twin),
+            "--split", "train", "--second-presence-rule", "dolp_contrast", "--max-good-flagged", "0.25"]
+    assert main([*args, "--out", str(tmp_path / "split.json")]) == 0
+    out = capsys.readouterr().out
+    report = json.loads((tmp_path / "split.json").read_text())
+    assert report["parts"] == 21 and report["good"] == 9 and report["budget"] == 2
+    assert [r["k"] for r in report["splits"]] == [0, 1, 2]
+    assert all(r["good_rejected"] <= 2 for r in report["splits"])
+    chosen = report["splits"][report["chosen"]]
+    assert chosen["caught"] == max(r["caught"] for r in report["splits"])
+    assert out.count("<- chosen") == 1 and f"[second_camera]\nthreshold = {chosen['second']:.6g}" in out
+    assert f"[decision]\nthreshold = {chosen['first']:.6g}" in out
+    other = make_dataset(tmp_path / "other", n=30, defective=lambda i: i % 3 == 0)
+    assert main([*args[:8], str(other), *args[9:]]) == 2
+    err = capsys.readouterr().err
+    assert "are not twin sets: sample 5 is labelled" in err.splitlines()[-1] and "Traceback" not in err

@@ -1,0 +1,62 @@
+"""``station split``: the two cameras' thresholds of a station with a second camera (``[second_camera]``), from one
+budget of good parts rejected split between them on twin validation sets (``model.draem.camera_split``; the rule of
+docs/results/2026-11-30-wide-dome.md). Prints every split and the chosen one, with the two ``station.toml`` lines that
+set it, and writes them as JSON. Neither model file is changed: a camera's threshold in a split is not its threshold
+alone."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from station.commands.arguments import add_max_good_flagged
+from station.config import PRESENCE_RULES
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("split", help="set two cameras' thresholds from one budget of good parts rejected")
+    p.add_argument("--model", required=True, help="the first camera's checkpoint ([model] path)")
+    p.add_argument("--data", required=True, help="the first camera's validation set")
+    p.add_argument("--second-model", required=True, help="the second camera's checkpoint ([second_camera] model)")
+    p.add_argument("--second-data", required=True,
+                   help="the second camera's twin of --data (the same seed and parts, rendered or captured from it)")
+    p.add_argument("--split", default="val", choices=("train", "val", "test"), help="split to choose on (default val)")
+    p.add_argument("--presence-rule", default=PRESENCE_RULES[0], choices=PRESENCE_RULES,
+                   help="the first camera's [presence] rule (default dolp_contrast)")
+    p.add_argument("--second-presence-rule", default=PRESENCE_RULES[1], choices=PRESENCE_RULES,
+                   help="the second camera's [second_camera] presence_rule (default row_contrast)")
+    add_max_good_flagged(p, "the good parts, by both cameras together")
+    p.add_argument("--out", default=None, metavar="FILE", help="also write the report as JSON")
+    p.set_defaults(func=run)
+
+
+def format_split(report: dict) -> str:
+    """``split_camera_thresholds``'s report as text: a table of the splits, the chosen one, the config lines."""
+    lines = [f"{report['parts']} parts judged by both cameras ({report['good']} good, {report['defective']} "
+             f"defective); budget {report['budget']} good parts ({100 * report['rate']:g} %)",
+             f"{'k':>3} {'first':>8} {'second':>8} {'good rejected':>14} {'caught':>7}"]
+    for i, r in enumerate(report["splits"]):
+        mark = "  <- chosen" if i == report["chosen"] else ""
+        lines.append(f"{r['k']:>3} {r['first']:>8.4f} {r['second']:>8.4f} {r['good_rejected']:>14} "
+                     f"{100 * r['caught']:>6.1f}%{mark}")
+    for name, a in report["alone"].items():
+        lines.append(f"{name} camera alone at its own threshold {a['threshold']:.4f}: {100 * a['good_rejected']:.1f} % "
+                     f"of good parts rejected, {100 * a['caught']:.1f} % of defective caught")
+    if report["left_out"]:
+        lines.append(f"left out {len(report['left_out'])} parts a camera would not judge (rejected at the station)")
+    chosen = report["splits"][report["chosen"]]
+    lines += ["station.toml:", "[decision]", f"threshold = {chosen['first']:.6g}", "[second_camera]",
+              f"threshold = {chosen['second']:.6g}"]
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    from station.evaluation import split_camera_thresholds
+
+    report = split_camera_thresholds(args.model, args.data, args.second_model, args.second_data,
+                                     args.max_good_flagged, args.split, args.presence_rule, args.second_presence_rule)
+    print(format_split(report))
+    if args.out:
+        Path(args.out).write_text(json.dumps(report, indent=1))
+    return 0
