@@ -3,7 +3,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml scripts/system-deps.sh | sha1sum | cut -c1-12)
 
-.PHONY: demo test setup lint clean model
+.PHONY: demo test setup lint clean model side-model
 
 demo: setup
 	$(BIN)/station run --camera sim --frames 200
@@ -32,3 +32,7 @@ clean:
 # The shipped model from nothing (render, train, variation model, held-out evaluation, copy to model/weights/default); hours.
 model: setup
 	scripts/make-model.sh
+
+# The second camera's model (a side camera at belt level: [second_camera] in station.toml), from nothing; about 2 h.
+side-model: setup
+	scripts/make-side-model.sh

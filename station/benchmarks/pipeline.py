@@ -23,6 +23,11 @@ From the log:
 - the presence check against ground truth: the fraction of empty frames skipped (logged "empty", model not run)
   and of frames showing a part wrongly skipped; and the check's own time per frame (p50).
 
+With ``--second-model`` and ``--second-data`` (the twin set of ``--data``, seen by the second camera), every
+configuration is a two-camera station (``[second_camera]``): both virtual cameras triggered per part, the second one's
+frame judged by the second model (its presence rule ``row_contrast``) after the first's, and the latency is the
+part's, both cameras' work together. The row's AUROC and confusion stay the first camera's.
+
 Writes JSON, a Markdown table and a Pareto plot (p99 latency against 1 - image AUROC), and names the
 configurations on the front.
 """
@@ -57,17 +62,22 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="fraction of frames with no part in view (the set's test split needs empty samples)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--device", default="auto")
+    p.add_argument("--second-model", default=None,
+                   help="a second camera's checkpoint: every configuration runs two cameras per part (needs "
+                        "--second-data)")
+    p.add_argument("--second-data", default=None, help="the second camera's twin of --data (same seed and parts)")
 
 
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
             device: str, presence: bool = True, empty_rate: float = 0.0, early_exit: float | None = None,
-            members: tuple[str, ...] | None = None) -> dict:
-    """One configuration through the real station loop; returns its row."""
+            members: tuple[str, ...] | None = None, second: tuple[str, str] | None = None) -> dict:
+    """One configuration through the real station loop; returns its row. ``second``: (checkpoint, twin set) of a
+    second camera (module docstring)."""
     from collections.abc import Mapping
 
     import numpy as np
 
-    from drivers.camera import CameraConfig
+    from drivers.camera import Camera, CameraConfig
     from drivers.virtual_camera import VirtualCamera, VirtualCameraConfig
     from model.draem.metrics import auroc
     from model.priors import get_layout
@@ -80,15 +90,28 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from station.loop import Station
     from station.model_detector import DraemDetector
     from station.presence import Presence, PresenceCheck
+    from station.second_camera import PairInspector
 
     detector = DraemDetector(model, device, precision, early_exit_margin=early_exit, members=members)
     detector.warm_up()
     detector.members_run = 0
     layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
     frames = frames_per_part(detector.dome_segments)  # a frame per dome segment: the station triggers each
-    camera = VirtualCamera(CameraConfig(trigger="free_run" if frames == 1 else "software", frame_rate_hz=1000.0,
-                                        timeout_ms=10000, frames_per_part=frames),
-                           VirtualCameraConfig(data, defect_rate, split="test", seed=seed, empty_rate=empty_rate))
+    trigger = "free_run" if frames == 1 and second is None else "software"
+    camera: Camera = VirtualCamera(CameraConfig(trigger=trigger, frame_rate_hz=1000.0, timeout_ms=10000,
+                                                frames_per_part=frames),
+                                   VirtualCameraConfig(data, defect_rate, split="test", seed=seed,
+                                                       empty_rate=empty_rate))
+    second_detector = None
+    if second is not None:
+        from drivers.camera_pair import CameraPair
+
+        second_detector = DraemDetector(second[0], device, precision)
+        second_detector.warm_up()
+        camera = CameraPair(camera, VirtualCamera(CameraConfig(trigger="software", frame_rate_hz=1000.0,
+                                                               timeout_ms=10000),
+                                                  VirtualCameraConfig(second[1]), leader=camera),  # type: ignore[arg-type]
+                            max_skew_ms=1e6)
 
     class TimedCheck(PresenceCheck):
         """Keeps the check's own time per frame in ms (the log folds it into ``priors_ms``)."""
@@ -108,7 +131,11 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     with tempfile.TemporaryDirectory() as tmp, InspectionLog(Path(tmp) / "log.sqlite") as log:
         camera.open()
         try:
-            inspector = Inspector(detector, layout, method, presence=check, segments=detector.dome_segments)
+            inspector: Inspector | PairInspector = Inspector(detector, layout, method, presence=check,
+                                                             segments=detector.dome_segments)
+            if second_detector is not None:
+                inspector = PairInspector(inspector, Inspector(second_detector, layout, method, presence=PresenceCheck(
+                    cfg.min_dolp_contrast, cfg.cell_px, "row_contrast", cfg.min_row_contrast) if presence else None))
             station = Station(camera, inspector, NoLink(), log, cycle_time_ms=1e6, queue_size=1, backpressure="block",
                               grab_timeout_ms=10000)
             t = time.perf_counter()
@@ -129,7 +156,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     n_empty = sum(v for k, v in c.items() if k.startswith("none_"))
     n_parts = sum(v for k, v in c.items() if not k.startswith("none_"))
     model_ms = [r["model_ms"] for r in rows if r["model_ms"] is not None]
-    return {"checkpoint": model, "model": detector.model_id, "fusion": detector.config.fusion,
+    return {"checkpoint": model, "second_checkpoint": second[0] if second else "",
+            "model": detector.model_id, "fusion": detector.config.fusion,
             "priors": "+".join(detector.used_priors), "method": method, "precision": precision,
             "presence": "on" if presence else "off",
             "early_exit": "off" if early_exit is None else "exact" if early_exit == 0 else f"margin {early_exit:g}",
@@ -224,6 +252,9 @@ def run(args: argparse.Namespace) -> int:
     from station.benchmarks.report import markdown_table, write_report
     from station.errors import UserError
 
+    if (args.second_model is None) != (args.second_data is None):
+        raise UserError("--second-model and --second-data go together (a second camera's model and its twin set)")
+    second = (args.second_model, args.second_data) if args.second_model else None
     presence = args.presence.split(",")
     bad = [p for p in presence if p not in ("on", "off")]
     if bad:
@@ -239,14 +270,15 @@ def run(args: argparse.Namespace) -> int:
     rows = []
     for model, method, precision, pres, ee, mem in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
-                            args.device, pres == "on", args.empty_rate, ee, mem))
+                            args.device, pres == "on", args.empty_rate, ee, mem, second))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
-    cols = ["checkpoint", "fusion", "priors", "method", "precision", "presence", "early_exit", "members_per_part",
+    cols = ["checkpoint", *(["second_checkpoint"] if second else []), "fusion", "priors", "method", "precision",
+            "presence", "early_exit", "members_per_part",
             "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
             "image_auroc", "detected", "flagged_good", "pareto"]

@@ -39,6 +39,20 @@ def test_bench_pipeline_runs_the_station_over_the_grid(tmp_path: Path) -> None:
     assert report["front"] and (out / "pipeline.png").stat().st_size > 1000
 
 
+def test_bench_pipeline_times_a_two_camera_station(tmp_path: Path, capsys) -> None:
+    model, side = make_model(tmp_path / "m" / "best"), make_model(tmp_path / "s" / "side", ("intensity",))
+    data, twin = make_dataset(tmp_path / "ds", n=20), make_dataset(tmp_path / "twin", n=20)
+    out = tmp_path / "bench"
+    args = ["bench", "pipeline", "--data", str(data), "--models", str(model), "--methods", "bilinear",
+            "--precisions", "fp32", "--presence", "off", "--parts", "6", "--out", str(out)]
+    assert main([*args, "--second-model", str(side), "--second-data", str(twin)]) == 0
+    (row,) = json.loads((out / "pipeline.json").read_text())["rows"]
+    assert row["second_checkpoint"] == str(side) and row["parts"] == row["judged"] == 6 and row["p99_ms"] > 0
+    assert "| second_checkpoint |" in (out / "pipeline.md").read_text()
+    assert main([*args, "--second-model", str(side)]) == 2
+    assert "--second-model and --second-data go together" in capsys.readouterr().err
+
+
 def test_bench_soak_accounts_for_every_part(tmp_path: Path) -> None:
     cfg = write_config(tmp_path, make_model(tmp_path / "m" / "best"), make_dataset(tmp_path / "ds"))
     out = tmp_path / "soak"
