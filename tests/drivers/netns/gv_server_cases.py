@@ -38,15 +38,16 @@ DEFECTIVE = (1, 3, 5)
 EMPTY = (6, 7)
 
 
-def make_dataset(root: Path, n: int = 8, bit_depth: int = 8, empty: tuple[int, ...] = ()) -> Path:
+def make_dataset(root: Path, n: int = 8, bit_depth: int = 8, empty: tuple[int, ...] = (), shift: int = 0) -> Path:
     """Tiny mosaics, distinct in every pixel; the sample index is encoded in pixel (0, 0) (and, scaled, in the
     rest), so a frame shows which part it is and any reordering of bytes shows too. ``empty``: samples that show
-    no part (``"empty": true``, label 0)."""
+    no part (``"empty": true``, label 0). ``shift`` moves the other pixels' codes (8 bits): a twin set, the same
+    parts seen by another camera."""
     init_dataset(root, DatasetSpec(width=W, height=H, sensor=SensorConfig(bit_depth=bit_depth)), n)
     y, x = np.mgrid[:H, :W]
     for i in range(n):
         if bit_depth == 8:
-            raw = ((x + 3 * y + 17 * i) % 256).astype(np.uint8)
+            raw = ((x + 3 * y + 17 * i + shift) % 256).astype(np.uint8)
         else:  # codes over 8 bits, up to full scale: byte order and bit depth both matter
             raw = ((x * 61 + y * 113 + 997 * i) % 2**bit_depth).astype(np.uint16)
         raw[0, 0] = i
@@ -196,6 +197,30 @@ def test_only_loopback_unless_allowed(ds8: Path) -> None:
 def test_a_second_server_on_the_same_address_is_a_clear_error(server: GvCameraServer, ds8: Path) -> None:
     with pytest.raises(CameraError, match=r"cannot listen on 127\.0\.0\.1:3956: taken by another GigE Vision"):
         GvCameraServer(str(ds8)).start()
+
+
+def test_two_served_cameras_give_each_part_its_two_frames(tmp_path: Path) -> None:
+    """Two GigE cameras on two loopback addresses, the second serving the first's twin set (the same parts, the same
+    draws): ``CameraPair`` over the real protocol, software-triggered, pairs each part's two frames."""
+    from drivers.camera_pair import CameraPair
+
+    # a second loopback address for the second camera, in this private namespace only
+    subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
+    line, side = make_dataset(tmp_path / "line"), make_dataset(tmp_path / "side", shift=101)
+    seen = mosaics(side)
+    with (GvCameraServer(str(line), defect_rate=0.5, seed=5),
+          GvCameraServer(str(side), defect_rate=0.5, seed=5, interface="127.0.0.2", serial="POLARSIM2"),
+          CameraPair(AravisCamera(cfg(trigger="software")), AravisCamera(cfg(device="127.0.0.2", trigger="software")),
+                     max_skew_ms=500.0) as pair):
+        pair.start()
+        got = []
+        for _ in range(10):
+            pair.trigger()
+            got.append(pair.grab())
+    assert len({int(f.raw[0, 0]) for f in got}) > 3  # parts in random order ...
+    for f in got:  # ... each with its twin
+        assert f.companion is not None and f.companion.raw.tobytes() == seen[int(f.raw[0, 0])].tobytes()
+    assert pair.unpaired == 0 and pair.second_statistics().completed == 10
 
 
 def serve_and_run(ds: Path, model: Path, tmp_path: Path, parts: int, camera: str = "") -> tuple[str, str]:
