@@ -226,7 +226,8 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
     if second_detector is not None:
         inspector = PairInspector(inspector, Inspector(
             second_detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
-            presence=presence_check(cfg, cfg.second_camera.presence_rule), bit_depth=cfg.priors.bit_depth))
+            presence=presence_check(cfg, cfg.second_camera.presence_rule), bit_depth=cfg.priors.bit_depth),
+            cfg.second_camera.parallel)
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
                    grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,

@@ -136,6 +136,8 @@ class SecondCameraConfig(CameraConfig):
     at the part."""
     dataset: str = ""
     """Virtual camera: the twin of ``[sim] dataset`` (the same seed and parts, rendered from this camera)."""
+    parallel: bool = True
+    """Judge its frame at the same time as the first camera's (``station.second_camera.PairInspector``)."""
 
 
 @dataclass(frozen=True)

@@ -6,8 +6,9 @@ Each part then has two frames (``drivers.camera_pair.CameraPair``), two models, 
 thresholds; the part gets one answer and one log row:
 
 - ``PairInspector`` judges the first camera's frame with the first inspector and its ``companion`` (the second
-  camera's frame of the same part) with the second, one after the other, and returns the first camera's
-  ``Inspection`` with the second's as its ``second``. A part with no second frame has an error there.
+  camera's frame of the same part) with the second, at the same time on a thread of its own (``parallel``; or one
+  after the other), and returns the first camera's ``Inspection`` with the second's as its ``second``. A part with
+  no second frame has an error there.
 - ``station.decision.join`` makes the part's decision (the loop decides each camera on its own threshold first):
   either camera's reject rejects, with its reason; a part neither sees is empty; a part one camera sees and the
   other does not is rejected.
@@ -20,6 +21,7 @@ together up to twice it. ``station split`` sets them (docs/station.md, "A second
 from __future__ import annotations
 
 from collections.abc import Sequence
+from concurrent.futures import ThreadPoolExecutor
 
 from drivers.frame import Frame
 from station.inspector import Detector, Inspection, Inspector
@@ -30,12 +32,16 @@ SECOND_NAME = "second camera"
 
 class PairInspector:
     """Two inspectors, one per camera, as one for the loop (``Inspector.inspect``'s protocol). ``detector`` is the
-    first camera's (its model id and threshold are the row's ``model_id`` and ``threshold``)."""
+    first camera's (its model id and threshold are the row's ``model_id`` and ``threshold``). ``parallel``: the
+    second camera's frame is judged on a thread of its own while the first's is judged (the heavy steps, numpy,
+    OpenCV and torch, release the interpreter's lock); else after it."""
 
-    def __init__(self, first: Inspector, second: Inspector) -> None:
+    def __init__(self, first: Inspector, second: Inspector, parallel: bool = True) -> None:
         if second.segments:
             raise ValueError("the second camera takes one frame per part: its model must not read dome segments")
         self.first, self.second = first, second
+        self.parallel = parallel
+        self._pool = ThreadPoolExecutor(1, thread_name_prefix="second-camera") if parallel else None
 
     @property
     def detector(self) -> Detector:
@@ -51,15 +57,25 @@ class PairInspector:
 
     def inspect(self, frames: Frame | Sequence[Frame]) -> Inspection:
         """Judge one part on both cameras' frames: the first camera's (``frames``, as ``Inspector.inspect`` takes
-        them) and the first frame's ``companion``. The result's stage times are both cameras' together."""
+        them) and the first frame's ``companion``. The result's stage times are both cameras' together (in parallel:
+        the longer of the two)."""
         frames = (frames,) if isinstance(frames, Frame) else tuple(frames)
-        result = self.first.inspect(frames)
         companion = frames[0].companion if frames else None
+        pending = None
+        if companion is not None and self._pool is not None:
+            pending = self._pool.submit(self.second.inspect, companion)
+        result = self.first.inspect(frames)
         if companion is None:
             second = Inspection(error=f"no frame from the {SECOND_NAME}")
+        elif pending is not None:
+            try:
+                second = pending.result()
+            except Exception as exc:  # Inspector.inspect returns its errors; anything else still rejects the part
+                second = Inspection(error=f"{type(exc).__name__}: {exc}")
         else:
             second = self.second.inspect(companion)
-        for stage, ms in second.timings_ms.items():
-            result.timings_ms[stage] = result.timings_ms.get(stage, 0.0) + ms
+        for stage, ms in second.timings_ms.items():  # each stage's time for the part: the two cameras' together,
+            mine = result.timings_ms.get(stage, 0.0)  # or the longer of the two when they ran at the same time
+            result.timings_ms[stage] = max(mine, ms) if pending is not None else mine + ms
         result.second = second
         return result

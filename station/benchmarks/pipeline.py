@@ -66,13 +66,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="a second camera's checkpoint: every configuration runs two cameras per part (needs "
                         "--second-data)")
     p.add_argument("--second-data", default=None, help="the second camera's twin of --data (same seed and parts)")
+    p.add_argument("--second-parallel", default="on",
+                   help="with a second camera: on (its frame judged at the same time as the first's), off (after "
+                        "it), or on,off")
 
 
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
             device: str, presence: bool = True, empty_rate: float = 0.0, early_exit: float | None = None,
-            members: tuple[str, ...] | None = None, second: tuple[str, str] | None = None) -> dict:
+            members: tuple[str, ...] | None = None, second: tuple[str, str] | None = None,
+            parallel: bool = True) -> dict:
     """One configuration through the real station loop; returns its row. ``second``: (checkpoint, twin set) of a
-    second camera (module docstring)."""
+    second camera (module docstring), judged at the same time as the first (``parallel``) or after it."""
     from collections.abc import Mapping
 
     import numpy as np
@@ -135,7 +139,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
                                                              segments=detector.dome_segments)
             if second_detector is not None:
                 inspector = PairInspector(inspector, Inspector(second_detector, layout, method, presence=PresenceCheck(
-                    cfg.min_dolp_contrast, cfg.cell_px, "row_contrast", cfg.min_row_contrast) if presence else None))
+                    cfg.min_dolp_contrast, cfg.cell_px, "row_contrast", cfg.min_row_contrast) if presence else None),
+                    parallel)
             station = Station(camera, inspector, NoLink(), log, cycle_time_ms=1e6, queue_size=1, backpressure="block",
                               grab_timeout_ms=10000)
             t = time.perf_counter()
@@ -157,6 +162,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     n_parts = sum(v for k, v in c.items() if not k.startswith("none_"))
     model_ms = [r["model_ms"] for r in rows if r["model_ms"] is not None]
     return {"checkpoint": model, "second_checkpoint": second[0] if second else "",
+            "second_parallel": ("on" if parallel else "off") if second else "",
             "model": detector.model_id, "fusion": detector.config.fusion,
             "priors": "+".join(detector.used_priors), "method": method, "precision": precision,
             "presence": "on" if presence else "off",
@@ -255,6 +261,9 @@ def run(args: argparse.Namespace) -> int:
     if (args.second_model is None) != (args.second_data is None):
         raise UserError("--second-model and --second-data go together (a second camera's model and its twin set)")
     second = (args.second_model, args.second_data) if args.second_model else None
+    pair_modes = args.second_parallel.split(",") if second else ["on"]
+    if any(m not in ("on", "off") for m in pair_modes):
+        raise UserError(f"--second-parallel: {args.second_parallel!r}: on, off or on,off")
     presence = args.presence.split(",")
     bad = [p for p in presence if p not in ("on", "off")]
     if bad:
@@ -263,22 +272,22 @@ def run(args: argparse.Namespace) -> int:
     models = args.models.split(",")
     cfgs = {m: read_sidecar(m)["model"] for m in models}  # each sidecar read once
     members = {(m, s): _members(cfgs[m], s) for m in models for s in args.prior_sets.split(",")}
-    grid = [(m, meth, prec, pres, ee, mem) for m in models for meth in args.methods.split(",")
+    grid = [(m, meth, prec, pres, ee, mem, pm) for m in models for meth in args.methods.split(",")
             for prec in args.precisions.split(",") for pres in presence for ee in exits
             for mem in dict.fromkeys(v for (mm, _), v in members.items() if mm == m and v is not False)
-            if ee is None or cfgs[m].get("fusion") == "ensemble"]
+            for pm in pair_modes if ee is None or cfgs[m].get("fusion") == "ensemble"]
     rows = []
-    for model, method, precision, pres, ee, mem in tqdm(grid, desc="bench pipeline", unit="config"):
+    for model, method, precision, pres, ee, mem, pm in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
-                            args.device, pres == "on", args.empty_rate, ee, mem, second))
+                            args.device, pres == "on", args.empty_rate, ee, mem, second, pm == "on"))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
-    cols = ["checkpoint", *(["second_checkpoint"] if second else []), "fusion", "priors", "method", "precision",
-            "presence", "early_exit", "members_per_part",
+    cols = ["checkpoint", *(["second_checkpoint", "second_parallel"] if second else []), "fusion", "priors",
+            "method", "precision", "presence", "early_exit", "members_per_part",
             "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
             "image_auroc", "detected", "flagged_good", "pareto"]
