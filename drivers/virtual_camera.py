@@ -16,8 +16,9 @@ one per ``trigger()``, before the next part is drawn.
 
 A second camera's virtual camera plays the same parts seen from its own viewpoint: made with ``leader=`` the first
 camera's, it holds the twin set's samples of the leader's parts (a set rendered with the same seed and indices by the
-second camera's preset; each sample must agree with the leader's on label and on whether a part is in view) and shows,
-on each new part, the part the leader shows (``drivers.camera_pair`` grabs the leader first).
+second camera's preset; each sample must be the same part as the leader's, ``part_identity``) and shows, on each new
+part, the part the leader shows (``drivers.camera_pair`` grabs the leader first). The two samples' labels may differ:
+a label says whether that camera sees the defect (a front-face dent is not in the line camera's view).
 
 Timing follows the camera config: ``free_run`` paces frames at ``frame_rate_hz``; ``software`` delivers one
 frame per ``trigger()`` (at most ``frame_rate_hz``); hardware line triggers do not exist here (config error).
@@ -27,6 +28,7 @@ Dataset errors are ``sim.errors.SimError`` naming the file; a dataset unfit for 
 
 from __future__ import annotations
 
+import json
 import logging
 import threading
 import time
@@ -59,6 +61,13 @@ class VirtualCameraConfig:
         for name in ("defect_rate", "empty_rate"):
             if not 0.0 <= getattr(self, name) <= 1.0:
                 raise CameraConfigError(f"virtual camera {name} = {getattr(self, name)}: must be in [0, 1]")
+
+
+def part_identity(params: dict) -> str:
+    """What a rendered part is, whichever camera renders it (a sample's ``params.json``): no part in view, or the
+    defect drawn on it (type, place, size), without what the camera sees of it (``visible_px``, and so the label)."""
+    defect = {k: v for k, v in (params.get("defect") or {}).items() if k != "visible_px"}
+    return json.dumps({"empty": bool(params.get("empty")), "defect": defect}, sort_keys=True)
 
 
 @dataclass(frozen=True)
@@ -172,13 +181,11 @@ class VirtualCamera(CameraBase):
                                         f"camera's set {leader.sim.dataset} shows: render the twin set with the same "
                                         "seed and number of samples")
             twin = self._load(ds, c.index)
-            a, b = c.ground_truth, twin.ground_truth
-            if (a.label, a.present) != (b.label, b.present):
-                raise CameraConfigError(f"virtual camera: sample {c.index} of {self.sim.dataset} (label {b.label}, "
-                                        f"{'a part' if b.present else 'no part'} in view) is not the part sample "
-                                        f"{c.index} of {leader.sim.dataset} shows (label {a.label}, "
-                                        f"{'a part' if a.present else 'no part'}): not a twin set (same seed, same "
-                                        "parts, another camera)")
+            a, b = part_identity(c.ground_truth.params), part_identity(twin.ground_truth.params)
+            if a != b:
+                raise CameraConfigError(f"virtual camera: sample {c.index} of {self.sim.dataset} ({b}) is not the part "
+                                        f"sample {c.index} of {leader.sim.dataset} shows ({a}): not a twin set (same "
+                                        "seed, same parts, another camera)")
             self._twins[c.index] = twin
         log.info("virtual camera: %d twin samples of %s's parts in memory (%s)", len(self._twins),
                  leader.sim.dataset, self.sim.dataset)

@@ -400,10 +400,11 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
                             first_presence: str = "dolp_contrast", second_presence: str = "row_contrast") -> dict:
     """Two cameras' thresholds from one budget of good parts rejected (``model.draem.camera_split``), on the twin
     validation sets ``first_data`` and ``second_data`` (the same parts, each seen by its camera; their samples are
-    matched by index and must agree on the label). Parts either camera's presence rule (or invalid pixels) would
-    leave unjudged are left out and listed, as ``station threshold`` does. Returns the report ``station split``
-    prints and writes: every split of the budget, the chosen one, and what each camera alone does at the whole
-    budget."""
+    matched by index). A part is defective when either camera's sample shows its defect (a label says what that
+    camera sees); where both do, the defect types must agree. Parts either camera's presence rule (or invalid
+    pixels) would leave unjudged are left out and listed, as ``station threshold`` does. Returns the report
+    ``station split`` prints and writes: every split of the budget, the chosen one, and what each camera alone does
+    at the whole budget."""
     import dataclasses
 
     import numpy as np
@@ -415,7 +416,7 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
     from station.presence import PresenceCheck
 
     check_max_good_flagged(rate)
-    scores, labels, left_out = [], [], {}
+    scores, labels, types, left_out = [], [], [], {}
     for name, model, data, rule in (("first", first_model, first_data, first_presence),
                                     ("second", second_model, second_data, second_presence)):
         ck = load_checkpoint(model)
@@ -424,15 +425,17 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
         _, ev = evaluate_tensors(inference_net(ck, model, "fp32"), sp)
         scores.append(dict(zip(sp.index, np.asarray(ev.scores, np.float64).tolist(), strict=True)))
         labels.append(dict(zip(sp.index, sp.label.numpy().astype(int).tolist(), strict=True)))
+        types.append(dict(zip(sp.index, sp.defect_type, strict=True)))
         left_out.update({i: f"{name} camera: {why}" for i, why in unjudged.items()})
     both = sorted(set(scores[0]) & set(scores[1]))
-    wrong = [i for i in both if labels[0][i] != labels[1][i]]
+    wrong = [i for i in both if labels[0][i] and labels[1][i] and types[0][i] != types[1][i]]
     if wrong:
-        raise UserError(f"{first_data} and {second_data} are not twin sets: sample {wrong[0]} is labelled "
-                        f"{labels[0][wrong[0]]} in one and {labels[1][wrong[0]]} in the other ({len(wrong)} such)")
+        i = wrong[0]
+        raise UserError(f"{first_data} and {second_data} are not twin sets: sample {i} shows a {types[0][i]} in one "
+                        f"and a {types[1][i]} in the other ({len(wrong)} such)")
     if not both:
         raise UserError(f"{first_data} and {second_data}: no sample of split {split!r} is judged by both cameras")
-    y = np.array([labels[0][i] for i in both], bool)
+    y = np.array([labels[0][i] or labels[1][i] for i in both], bool)
     a = np.array([scores[0][i] for i in both])
     b = np.array([scores[1][i] for i in both])
     try:

@@ -23,6 +23,7 @@ acknowledgements are awaited and recorded, and the link is closed. Rules and fau
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import logging
 import signal
 import threading
@@ -35,7 +36,7 @@ import numpy as np
 
 from drivers.camera import Camera
 from drivers.errors import CameraError, CameraTimeout
-from drivers.frame import Frame
+from drivers.frame import Frame, GroundTruth
 from drivers.line_io import Trigger
 from model.draem.frame_checks import FRAME_CHECKS
 from station.config import frame_delay_limit_ms
@@ -116,6 +117,17 @@ def perf_from_host_ns(host_ns: int) -> float:
         if after - before <= CLOCK_PAIR_S * 1e9:
             break
     return best[1]
+
+
+def part_truth(frame: Frame | None) -> GroundTruth | None:
+    """A simulated part's ground truth: its frame's, made defective when the second camera's frame of it
+    (``Frame.companion``) shows a defect the first camera's does not (each rendered view's label says whether that
+    camera sees the defect). None without ground truth."""
+    gt = frame.ground_truth if frame is not None else None
+    other = frame.companion.ground_truth if frame is not None and frame.companion is not None else None
+    if gt is not None and other is not None and other.label and not gt.label:
+        return dataclasses.replace(gt, label=1)
+    return gt
 
 
 class TransferClock:
@@ -567,7 +579,7 @@ class Station:
         # an announced part that is not in view fails closed (REJECT); trigger-free, an empty frame is no part
         tell_plc = part.announced and self.link.has_plc and (self.link.triggered or not empty)
         frame = part.frame
-        gt = frame.ground_truth if frame is not None else None
+        gt = part_truth(frame)
         # no part in view has no good/defective label: logged as unknown, counted as "none" in the statistics
         truth = gt.label if gt is not None and gt.present else None
         timings = inspection.timings_ms if inspection else {}

@@ -3,6 +3,7 @@ fault of the second camera raised with its name (the station then rejects the pa
 
 from __future__ import annotations
 
+import json
 import time
 from pathlib import Path
 
@@ -27,8 +28,10 @@ def make_set(root: Path, offset: int, defective: tuple[int, ...] = (0, 1, 3), n:
         if i in defective:
             mask[4:8, 4:8] = True
         label = int(mask.any())
+        defect = {"type": "dent", "centre_m": [0.001 * i, 0.0, 0.0], "visible_px": 16 + offset} if label else None
         write_sample(root, Sample(i, np.full((H, W), offset + i, np.uint8),
-                                  {"index": i, "split": split_of(i), "label": label}, label, split_of(i),
+                                  {"index": i, "split": split_of(i), "label": label, "defect": defect}, label,
+                                  split_of(i),
                                   defect_mask=mask, object_mask=np.ones((H, W), bool)))
     return root
 
@@ -63,6 +66,26 @@ def test_a_twin_set_of_other_parts_is_refused(tmp_path: Path) -> None:
     pair = virtual_pair(tmp_path, twin_defective=(0, 1, 4))
     with pytest.raises(CameraConfigError, match=r"sample [34] of .*side .* is not the part sample [34] of .*line"):
         pair.open()
+
+
+def test_a_defect_one_camera_does_not_see_is_still_the_same_part(tmp_path: Path) -> None:
+    """Twin sets' labels say what each camera sees: a front-face dent is label 0 for the line camera, 1 for the side
+    camera. The part is the same (the drawn defect), and the pair is accepted."""
+    pair = virtual_pair(tmp_path)
+    root = tmp_path / "line" / "samples" / "000003"
+    params = json.loads((root / "params.json").read_text())
+    unseen = {**params, "label": 0, "defect": {**params["defect"], "visible_px": 0}}
+    (root / "params.json").write_text(json.dumps(unseen))
+    with pair:
+        pair.start()
+        for _ in range(40):
+            pair.trigger()
+            f = pair.grab()
+            if int(f.raw[0, 0]) == 3:
+                assert (f.ground_truth.label, f.companion.ground_truth.label) == (0, 1)
+                break
+        else:
+            pytest.fail("sample 3 never drawn")
 
 
 class Scripted(CameraBase):

@@ -96,6 +96,9 @@ def test_a_part_only_the_second_camera_finds_defective_is_rejected_and_its_row_s
         assert r["second_model_id"] == "test-side" and r["second_threshold"] == 0.6
         assert r["second_frame_id"] == r["camera_frame_id"]
     assert [round(r["second_score"], 4) for r in rows] == [0.1569, 1.5686, 0.1569, 1.5686]
+    # a defect only the second camera sees is a defective part's (part T1)
+    assert [r["ground_truth_label"] for r in rows] == [0, 1, 1, 1]
+    assert station.stats.confusion == {"good_pass": 1, "bad_reject": 3}
 
 
 def test_any_fault_of_the_second_camera_rejects_the_part(tmp_path):
@@ -197,7 +200,12 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     assert chosen["caught"] == max(r["caught"] for r in report["splits"])
     assert out.count("<- chosen") == 1 and f"[second_camera]\nthreshold = {chosen['second']:.6g}" in out
     assert f"[decision]\nthreshold = {chosen['first']:.6g}" in out
-    other = make_dataset(tmp_path / "other", n=30, defective=lambda i: i % 3 == 0)
+    other = make_dataset(tmp_path / "other", n=30)
+    for f in (other / "samples").glob("*/params.json"):  # the same parts with another defect
+        params = json.loads(f.read_text())
+        if params["defect"]:
+            f.write_text(json.dumps({**params, "defect": {"type": "dent"}}))
     assert main([*args[:8], str(other), *args[9:]]) == 2
     err = capsys.readouterr().err
-    assert "are not twin sets: sample 5 is labelled" in err.splitlines()[-1] and "Traceback" not in err
+    assert "are not twin sets: sample 3 shows a stain in one and a dent in the other" in err.splitlines()[-1]
+    assert "Traceback" not in err
