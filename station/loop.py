@@ -589,10 +589,12 @@ class Station:
         image_path = None
         if (not plain and self.rejects is not None and frame is not None and decision.decision != Verdict.PASS
                 and (not empty or tell_plc)):
+            second = inspection.second if inspection is not None else None
             image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
                                            inspection.heatmap if inspection else None,
-                                           later=tuple(f.raw for f in part.frames[1:])
-                                           + ((frame.companion.raw,) if frame.companion is not None else ()))
+                                           later=tuple(f.raw for f in part.frames[1:]),
+                                           second_raw=frame.companion.raw if frame.companion is not None else None,
+                                           second_heatmap=second.heatmap if second is not None else None)
         second = inspection.second if inspection is not None else None
         companion = frame.companion if frame is not None else None
         record = InspectionRecord(

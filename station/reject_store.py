@@ -48,15 +48,21 @@ class RejectStore:
             return 0
 
     def save(self, part_id: str, frame_id: int | None, raw: np.ndarray, heatmap: np.ndarray | None,
-             later: tuple[np.ndarray, ...] = ()) -> str | None:
-        """Write one rejected part (``later``: the frames after ``raw`` of a part imaged more than once); returns the
-        file path, or None when it could not be written (logged)."""
+             later: tuple[np.ndarray, ...] = (), second_raw: np.ndarray | None = None,
+             second_heatmap: np.ndarray | None = None) -> str | None:
+        """Write one rejected part (``later``: the frames after ``raw`` of a part imaged more than once; ``second_raw``
+        and ``second_heatmap``: a second camera's frame of it and its heatmap); returns the file path, or None when it
+        could not be written (logged)."""
         day = time.strftime("%Y-%m-%d")
         name = f"{_UNSAFE.sub('_', part_id)[:64]}_f{frame_id if frame_id is not None else 'none'}_{time.time_ns()}"
         path = self.root / day / f"{name}.npz"
         arrays = {"raw": raw, **{f"raw_{k}": r for k, r in enumerate(later, 1)}}
         if heatmap is not None:
             arrays["heatmap"] = heatmap.astype(np.float16)
+        if second_raw is not None:
+            arrays["second_raw"] = second_raw
+        if second_heatmap is not None:
+            arrays["second_heatmap"] = second_heatmap.astype(np.float16)
         tmp = path.with_name(path.name + ".tmp")
         try:
             size = sum(a.nbytes for a in arrays.values())

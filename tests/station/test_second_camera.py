@@ -19,6 +19,7 @@ from station.inspection_log import InspectionLog
 from station.inspector import Inspector
 from station.loop import Station
 from station.presence import Presence, PresenceRule
+from station.reject_store import RejectStore
 from station.second_camera import PairInspector
 from tests.station.test_loop import BrightnessDetector, ScriptedCamera, ScriptedLink
 
@@ -72,13 +73,15 @@ class SecondDetector(BrightnessDetector):
 def two_camera_station(tmp_path, first, second, n, second_detector=None, first_detector=None, parallel=True):
     """``n`` announced parts; items 0/1 are good/defective as each camera sees the part, 'dark' no part in view."""
     log = InspectionLog(tmp_path / "log.sqlite")
+    rejects = RejectStore(tmp_path / "rejects")
     link = ScriptedLink(n, log=log)
     pair = CameraPair(ScriptedCamera(first, trigger="software"), SideCamera(second, trigger="software"),
                       max_skew_ms=1000.0)
     inspector = PairInspector(Inspector(first_detector or BrightnessDetector(), IMX250MZR),
                               Inspector(second_detector or SecondDetector(), IMX250MZR, presence=DarkIsEmpty()),
                               parallel)
-    station = Station(pair, inspector, link, log, cycle_time_ms=10_000.0, queue_size=16, backpressure="block")
+    station = Station(pair, inspector, link, log, cycle_time_ms=10_000.0, queue_size=16, backpressure="block",
+                      rejects=rejects)
     return station, link, log
 
 
@@ -96,6 +99,8 @@ def test_a_part_only_the_second_camera_finds_defective_is_rejected_and_its_row_s
         assert r["second_model_id"] == "test-side" and r["second_threshold"] == 0.6
         assert r["second_frame_id"] == r["camera_frame_id"]
     assert [round(r["second_score"], 4) for r in rows] == [0.1569, 1.5686, 0.1569, 1.5686]
+    with np.load(rows[1]["image_path"]) as kept:  # a rejected part's image file holds both cameras' frames
+        assert set(kept) == {"raw", "second_raw"} and kept["second_raw"].mean() > kept["raw"].mean()
     # a defect only the second camera sees is a defective part's (part T1)
     assert [r["ground_truth_label"] for r in rows] == [0, 1, 1, 1]
     assert station.stats.confusion == {"good_pass": 1, "bad_reject": 3}
