@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from drivers.line_io import Verdict
 
-__all__ = ["MAX_INVALID_FRACTION", "Decision", "Verdict", "decide", "join", "late"]
+__all__ = ["MAX_INVALID_FRACTION", "SECOND_NAME", "Decision", "Verdict", "decide", "join", "late"]
 
 MAX_INVALID_FRACTION = 0.01
 """The share of a frame's pixels that may be invalid (NaN/Inf, out of range) for the part to be judged."""
@@ -63,7 +63,11 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
     return Decision(Verdict.PASS)
 
 
-def join(first: Decision, second: Decision, second_name: str = "second camera") -> Decision:
+SECOND_NAME = "second camera"
+"""How rows, the PLC's reasons and messages name a station's second camera (``station.second_camera``)."""
+
+
+def join(first: Decision, second: Decision, second_name: str = SECOND_NAME) -> Decision:
     """One part's decision from its two cameras' (``station.second_camera``), failing closed. A reject by either
     rejects, with both reasons when both reject (the second's after ``second_name``). EMPTY only when neither camera
     sees a part. A part one camera sees and the other does not cannot be judged (misplaced, or a view the check cannot

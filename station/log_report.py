@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX
-from station.decision import Verdict
+from station.decision import SECOND_NAME, Verdict
 from station.inspection_log import DECISIONS
 
 PERCENTILES = (50, 90, 99)
@@ -39,8 +39,12 @@ A reason matching none counts as "other"."""
 
 
 def reject_cause(reason: str | None) -> str:
-    """The ``REJECT_CAUSES`` name of a reject's or a not-inspected row's ``reason``."""
+    """The ``REJECT_CAUSES`` name of a reject's or a not-inspected row's ``reason``; a reject by the second camera
+    alone (``station.decision.join``: its reason starts "second camera: ") is that cause with "second camera: "
+    before it."""
     text = reason or ""
+    if text.startswith(f"{SECOND_NAME}: "):
+        return f"{SECOND_NAME}: {reject_cause(text[len(SECOND_NAME) + 2:])}"
     for cause, needles in REJECT_CAUSES:
         if any(n in text for n in needles):
             return cause

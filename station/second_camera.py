@@ -24,10 +24,10 @@ from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 
 from drivers.frame import Frame
+from station.decision import SECOND_NAME
 from station.inspector import Detector, Inspection, Inspector
 
-SECOND_NAME = "second camera"
-"""How rows and messages name the second camera."""
+__all__ = ["SECOND_NAME", "PairInspector"]
 
 
 class PairInspector:

@@ -330,6 +330,13 @@ REASONS = {  # a reject reason as the station words it -> the cause the report c
     "dropped: processing queue full (drop_oldest)": "queue full",
     "no part in view: DoLP contrast 0.012 < 0.100": "no part in view",
     "something new": "other",
+    # a station with a second camera (station.decision.join): its rejects alone are named; a part both reject is the
+    # first camera's
+    "second camera: score 0.9990 > threshold 0.9895": "second camera: score over threshold",
+    "second camera: not judged: frame 9: model side failed: RuntimeError: x": "second camera: model busy or failed",
+    "score 0.9900 > threshold 0.9785; second camera: not judged: model score is nan": "score over threshold",
+    "not judged: the second camera sees no part (no part in view: row contrast 0.012 < 0.100), the first camera sees "
+    "one": "no part in view",
 }
 
 
