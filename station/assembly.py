@@ -216,8 +216,11 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
                   inspection_log: InspectionLog, *, viewer: ViewerFeed | None = None,
                   rejects: RejectStore | None = None, second_detector: DraemDetector | None = None) -> Station:
     """The inspection loop with the ``[priors]``, ``[presence]``, ``[acquisition]`` and ``[camera]`` settings;
-    with a viewer, the priors it shows are computed too. With ``second_detector`` (``load_second_detector``), the
-    second camera's frames are judged by it (``station.second_camera``)."""
+    with a viewer, the priors it shows are computed too. With ``[second_camera]`` enabled, the second camera's frames
+    are judged by ``second_detector`` (loaded here when not given: ``load_second_detector``;
+    ``station.second_camera``)."""
+    if second_detector is None:
+        second_detector = load_second_detector(cfg)
     drift = drift_monitor(detector)
     inspector: Inspector | PairInspector = Inspector(
         detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,

@@ -47,7 +47,7 @@ def run(args: argparse.Namespace) -> int:
     cfg = load_config(args.config)
     cam = dataclasses.replace(cfg.camera, kind="sim", **({"frame_rate_hz": args.frame_rate_hz}
                                                           if args.frame_rate_hz else {}))
-    cfg = dataclasses.replace(cfg, camera=cam)
+    cfg = dataclasses.replace(cfg, camera=cam, second_camera=dataclasses.replace(cfg.second_camera, kind="sim"))
     detector = load_detector(cfg)
     detector.warm_up()
     samples: list[dict] = []

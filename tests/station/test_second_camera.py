@@ -214,3 +214,19 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "are not twin sets: sample 3 shows a stain in one and a dent in the other" in err.splitlines()[-1]
     assert "Traceback" not in err
+
+
+def test_a_station_built_without_its_second_model_loads_it(tmp_path):
+    """A caller that passes no second model (``station bench soak`` did): the station loads it from the config, so
+    the second camera's frames are judged, not grabbed and ignored."""
+    from station.assembly import build_station, load_detector
+    from station.config import load_config
+    from station.line_link import NoLink
+    from tests.station.test_run import make_dataset, make_model, write_config
+
+    model = make_model(tmp_path / "model" / "best")
+    cfg = load_config(write_config(tmp_path, model, make_dataset(tmp_path / "ds"),
+                                   f'[second_camera]\nenabled = true\nmodel = "{model}"\ndataset = "d"\n'))
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        station = build_station(cfg, load_detector(cfg), ScriptedCamera([]), NoLink(), log)
+    assert isinstance(station.inspector, PairInspector) and station.second_threshold == 0.5
