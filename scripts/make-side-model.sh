@@ -7,13 +7,14 @@
 #
 #   1. render the side camera's sets, twins of make-model.sh's (same seeds and parts, seen from the side): training
 #      (seed 101, its train split only, the panel and the finish drawn), calibration (seed 303, the same draws) and
-#      validation (seed 303, the panel drawn, the finish as built); and the line camera's validation set (make-model.sh's
-#      VAL), the side validation set's twin, for the split of the two thresholds
+#      validation (seed 303, the panel drawn, the finish as built); and, for step 6, the line camera's validation set
+#      (make-model.sh's VAL), the side validation set's twin
 #   2. source: the shipped file as it was before its second look (git 0f17840^: the DRAEM networks and a variation
 #      model), whose variation model is fitted again on the side camera's parts (the networks do not decide)
 #   3. variation: fitted on the side training set's good parts, calibrated on the calibration set (station variation
 #      --refit)
-#   4. look: one residual network beside it at each one's 1 % threshold (station residual --second-look)
+#   4. look: one residual network beside it at each one's 1 % threshold (station residual --second-look); 3-4 run on
+#      one core while the side validation set renders on the other
 #   5. threshold: on the side validation set, leaving out frames its presence rule (row_contrast) calls empty
 #   6. split: the two cameras' thresholds from one 1 % budget on the two validation sets (station split), printed as
 #      the station.toml lines of [decision] threshold and [second_camera] threshold
@@ -54,8 +55,6 @@ for half in 0 1; do
 done
 wait "${pids[0]}"; wait "${pids[1]}"
 render "$SIDE_CAL" "${VARY[@]}" "${FINISH[@]}" "${SIDE[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
-render "$SIDE_VAL" "${VARY[@]}" "${SIDE[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
-render "$LINE_VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 
 # 2. the source file, from git history
 if [ ! -f "$RUNS/source/default.json" ]; then
@@ -65,18 +64,27 @@ if [ ! -f "$RUNS/source/default.json" ]; then
         "$RUNS/source-git/default" "$RUNS/source/default"
 fi
 
-# 3-5. the variation model, its look network, the threshold
-[ -f "$RUNS/fit.json" ] || "$BIN/station" variation --model "$RUNS/source/default" --refit --data "$SIDE_TRAIN" \
-    --val-data "$SIDE_CAL" --decision variation --out "$RUNS/fit"
+# 3-4. the variation model and its look network (one core), beside the side validation set's render (the other)
+fit() {
+    [ -f "$RUNS/fit.json" ] || "$BIN/station" variation --model "$RUNS/source/default" --refit --data "$SIDE_TRAIN" \
+        --val-data "$SIDE_CAL" --decision variation --out "$RUNS/fit"
+    [ -f "$OUT.json" ] || [ -f "$RUNS/look.json" ] || "$BIN/station" residual --model "$RUNS/fit" \
+        --data "$SIDE_TRAIN" --val-data "$SIDE_CAL" --members 1 --steps "$LOOK_STEPS" --second-look --out "$RUNS/look"
+}
+fit & fitting=$!
+"$BIN/station" render --out "$SIDE_VAL" "${PRESET[@]}" "${VARY[@]}" "${SIDE[@]}" --count "$VAL_COUNT" --seed 303 \
+    --defects 0.4 --validation
+wait "$fitting"
+
+# 5. the threshold
 if [ ! -f "$OUT.json" ]; then
-    [ -f "$RUNS/look.json" ] || "$BIN/station" residual --model "$RUNS/fit" --data "$SIDE_TRAIN" \
-        --val-data "$SIDE_CAL" --members 1 --steps "$LOOK_STEPS" --second-look --out "$RUNS/look"
     "$BIN/station" threshold --model "$RUNS/look" --data "$SIDE_VAL" --presence-rule row_contrast
     "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
         "$RUNS/look" "$OUT"
 fi
 
-# 6. the split of the two thresholds
+# 6. the split of the two thresholds, on the line camera's twin of the side validation set
+render "$LINE_VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 "$BIN/station" split --model "$LINE_MODEL" --data "$LINE_VAL" --second-model "$OUT" --second-data "$SIDE_VAL" \
     --out "$RUNS/split.json"
 echo "the side camera's model: $OUT (station.toml: [second_camera] model = \"$OUT\", and the two thresholds above)"
