@@ -144,3 +144,63 @@ def paired(folders: list[str], out: str | Path, resamples: int = 1000) -> tuple[
     (out / "paired.json").write_text(json.dumps({"base": base_name, "reports": list(scores), "rows": rows}, indent=1))
     (out / "paired.md").write_text(table + "\n")
     return rows, table
+
+
+def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: str | Path) -> tuple[dict, str]:
+    """A two-camera station (``[second_camera]``) on held-out parts: ``first`` and ``second`` are ``station eval``
+    reports of the two cameras' models on twin held-out sets (the same parts), ``split`` the ``station split`` report
+    whose chosen thresholds were set on validation. Rules: each camera alone at its report's threshold (its model's
+    own), and both at the split's thresholds, as the station decides. Per rule: good parts rejected and defective
+    parts caught, overall and per type, and the gain in parts caught over the first camera alone with its paired
+    standard error. A frame a camera would not judge (``eval.json``'s ``unjudged``) is rejected by every rule that
+    reads that camera, as a triggered station rejects it. A part is defective when either report labels it so (a
+    label says what that camera sees), its type from whichever does. Writes ``two-cameras.json`` and ``.md``."""
+    import numpy as np
+
+    a, b = read_scores(first), read_scores(second)
+    idx = sorted(set(a) & set(b))
+    if not idx or len(idx) != len(a) or len(idx) != len(b):
+        raise UserError(f"{first} and {second} are not reports on the same parts ({len(a)} and {len(b)} parts, "
+                        f"{len(idx)} in both)")
+    y = np.array([bool(a[i][0] or b[i][0]) for i in idx])
+    types = np.array([a[i][1] or b[i][1] for i in idx])
+    sa, sb = (np.array([s[i][2] for i in idx]) for s in (a, b))
+    reports = [read_report(first), read_report(second)]
+    left = [np.array([str(i) in r.get("unjudged", {}) for i in idx]) for r in reports]
+    try:
+        chosen = json.loads(Path(split).read_text())
+        thresholds = chosen["splits"][chosen["chosen"]]
+        t_first, t_second = float(thresholds["first"]), float(thresholds["second"])
+    except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
+        raise UserError(f"{split}: not a station split report ({exc})") from None
+    alone = [float(r["threshold"]) for r in reports]
+    rules = {f"first camera alone (its threshold {alone[0]:.4f})": (sa > alone[0]) | left[0],
+             f"second camera alone (its threshold {alone[1]:.4f})": (sb > alone[1]) | left[1],
+             f"both, split ({t_first:.4f}, {t_second:.4f})": (sa > t_first) | (sb > t_second) | left[0] | left[1]}
+    base = next(iter(rules.values()))
+    rows = []
+    for name, rejected in rules.items():
+        d = rejected[y].astype(float) - base[y].astype(float)
+        rows.append({"rule": name, "good_rejected": int(rejected[~y].sum()), "good": int((~y).sum()),
+                     "caught": int(rejected[y].sum()), "defective": int(y.sum()),
+                     "gain_points": 100 * float(d.mean()) if y.any() else float("nan"),
+                     "gain_se": 100 * float(d.std(ddof=1) / np.sqrt(d.size)) if y.sum() > 1 else float("nan"),
+                     "by_type": {str(t): float(rejected[y & (types == t)].mean()) for t in sorted(set(types[y]))}})
+    kinds = sorted(set(types[y]))
+    lines = [f"{len(idx)} parts ({int((~y).sum())} good, {int(y.sum())} defective); frames not judged: first camera "
+             f"{int(left[0].sum())}, second camera {int(left[1].sum())}. Reports: {first}, {second}; split: {split}.",
+             "", "| rule | good parts rejected | defective parts caught | minus the first camera alone (paired SE) | "
+             + " | ".join(kinds) + " |", "|---|---|---|---|" + "---|" * len(kinds)]
+    for r in rows:
+        good, bad = max(r["good"], 1), max(r["defective"], 1)
+        lines.append(f"| {r['rule']} | {r['good_rejected']} of {r['good']} ({r['good_rejected'] / good:.1%})"
+                     f" | {r['caught']} of {r['defective']} ({r['caught'] / bad:.1%}) | "
+                     f"{r['gain_points']:+.1f} ({r['gain_se']:.1f}) | "
+                     + " | ".join(f"{r['by_type'][k]:.0%}" for k in kinds) + " |")
+    text = "\n".join(lines)
+    report = {"first": str(first), "second": str(second), "split": str(split), "parts": len(idx), "rules": rows}
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "two-cameras.json").write_text(json.dumps(report, indent=1))
+    (out / "two-cameras.md").write_text(text + "\n")
+    return report, text

@@ -230,3 +230,31 @@ def test_a_station_built_without_its_second_model_loads_it(tmp_path):
     with InspectionLog(tmp_path / "log.sqlite") as log:
         station = build_station(cfg, load_detector(cfg), ScriptedCamera([]), NoLink(), log)
     assert isinstance(station.inspector, PairInspector) and station.second_threshold == 0.5
+
+
+def write_eval(folder, labels, types, scores, threshold, unjudged=None):
+    """A ``station eval --out`` folder's two files that ``station compare`` reads."""
+    folder.mkdir(parents=True)
+    rows = "".join(f"{i},{y},{t},{s}\n" for i, (y, t, s) in enumerate(zip(labels, types, scores, strict=True)))
+    (folder / "scores.csv").write_text("index,label,defect_type,score\n" + rows)
+    (folder / "eval.json").write_text(json.dumps({"threshold": threshold, "industrial": [{"defect_type": "all"}],
+                                                  "unjudged": unjudged or {}}))
+    return folder
+
+
+def test_compare_split_scores_the_two_camera_station_on_held_out_parts(tmp_path, capsys):
+    first = write_eval(tmp_path / "line", [0, 0, 0, 1, 1, 0], ["", "", "", "dent", "chip", ""],
+                       [0.1, 0.2, 0.95, 0.99, 0.3, 0.1], 0.9)
+    # the second camera sees part 5's scratch, which the first does not (label 0 there), and not part 0 at all
+    second = write_eval(tmp_path / "side", [0, 0, 0, 1, 0, 1], ["", "", "", "dent", "", "scratch"],
+                        [0.1, 0.6, 0.2, 0.4, 0.2, 0.9], 0.8, {"0": "no part in view"})
+    split = tmp_path / "split.json"
+    split.write_text(json.dumps({"splits": [{"first": 0.97, "second": 0.5}], "chosen": 0}))
+    assert main(["compare", str(first), str(second), "--split", str(split), "--out", str(tmp_path / "out")]) == 0
+    rules = json.loads((tmp_path / "out" / "two-cameras.json").read_text())["rules"]
+    assert [(r["good_rejected"], r["caught"]) for r in rules] == [(1, 1), (1, 1), (2, 2)]
+    assert [r["defective"] for r in rules] == [3, 3, 3]  # a part is defective when either camera shows its defect
+    assert rules[2]["by_type"] == {"chip": 0.0, "dent": 1.0, "scratch": 1.0}
+    assert round(rules[2]["gain_points"], 1) == 33.3 and round(rules[2]["gain_se"], 1) == 33.3
+    assert "frames not judged: first camera 0, second camera 1" in capsys.readouterr().out
+    assert main(["compare", str(first), "--split", str(split), "--out", str(tmp_path / "o2")]) == 2
