@@ -157,6 +157,8 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
     label says what that camera sees), its type from whichever does. Writes ``two-cameras.json`` and ``.md``."""
     import numpy as np
 
+    from model.draem.camera_split import SplitThresholds, split_rejects
+
     a, b = read_scores(first), read_scores(second)
     idx = sorted(set(a) & set(b))
     if not idx or len(idx) != len(a) or len(idx) != len(b):
@@ -169,14 +171,13 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
     left = [np.array([str(i) in r.get("unjudged", {}) for i in idx]) for r in reports]
     try:
         chosen = json.loads(Path(split).read_text())
-        thresholds = chosen["splits"][chosen["chosen"]]
-        t_first, t_second = float(thresholds["first"]), float(thresholds["second"])
+        pair = SplitThresholds(**chosen["splits"][chosen["chosen"]])
     except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
         raise UserError(f"{split}: not a station split report ({exc})") from None
     alone = [float(r["threshold"]) for r in reports]
     rules = {f"first camera alone (its threshold {alone[0]:.4f})": (sa > alone[0]) | left[0],
              f"second camera alone (its threshold {alone[1]:.4f})": (sb > alone[1]) | left[1],
-             f"both, split ({t_first:.4f}, {t_second:.4f})": (sa > t_first) | (sb > t_second) | left[0] | left[1]}
+             f"both, split ({pair.first:.4f}, {pair.second:.4f})": split_rejects(sa, sb, pair) | left[0] | left[1]}
     base = next(iter(rules.values()))
     rows = []
     for name, rejected in rules.items():

@@ -249,7 +249,8 @@ def test_compare_split_scores_the_two_camera_station_on_held_out_parts(tmp_path,
     second = write_eval(tmp_path / "side", [0, 0, 0, 1, 0, 1], ["", "", "", "dent", "", "scratch"],
                         [0.1, 0.6, 0.2, 0.4, 0.2, 0.9], 0.8, {"0": "no part in view"})
     split = tmp_path / "split.json"
-    split.write_text(json.dumps({"splits": [{"first": 0.97, "second": 0.5}], "chosen": 0}))
+    split.write_text(json.dumps({"splits": [{"first": 0.97, "second": 0.5, "k": 1, "good_rejected": 3, "caught": 0.8}],
+                                 "chosen": 0}))
     assert main(["compare", str(first), str(second), "--split", str(split), "--out", str(tmp_path / "out")]) == 0
     rules = json.loads((tmp_path / "out" / "two-cameras.json").read_text())["rules"]
     assert [(r["good_rejected"], r["caught"]) for r in rules] == [(1, 1), (1, 1), (2, 2)]
