@@ -20,7 +20,7 @@ def test_make_side_model_renders_twins_and_splits_on_them(tmp_path: Path) -> Non
         (stub / name).write_text(f'#!/bin/sh\necho "{name} $*" >> {calls}\n')
         (stub / name).chmod(0o755)
     runs = tmp_path / "runs"
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(runs)}
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(runs), "SOURCE": "HEAD"}  # HEAD: also in a shallow clone
     subprocess.run(["bash", str(ROOT / "scripts" / "make-side-model.sh")], env=env, check=True, capture_output=True)
     lines = [line.split() for line in calls.read_text().splitlines()]
     renders = [a for a in lines if a[:2] == ["station", "render"]]
@@ -38,7 +38,7 @@ def test_make_side_model_renders_twins_and_splits_on_them(tmp_path: Path) -> Non
         assert seed == ("101" if out(a) == "data/sw-train" else "303")  # make-model.sh's seeds: twins of its sets
     train_shards = sorted(int(a[a.index("--shard") + 1].split("/")[0]) for a in renders if out(a) == "data/sw-train")
     assert train_shards == [3, 4, 5, 6, 7, 8, 9, 13, 14, 15, 16, 17, 18, 19]  # the train split only
-    assert len(list((runs / "source-git").glob("default.*"))) == 2  # the pre-look shipped file, from git
+    assert len(list((runs / "source-git").glob("default.*"))) == 2  # the source file, from git (default 0f17840^)
     steps = [a[1] for a in lines if a[0] == "station" and a[1] != "render"]
     assert steps == ["variation", "residual", "threshold", "split"]
     variation, residual, threshold, split = (next(a for a in lines if a[1] == s) for s in steps)
