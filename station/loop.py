@@ -15,6 +15,10 @@ configured backpressure. A part's time counts from when its trigger reached the 
   the PLC announced a part (triggered), a part was expected and not seen (missing, misplaced, or a part the check
   cannot see), and an unseen part must never pass: ``reject`` with the check's reason, at the PLC and in the row.
 
+With a second camera (``[second_camera]``: ``drivers.camera_pair``, ``station.second_camera``), each part's frame
+carries the second camera's frame of it; the part is decided on both (``station.decision.join``) and still gets one
+row and one answer.
+
 ``stop()`` (or SIGINT/SIGTERM through ``run_until_signal``) ends acquisition and drains the queue; then every
 part announced until the PLC link closes is recorded and rejected ("station stopping"), the PLC's last
 acknowledgements are awaited and recorded, and the link is closed. Rules and faults: docs/fail-closed.md.
@@ -586,17 +590,16 @@ class Station:
         priors_ms = timings.get("priors")
         if priors_ms is not None and "presence" in timings:
             priors_ms += timings["presence"]  # the log has no column of its own for the check (~0.1 ms)
+        second = inspection.second if inspection is not None else None  # the second camera's, with one
+        companion = frame.companion if frame is not None else None
         image_path = None
         if (not plain and self.rejects is not None and frame is not None and decision.decision != Verdict.PASS
                 and (not empty or tell_plc)):
-            second = inspection.second if inspection is not None else None
             image_path = self.rejects.save(part.part_id, frame.frame_id, frame.raw,
                                            inspection.heatmap if inspection else None,
                                            later=tuple(f.raw for f in part.frames[1:]),
-                                           second_raw=frame.companion.raw if frame.companion is not None else None,
+                                           second_raw=companion.raw if companion is not None else None,
                                            second_heatmap=second.heatmap if second is not None else None)
-        second = inspection.second if inspection is not None else None
-        companion = frame.companion if frame is not None else None
         record = InspectionRecord(
             decision=Verdict.NOT_INSPECTED if not_inspected else decision.decision, time_unix_s=time.time(),
             part_id=part.part_id, camera_frame_id=frame.frame_id if frame else None,
