@@ -25,8 +25,9 @@ From the log:
 
 With ``--second-model`` and ``--second-data`` (the twin set of ``--data``, seen by the second camera), every
 configuration is a two-camera station (``[second_camera]``): both virtual cameras triggered per part, the second one's
-frame judged by the second model (its presence rule ``row_contrast``) after the first's, and the latency is the
-part's, both cameras' work together. The row's AUROC and confusion stay the first camera's.
+frame judged by the second model (its presence rule ``row_contrast``) at the same time as the first's or after it
+(``--pair-modes parallel,serial``; ``first-only``: the first camera alone, the peer), and the latency is the part's,
+both cameras' work together. The row's AUROC and confusion stay the first camera's.
 
 Writes JSON, a Markdown table and a Pareto plot (p99 latency against 1 - image AUROC), and names the
 configurations on the front.
@@ -40,6 +41,9 @@ import time
 from pathlib import Path
 
 from station.commands.arguments import positive_int
+
+PAIR_MODES = ("parallel", "serial", "first-only")
+"""``--pair-modes``: how a station with a second camera judges a part's two frames, or the first camera alone."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -66,9 +70,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="a second camera's checkpoint: every configuration runs two cameras per part (needs "
                         "--second-data)")
     p.add_argument("--second-data", default=None, help="the second camera's twin of --data (same seed and parts)")
-    p.add_argument("--second-parallel", default="on",
-                   help="with a second camera: on (its frame judged at the same time as the first's), off (after "
-                        "it), or on,off")
+    p.add_argument("--pair-modes", default="parallel",
+                   help="with a second camera, comma-separated: parallel (its frame judged at the same time as the "
+                        "first's), serial (after it), first-only (the first camera alone, the peer in the same run)")
 
 
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
@@ -76,7 +80,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
             members: tuple[str, ...] | None = None, second: tuple[str, str] | None = None,
             parallel: bool = True) -> dict:
     """One configuration through the real station loop; returns its row. ``second``: (checkpoint, twin set) of a
-    second camera (module docstring), judged at the same time as the first (``parallel``) or after it."""
+    second camera (module docstring), judged at the same time as the first (``parallel``) or after it; None: one
+    camera."""
     from collections.abc import Mapping
 
     import numpy as np
@@ -162,7 +167,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     n_parts = sum(v for k, v in c.items() if not k.startswith("none_"))
     model_ms = [r["model_ms"] for r in rows if r["model_ms"] is not None]
     return {"checkpoint": model, "second_checkpoint": second[0] if second else "",
-            "second_parallel": ("on" if parallel else "off") if second else "",
+            "pair_mode": ("parallel" if parallel else "serial") if second else "first-only",
             "model": detector.model_id, "fusion": detector.config.fusion,
             "priors": "+".join(detector.used_priors), "method": method, "precision": precision,
             "presence": "on" if presence else "off",
@@ -261,9 +266,9 @@ def run(args: argparse.Namespace) -> int:
     if (args.second_model is None) != (args.second_data is None):
         raise UserError("--second-model and --second-data go together (a second camera's model and its twin set)")
     second = (args.second_model, args.second_data) if args.second_model else None
-    pair_modes = args.second_parallel.split(",") if second else ["on"]
-    if any(m not in ("on", "off") for m in pair_modes):
-        raise UserError(f"--second-parallel: {args.second_parallel!r}: on, off or on,off")
+    pair_modes = args.pair_modes.split(",") if second else ["first-only"]
+    if any(m not in PAIR_MODES for m in pair_modes):
+        raise UserError(f"--pair-modes: {args.pair_modes!r}: comma-separated {', '.join(PAIR_MODES)}")
     presence = args.presence.split(",")
     bad = [p for p in presence if p not in ("on", "off")]
     if bad:
@@ -279,14 +284,15 @@ def run(args: argparse.Namespace) -> int:
     rows = []
     for model, method, precision, pres, ee, mem, pm in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
-                            args.device, pres == "on", args.empty_rate, ee, mem, second, pm == "on"))
+                            args.device, pres == "on", args.empty_rate, ee, mem,
+                            None if pm == "first-only" else second, pm == "parallel"))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
-    cols = ["checkpoint", *(["second_checkpoint", "second_parallel"] if second else []), "fusion", "priors",
+    cols = ["checkpoint", *(["second_checkpoint", "pair_mode"] if second else []), "fusion", "priors",
             "method", "precision", "presence", "early_exit", "members_per_part",
             "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",

@@ -45,12 +45,13 @@ def test_bench_pipeline_times_a_two_camera_station(tmp_path: Path, capsys) -> No
     out = tmp_path / "bench"
     args = ["bench", "pipeline", "--data", str(data), "--models", str(model), "--methods", "bilinear",
             "--precisions", "fp32", "--presence", "off", "--parts", "6", "--out", str(out)]
-    assert main([*args, "--second-model", str(side), "--second-data", str(twin), "--second-parallel", "on,off"]) == 0
+    modes = ["--pair-modes", "parallel,serial,first-only"]
+    assert main([*args, "--second-model", str(side), "--second-data", str(twin), *modes]) == 0
     rows = json.loads((out / "pipeline.json").read_text())["rows"]
-    assert [r["second_parallel"] for r in rows] == ["on", "off"]
-    for row in rows:
-        assert row["second_checkpoint"] == str(side) and row["parts"] == row["judged"] == 6 and row["p99_ms"] > 0
-    assert "| second_checkpoint | second_parallel |" in (out / "pipeline.md").read_text()
+    assert [(r["pair_mode"], r["second_checkpoint"]) for r in rows] == [("parallel", str(side)), ("serial", str(side)),
+                                                                         ("first-only", "")]
+    assert all(row["parts"] == row["judged"] == 6 and row["p99_ms"] > 0 for row in rows)
+    assert "| second_checkpoint | pair_mode |" in (out / "pipeline.md").read_text()
     assert main([*args, "--second-model", str(side)]) == 2
     assert "--second-model and --second-data go together" in capsys.readouterr().err
 
