@@ -33,6 +33,6 @@ clean:
 model: setup
 	scripts/make-model.sh
 
-# The second camera's model (a side camera at belt level: [second_camera] in station.toml), from nothing; about 2 h.
+# The second camera's model (a side camera at belt level: [second_camera] in station.toml), from nothing; 1.5-2 h.
 side-model: setup
 	scripts/make-side-model.sh

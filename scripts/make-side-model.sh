@@ -3,7 +3,8 @@
 # a side camera at belt level under a flat dome (sim/presets/side-view.toml, layered last on the line's presets), which
 # sees the front faces the line camera sees poorly (docs/results/2026-11-30-side-view.md). The recipe is check 69's
 # file WS (docs/results/2026-11-30-side-look.md). Every step resumes: rerun it after an interruption and finished work
-# is kept (renders per sample, fits per output file). About 2 h on 2 cores (renders ~70 min, the look network ~30 min).
+# is kept (renders per sample, fits per output file). About 1.5-2 h on 2 cores (renders about an hour; the fit and the
+# look network, 25 min, beside one of them: docs/results/2026-11-30-two-camera-station.md).
 #
 #   1. render the side camera's sets, twins of make-model.sh's (same seeds and parts, seen from the side): training
 #      (seed 101, its train split only, the panel and the finish drawn), calibration (seed 303, the same draws) and
