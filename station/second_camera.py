@@ -15,7 +15,7 @@ thresholds; the part gets one answer and one log row:
 
 The two thresholds come from one budget of good parts rejected, split between the cameras on validation
 (``model.draem.camera_split``): each camera's threshold alone would reject up to the whole budget, and the two
-together up to twice it. ``station split`` sets them (docs/station.md, "A second camera").
+together up to twice it. ``station split`` sets them (docs/second-camera.md).
 """
 
 from __future__ import annotations
