@@ -100,7 +100,6 @@ class VirtualCamera(CameraBase):
         self._next_due = 0.0
         self._frame_id = 0
         self._playing: list[np.ndarray] = []  # the current part's frames still to deliver (a dome-segment set)
-        self._truth: GroundTruth | None = None  # the current part's
         self._t0_ns = 0
         self.pixel_format = "Mono8"
         self.bit_depth = 8
@@ -271,14 +270,13 @@ class VirtualCamera(CameraBase):
         self._next_due = max(self._next_due + 1.0 / self.config.frame_rate_hz, now - 1.0 / self.config.frame_rate_hz)
         if not self._playing:  # the next part: its frames come one per grab
             part = self._draw()
-            self.current = part
-            self._playing, self._truth = list(part.raws), part.ground_truth
+            self.current, self._playing = part, list(part.raws)
         raw = self._playing.pop(0)
         self._frame_id += 1
         self._stats.completed += 1
         return Frame(raw=raw, pixel_format=self.pixel_format, bit_depth=self.bit_depth, frame_id=self._frame_id,
                      timestamp_ns=time.monotonic_ns() - self._t0_ns, host_timestamp_ns=time.time_ns(),
-                     device_frame_id=self._frame_id, ground_truth=self._truth)
+                     device_frame_id=self._frame_id, ground_truth=self.current.ground_truth)
 
     def _draw(self) -> _Cached:
         """A part at random: an empty view at ``empty_rate``, else defective at ``defect_rate``; with a leader, the
