@@ -92,6 +92,12 @@ class Inspection:
         """False only when the presence check found no part in view."""
         return self.presence is None or self.presence.present
 
+    @property
+    def empty_reason(self) -> str | None:
+        """The presence check's reason when it found no part in view, else None (``station.decision.decide``'s
+        ``empty``)."""
+        return self.presence.reason if self.presence is not None and not self.presence.present else None
+
 
 class Inspector:
     """Parts' frames -> ``Inspection``s for one detector, layout and demosaic method; ``segments``: the dome

@@ -251,8 +251,10 @@ class Station:
                  drift: DriftMonitor | None = None, max_frame_delay_ms: float | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold = inspector.detector.threshold if threshold is None else threshold
-        self.second_threshold = inspector.second.detector.threshold if isinstance(inspector, PairInspector) else None
+        second = inspector.second.detector if isinstance(inspector, PairInspector) else None
+        self.second_threshold = second.threshold if second is not None else None
         """The second camera's threshold (``[second_camera]``); None with one camera."""
+        self.second_model_id = second.model_id if second is not None else None
         self.frames_per_part = camera.config.frames_per_part
         """Frames that make one part (the camera's ``frames_per_part``, from ``[camera] dome_segments``): the station
         triggers each (software trigger)."""
@@ -504,10 +506,9 @@ class Station:
             self._model_busy = 0
             inspection = answer
             t = time.perf_counter()
-            empty = inspection.presence.reason if inspection.presence and not inspection.present else None
             decision = decide(inspection.score, self.threshold, elapsed_ms=1e3 * (t - part.t_trigger),
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
-                              invalid_fraction=inspection.invalid_fraction, empty=empty)
+                              invalid_fraction=inspection.invalid_fraction, empty=inspection.empty_reason)
             if inspection.second is not None:
                 decision = join(decision, self._second_decision(inspection.second), SECOND_NAME)
             if decision.decision == Verdict.EMPTY and self.link.triggered:  # an announced part not seen: rejected,
@@ -525,10 +526,9 @@ class Station:
 
     def _second_decision(self, second: Inspection) -> Decision:
         """The second camera's own decision on its threshold (its time is the part's, judged on the first's)."""
-        empty = second.presence.reason if second.presence and not second.present else None
         assert self.second_threshold is not None
         return decide(second.score, self.second_threshold, error=second.error,
-                      invalid_fraction=second.invalid_fraction, empty=empty)
+                      invalid_fraction=second.invalid_fraction, empty=second.empty_reason)
 
     def _no_answer(self, part: Part, answer: NoAnswer) -> None:
         """The model did not answer by the part's deadline, or is still on an earlier part: reject it now;
@@ -614,8 +614,7 @@ class Station:
             drift=self.drift.warning if self.drift is not None else None,
             **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks},
             second_score=second.score if second is not None else None, second_threshold=self.second_threshold,
-            second_model_id=self.inspector.second.detector.model_id if isinstance(self.inspector, PairInspector)
-            else None, second_frame_id=companion.frame_id if companion is not None else None)
+            second_model_id=self.second_model_id, second_frame_id=companion.frame_id if companion is not None else None)
         record = self._records.write(record, awaits_plc=tell_plc, t_decided=t_decided)
         self._written = (part, record, tell_plc)
         if tell_plc and record.decision == Verdict.PASS:
