@@ -179,6 +179,9 @@ class Inspector:
         result.timings_ms["model"] = 1e3 * (time.perf_counter() - t_priors)  # with the motion check
         return result
 
+    def close(self) -> None:
+        """Nothing to end: it runs on its caller's thread (``PairInspector.close``'s peer, called by the loop)."""
+
     @staticmethod
     def _moved(frames: Sequence[Frame], stokes: Sequence[tuple[np.ndarray, ...]], score: float) -> str | None:
         """Why a part that ``score``s high cannot be judged, when it moved between its frames by more than

@@ -718,6 +718,7 @@ class Station:
             self._finish_dropped()
             self._shut_down_link()
             self._model.close()
+            self.inspector.close()
 
     def _shut_down_link(self) -> None:
         """Every part announced from now on is recorded and rejected until the port closes; wait (up to

@@ -41,7 +41,8 @@ class PairInspector:
             raise ValueError("the second camera takes one frame per part: its model must not read dome segments")
         self.first, self.second = first, second
         self.parallel = parallel
-        self._pool = ThreadPoolExecutor(1, thread_name_prefix="second-camera") if parallel else None
+        self._pool: ThreadPoolExecutor | None = None
+        """The second camera's thread (``parallel``): made at the first part, ended by ``close``."""
 
     @property
     def detector(self) -> Detector:
@@ -62,7 +63,9 @@ class PairInspector:
         frames = (frames,) if isinstance(frames, Frame) else tuple(frames)
         companion = frames[0].companion if frames else None
         pending = None
-        if companion is not None and self._pool is not None:
+        if companion is not None and self.parallel:
+            if self._pool is None:
+                self._pool = ThreadPoolExecutor(1, thread_name_prefix="second-camera")
             pending = self._pool.submit(self.second.inspect, companion)
         result = self.first.inspect(frames)
         if companion is None:
@@ -79,3 +82,12 @@ class PairInspector:
             result.timings_ms[stage] = max(mine, ms) if pending is not None else mine + ms
         result.second = second
         return result
+
+    def close(self) -> None:
+        """End the second camera's thread once it is done with its frame (the loop calls this when a run ends; a
+        later part makes a new one). Does not wait: a hung second model keeps its thread, as the model thread does."""
+        pool, self._pool = self._pool, None
+        if pool is not None:
+            pool.shutdown(wait=False, cancel_futures=True)
+        self.first.close()
+        self.second.close()

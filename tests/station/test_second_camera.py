@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -126,6 +128,23 @@ def test_a_failing_second_model_rejects_the_part(tmp_path):
     assert [r["decision"] for r in rows] == ["reject", "reject"] and set(dict(link.reports).values()) == {"reject"}
     assert all(r["reason"].startswith("second camera: not judged: frame") and "weights corrupt" in r["reason"]
                for r in rows)
+
+
+def test_the_second_cameras_thread_ends_with_the_run_and_a_second_run_gets_a_new_one(tmp_path):
+    def second_threads_after_run():  # an idle pool's thread ends moments after the pool is shut down
+        deadline = time.monotonic() + 2.0
+        while (n := sum(t.name.startswith("second-camera") for t in threading.enumerate())) > before \
+                and time.monotonic() < deadline:
+            time.sleep(0.01)
+        return n
+
+    before = sum(t.name.startswith("second-camera") for t in threading.enumerate())
+    station, _, log = two_camera_station(tmp_path, [0, 1], [0, 0], 2)
+    station.run(max_parts=1)
+    assert second_threads_after_run() == before  # PairInspector.close(): its pool's thread ends with the run
+    station.run(max_parts=1)  # the same station runs again: the pool is made anew
+    assert second_threads_after_run() == before
+    assert [r["decision"] for r in log.rows()] == ["pass", "reject"]
 
 
 @pytest.mark.parametrize("parallel", [True, False])
