@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from model.draem.config import GOOD_REJECTED_RATE
+from station.config import PRESENCE_RULES
 from station.errors import UserError
 
 
@@ -55,7 +56,7 @@ def frames_sha256(root: str | Path, indices: list[int]) -> str:
 
 def adapt_model(model: str, good: str, out: str, split: str = "train", limit: int | None = None,
                 false_reject: float = GOOD_REJECTED_RATE, fine_tune_steps: int = 0, seed: int = 0,
-                keep_networks: bool = False, presence_rule: str = "dolp_contrast") -> AdaptSummary:
+                keep_networks: bool = False, presence_rule: str = PRESENCE_RULES[0]) -> AdaptSummary:
     """Adapt checkpoint ``model`` to the good parts of ``good``'s ``split`` (at most ``limit``), write ``out``; the
     frames the station would not judge, with the presence check's ``presence_rule`` at its defaults, left out."""
     from model.draem.adapt import AdaptConfig, adapt

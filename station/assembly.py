@@ -208,8 +208,7 @@ def check_line_segments(cfg: StationConfig, segments: tuple[float, ...], what: s
 def presence_check(cfg: StationConfig, rule: str | None = None) -> PresenceCheck | None:
     """The ``[presence]`` check (``rule``: another than ``[presence] rule``, the second camera's), or None when
     disabled."""
-    p = cfg.presence
-    return PresenceCheck(p.min_dolp_contrast, p.cell_px, rule or p.rule, p.min_row_contrast) if p.enabled else None
+    return PresenceCheck.from_config(cfg.presence, rule) if cfg.presence.enabled else None
 
 
 def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, link: LineLink,

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from model.draem.config import GOOD_REJECTED_RATE
+from station.config import PRESENCE_RULES
 from station.errors import UserError
 
 ABLATION = (("R", ("intensity",)), ("R+AoLP", ("intensity", "aolp")), ("R+AoLP+DoLP", ("intensity", "aolp", "dolp")),
@@ -109,7 +110,7 @@ def check_max_good_flagged(value: float) -> None:
 
 
 def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED_RATE, split: str = "val",
-                  presence_rule: str = "dolp_contrast") -> str:
+                  presence_rule: str = PRESENCE_RULES[0]) -> str:
     """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
     does there (one line). Frames the station would not judge are left out, with the presence check's
     ``presence_rule`` (``station.presence.PresenceRule``: the one the camera's ``[presence]`` uses) at its
@@ -397,7 +398,8 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
 
 def split_camera_thresholds(first_model: str, first_data: str, second_model: str, second_data: str,
                             rate: float = GOOD_REJECTED_RATE, split: str = "val",
-                            first_presence: str = "dolp_contrast", second_presence: str = "row_contrast") -> dict:
+                            first_presence: str = PRESENCE_RULES[0],
+                            second_presence: str = PRESENCE_RULES[1]) -> dict:
     """Two cameras' thresholds from one budget of good parts rejected (``model.draem.camera_split``), on the twin
     validation sets ``first_data`` and ``second_data`` (the same parts, each seen by its camera; their samples are
     matched by index). A part is defective when either camera's sample shows its defect (a label says what that

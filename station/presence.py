@@ -33,11 +33,15 @@ import functools
 from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import TYPE_CHECKING, Self
 
 import cv2
 import numpy as np
 
 from model.draem.roi import center_box
+
+if TYPE_CHECKING:
+    from station.config import PresenceConfig
 
 MIN_CELLS = 8
 """At least 8 x 8 cells whatever the frame size: on fewer, the quadratic (6 coefficients) absorbs a part too."""
@@ -144,6 +148,11 @@ class PresenceCheck:
         self.cell_px = cell_px
         self.priors = (self.rule.prior,)
         """Prior maps the check reads (the inspector computes them even when the model does not need them)."""
+
+    @classmethod
+    def from_config(cls, p: PresenceConfig, rule: PresenceRule | str | None = None) -> Self:
+        """The check ``[presence]`` sets (``rule``: another than ``[presence] rule``, as the second camera's)."""
+        return cls(p.min_dolp_contrast, p.cell_px, rule or p.rule, p.min_row_contrast)
 
     @property
     def threshold(self) -> float:

@@ -83,6 +83,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     second camera (module docstring), judged at the same time as the first (``parallel``) or after it; None: one
     camera."""
     from collections.abc import Mapping
+    from typing import Any
 
     import numpy as np
 
@@ -98,7 +99,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from station.line_link import NoLink
     from station.loop import Station
     from station.model_detector import DraemDetector
-    from station.presence import Presence, PresenceCheck
+    from station.presence import Presence, PresenceCheck, PresenceRule
     from station.second_camera import PairInspector
 
     detector = DraemDetector(model, device, precision, early_exit_margin=early_exit, members=members)
@@ -125,9 +126,11 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     class TimedCheck(PresenceCheck):
         """Keeps the check's own time per frame in ms (the log folds it into ``priors_ms``)."""
 
-        def __init__(self, cfg: PresenceConfig) -> None:
-            super().__init__(cfg.min_dolp_contrast, cfg.cell_px, cfg.rule, cfg.min_row_contrast)
-            self.ms: list[float] = []
+        ms: list[float]
+
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            self.ms = []
 
         def __call__(self, priors: Mapping[str, np.ndarray]) -> Presence:
             t = time.perf_counter()
@@ -136,16 +139,16 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
             return out
 
     cfg = PresenceConfig()
-    check = TimedCheck(cfg) if presence else None
+    check = TimedCheck.from_config(cfg) if presence else None
     with tempfile.TemporaryDirectory() as tmp, InspectionLog(Path(tmp) / "log.sqlite") as log:
         camera.open()
         try:
             inspector: Inspector | PairInspector = Inspector(detector, layout, method, presence=check,
                                                              segments=detector.dome_segments)
             if second_detector is not None:
-                inspector = PairInspector(inspector, Inspector(second_detector, layout, method, presence=PresenceCheck(
-                    cfg.min_dolp_contrast, cfg.cell_px, "row_contrast", cfg.min_row_contrast) if presence else None),
-                    parallel)
+                second_check = PresenceCheck.from_config(cfg, PresenceRule.ROW_CONTRAST) if presence else None
+                inspector = PairInspector(inspector, Inspector(second_detector, layout, method, presence=second_check),
+                                          parallel)
             station = Station(camera, inspector, NoLink(), log, cycle_time_ms=1e6, queue_size=1, backpressure="block",
                               grab_timeout_ms=10000)
             t = time.perf_counter()

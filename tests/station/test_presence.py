@@ -122,9 +122,10 @@ def test_presence_config_and_its_errors() -> None:
     cfg = parse_config("[presence]\nenabled = false\nmin_dolp_contrast = 0.2\ncell_px = 8\n")
     assert (cfg.presence.enabled, cfg.presence.min_dolp_contrast, cfg.presence.cell_px) == (False, 0.2, 8)
     cfg = parse_config("[presence]\nrule = \"row_contrast\"\nmin_row_contrast = 0.2\n")
-    check = PresenceCheck(cfg.presence.min_dolp_contrast, cfg.presence.cell_px, cfg.presence.rule,
-                          cfg.presence.min_row_contrast)
+    check = PresenceCheck.from_config(cfg.presence)
     assert (check.rule, check.threshold, check.priors) == (PresenceRule.ROW_CONTRAST, 0.2, ("intensity",))
+    check = PresenceCheck.from_config(cfg.presence, "dolp_contrast")  # the second camera's own rule, same bounds
+    assert (check.rule, check.threshold, check.cell_px) == (PresenceRule.DOLP_CONTRAST, 0.1, 12)
     assert {r.value for r in PresenceRule} == set(StationConfig.__dataclass_fields__["presence"].default_factory()
                                                   .__dataclass_fields__["rule"].metadata["choices"])
     assert [r.value for r in PresenceRule] == list(PRESENCE_RULES)  # the CLI's --presence-rule, the default first
