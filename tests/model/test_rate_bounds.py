@@ -1,0 +1,61 @@
+"""The exact bounds on a share counted on finite sets (model/draem/rate_bounds.py)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from model.draem.metrics import choose_threshold
+from model.draem.rate_bounds import expected_rate, interval, parts_needed, upper_bound
+
+
+def test_zero_of_n_has_the_closed_form_bound_and_the_rule_of_three():
+    for n in (10, 100, 370, 1000):
+        assert upper_bound(0, n, 0.95) == pytest.approx(1.0 - 0.05 ** (1.0 / n), rel=1e-9)
+    assert 300 * upper_bound(0, 300) == pytest.approx(3.0, rel=0.01)  # about 3 / n
+    assert upper_bound(5, 5) == 1.0 and interval(0, 5)[0] == 0.0 and interval(5, 5)[1] == 1.0
+
+
+def test_the_interval_holds_its_coverage_on_binomial_draws():
+    rng = np.random.default_rng(0)
+    for p, n in ((0.01, 370), (0.2, 50)):
+        k = rng.binomial(n, p, size=4000)
+        inside = np.mean([lo <= p <= hi for lo, hi in (interval(int(x), n) for x in k)])
+        above = np.mean([upper_bound(int(x), n) >= p for x in k])
+        assert inside >= 0.95 and above >= 0.95  # exact: at least the nominal coverage
+        assert inside < 0.995  # and not vacuous
+
+
+def test_the_bound_is_the_quantile_of_new_good_parts_above_the_stations_threshold():
+    """Set a threshold by the station's rule on n good scores, count new good parts above it: over many lines,
+    95 % of them see a share at or under ``upper_bound(k, n)``, and the mean share is ``expected_rate``."""
+    def squash(x):  # scores in [0, 1), as the station's are
+        return x / (1.0 + np.abs(x)) / 2.0 + 0.5
+
+    rng = np.random.default_rng(1)
+    n, m, shares = 370, 2000, []
+    for _ in range(1500):
+        val = squash(rng.standard_t(3, n))  # heavy-tailed: the bound does not depend on the scores' distribution
+        t = choose_threshold(np.zeros(n), val, 0.01).threshold
+        assert (val > t).sum() == 3
+        shares.append(float((squash(rng.standard_t(3, m)) > t).mean()))
+    assert np.mean(shares) == pytest.approx(expected_rate(3, n), rel=0.06)
+    assert np.quantile(shares, 0.95) == pytest.approx(upper_bound(3, n), rel=0.08)
+    assert 0.0205 < upper_bound(3, n) < 0.021  # the shipped rule on 370 good parts: up to 2.1 % on new parts
+
+
+def test_parts_needed_is_the_smallest_n_that_bounds_the_rate():
+    for k in (0, 3):
+        n = parts_needed(0.01, 0.95, k)
+        assert upper_bound(k, n) <= 0.01 < upper_bound(k, n - 1)
+    assert parts_needed(0.01) == math.ceil(math.log(0.05) / math.log(0.99)) == 299
+    assert parts_needed(0.01, k=3) == 773
+
+
+@pytest.mark.parametrize("call", [lambda: upper_bound(4, 3), lambda: upper_bound(0, 0), lambda: interval(1, 10, 1.0),
+                                  lambda: parts_needed(0.0), lambda: parts_needed(0.01, k=-1)])
+def test_bad_arguments_are_refused(call):
+    with pytest.raises(ValueError):
+        call()
