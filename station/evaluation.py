@@ -144,10 +144,11 @@ def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED
         raise UserError(f"{data}: split {split!r} has no good parts ({n_bad} defective); a threshold needs good "
                         f"parts to bound false rejects")
     choice = choose_threshold(labels, ev.scores, max_good_flagged)
+    n_good, good_flagged = len(labels) - n_bad, int((ev.scores[labels == 0] > choice.threshold).sum())
     train = dict(ck.meta.get("train", {}))
     if not same_set:
         train["threshold_set"] = {"data": str(data), "manifest_sha256": data_sha, "split": split,
-                                  "n_good": len(labels) - n_bad, "n_defective": n_bad,
+                                  "n_good": n_good, "n_good_flagged": good_flagged, "n_defective": n_bad,
                                   "left_out": {str(i): why for i, why in left_out.items()},
                                   "presence_rule": str(presence_rule),
                                   "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
@@ -157,7 +158,17 @@ def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED
     skipped = (f"\nleft out {len(left_out)} frames the station would not judge: {describe_left_out(left_out)}"
                if left_out else "")
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
-            f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts{detected}{skipped}")
+            f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts "
+            f"({new_good_rate(good_flagged, n_good)}){detected}{skipped}")
+
+
+def new_good_rate(k: int, n: int) -> str:
+    """What a threshold that ``k`` of ``n`` good validation parts lie above says of new good parts
+    (``model.draem.rate_bounds``): their expected share rejected and its 95 % bound."""
+    from model.draem.rate_bounds import expected_rate, upper_bound
+
+    return (f"{k} of {n}; new good parts: about {100 * expected_rate(k, n):.1f} %, at most "
+            f"{100 * upper_bound(k, n):.1f} % at 95 % confidence")
 
 
 def describe_left_out(left_out: Mapping[Any, str], most: int = 10) -> str:

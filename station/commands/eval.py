@@ -16,12 +16,16 @@ import argparse
 import json
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from model.draem.holdout import held_out_type
 from model.draem.runtime import EVAL_PRECISIONS
 from station.commands.arguments import add_presence_rule, positive_int
 from station.errors import UserError
 from station.evaluation import ABLATION, describe_left_out, evaluate_split, load_and_evaluate, normal_prior_record
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -192,6 +196,19 @@ def industrial_rows(report, train_meta: dict) -> list[dict]:
                      "image_auroc": det.image_auroc,
                      **{f"caught_at_{100 * fr:g}%_false_rejects": det.caught[fr] for fr in FALSE_REJECTS}})
     return rows
+
+
+def rate_note(rate: float, threshold: float, val_good: np.ndarray, observed: float, n_good: int) -> str:
+    """One false-reject rate's threshold in the report: how many good validation parts lie above it and what that
+    says of new good parts, then the share of this set's good parts it rejected with its exact 95 % interval
+    (``model.draem.rate_bounds``)."""
+    from model.draem.rate_bounds import interval
+    from station.evaluation import new_good_rate
+
+    k = round(observed * n_good)
+    low, high = interval(k, n_good) if n_good else (math.nan, math.nan)
+    return (f"{100 * rate:g} % -> {threshold:.4g} ({new_good_rate(int((val_good > threshold).sum()), len(val_good))}), "
+            f"observed here {100 * observed:.1f} % ({k} of {n_good}: 95 % interval {100 * low:.1f}-{100 * high:.1f} %)")
 
 
 def unjudged_note(unjudged: dict[int, str], sp, rule: str) -> str:
@@ -390,11 +407,12 @@ def run(args: argparse.Namespace) -> int:
             industrial_note = f"no industrial figures: {exc}"
         else:
             industrial = industrial_rows(rep, ck.meta.get("train") or {})
+            val_good = vev.scores[judged][vsp.label.numpy()[judged] == 0]
             industrial_note = ("Defective parts caught at a fixed share of good parts rejected (thresholds set on the "
                                "val split's good parts and held fixed: " + ", ".join(
-                                   f"{100 * fr:g} % -> {t:.4g}, observed here {100 * rep.false_reject_observed[fr]:.1f}"
-                                   " %" for fr, t in rep.thresholds.items())
-                               + f"; val split of {val_data}, {int((vsp.label[judged] == 0).sum())} good parts"
+                                   rate_note(fr, t, val_good, rep.false_reject_observed[fr], rep.n_good)
+                                   for fr, t in rep.thresholds.items())
+                               + f"; val split of {val_data}, {len(val_good)} good parts"
                                + unjudged_note(unjudged, sp, args.presence_rule) + "):")
     where, separable = told_where(
         ck.detector.variation, sp.priors, sp.label.numpy(), sp.defect_mask, sp.mask_known.numpy(), sp.defect_type,

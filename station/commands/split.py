@@ -12,6 +12,7 @@ from pathlib import Path
 
 from station.commands.arguments import add_max_good_flagged
 from station.config import PRESENCE_RULES
+from station.evaluation import new_good_rate
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -46,6 +47,8 @@ def format_split(report: dict) -> str:
     if report["left_out"]:
         lines.append(f"left out {len(report['left_out'])} parts a camera would not judge (rejected at the station)")
     chosen = report["splits"][report["chosen"]]
+    lines.append(f"chosen split: good parts rejected {new_good_rate(chosen['good_rejected'], report['good'])} (as for "
+                 "one threshold; the split is chosen on these parts, so expect a little more)")
     lines += ["station.toml:", "[decision]", f"threshold = {chosen['first']:.6g}", "[second_camera]",
               f"threshold = {chosen['second']:.6g}"]
     return "\n".join(lines)

@@ -35,4 +35,8 @@ def test_frames_the_station_would_not_judge_count_as_rejected_in_the_industrial_
         observed = [float(x.split("observed here ")[1].split(" %")[0])
                     for x in report["industrial_note"].split(", ") if "observed here" in x]
         assert len(observed) == 2 and min(observed) >= 100 * n_forced / 8 - 0.05, report["industrial_note"]
+        counts = [int(x.split("observed here ")[1].split("(")[1].split(" of 8:")[0])
+                  for x in report["industrial_note"].split(", ") if "observed here" in x]
+        assert [round(100 * c / 8, 1) for c in counts] == observed  # with the count behind each share
+        assert "of 8: 95 % interval " in report["industrial_note"]
         assert report["rows"][0]["flagged_good"] >= n_forced / 8  # and at the model's own threshold

@@ -30,7 +30,8 @@ def test_threshold_is_chosen_on_val_and_written_to_the_sidecar(tmp_path: Path, c
     assert "1.00%" in json.loads(model.with_suffix(".json").read_text())["threshold_rule"]
     for k, v in before.detector.state_dict().items():  # the weights are untouched
         assert torch.equal(v, after.detector.state_dict()[k])
-    assert "threshold" in capsys.readouterr().out
+    # what 0 of the 2 good parts above it says of new good parts: up to 1 - 0.05 ** (1 / 2), 77.6 %
+    assert "(0 of 2; new good parts: about 33.3 %, at most 77.6 % at 95 % confidence)" in capsys.readouterr().out
 
 
 def test_threshold_takes_good_parts_only_and_other_sets_but_not_the_training_split(tmp_path: Path, capsys) -> None:
@@ -46,6 +47,7 @@ def test_threshold_takes_good_parts_only_and_other_sets_but_not_the_training_spl
     assert "not its training set" in capsys.readouterr().out
     meta = load_checkpoint(model).meta
     assert meta["train"]["threshold_set"]["split"] == "val" and meta["data_manifest_sha256"] == "0" * 64
+    assert (meta["train"]["threshold_set"]["n_good"], meta["train"]["threshold_set"]["n_good_flagged"]) == (2, 0)
     save_checkpoint(model, ck.detector, 0.5, "test", data_manifest_sha256=manifest_sha256(data))
     assert main(["threshold", "--model", str(model), "--data", str(data), "--split", "train"]) == 2
     assert "not held out" in capsys.readouterr().err
