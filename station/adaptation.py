@@ -21,12 +21,14 @@ class AdaptSummary:
     record: dict[str, Any]
 
     def describe(self) -> str:
-        from station.evaluation import describe_left_out
+        from station.evaluation import describe_left_out, new_good_rate
 
         r = self.record
+        held = new_good_rate(round(r["heldout_false_reject"] * r["n_heldout"]), r["n_heldout"])
         return (f"{self.out}: adapted on {r['n_good']} good parts of {r['data']} ({r['scheme']}); threshold "
                 f"{r['threshold']:.4g}, {100 * r['heldout_false_reject']:.1f} % of held-out good parts rejected "
-                f"(target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: {r['frame_statistics']}"
+                f"({held}; target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: "
+                f"{r['frame_statistics']}"
                 + (f"\nleft out {len(r['left_out'])} frames the station would not judge: "
                    f"{describe_left_out(r['left_out'])}" if r.get("left_out") else "")
                 + (f"\nnote: {r['advice']}" if r.get("advice") else ""))
