@@ -455,6 +455,8 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
         rows, best = split_thresholds(y, a, b, rate)
     except ValueError as exc:
         raise UserError(f"{first_data}, {second_data}: {exc}") from None
+    chosen = rows[best]
+    above = {"first": int((a[~y] > chosen.first).sum()), "second": int((b[~y] > chosen.second).sum())}
     alone = {}
     for name, s in (("first", a), ("second", b)):
         choice = choose_threshold(y.astype(int), s, rate)
@@ -465,4 +467,5 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
             "split": split, "rate": rate, "parts": len(both), "good": int((~y).sum()), "defective": int(y.sum()),
             "budget": int(np.floor(rate * (~y).sum() + 1e-9)),
             "left_out": {str(i): why for i, why in sorted(left_out.items())},
-            "splits": [dataclasses.asdict(r) for r in rows], "chosen": best, "alone": alone}
+            "splits": [dataclasses.asdict(r) for r in rows], "chosen": best, "chosen_good_above": above,
+            "alone": alone}

@@ -9,6 +9,8 @@ fractions in [0, 1]; ``confidence`` in (0, 1).
   exchangeable, no ties; ``metrics.choose_threshold``'s threshold is such a one): that share follows
   Beta(k + 1, n - k), whatever the scores' distribution. Its mean is ``expected_rate`` = (k + 1) / (n + 1).
 - ``interval(k, n, confidence)``: the two-sided Clopper-Pearson interval, for a share measured on a held-out set.
+- ``either_rate(ks, n, confidence)``: the same for a part rejected when it lies above any of several thresholds
+  set on the same n good parts (two cameras' split), ks[i] above threshold i: the sums, which err high.
 - ``parts_needed(rate, confidence, k)``: the fewest good validation parts with which a threshold that k of them lie
   above has ``upper_bound`` at or below ``rate``.
 
@@ -20,6 +22,8 @@ with 3 above it (``parts_needed``; docs/model.md, "Threshold rule").
 """
 
 from __future__ import annotations
+
+from collections.abc import Sequence
 
 from scipy.stats import beta
 
@@ -50,6 +54,19 @@ def interval(k: int, n: int, confidence: float = 0.95) -> tuple[float, float]:
     low = 0.0 if k == 0 else float(beta.ppf(a, k, n - k + 1))
     high = 1.0 if k == n else float(beta.ppf(1.0 - a, k + 1, n - k))
     return low, high
+
+
+def either_rate(ks: Sequence[int], n: int, confidence: float = 0.95) -> tuple[float, float]:
+    """Several thresholds on the same ``n`` good parts (one per camera), ``ks[i]`` of them above threshold i; a new
+    good part is rejected when it lies above any -> (at most the expected share rejected: the sum of each one's
+    ``expected_rate``; the share's bound at ``confidence``: the sum of each one's ``upper_bound`` at 1 - (1 -
+    ``confidence``) / len(ks), Bonferroni). Both ignore the parts above two at once, so they err high."""
+    if not ks:
+        raise ValueError("either_rate needs at least one threshold's count")
+    _check(0, n, confidence)
+    each = 1.0 - (1.0 - confidence) / len(ks)
+    return (min(1.0, sum(expected_rate(k, n) for k in ks)),
+            min(1.0, sum(upper_bound(k, n, each) for k in ks)))
 
 
 def parts_needed(rate: float, confidence: float = 0.95, k: int = 0) -> int:

@@ -12,7 +12,6 @@ from pathlib import Path
 
 from station.commands.arguments import add_max_good_flagged
 from station.config import PRESENCE_RULES
-from station.evaluation import new_good_rate
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -47,8 +46,14 @@ def format_split(report: dict) -> str:
     if report["left_out"]:
         lines.append(f"left out {len(report['left_out'])} parts a camera would not judge (rejected at the station)")
     chosen = report["splits"][report["chosen"]]
-    lines.append(f"chosen split: good parts rejected {new_good_rate(chosen['good_rejected'], report['good'])} (as for "
-                 "one threshold; the split is chosen on these parts, so expect a little more)")
+    from model.draem.rate_bounds import either_rate
+
+    above, n = report["chosen_good_above"], report["good"]
+    mean, bound = either_rate([above["first"], above["second"]], n)
+    lines.append(f"chosen split: {chosen['good_rejected']} of {n} good parts rejected (first camera {above['first']}, "
+                 f"second {above['second']}); new good parts: at most about {100 * mean:.1f} %, at most "
+                 f"{100 * bound:.1f} % at 95 % confidence (each camera's share added; the split is chosen on these "
+                 f"parts)")
     lines += ["station.toml:", "[decision]", f"threshold = {chosen['first']:.6g}", "[second_camera]",
               f"threshold = {chosen['second']:.6g}"]
     return "\n".join(lines)

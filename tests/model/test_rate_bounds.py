@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from model.draem.metrics import choose_threshold
-from model.draem.rate_bounds import expected_rate, interval, parts_needed, upper_bound
+from model.draem.rate_bounds import either_rate, expected_rate, interval, parts_needed, upper_bound
 
 
 def test_zero_of_n_has_the_closed_form_bound_and_the_rule_of_three():
@@ -46,6 +46,22 @@ def test_the_bound_is_the_quantile_of_new_good_parts_above_the_stations_threshol
     assert 0.0205 < upper_bound(3, n) < 0.021  # the shipped rule on 370 good parts: up to 2.1 % on new parts
 
 
+def test_two_cameras_thresholds_bound_the_share_rejected_by_either():
+    """Two cameras' independent good scores on the same n parts, each threshold with 1 above it (2 by either):
+    new good parts are rejected by either at a share whose mean and 95th percentile lie under ``either_rate``'s,
+    and above what one threshold with 2 above it would say."""
+    rng = np.random.default_rng(2)
+    n, m, shares = 368, 2000, []
+    for _ in range(1000):
+        a, b = rng.random(n), rng.random(n)
+        ta, tb = np.sort(a)[-2], np.sort(b)[-2]  # one part above each
+        shares.append(float(((rng.random(m) > ta) | (rng.random(m) > tb)).mean()))
+    mean, bound = either_rate([1, 1], n)
+    assert np.mean(shares) <= mean and np.quantile(shares, 0.95) <= bound
+    assert np.mean(shares) > expected_rate(2, n) * 1.2  # two thresholds are not one with the union's count
+    assert either_rate([3], n) == (expected_rate(3, n), upper_bound(3, n))
+
+
 def test_parts_needed_is_the_smallest_n_that_bounds_the_rate():
     for k in (0, 3):
         n = parts_needed(0.01, 0.95, k)
@@ -55,7 +71,8 @@ def test_parts_needed_is_the_smallest_n_that_bounds_the_rate():
 
 
 @pytest.mark.parametrize("call", [lambda: upper_bound(4, 3), lambda: upper_bound(0, 0), lambda: interval(1, 10, 1.0),
-                                  lambda: parts_needed(0.0), lambda: parts_needed(0.01, k=-1)])
+                                  lambda: parts_needed(0.0), lambda: parts_needed(0.01, k=-1),
+                                  lambda: either_rate([], 10)])
 def test_bad_arguments_are_refused(call):
     with pytest.raises(ValueError):
         call()

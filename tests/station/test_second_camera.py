@@ -224,7 +224,10 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     assert chosen["caught"] == max(r["caught"] for r in report["splits"])
     assert out.count("<- chosen") == 1 and f"[second_camera]\nthreshold = {chosen['second']:.6g}" in out
     assert f"[decision]\nthreshold = {chosen['first']:.6g}" in out
-    assert f"chosen split: good parts rejected {chosen['good_rejected']} of {report['good']}; new good parts: " in out
+    above = report["chosen_good_above"]
+    assert above["first"] + above["second"] >= chosen["good_rejected"] >= max(above.values())
+    assert (f"chosen split: {chosen['good_rejected']} of {report['good']} good parts rejected (first camera "
+            f"{above['first']}, second {above['second']}); new good parts: at most about ") in out
     other = make_dataset(tmp_path / "other", n=30)
     for f in (other / "samples").glob("*/params.json"):  # the same parts with another defect
         params = json.loads(f.read_text())
