@@ -4,9 +4,9 @@ validation count promises (model.draem.rate_bounds); writes seeds.md and seeds.p
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
-from model.draem.rate_bounds import expected_rate, interval, upper_bound  # noqa: E402
+from model.draem.rate_bounds import expected_rate, interval, upper_bound
 
 SEEDS = {1165: (0, 176), 1167: (2, 184), 1169: (3, 153), 1170: (1, 172), 1171: (4, 176), 1172: (2, 261),
          1173: (4, 239)}
@@ -23,10 +23,10 @@ lines.append(f"\nPromised by {K} of {N} validation good parts above the threshol
 open("docs/results/2026-11-30-threshold-counts/seeds.md", "w").write("\n".join(lines) + "\n")
 
 fig, ax = plt.subplots(figsize=(6.4, 3.4))
-xs = list(range(len(SEEDS))) + [len(SEEDS) + 0.5]
-for x, (label, (k, n)) in zip(xs, list(SEEDS.items()) + [("all", (k, n))], strict=True):
-    lo, hi = interval(k, n)
-    ax.errorbar(x, 100 * k / n, yerr=[[100 * (k / n - lo)], [100 * (hi - k / n)]], fmt="o",
+xs = [*range(len(SEEDS)), len(SEEDS) + 0.5]
+for x, (label, (kk, nn)) in zip(xs, [*SEEDS.items(), ("all", (k, n))], strict=True):
+    lo, hi = interval(kk, nn)
+    ax.errorbar(x, 100 * kk / nn, yerr=[[100 * (kk / nn - lo)], [100 * (hi - kk / nn)]], fmt="o",
                 color="k" if label == "all" else "C0", capsize=3)
 ax.axhline(100 * expected_rate(K, N), color="C2", label=f"expected from {K} of {N}: {100 * expected_rate(K, N):.1f} %")
 ax.axhline(100 * upper_bound(K, N), color="C3", ls="--", label=f"95 % bound: {100 * upper_bound(K, N):.1f} %")

@@ -1,7 +1,12 @@
+"""Each camera's good scores on validation (seed 303, runs/s72/val-*.csv from valscores.py) against seed 1173's
+(check 71's station eval reports), at the split's thresholds. Writes to stdout (shift.txt)."""
 import csv
+
 import numpy as np
 from scipy.stats import mannwhitneyu
+
 from model.draem.rate_bounds import interval
+
 thr = {"line": 0.97996, "side": 0.985522}
 for cam, ho in (("line", "runs/c71/eval-line-1173/scores.csv"), ("side", "runs/c71/eval-side-1173/scores.csv")):
     v = np.array([float(r["score"]) for r in csv.DictReader(open(f"runs/s72/val-{cam}.csv")) if r["label"] == "0"])

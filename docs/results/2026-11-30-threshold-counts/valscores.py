@@ -1,12 +1,13 @@
-"""Per-part val scores of both cameras' files on seed 303's twins (as station split reads them)."""
+"""Per-part val scores of both cameras' files on seed 303's twins (as station split reads them); writes
+runs/s72/val-line.csv and val-side.csv. Run from the repository root."""
 import csv
 
 import numpy as np
 
+from model.draem.checkpoint import load_checkpoint
 from station.datasets import judged_part_of
 from station.evaluation import evaluate_tensors, inference_net, model_split, without_held_out_type
 from station.presence import PresenceCheck
-from model.draem.checkpoint import load_checkpoint
 
 for name, model, data, rule in (("line", "model/weights/default", "data/line-pv-val", "dolp_contrast"),
                                 ("side", "runs/make-side-model/side", "data/sw-pv-val", "row_contrast")):
@@ -17,6 +18,7 @@ for name, model, data, rule in (("line", "model/weights/default", "data/line-pv-
     with open(f"runs/s72/val-{name}.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["index", "label", "defect_type", "score"])
-        for i, l, t, s in zip(sp.index, sp.label.numpy().tolist(), sp.defect_type, np.asarray(ev.scores).tolist()):
-            w.writerow([i, l, t, s])
+        for row in zip(sp.index, sp.label.numpy().tolist(), sp.defect_type, np.asarray(ev.scores).tolist(),
+                       strict=True):
+            w.writerow(row)
     print(name, "done", flush=True)
