@@ -110,11 +110,12 @@ def check_max_good_flagged(value: float) -> None:
 
 
 def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED_RATE, split: str = "val",
-                  presence_rule: str = PRESENCE_RULES[0]) -> str:
+                  presence_rule: str = PRESENCE_RULES[0], confidence: float | None = None) -> str:
     """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
     does there (one line). Frames the station would not judge are left out, with the presence check's
     ``presence_rule`` (``station.presence.PresenceRule``: the one the camera's ``[presence]`` uses) at its
-    defaults."""
+    defaults. ``confidence``: ``max_good_flagged`` is promised for new good parts at that confidence, not counted
+    on these (``metrics.choose_threshold``)."""
     from model.draem.checkpoint import read_sidecar, save_checkpoint
     from model.draem.metrics import choose_threshold
     from station.datasets import manifest_sha256
@@ -143,7 +144,10 @@ def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED
     if n_bad == len(labels):
         raise UserError(f"{data}: split {split!r} has no good parts ({n_bad} defective); a threshold needs good "
                         f"parts to bound false rejects")
-    choice = choose_threshold(labels, ev.scores, max_good_flagged)
+    try:
+        choice = choose_threshold(labels, ev.scores, max_good_flagged, confidence)
+    except ValueError as exc:
+        raise UserError(f"{data}: split {split!r}: {exc}") from None
     n_good, good_flagged = len(labels) - n_bad, int((ev.scores[labels == 0] > choice.threshold).sum())
     train = dict(ck.meta.get("train", {}))
     if not same_set:

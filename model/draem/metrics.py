@@ -160,13 +160,16 @@ class ThresholdChoice:
 
 
 def choose_threshold(labels: np.ndarray, scores: np.ndarray,
-                     max_good_flagged: float = GOOD_REJECTED_RATE) -> ThresholdChoice:
+                     max_good_flagged: float = GOOD_REJECTED_RATE, confidence: float | None = None) -> ThresholdChoice:
     """The station's decision threshold from validation image scores.
 
     Never flags more than ``max_good_flagged`` of the good validation parts (a line cannot live with a weak
     model's F1-max threshold that rejects most good parts, nor with the minimum score when validation has no
     anomalies, the trap of anomalib issue 2433). With anomalies in validation: the F1-max threshold, raised to that
-    bound when it flags more. Raises ValueError on empty validation, no good parts, or non-finite scores, and
+    bound when it flags more. With ``confidence`` (a promise, not a count): at most as many good parts above it as
+    keep the share of *new* good parts rejected at or under ``max_good_flagged`` with that confidence
+    (``rate_bounds.upper_bound``); ValueError when even none above it cannot (fewer good parts than
+    ``rate_bounds.parts_needed``). Raises ValueError on empty validation, no good parts, or non-finite scores, and
     ModelError when the threshold would be one no part can exceed (``usable_threshold``)."""
     y = np.asarray(labels).reshape(-1).astype(bool)
     s = np.asarray(scores, dtype=np.float64).reshape(-1)
@@ -177,10 +180,15 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray,
     if not (~y).any():
         raise ValueError("choose_threshold: validation has no good parts; cannot bound false rejects")
     good = np.sort(s[~y])
-    allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
+    if confidence is None:
+        allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
+        bound = f"at most {max_good_flagged:.2%} of good parts flagged"
+    else:
+        allowed = promised_allowed(good.size, max_good_flagged, confidence)
+        bound = (f"at most {max_good_flagged:.2%} of new good parts flagged at {confidence:.0%} confidence "
+                 f"({allowed} of {good.size} above)")
     # smallest t with #(good > t) <= allowed: the (allowed+1)-th largest good score
     t_cap = float(good[good.size - allowed - 1])
-    bound = f"at most {max_good_flagged:.2%} of good parts flagged"
     if y.any():
         _, t_ge = f1_max(y, s)
         t = float(np.nextafter(t_ge, -np.inf))  # flagged at score >= t_ge is rejected at score > t
@@ -193,6 +201,20 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray,
     flagged = float((s[~y] > t).mean()) if (~y).any() else math.nan
     detected = float((s[y] > t).mean()) if y.any() else math.nan
     return ThresholdChoice(float(t), rule, flagged, detected)
+
+
+def promised_allowed(n_good: int, rate: float, confidence: float) -> int:
+    """The most of ``n_good`` good validation parts a threshold may lie under while new good parts are rejected at
+    most at ``rate`` with ``confidence`` (``rate_bounds.upper_bound``); ValueError when none may."""
+    from .rate_bounds import parts_needed, upper_bound
+
+    if not upper_bound(0, n_good, confidence) <= rate:
+        raise ValueError(f"{n_good} good parts cannot promise at most {rate:.2%} of new good parts rejected at "
+                         f"{confidence:.0%} confidence: that needs {parts_needed(rate, confidence)} or more")
+    k = 0
+    while k + 1 < n_good and upper_bound(k + 1, n_good, confidence) <= rate:
+        k += 1
+    return k
 
 
 # Industrial metrics: parts caught at a fixed rate of good parts rejected, per defect type. Convention here is the

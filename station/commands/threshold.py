@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 
 from station.commands.arguments import add_max_good_flagged, add_presence_rule
+from station.errors import UserError
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -26,11 +27,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="split to choose on (default val; train only on a set the model was not trained on)")
     add_presence_rule(p)
     add_max_good_flagged(p, "the split's good parts")
+    p.add_argument("--confidence", type=float, default=None, metavar="C",
+                   help="promise --max-good-flagged for new good parts with confidence C (e.g. 0.95) instead of "
+                        "counting it on these: a stricter threshold, which needs enough good parts (299 for 1 %% at "
+                        "0.95; docs/model.md)")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     from station.evaluation import set_threshold
 
-    print(set_threshold(args.model, args.data, args.max_good_flagged, args.split, args.presence_rule))
+    if args.confidence is not None and not 0.0 < args.confidence < 1.0:
+        raise UserError(f"--confidence {args.confidence}: a fraction in (0, 1)")
+    print(set_threshold(args.model, args.data, args.max_good_flagged, args.split, args.presence_rule,
+                        args.confidence))
     return 0

@@ -76,3 +76,15 @@ def test_parts_needed_is_the_smallest_n_that_bounds_the_rate():
 def test_bad_arguments_are_refused(call):
     with pytest.raises(ValueError):
         call()
+
+
+def test_a_promised_rate_sets_a_stricter_threshold_or_says_how_many_parts_it_needs():
+    rng = np.random.default_rng(3)
+    good = rng.random(800)
+    counted = choose_threshold(np.zeros(800), good, 0.01)  # 8 of 800 above: about 1.1 % of new good parts
+    promised = choose_threshold(np.zeros(800), good, 0.01, confidence=0.95)  # 3 of 800 above: at most 1 % at 95 %
+    assert (good > counted.threshold).sum() == 8 and (good > promised.threshold).sum() == 3
+    assert upper_bound(3, 800) <= 0.01 < upper_bound(4, 800)
+    assert "3 of 800 above" in promised.rule and "95% confidence" in promised.rule
+    with pytest.raises(ValueError, match=r"200 good parts cannot promise at most 1.00% .* needs 299 or more"):
+        choose_threshold(np.zeros(200), good[:200], 0.01, confidence=0.95)

@@ -88,3 +88,19 @@ def test_the_cameras_presence_rule_decides_which_frames_set_no_threshold(tmp_pat
     threshold_set = load_checkpoint(model).meta["train"]["threshold_set"]
     assert threshold_set["left_out"] == {"2": "no part in view", "12": "no part in view"}
     assert threshold_set["presence_rule"] == "row_contrast"
+
+
+def test_a_promise_the_split_cannot_keep_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
+    data = make_dataset(tmp_path / "ds", n=30, defective=lambda i: i == 12)  # val: 2 good parts
+    model = make_model(tmp_path / "m" / "last", ("intensity",))
+    assert main(["threshold", "--model", str(model), "--data", str(data), "--confidence", "0.95"]) == 2
+    last = capsys.readouterr().err.strip().splitlines()[-1]  # the progress bar's lines come before it
+    assert "split 'val': 2 good parts cannot promise at most 1.00% of new good parts rejected at 95% confidence: " \
+           "that needs 299 or more" in last and str(data) in last
+    assert load_checkpoint(model).threshold == 0.5  # nothing written
+    assert main(["threshold", "--model", str(model), "--data", str(data), "--confidence", "1.5"]) == 2
+    assert "--confidence 1.5: a fraction in (0, 1)" in capsys.readouterr().err
+    # a rate the two good parts can promise at 95 %: none above the threshold (1 - 0.05 ** 0.5 = 77.6 %)
+    assert main(["threshold", "--model", str(model), "--data", str(data), "--confidence", "0.95",
+                 "--max-good-flagged", "0.8"]) == 0
+    assert "at 95% confidence (0 of 2 above)" in load_checkpoint(model).meta["threshold_rule"]
