@@ -32,7 +32,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def format_split(report: dict) -> str:
-    """``split_camera_thresholds``'s report as text: a table of the splits, the chosen one, the config lines."""
+    """``split_camera_thresholds``'s report as text: a table of the splits, the chosen one and what it promises
+    (``model.draem.rate_bounds.either_rate``), the config lines."""
+    from model.draem.rate_bounds import either_rate
+
     lines = [f"{report['parts']} parts judged by both cameras ({report['good']} good, {report['defective']} "
              f"defective); budget {report['budget']} good parts ({100 * report['rate']:g} %)",
              f"{'k':>3} {'first':>8} {'second':>8} {'good rejected':>14} {'caught':>7}"]
@@ -46,8 +49,6 @@ def format_split(report: dict) -> str:
     if report["left_out"]:
         lines.append(f"left out {len(report['left_out'])} parts a camera would not judge (rejected at the station)")
     chosen = report["splits"][report["chosen"]]
-    from model.draem.rate_bounds import either_rate
-
     above, n = report["chosen_good_above"], report["good"]
     mean, bound = either_rate([above["first"], above["second"]], n)
     lines.append(f"chosen split: {chosen['good_rejected']} of {n} good parts rejected (first camera {above['first']}, "
