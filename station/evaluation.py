@@ -414,19 +414,20 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
 def split_camera_thresholds(first_model: str, first_data: str, second_model: str, second_data: str,
                             rate: float = GOOD_REJECTED_RATE, split: str = "val",
                             first_presence: str = PRESENCE_RULES[0],
-                            second_presence: str = PRESENCE_RULES[1]) -> dict:
+                            second_presence: str = PRESENCE_RULES[1], expected: bool = False) -> dict:
     """Two cameras' thresholds from one budget of good parts rejected (``model.draem.camera_split``), on the twin
     validation sets ``first_data`` and ``second_data`` (the same parts, each seen by its camera; their samples are
     matched by index). A part is defective when either camera's sample shows its defect (a label says what that
     camera sees); where both do, the defect types must agree. Parts either camera's presence rule (or invalid
     pixels) would leave unjudged are left out and listed, as ``station threshold`` does. Returns the report
     ``station split`` prints and writes: every split of the budget, the chosen one, and what each camera alone does
-    at the whole budget."""
+    at the whole budget. ``expected``: the budget holds ``rate`` for new good parts on average
+    (``camera_split.expected_budget``), not as a count on these."""
     import dataclasses
 
     import numpy as np
 
-    from model.draem.camera_split import split_thresholds
+    from model.draem.camera_split import expected_budget, split_thresholds
     from model.draem.checkpoint import load_checkpoint
     from model.draem.metrics import choose_threshold
     from station.datasets import judged_part_of
@@ -456,7 +457,8 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
     a = np.array([scores[0][i] for i in both])
     b = np.array([scores[1][i] for i in both])
     try:
-        rows, best = split_thresholds(y, a, b, rate)
+        budget = expected_budget(int((~y).sum()), rate) if expected else math.floor(rate * (~y).sum() + 1e-9)
+        rows, best = split_thresholds(y, a, b, rate, budget)
     except ValueError as exc:
         raise UserError(f"{first_data}, {second_data}: {exc}") from None
     chosen = rows[best]
@@ -469,7 +471,7 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
     return {"first": {"model": first_model, "data": first_data, "presence_rule": first_presence},
             "second": {"model": second_model, "data": second_data, "presence_rule": second_presence},
             "split": split, "rate": rate, "parts": len(both), "good": int((~y).sum()), "defective": int(y.sum()),
-            "budget": int(np.floor(rate * (~y).sum() + 1e-9)),
+            "budget": budget, "expected": expected,
             "left_out": {str(i): why for i, why in sorted(left_out.items())},
             "splits": [dataclasses.asdict(r) for r in rows], "chosen": best, "chosen_good_above": above,
             "alone": alone}

@@ -7,6 +7,10 @@ the second camera's threshold leaves its k highest good scores above it (k = 0: 
 the first camera's is the lowest that keeps the union within the budget. The k that catches the most defective
 validation parts is kept (ties: the smaller k, which gives the first camera more of the budget).
 
+``expected_budget``: the budget that holds the rate for *new* good parts on average rather than as a count on these
+(``rate_bounds``: a threshold that k of n good parts lie above rejects about (k + 1) / (n + 1) of new ones, and two
+cameras' shares add): floor(rate x (n + 1)) - 2, so 1 on 368 good twins at 1 % where the count allows 3.
+
 Scores: higher is more anomalous; a camera rejects when ``score > threshold``, as the station does. Pure numpy.
 """
 
@@ -41,13 +45,25 @@ def _leaving_above(scores: np.ndarray, k: int) -> float:
     return float(s[k]) if k < s.size else float(s[-1]) - 1.0 if s.size else math.inf
 
 
+def expected_budget(n_good: int, rate: float, cameras: int = 2) -> int:
+    """The most good validation parts, of ``n_good``, the ``cameras`` thresholds together may leave above them while
+    new good parts are rejected at most at ``rate`` on average (module docstring); ValueError when not even none."""
+    budget = math.floor(rate * (n_good + 1) + 1e-9) - cameras
+    if budget < 0:
+        need = math.ceil(cameras / rate - 1 - 1e-9)
+        raise ValueError(f"{n_good} good parts cannot hold {rate:.2%} of new good parts rejected by {cameras} cameras "
+                         f"on average: that needs {need} or more")
+    return budget
+
+
 def split_thresholds(defective: np.ndarray, first: np.ndarray, second: np.ndarray,
-                     rate: float = 0.01) -> tuple[list[SplitThresholds], int]:
+                     rate: float = 0.01, budget: int | None = None) -> tuple[list[SplitThresholds], int]:
     """Every split of the budget on validation, and the index of the chosen one (see the module).
 
     defective: (N,) bool; first, second: (N,) each camera's score of the same N parts; rate in [0, 1): the share of
-    good parts the two cameras together may reject. Raises ValueError without good parts, on mismatched lengths or
-    on a non-finite score."""
+    good parts the two cameras together may reject (``budget``, when given, is the count instead, as
+    ``expected_budget`` makes it). Raises ValueError without good parts, on mismatched lengths or on a non-finite
+    score."""
     y = np.asarray(defective, bool).reshape(-1)
     a, b = (np.asarray(x, np.float64).reshape(-1) for x in (first, second))
     if not (a.size == b.size == y.size):
@@ -59,7 +75,10 @@ def split_thresholds(defective: np.ndarray, first: np.ndarray, second: np.ndarra
     good = ~y
     if not good.any():
         raise ValueError("no good parts: a rate of good parts rejected cannot be split")
-    budget = math.floor(rate * good.sum() + 1e-9)
+    if budget is None:
+        budget = math.floor(rate * good.sum() + 1e-9)
+    elif budget < 0:
+        raise ValueError(f"budget must be >= 0, got {budget}")
     rows = []
     for k in range(budget + 1):
         t_second = _leaving_above(b[good], k)

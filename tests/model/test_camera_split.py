@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from model.draem.camera_split import split_rejects, split_thresholds
+from model.draem.camera_split import expected_budget, split_rejects, split_thresholds
 from model.draem.metrics import false_reject_threshold
+from model.draem.rate_bounds import either_rate
 
 
 def parts(seed: int = 0, n_good: int = 400, n_front: int = 60, n_top: int = 140):
@@ -44,6 +45,30 @@ def test_a_second_camera_that_sees_nothing_leaves_the_budget_to_the_first() -> N
     assert chosen.second == second[~y].max()  # no good part above it
 
 
+def test_the_expected_budget_holds_the_rate_for_new_good_parts_on_average() -> None:
+    """Two cameras' thresholds, each from independent good scores: over many validation sets, the share of new good
+    parts either rejects stays at or under the rate on average at ``expected_budget``, and goes over it at the
+    count's budget (floor(rate x n))."""
+    assert [expected_budget(n, 0.01) for n in (368, 725, 1000)] == [1, 5, 8]
+    rng = np.random.default_rng(5)
+    shares: dict[str, list[float]] = {"count": [], "expected": []}
+    for _ in range(400):
+        y = np.zeros(368, bool)
+        a, b = rng.random(368), rng.random(368)
+        for mode in shares:
+            budget = expected_budget(368, 0.01) if mode == "expected" else None
+            rows, best = split_thresholds(y, a, b, 0.01, budget)
+            new_a, new_b = rng.random(3000), rng.random(3000)
+            shares[mode].append(float(split_rejects(new_a, new_b, rows[best]).mean()))
+            if mode == "expected":
+                above = [int((a > rows[best].first).sum()), int((b > rows[best].second).sum())]
+                assert sum(above) <= 1 and either_rate(above, 368)[0] <= 0.01
+    assert np.mean(shares["expected"]) <= 0.01 < np.mean(shares["count"])
+    with pytest.raises(ValueError, match=r"198 good parts cannot hold 1.00% .* needs 199 or more"):
+        expected_budget(198, 0.01)
+    assert expected_budget(199, 0.01) == 0
+
+
 def test_bad_inputs_are_refused() -> None:
     y, first, second = parts()
     with pytest.raises(ValueError, match="labels"):
@@ -54,3 +79,5 @@ def test_bad_inputs_are_refused() -> None:
         split_thresholds(y, np.r_[first[:-1], np.nan], second)
     with pytest.raises(ValueError, match="rate"):
         split_thresholds(y, first, second, 1.0)
+    with pytest.raises(ValueError, match="budget"):
+        split_thresholds(y, first, second, 0.01, -1)

@@ -228,6 +228,14 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     assert above["first"] + above["second"] >= chosen["good_rejected"] >= max(above.values())
     assert (f"chosen split: {chosen['good_rejected']} of {report['good']} good parts rejected (first camera "
             f"{above['first']}, second {above['second']}); new good parts: at most about ") in out
+    # --expected: the budget holds 25 % of new good parts on average: floor(0.25 x 10) - 2 = 0 of the 9 good parts
+    assert main([*args, "--expected", "--out", str(tmp_path / "expected.json")]) == 0
+    expected = json.loads((tmp_path / "expected.json").read_text())
+    assert expected["budget"] == 0 and expected["expected"] and [r["good_rejected"] for r in expected["splits"]] == [0]
+    assert "budget 0 good parts (25 % of new good parts on average)" in capsys.readouterr().out
+    assert main([*args[:-1], "0.1", "--expected"]) == 2  # 9 good parts cannot hold 10 % for two cameras
+    assert "9 good parts cannot hold 10.00% of new good parts rejected by 2 cameras on average: that needs 19 or " \
+           "more" in capsys.readouterr().err.splitlines()[-1]
     other = make_dataset(tmp_path / "other", n=30)
     for f in (other / "samples").glob("*/params.json"):  # the same parts with another defect
         params = json.loads(f.read_text())
