@@ -16,9 +16,10 @@ fractions in [0, 1]; ``confidence`` in (0, 1).
 
 Why it matters: the station's rule (at most 1 % of the good validation parts rejected) on 370 good parts lets 3 lie
 above the threshold. New good parts are then rejected at about 1.1 % on average, and at up to 2.1 % on one line
-in twenty: what the held-out seeds of docs/results showed (0-1.7 % for the line camera; 1.9-3.4 % for two cameras,
-whose budgets add). To hold 1 % with 95 % confidence a threshold needs 299 good parts and none above it, or 773
-with 3 above it (``parts_needed``; docs/model.md, "Threshold rule").
+in twenty: what the held-out seeds of docs/results showed (0-2.3 % for the line camera, 1.18 % over seven sets;
+1.9-3.4 % for two cameras, whose shares add: docs/results/2026-11-30-threshold-counts.md). To hold 1 % with 95 %
+confidence a threshold needs 299 good parts and none above it, or 773 with 3 above it (``parts_needed``;
+docs/model.md, "What a count of good parts can promise").
 """
 
 from __future__ import annotations
