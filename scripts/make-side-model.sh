@@ -17,8 +17,9 @@
 #   4. look: one residual network beside it at each one's 1 % threshold (station residual --second-look); 3-4 run on
 #      one core while the side validation set renders on the other
 #   5. threshold: on the side validation set, leaving out frames its presence rule (row_contrast) calls empty
-#   6. split: the two cameras' thresholds from one 1 % budget on the two validation sets (station split), printed as
-#      the station.toml lines of [decision] threshold and [second_camera] threshold
+#   6. split: the two cameras' thresholds from one 1 % budget on the two validation sets (station split; the budget
+#      that holds 1 % for new good parts on average, rule 64), printed as the station.toml lines of [decision]
+#      threshold and [second_camera] threshold
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}

@@ -414,15 +414,15 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
 def split_camera_thresholds(first_model: str, first_data: str, second_model: str, second_data: str,
                             rate: float = GOOD_REJECTED_RATE, split: str = "val",
                             first_presence: str = PRESENCE_RULES[0],
-                            second_presence: str = PRESENCE_RULES[1], expected: bool = False) -> dict:
+                            second_presence: str = PRESENCE_RULES[1], expected: bool = True) -> dict:
     """Two cameras' thresholds from one budget of good parts rejected (``model.draem.camera_split``), on the twin
     validation sets ``first_data`` and ``second_data`` (the same parts, each seen by its camera; their samples are
     matched by index). A part is defective when either camera's sample shows its defect (a label says what that
     camera sees); where both do, the defect types must agree. Parts either camera's presence rule (or invalid
     pixels) would leave unjudged are left out and listed, as ``station threshold`` does. Returns the report
     ``station split`` prints and writes: every split of the budget, the chosen one, and what each camera alone does
-    at the whole budget. ``expected``: the budget holds ``rate`` for new good parts on average
-    (``camera_split.expected_budget``), not as a count on these."""
+    at the whole budget. ``expected`` (rule 64): the budget holds ``rate`` for new good parts on average
+    (``camera_split.expected_budget``); False: as a count on these (floor(rate x good parts))."""
     import dataclasses
 
     import numpy as np

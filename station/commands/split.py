@@ -27,10 +27,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--second-presence-rule", default=PRESENCE_RULES[1], choices=PRESENCE_RULES,
                    help="the second camera's [second_camera] presence_rule (default row_contrast)")
     add_max_good_flagged(p, "the good parts, by both cameras together")
-    p.add_argument("--expected", action="store_true",
-                   help="hold --max-good-flagged for new good parts on average, not as a count on these: each camera's "
-                        "threshold adds about one part in n + 1 of its own, so the budget is floor(rate (n + 1)) - 2 "
-                        "(1 on 368 good twins at 1 %%, where the count allows 3; docs/second-camera.md)")
+    p.add_argument("--budget", choices=("expected", "count"), default="expected",
+                   help="expected (default, rule 64): hold --max-good-flagged for new good parts on average; each "
+                        "camera's threshold adds about one part in n + 1 of its own, so the budget is "
+                        "floor(rate (n + 1)) - 2 good parts (1 on 368 good twins at 1 %%); count: floor(rate n) of "
+                        "these (3 on 368), which promises more on new parts (docs/second-camera.md)")
     p.add_argument("--out", default=None, metavar="FILE", help="also write the report as JSON")
     p.set_defaults(func=run)
 
@@ -70,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
 
     report = split_camera_thresholds(args.model, args.data, args.second_model, args.second_data,
                                      args.max_good_flagged, args.split, args.presence_rule, args.second_presence_rule,
-                                     args.expected)
+                                     args.budget == "expected")
     print(format_split(report))
     if args.out:
         Path(args.out).write_text(json.dumps(report, indent=1))

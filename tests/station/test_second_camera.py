@@ -214,7 +214,7 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     ds, twin = make_dataset(tmp_path / "ds", n=30), make_dataset(tmp_path / "twin", n=30)
     args = ["split", "--model", str(model), "--data", str(ds), "--second-model", str(side), "--second-data", str(twin),
             "--split", "train", "--second-presence-rule", "dolp_contrast", "--max-good-flagged", "0.25"]
-    assert main([*args, "--out", str(tmp_path / "split.json")]) == 0
+    assert main([*args, "--budget", "count", "--out", str(tmp_path / "split.json")]) == 0
     out = capsys.readouterr().out
     report = json.loads((tmp_path / "split.json").read_text())
     assert report["parts"] == 21 and report["good"] == 9 and report["budget"] == 2
@@ -228,12 +228,12 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     assert above["first"] + above["second"] >= chosen["good_rejected"] >= max(above.values())
     assert (f"chosen split: {chosen['good_rejected']} of {report['good']} good parts rejected (first camera "
             f"{above['first']}, second {above['second']}); new good parts: at most about ") in out
-    # --expected: the budget holds 25 % of new good parts on average: floor(0.25 x 10) - 2 = 0 of the 9 good parts
-    assert main([*args, "--expected", "--out", str(tmp_path / "expected.json")]) == 0
+    # the default budget holds 25 % of new good parts on average: floor(0.25 x 10) - 2 = 0 of the 9 good parts
+    assert main([*args, "--out", str(tmp_path / "expected.json")]) == 0
     expected = json.loads((tmp_path / "expected.json").read_text())
     assert expected["budget"] == 0 and expected["expected"] and [r["good_rejected"] for r in expected["splits"]] == [0]
     assert "budget 0 good parts (25 % of new good parts on average)" in capsys.readouterr().out
-    assert main([*args[:-1], "0.1", "--expected"]) == 2  # 9 good parts cannot hold 10 % for two cameras
+    assert main([*args[:-1], "0.1"]) == 2  # 9 good parts cannot hold 10 % for two cameras
     assert "9 good parts cannot hold 10.00% of new good parts rejected by 2 cameras on average: that needs 19 or " \
            "more" in capsys.readouterr().err.splitlines()[-1]
     other = make_dataset(tmp_path / "other", n=30)
