@@ -427,7 +427,7 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
 
     import numpy as np
 
-    from model.draem.camera_split import expected_budget, split_thresholds
+    from model.draem.camera_split import count_budget, expected_budget, split_thresholds
     from model.draem.checkpoint import load_checkpoint
     from model.draem.metrics import choose_threshold
     from station.datasets import judged_part_of
@@ -457,7 +457,7 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
     a = np.array([scores[0][i] for i in both])
     b = np.array([scores[1][i] for i in both])
     try:
-        budget = expected_budget(int((~y).sum()), rate) if expected else math.floor(rate * (~y).sum() + 1e-9)
+        budget = (expected_budget if expected else count_budget)(int((~y).sum()), rate)
         rows, best = split_thresholds(y, a, b, rate, budget)
     except ValueError as exc:
         raise UserError(f"{first_data}, {second_data}: {exc}") from None

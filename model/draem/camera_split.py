@@ -45,6 +45,12 @@ def _leaving_above(scores: np.ndarray, k: int) -> float:
     return float(s[k]) if k < s.size else float(s[-1]) - 1.0 if s.size else math.inf
 
 
+def count_budget(n_good: int, rate: float) -> int:
+    """The good validation parts, of ``n_good``, the thresholds together may leave above them when ``rate`` is held
+    as a count on these: floor(rate x n_good) (module docstring; ``station split --budget count``)."""
+    return math.floor(rate * n_good + 1e-9)
+
+
 def expected_budget(n_good: int, rate: float, cameras: int = 2) -> int:
     """The most good validation parts, of ``n_good``, the ``cameras`` thresholds together may leave above them while
     new good parts are rejected at most at ``rate`` on average (module docstring); ValueError when not even none."""
@@ -76,7 +82,7 @@ def split_thresholds(defective: np.ndarray, first: np.ndarray, second: np.ndarra
     if not good.any():
         raise ValueError("no good parts: a rate of good parts rejected cannot be split")
     if budget is None:
-        budget = math.floor(rate * good.sum() + 1e-9)
+        budget = count_budget(int(good.sum()), rate)
     elif budget < 0:
         raise ValueError(f"budget must be >= 0, got {budget}")
     rows = []
