@@ -21,6 +21,7 @@ from sklearn.metrics import average_precision_score, precision_recall_curve, roc
 
 from .config import GOOD_REJECTED_RATE
 from .errors import ModelError
+from .rate_bounds import allowed_above
 
 MAX_THRESHOLD = 0.9999
 """The highest threshold a fit may hand to a station. Scores lie in [0, 1] and a part is rejected when its score is
@@ -184,7 +185,7 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray,
         allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
         bound = f"at most {max_good_flagged:.2%} of good parts flagged"
     else:
-        allowed = promised_allowed(good.size, max_good_flagged, confidence)
+        allowed = allowed_above(good.size, max_good_flagged, confidence)
         bound = (f"at most {max_good_flagged:.2%} of new good parts flagged at {confidence:.0%} confidence "
                  f"({allowed} of {good.size} above)")
     # smallest t with #(good > t) <= allowed: the (allowed+1)-th largest good score
@@ -201,20 +202,6 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray,
     flagged = float((s[~y] > t).mean()) if (~y).any() else math.nan
     detected = float((s[y] > t).mean()) if y.any() else math.nan
     return ThresholdChoice(float(t), rule, flagged, detected)
-
-
-def promised_allowed(n_good: int, rate: float, confidence: float) -> int:
-    """The most of ``n_good`` good validation parts a threshold may lie under while new good parts are rejected at
-    most at ``rate`` with ``confidence`` (``rate_bounds.upper_bound``); ValueError when none may."""
-    from .rate_bounds import parts_needed, upper_bound
-
-    if not upper_bound(0, n_good, confidence) <= rate:
-        raise ValueError(f"{n_good} good parts cannot promise at most {rate:.2%} of new good parts rejected at "
-                         f"{confidence:.0%} confidence: that needs {parts_needed(rate, confidence)} or more")
-    k = 0
-    while k + 1 < n_good and upper_bound(k + 1, n_good, confidence) <= rate:
-        k += 1
-    return k
 
 
 # Industrial metrics: parts caught at a fixed rate of good parts rejected, per defect type. Convention here is the

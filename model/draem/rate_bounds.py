@@ -11,6 +11,8 @@ fractions in [0, 1]; ``confidence`` in (0, 1).
 - ``interval(k, n, confidence)``: the two-sided Clopper-Pearson interval, for a share measured on a held-out set.
 - ``either_rate(ks, n, confidence)``: the same for a part rejected when it lies above any of several thresholds
   set on the same n good parts (two cameras' split), ks[i] above threshold i: the sums, which err high.
+- ``allowed_above(n, rate, confidence)``: the most of n good parts a threshold may leave above it and keep that
+  promise (``metrics.choose_threshold(..., confidence=)``).
 - ``parts_needed(rate, confidence, k)``: the fewest good validation parts with which a threshold that k of them lie
   above has ``upper_bound`` at or below ``rate``.
 
@@ -68,6 +70,19 @@ def either_rate(ks: Sequence[int], n: int, confidence: float = 0.95) -> tuple[fl
     each = 1.0 - (1.0 - confidence) / len(ks)
     return (min(1.0, sum(expected_rate(k, n) for k in ks)),
             min(1.0, sum(upper_bound(k, n, each) for k in ks)))
+
+
+def allowed_above(n: int, rate: float, confidence: float = 0.95) -> int:
+    """The most of ``n`` good validation parts a threshold may leave above it while its ``upper_bound`` stays at or
+    under ``rate`` (``metrics.choose_threshold``'s promise); ValueError, naming ``parts_needed``, when not even none
+    may."""
+    if not upper_bound(0, n, confidence) <= rate:
+        raise ValueError(f"{n} good parts cannot promise at most {rate:.2%} of new good parts rejected at "
+                         f"{confidence:.0%} confidence: that needs {parts_needed(rate, confidence)} or more")
+    k = 0
+    while k + 1 < n and upper_bound(k + 1, n, confidence) <= rate:
+        k += 1
+    return k
 
 
 def parts_needed(rate: float, confidence: float = 0.95, k: int = 0) -> int:
