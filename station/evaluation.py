@@ -411,18 +411,20 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
             f"AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")
 
 
-def split_camera_thresholds(first_model: str, first_data: str, second_model: str, second_data: str,
-                            rate: float = GOOD_REJECTED_RATE, split: str = "val",
+def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], second_model: str,
+                            second_data: str | Sequence[str], rate: float = GOOD_REJECTED_RATE, split: str = "val",
                             first_presence: str = PRESENCE_RULES[0],
                             second_presence: str = PRESENCE_RULES[1], expected: bool = True) -> dict:
     """Two cameras' thresholds from one budget of good parts rejected (``model.draem.camera_split``), on the twin
     validation sets ``first_data`` and ``second_data`` (the same parts, each seen by its camera; their samples are
-    matched by index). A part is defective when either camera's sample shows its defect (a label says what that
-    camera sees); where both do, the defect types must agree. Parts either camera's presence rule (or invalid
-    pixels) would leave unjudged are left out and listed, as ``station threshold`` does. Returns the report
-    ``station split`` prints and writes: every split of the budget, the chosen one, and what each camera alone does
-    at the whole budget. ``expected`` (rule 64): the budget holds ``rate`` for new good parts on average
-    (``camera_split.expected_budget``); False: as a count on these (floor(rate x good parts))."""
+    matched by index). Several sets pool their parts: ``first_data[j]`` is the twin of ``second_data[j]``, and each
+    pair must hold other parts (another seed) than the rest. A part is defective when either camera's sample shows
+    its defect (a label says what that camera sees); where both do, the defect types must agree. Parts either
+    camera's presence rule (or invalid pixels) would leave unjudged are left out and listed, as ``station threshold``
+    does. Returns the report ``station split`` prints and writes: every split of the budget, the chosen one, what
+    each camera alone does at the whole budget, and each part's two scores (``part_scores``). ``expected`` (rule
+    64): the budget holds ``rate`` for new good parts on average (``camera_split.expected_budget``); False: as a
+    count on these (floor(rate x good parts))."""
     import dataclasses
 
     import numpy as np
@@ -434,25 +436,31 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
     from station.presence import PresenceCheck
 
     check_max_good_flagged(rate)
-    scores, labels, types, left_out = [], [], [], {}
-    for name, model, data, rule in (("first", first_model, first_data, first_presence),
-                                    ("second", second_model, second_data, second_presence)):
+    firsts, seconds = _twin_sets(first_data, second_data)
+    scores, labels, types, left_out = [{}, {}], [{}, {}], [{}, {}], {}
+    for c, (name, model, sets, rule) in enumerate((("first", first_model, firsts, first_presence),
+                                                   ("second", second_model, seconds, second_presence))):
         ck = load_checkpoint(model)
-        sp, unjudged = judged_part_of(model_split(ck, model, data, split, presence=PresenceCheck(rule=rule)))
-        sp = without_held_out_type(sp, ck.meta.get("train", {}))
-        _, ev = evaluate_tensors(inference_net(ck, model, "fp32"), sp)
-        scores.append(dict(zip(sp.index, np.asarray(ev.scores, np.float64).tolist(), strict=True)))
-        labels.append(dict(zip(sp.index, sp.label.numpy().astype(int).tolist(), strict=True)))
-        types.append(dict(zip(sp.index, sp.defect_type, strict=True)))
-        left_out.update({i: f"{name} camera: {why}" for i, why in unjudged.items()})
+        net = inference_net(ck, model, "fp32")
+        for j, data in enumerate(sets):
+            sp, unjudged = judged_part_of(model_split(ck, model, data, split, presence=PresenceCheck(rule=rule)))
+            sp = without_held_out_type(sp, ck.meta.get("train", {}))
+            _, ev = evaluate_tensors(net, sp)
+            keys = [(j, i) for i in sp.index]
+            scores[c].update(zip(keys, np.asarray(ev.scores, np.float64).tolist(), strict=True))
+            labels[c].update(zip(keys, sp.label.numpy().astype(int).tolist(), strict=True))
+            types[c].update(zip(keys, sp.defect_type, strict=True))
+            where = f" of {data}" if len(sets) > 1 else ""
+            left_out.update({(j, i): f"{name} camera{where}: {why}" for i, why in unjudged.items()})
     both = sorted(set(scores[0]) & set(scores[1]))
-    wrong = [i for i in both if labels[0][i] and labels[1][i] and types[0][i] != types[1][i]]
+    wrong = [k for k in both if labels[0][k] and labels[1][k] and types[0][k] != types[1][k]]
     if wrong:
-        i = wrong[0]
-        raise UserError(f"{first_data} and {second_data} are not twin sets: sample {i} shows a {types[0][i]} in one "
-                        f"and a {types[1][i]} in the other ({len(wrong)} such)")
+        j, i = wrong[0]
+        raise UserError(f"{firsts[j]} and {seconds[j]} are not twin sets: sample {i} shows a {types[0][(j, i)]} in "
+                        f"one and a {types[1][(j, i)]} in the other ({len(wrong)} such)")
     if not both:
-        raise UserError(f"{first_data} and {second_data}: no sample of split {split!r} is judged by both cameras")
+        raise UserError(f"{', '.join(firsts)} and {', '.join(seconds)}: no sample of split {split!r} is judged by "
+                        "both cameras")
     y = np.array([labels[0][i] or labels[1][i] for i in both], bool)
     a = np.array([scores[0][i] for i in both])
     b = np.array([scores[1][i] for i in both])
@@ -460,7 +468,7 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
         budget = (expected_budget if expected else count_budget)(int((~y).sum()), rate)
         rows, best = split_thresholds(y, a, b, rate, budget)
     except ValueError as exc:
-        raise UserError(f"{first_data}, {second_data}: {exc}") from None
+        raise UserError(f"{', '.join(firsts)}, {', '.join(seconds)}: {exc}") from None
     chosen = rows[best]
     above = {"first": int((a[~y] > chosen.first).sum()), "second": int((b[~y] > chosen.second).sum())}
     alone = {}
@@ -468,10 +476,42 @@ def split_camera_thresholds(first_model: str, first_data: str, second_model: str
         choice = choose_threshold(y.astype(int), s, rate)
         alone[name] = {"threshold": choice.threshold, "good_rejected": choice.flagged_good_fraction,
                        "caught": choice.detected_fraction}
-    return {"first": {"model": first_model, "data": first_data, "presence_rule": first_presence},
-            "second": {"model": second_model, "data": second_data, "presence_rule": second_presence},
+    one = len(firsts) == 1
+
+    def key(k: tuple[int, int]) -> str:  # a sample's index, or set:index when several sets are pooled
+        return str(k[1]) if one else f"{k[0]}:{k[1]}"
+
+    part_scores = [{"set": j, "index": int(i), "defective": bool(d),
+                    "defect_type": types[0][(j, i)] or types[1][(j, i)], "first": s1, "second": s2}
+                   for (j, i), d, s1, s2 in zip(both, y, a, b, strict=True)]
+    return {"first": {"model": first_model, "data": firsts[0] if one else firsts, "presence_rule": first_presence},
+            "second": {"model": second_model, "data": seconds[0] if one else seconds,
+                       "presence_rule": second_presence},
             "split": split, "rate": rate, "parts": len(both), "good": int((~y).sum()), "defective": int(y.sum()),
             "budget": budget, "expected": expected,
-            "left_out": {str(i): why for i, why in sorted(left_out.items())},
+            "left_out": {key(k): why for k, why in sorted(left_out.items())},
             "splits": [dataclasses.asdict(r) for r in rows], "chosen": best, "chosen_good_above": above,
-            "alone": alone}
+            "alone": alone, "part_scores": part_scores}
+
+
+def _twin_sets(first: str | Sequence[str], second: str | Sequence[str]) -> tuple[list[str], list[str]]:
+    """The twin validation sets of ``split_camera_thresholds`` as two lists of paths, one pair per index; a set
+    named twice, or two pairs of the same seed, would count their parts twice."""
+    from sim.dataset import open_dataset
+
+    firsts, seconds = ([str(d) for d in ([sets] if isinstance(sets, str | Path) else sets)]
+                       for sets in (first, second))
+    if len(firsts) != len(seconds) or not firsts:
+        raise UserError(f"--data names {len(firsts)} sets and --second-data {len(seconds)}: each first camera's set "
+                        "needs its twin, in the same order")
+    for sets in (firsts, seconds):
+        paths = [Path(d).resolve() for d in sets]
+        if len(set(paths)) < len(paths):
+            raise UserError(f"{', '.join(sets)}: a set is named twice; its parts would count twice")
+    if len(firsts) > 1:
+        seeds = [open_dataset(d).manifest.get("seed") for d in firsts]
+        same = [d for d, s in zip(firsts, seeds, strict=True) if s is not None and seeds.count(s) > 1]
+        if same:
+            raise UserError(f"{', '.join(same)}: the same seed ({seeds[firsts.index(same[0])]}) holds the same parts; "
+                            "pool sets of other seeds")
+    return firsts, seconds

@@ -247,6 +247,44 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     assert "Traceback" not in err
 
 
+def test_station_split_pools_several_twin_sets_and_writes_each_parts_scores(tmp_path, capsys):
+    """725 good twins allow a budget of 5 where 368 allow 1 (rule 64): ``station split`` takes several twin pairs,
+    counts every part once, and refuses a set named twice (its parts would count twice)."""
+    from tests.station.test_run import make_dataset, make_model
+
+    model, side = make_model(tmp_path / "model" / "best"), make_model(tmp_path / "side" / "side", ("intensity",))
+    pairs = [(make_dataset(tmp_path / f"ds{j}", n=30), make_dataset(tmp_path / f"twin{j}", n=30)) for j in (0, 1)]
+    base = ["split", "--model", str(model), "--second-model", str(side), "--split", "train",
+            "--second-presence-rule", "dolp_contrast", "--max-good-flagged", "0.25", "--budget", "count"]
+    both_sets = ["--data", str(pairs[0][0]), str(pairs[1][0]), "--second-data", str(pairs[0][1]), str(pairs[1][1])]
+    assert main([*base, *both_sets]) == 2  # both made with seed 0: the same parts
+    assert "the same seed (0) holds the same parts" in capsys.readouterr().err.splitlines()[-1]
+    for root in pairs[1]:  # the second pair: other parts (the fixture draws them alike)
+        manifest = json.loads((root / "manifest.json").read_text())
+        (root / "manifest.json").write_text(json.dumps({**manifest, "seed": 1}))
+    one = tmp_path / "one.json"
+    assert main([*base, "--data", str(pairs[0][0]), "--second-data", str(pairs[0][1]), "--out", str(one)]) == 0
+    single = json.loads(one.read_text())
+    both = tmp_path / "both.json"
+    assert main([*base, *both_sets, "--out", str(both)]) == 0
+    assert "42 parts of 2 twin sets judged by both cameras (18 good, 24 defective)" in capsys.readouterr().out
+    pooled = json.loads(both.read_text())
+    assert (pooled["parts"], pooled["good"], pooled["budget"]) == (42, 18, 4)  # floor(0.25 x 18), on 9: 2
+    assert pooled["first"]["data"] == [str(pairs[0][0]), str(pairs[1][0])]
+    scores = pooled["part_scores"]
+    assert len(scores) == 42 and {s["set"] for s in scores} == {0, 1}
+    assert sum(s["defective"] for s in scores) == 24
+    assert {s["defect_type"] for s in scores if s["defective"]} == {"stain"}
+    firsts = [s["first"] for s in single["part_scores"]]
+    assert [s["first"] for s in scores if s["set"] == 0] == firsts  # set 0's parts score as they do alone
+    assert [s["index"] for s in single["part_scores"]] == sorted({s["index"] for s in scores})
+    assert main([*base, "--data", str(pairs[0][0]), str(pairs[0][0]), "--second-data", str(pairs[0][1]),
+                 str(pairs[1][1])]) == 2
+    assert "a set is named twice; its parts would count twice" in capsys.readouterr().err.splitlines()[-1]
+    assert main([*base, "--data", str(pairs[0][0]), str(pairs[1][0]), "--second-data", str(pairs[0][1])]) == 2
+    assert "--data names 2 sets and --second-data 1" in capsys.readouterr().err.splitlines()[-1]
+
+
 def test_a_station_built_without_its_second_model_loads_it(tmp_path):
     """A caller that passes no second model (``station bench soak`` did): the station loads it from the config, so
     the second camera's frames are judged, not grabbed and ignored."""
