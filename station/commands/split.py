@@ -35,7 +35,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "camera's threshold adds about one part in n + 1 of its own, so the budget is "
                         "floor(rate (n + 1)) - 2 good parts (1 on 368 good twins at 1 %%); count: floor(rate n) of "
                         "these (3 on 368), which promises more on new parts (docs/second-camera.md)")
-    p.add_argument("--out", default=None, metavar="FILE", help="also write the report as JSON")
+    p.add_argument("--out", default=None, metavar="FILE",
+                   help="also write the report as JSON, and its picture beside it (FILE with .png: each part's two "
+                        "scores and the thresholds)")
     p.set_defaults(func=run)
 
 
@@ -79,5 +81,8 @@ def run(args: argparse.Namespace) -> int:
                                      args.budget == "expected")
     print(format_split(report))
     if args.out:
+        from station.split_plot import plot_split
+
         Path(args.out).write_text(json.dumps(report, indent=1))
+        plot_split(report, Path(args.out).with_suffix(".png"))
     return 0

@@ -269,6 +269,7 @@ def test_station_split_pools_several_twin_sets_and_writes_each_parts_scores(tmp_
     assert main([*base, *both_sets, "--out", str(both)]) == 0
     assert "42 parts of 2 twin sets judged by both cameras (18 good, 24 defective)" in capsys.readouterr().out
     pooled = json.loads(both.read_text())
+    assert both.with_suffix(".png").read_bytes()[:4] == b"\x89PNG"  # the picture beside the JSON
     assert (pooled["parts"], pooled["good"], pooled["budget"]) == (42, 18, 4)  # floor(0.25 x 18), on 9: 2
     assert pooled["first"]["data"] == [str(pairs[0][0]), str(pairs[1][0])]
     scores = pooled["part_scores"]
