@@ -42,6 +42,7 @@ def plot_split(report: dict, path: str | Path) -> None:
     ax.set(xlabel="first camera's score", ylabel="second camera's score",
            title=f"split: {chosen['good_rejected']} of {report['good']} good rejected, "
                  f"{100 * chosen['caught']:.1f} % of {report['defective']} defective caught")
-    ax.legend(fontsize=7, loc="lower left", title="solid: the split; dotted: each alone", title_fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1), title="solid: the split\ndotted: each alone",
+              title_fontsize=7)
     fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)

@@ -68,9 +68,26 @@ def format_split(report: dict) -> str:
                  f"second {above['second']}); new good parts: at most about {100 * mean:.1f} %, at most "
                  f"{100 * bound:.1f} % at 95 % confidence (each camera's share added; the split is chosen on these "
                  f"parts)")
-    lines += ["station.toml:", "[decision]", f"threshold = {chosen['first']:.6g}", "[second_camera]",
-              f"threshold = {chosen['second']:.6g}"]
+    lines += ["station.toml:", "[decision]", f"threshold = {config_number(chosen['first'])}", "[second_camera]",
+              f"threshold = {config_number(chosen['second'])}"]
     return "\n".join(lines)
+
+
+def config_number(threshold: float) -> str:
+    """A threshold for ``station.toml`` in as few digits as keep its decisions (6 or more): the shortest decimal at
+    least ``threshold`` and below the next float32 above it. A split's threshold is a good part's score, which it
+    passes (reject when score > threshold); rounded to the nearest 6 digits it could fall below that score, and a
+    station set from the printed line would reject the part."""
+    from decimal import ROUND_CEILING, Context
+
+    import numpy as np
+
+    above = float(np.nextafter(np.float32(threshold), np.float32(2)))
+    for digits in range(6, 18):
+        text = f"{Context(prec=digits, rounding=ROUND_CEILING).create_decimal(threshold):f}"
+        if threshold <= float(text) < above:
+            return text
+    return repr(threshold)
 
 
 def run(args: argparse.Namespace) -> int:

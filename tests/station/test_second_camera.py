@@ -222,8 +222,10 @@ def test_station_split_sets_both_thresholds_within_one_budget(tmp_path, capsys):
     assert all(r["good_rejected"] <= 2 for r in report["splits"])
     chosen = report["splits"][report["chosen"]]
     assert chosen["caught"] == max(r["caught"] for r in report["splits"])
-    assert out.count("<- chosen") == 1 and f"[second_camera]\nthreshold = {chosen['second']:.6g}" in out
-    assert f"[decision]\nthreshold = {chosen['first']:.6g}" in out
+    from station.commands.split import config_number
+
+    assert out.count("<- chosen") == 1 and f"[second_camera]\nthreshold = {config_number(chosen['second'])}" in out
+    assert f"[decision]\nthreshold = {config_number(chosen['first'])}" in out
     above = report["chosen_good_above"]
     assert above["first"] + above["second"] >= chosen["good_rejected"] >= max(above.values())
     assert (f"chosen split: {chosen['good_rejected']} of {report['good']} good parts rejected (first camera "
@@ -329,3 +331,22 @@ def test_compare_split_scores_the_two_camera_station_on_held_out_parts(tmp_path,
     assert round(rules[2]["gain_points"], 1) == 33.3 and round(rules[2]["gain_se"], 1) == 33.3
     assert "frames not judged: first camera 0, second camera 1" in capsys.readouterr().out
     assert main(["compare", str(first), "--split", str(split), "--out", str(tmp_path / "o2")]) == 2
+
+
+def test_station_split_prints_thresholds_that_keep_its_decisions():
+    """The printed station.toml line rounded 0.9910132884979248 (a good part's score, which the split passes) down to
+    0.991013: a station set from it rejected that part. The printed value is never below the split's threshold and
+    below the next float32 score, so every score is decided as the split counted it."""
+    import numpy as np
+
+    from station.commands.split import config_number
+    from station.decision import decide
+
+    for x in (float(np.float32(v)) for v in (0.9910132884979248, 0.9863905906677246, 0.5, 0.98, 0.123456789, 1, 0)):
+        text = config_number(x)
+        assert x <= float(text) < float(np.nextafter(np.float32(x), np.float32(2))) or x == float(text) == 1.0
+        assert len(text.replace(".", "").lstrip("0")) <= 9  # readable: 6-9 significant digits (float32 has 7-8)
+        assert decide(float(np.float32(x)), float(text)).decision.value == "pass"
+        above = float(np.nextafter(np.float32(x), np.float32(2)))
+        assert x == 1.0 or decide(above, float(text)).decision.value == "reject"
+    assert config_number(0.9910132884979248) == "0.9910133"
