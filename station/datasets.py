@@ -218,6 +218,24 @@ def subset(sp: SplitTensors, keep: list[int]) -> SplitTensors:
         for f in dataclasses.fields(sp) for v in [getattr(sp, f.name)]})
 
 
+def concat(parts: list[SplitTensors]) -> SplitTensors:
+    """Several sets' splits as one, in order: tensors concatenated, per-sample lists joined (``index`` repeats
+    across sets: keep each set's own where a sample must be named). ``object_masks_known`` only when every set's."""
+    import dataclasses
+
+    import torch
+
+    if any(p.mask_known is not None for p in parts):  # a set without it: every mask known (good parts, renders)
+        parts = [p if p.mask_known is not None else
+                 dataclasses.replace(p, mask_known=torch.ones(len(p.index), dtype=torch.bool)) for p in parts]
+    first = parts[0]
+    return dataclasses.replace(first, **{
+        f.name: (torch.cat([getattr(p, f.name) for p in parts]) if isinstance(v, torch.Tensor)
+                 else [x for p in parts for x in getattr(p, f.name)] if isinstance(v, list)
+                 else all(p.object_masks_known for p in parts) if f.name == "object_masks_known" else v)
+        for f in dataclasses.fields(first) for v in [getattr(first, f.name)]})
+
+
 def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
     """The defective samples of a training split (without ``holdout_type``) as ``model.draem.mixed.TensorDefectData``
     for mixed supervision; UserError when there are none."""

@@ -109,61 +109,80 @@ def check_max_good_flagged(value: float) -> None:
         raise UserError(f"--max-good-flagged {value}: a fraction in [0, 1)")
 
 
-def set_threshold(model: str, data: str, max_good_flagged: float = GOOD_REJECTED_RATE, split: str = "val",
-                  presence_rule: str = PRESENCE_RULES[0], confidence: float | None = None) -> str:
+def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float = GOOD_REJECTED_RATE,
+                  split: str = "val", presence_rule: str = PRESENCE_RULES[0], confidence: float | None = None) -> str:
     """Choose checkpoint ``model``'s threshold on ``data``'s ``split``, write it into its sidecar, and say what it
-    does there (one line). Frames the station would not judge are left out, with the presence check's
-    ``presence_rule`` (``station.presence.PresenceRule``: the one the camera's ``[presence]`` uses) at its
-    defaults. ``confidence``: ``max_good_flagged`` is promised for new good parts at that confidence, not counted
-    on these (``metrics.choose_threshold``)."""
-    from model.draem.checkpoint import read_sidecar, save_checkpoint
+    does there (one line). Several sets (other seeds, or captures on other days) pool their parts; a set named twice
+    is refused. Frames the station would not judge are left out, with the presence check's ``presence_rule``
+    (``station.presence.PresenceRule``: the one the camera's ``[presence]`` uses) at its defaults. ``confidence``:
+    ``max_good_flagged`` is promised for new good parts at that confidence, not counted on these
+    (``metrics.choose_threshold``)."""
+    import numpy as np
+
+    from model.draem.checkpoint import load_checkpoint, read_sidecar, save_checkpoint
     from model.draem.metrics import choose_threshold
-    from station.datasets import manifest_sha256
-
-    check_max_good_flagged(max_good_flagged)
-    trained_sha = read_sidecar(model).get("data_manifest_sha256")
-    data_sha = manifest_sha256(data)
-    same_set = trained_sha == data_sha
-    if same_set and split == "train":
-        raise UserError(f"{data}: the model was trained on this set's train split; its scores there are not "
-                        f"held out: use --split val")
-    from model.draem.checkpoint import load_checkpoint
-    from station.datasets import judged_part_of
-
-    ck = load_checkpoint(model)
+    from station.datasets import concat, judged_part_of, manifest_sha256
     from station.presence import PresenceCheck
 
-    sp, left_out = judged_part_of(model_split(ck, model, data, split, presence=PresenceCheck(rule=presence_rule)))
-    sp = without_held_out_type(sp, ck.meta.get("train", {}))
-    if not sp.index:
-        raise UserError(f"{data}: the station would judge none of split {split!r}'s frames "
+    check_max_good_flagged(max_good_flagged)
+    sets = _set_list(data, "--data")
+    trained_sha = read_sidecar(model).get("data_manifest_sha256")
+    shas = [manifest_sha256(d) for d in sets]
+    trained_on = [d for d, sha in zip(sets, shas, strict=True) if sha == trained_sha]
+    if trained_on and split == "train":
+        raise UserError(f"{trained_on[0]}: the model was trained on this set's train split; its scores there are not "
+                        f"held out: use --split val")
+    ck = load_checkpoint(model)
+    parts, left_out = [], {}
+    for j, d in enumerate(sets):
+        sp, lo = judged_part_of(model_split(ck, model, d, split, presence=PresenceCheck(rule=presence_rule)))
+        parts.append(without_held_out_type(sp, ck.meta.get("train", {})))
+        left_out.update({(i if len(sets) == 1 else f"{j}:{i}"): why for i, why in lo.items()})
+    name = ", ".join(sets)
+    if not any(p.index for p in parts):
+        raise UserError(f"{name}: the station would judge none of split {split!r}'s frames "
                         f"({describe_left_out(left_out)})")
+    sp = concat([p for p in parts if p.index])
     _, ev = evaluate_tensors(inference_net(ck, model, "fp32"), sp)
     labels = sp.label.numpy()
     n_bad = int(labels.sum())
     if n_bad == len(labels):
-        raise UserError(f"{data}: split {split!r} has no good parts ({n_bad} defective); a threshold needs good "
+        raise UserError(f"{name}: split {split!r} has no good parts ({n_bad} defective); a threshold needs good "
                         f"parts to bound false rejects")
     try:
         choice = choose_threshold(labels, ev.scores, max_good_flagged, confidence)
     except ValueError as exc:
-        raise UserError(f"{data}: split {split!r}: {exc}") from None
-    n_good, good_flagged = len(labels) - n_bad, int((ev.scores[labels == 0] > choice.threshold).sum())
+        raise UserError(f"{name}: split {split!r}: {exc}") from None
+    scores = np.asarray(ev.scores)
+    n_good, good_flagged = len(labels) - n_bad, int((scores[labels == 0] > choice.threshold).sum())
     train = dict(ck.meta.get("train", {}))
-    if not same_set:
-        train["threshold_set"] = {"data": str(data), "manifest_sha256": data_sha, "split": split,
-                                  "n_good": n_good, "n_good_flagged": good_flagged, "n_defective": n_bad,
-                                  "left_out": {str(i): why for i, why in left_out.items()},
-                                  "presence_rule": str(presence_rule),
-                                  "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
+    others = len(trained_on) < len(sets)
+    if others:
+        one = len(sets) == 1
+        train["threshold_set"] = {"data": sets[0] if one else sets, "manifest_sha256": shas[0] if one else shas,
+                                  "split": split, "n_good": n_good, "n_good_flagged": good_flagged,
+                                  "n_defective": n_bad, "left_out": {str(i): why for i, why in left_out.items()},
+                                  "presence_rule": str(presence_rule), "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
     save_checkpoint(model, ck.detector, choice.threshold, choice.rule, trained_sha, ev.metrics, train)
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else " (no defective parts there)"
-    where = "" if same_set else " (not its training set: recorded in the sidecar)"
+    where = ("" if not others else " (not its training set: recorded in the sidecar)" if len(sets) == 1
+             else f" ({len(sets)} sets pooled; recorded in the sidecar)")
     skipped = (f"\nleft out {len(left_out)} frames the station would not judge: {describe_left_out(left_out)}"
                if left_out else "")
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
-            f"{data}{where} it flags {choice.flagged_good_fraction:.1%} of good parts "
+            f"{name}{where} it flags {choice.flagged_good_fraction:.1%} of good parts "
             f"({new_good_rate(good_flagged, n_good)}){detected}{skipped}")
+
+
+def _set_list(data: str | Path | Sequence[str], option: str) -> list[str]:
+    """One or several sets as a list of paths; a set named twice would count its parts twice."""
+    sets = [str(d) for d in ([data] if isinstance(data, str | Path) else data)]
+    if not sets:
+        raise UserError(f"{option}: name a set")
+    paths = [Path(d).resolve() for d in sets]
+    if len(set(paths)) < len(paths):
+        raise UserError(f"{', '.join(sets)}: a set is named twice; its parts would count twice")
+    return sets
 
 
 def new_good_rate(k: int, n: int) -> str:
@@ -499,15 +518,10 @@ def _twin_sets(first: str | Sequence[str], second: str | Sequence[str]) -> tuple
     named twice, or two pairs of the same seed, would count their parts twice."""
     from sim.dataset import open_dataset
 
-    firsts, seconds = ([str(d) for d in ([sets] if isinstance(sets, str | Path) else sets)]
-                       for sets in (first, second))
-    if len(firsts) != len(seconds) or not firsts:
+    firsts, seconds = _set_list(first, "--data"), _set_list(second, "--second-data")
+    if len(firsts) != len(seconds):
         raise UserError(f"--data names {len(firsts)} sets and --second-data {len(seconds)}: each first camera's set "
                         "needs its twin, in the same order")
-    for sets in (firsts, seconds):
-        paths = [Path(d).resolve() for d in sets]
-        if len(set(paths)) < len(paths):
-            raise UserError(f"{', '.join(sets)}: a set is named twice; its parts would count twice")
     if len(firsts) > 1:
         seeds = [open_dataset(d).manifest.get("seed") for d in firsts]
         same = [d for d, s in zip(firsts, seeds, strict=True) if s is not None and seeds.count(s) > 1]

@@ -5,8 +5,9 @@
 .choose_threshold``: F1-max on the split's parts, raised so that at most ``--max-good-flagged`` of the good ones
 are flagged; with good parts only, that bound alone) and writes it into the checkpoint's sidecar. On another set
 than the training set (frames captured at the line, ``station import``) the sidecar records which set and split
-set the threshold (``train.threshold_set``). Frames the station would not judge (no part in view for the camera's
-presence rule, ``--presence-rule``; too many invalid pixels) are left out and listed. To adapt the input
+set the threshold (``train.threshold_set``); several sets pool their parts (more good parts: a steadier threshold
+and a narrower promise, ``model.draem.rate_bounds``). Frames the station would not judge (no part in view for the
+camera's presence rule, ``--presence-rule``; too many invalid pixels) are left out and listed. To adapt the input
 normalisation as well, use ``station adapt``.
 """
 
@@ -21,8 +22,9 @@ from station.errors import UserError
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("threshold", help="set a checkpoint's threshold on a split of any set with good parts")
     p.add_argument("--model", required=True, help="checkpoint path without suffix (e.g. runs/train/x/last)")
-    p.add_argument("--data", required=True,
-                   help="set with good parts: the training set, or another (rendered or imported) set of the line")
+    p.add_argument("--data", required=True, nargs="+", metavar="DIR",
+                   help="set with good parts: the training set, or another (rendered or imported) set of the line; "
+                        "several sets (other seeds, captures of other days) pool their parts")
     p.add_argument("--split", default="val", choices=("train", "val", "test"),
                    help="split to choose on (default val; train only on a set the model was not trained on)")
     add_presence_rule(p)

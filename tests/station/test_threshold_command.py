@@ -104,3 +104,28 @@ def test_a_promise_the_split_cannot_keep_is_refused_in_one_line(tmp_path: Path, 
     assert main(["threshold", "--model", str(model), "--data", str(data), "--confidence", "0.95",
                  "--max-good-flagged", "0.8"]) == 0
     assert "at 95% confidence (0 of 2 above)" in load_checkpoint(model).meta["threshold_rule"]
+
+
+def test_threshold_on_several_sets_pools_their_parts(tmp_path: Path, capsys) -> None:
+    """Good parts captured on two days, or rendered with two seeds: the threshold is the rule's on all of them, and
+    the sidecar names both sets."""
+    import numpy as np
+
+    a = make_dataset(tmp_path / "a", n=30, defective=lambda i: i == 12)  # val: 2, 12, 22
+    b = make_dataset(tmp_path / "b", n=30, defective=lambda i: i == 2)
+    model = make_model(tmp_path / "m" / "last", ("intensity", "aolp"))
+    assert main(["threshold", "--model", str(model), "--data", str(a), str(b)]) == 0
+    assert f"on 6 val parts of {a}, {b} (2 sets pooled; recorded in the sidecar)" in capsys.readouterr().out
+    scores, labels = [], []
+    for d in (a, b):
+        _, _, sp, _, ev = load_and_evaluate(str(model), d, "val")
+        scores.append(np.asarray(ev.scores))
+        labels.append(sp.label.numpy())
+    expected = choose_threshold(np.concatenate(labels), np.concatenate(scores))
+    meta = load_checkpoint(model).meta
+    assert meta["threshold"] == pytest.approx(expected.threshold)
+    record = meta["train"]["threshold_set"]
+    assert record["data"] == [str(a), str(b)] and len(record["manifest_sha256"]) == 2
+    assert (record["n_good"], record["n_defective"]) == (4, 2)
+    assert main(["threshold", "--model", str(model), "--data", str(a), str(tmp_path / "a")]) == 2
+    assert "a set is named twice" in capsys.readouterr().err.splitlines()[-1]
