@@ -223,6 +223,60 @@ def test_two_served_cameras_give_each_part_its_two_frames(tmp_path: Path) -> Non
     assert pair.unpaired == 0 and pair.second_statistics().completed == 10
 
 
+def test_station_run_judges_two_served_cameras_as_one_part_each(tmp_path: Path) -> None:
+    """A station with a second camera (``[second_camera]``) on two GigE Vision cameras, as a line would have them:
+    ``station run --camera aravis``, both cameras software-triggered by the station, each frame judged by its own
+    model. Every part gets one row with both cameras' scores and frame ids, decided on both thresholds."""
+    pytest.importorskip("torch")
+    from station.cli import main
+    from tests.station.test_run import make_dataset as make_station_dataset
+    from tests.station.test_run import make_model
+
+    subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
+    line, side = make_station_dataset(tmp_path / "line"), make_station_dataset(tmp_path / "side")
+    model, side_model = make_model(tmp_path / "model" / "best"), make_model(tmp_path / "side" / "side")
+    cfg = tmp_path / "station.toml"
+    cfg.write_text(f"""
+[camera]
+kind = "aravis"
+device = "127.0.0.1"
+trigger = "software"
+reconnect = false
+[second_camera]
+enabled = true
+kind = "aravis"
+device = "127.0.0.2"
+trigger = "software"
+reconnect = false
+model = "{side_model}"
+threshold = 0.5
+presence_rule = "dolp_contrast"
+[decision]
+threshold = 0.9
+[acquisition]
+cycle_time_ms = 60000.0
+backpressure = "block"
+[model]
+path = "{model}"
+[log]
+path = "{tmp_path / 'log.sqlite'}"
+image_dir = "{tmp_path / 'rejects'}"
+""")
+    with (GvCameraServer(str(line), defect_rate=0.5, seed=3),
+          GvCameraServer(str(side), defect_rate=0.5, seed=3, interface="127.0.0.2", serial="POLARSIM2")):
+        assert main(["run", "--camera", "aravis", "--config", str(cfg), "--frames", "5"]) == 0
+    rows = sqlite3.connect(tmp_path / "log.sqlite").execute(
+        "SELECT decision, score, threshold, second_score, second_threshold, camera_frame_id, second_frame_id, "
+        "second_model_id, reason FROM inspections ORDER BY id").fetchall()
+    assert len(rows) == 5
+    for decision, score, thr, second, second_thr, frame_id, second_id, second_model, reason in rows:
+        assert second is not None and second_id is not None and second_model.startswith("side-tiny-fused-"), reason
+        assert (thr, second_thr) == (0.9, 0.5) and frame_id == second_id  # the nth frame of each camera
+        assert decision == ("reject" if score > thr or second > second_thr else "pass"), reason
+    # the untrained models score every part alike (0.548): the first camera passes it, the second rejects it
+    assert {(r[0], r[8].split(" >")[0]) for r in rows} == {("reject", "second camera: score 0.5478")}
+
+
 def serve_and_run(ds: Path, model: Path, tmp_path: Path, parts: int, camera: str = "") -> tuple[str, str]:
     """``station serve-camera --dataset ds`` in a subprocess, ``station run --camera aravis`` on it here for
     ``parts`` parts (``camera``: more ``[camera]`` lines); returns the server's banner and its whole output."""
