@@ -223,6 +223,29 @@ def test_two_served_cameras_give_each_part_its_two_frames(tmp_path: Path) -> Non
     assert pair.unpaired == 0 and pair.second_statistics().completed == 10
 
 
+def aravis_config(tmp_path: Path, model: Path, camera: str = "", extra: str = "") -> Path:
+    """``station.toml`` for ``station run --camera aravis`` on the camera served at 127.0.0.1 (``camera``: more
+    ``[camera]`` lines; ``extra``: more tables)."""
+    cfg = tmp_path / "station.toml"
+    cfg.write_text(f"""
+[camera]
+kind = "aravis"
+device = "127.0.0.1"
+reconnect = false
+{camera}
+[acquisition]
+cycle_time_ms = 60000.0
+backpressure = "block"
+[model]
+path = "{model}"
+[log]
+path = "{tmp_path / 'log.sqlite'}"
+image_dir = "{tmp_path / 'rejects'}"
+{extra}
+""")
+    return cfg
+
+
 def test_station_run_judges_two_served_cameras_as_one_part_each(tmp_path: Path) -> None:
     """A station with a second camera (``[second_camera]``) on two GigE Vision cameras, as a line would have them:
     ``station run --camera aravis``, both cameras software-triggered by the station, each frame judged by its own
@@ -235,13 +258,7 @@ def test_station_run_judges_two_served_cameras_as_one_part_each(tmp_path: Path) 
     subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
     line, side = make_station_dataset(tmp_path / "line"), make_station_dataset(tmp_path / "side")
     model, side_model = make_model(tmp_path / "model" / "best"), make_model(tmp_path / "side" / "side")
-    cfg = tmp_path / "station.toml"
-    cfg.write_text(f"""
-[camera]
-kind = "aravis"
-device = "127.0.0.1"
-trigger = "software"
-reconnect = false
+    cfg = aravis_config(tmp_path, model, 'trigger = "software"', f"""
 [second_camera]
 enabled = true
 kind = "aravis"
@@ -253,14 +270,6 @@ threshold = 0.5
 presence_rule = "dolp_contrast"
 [decision]
 threshold = 0.9
-[acquisition]
-cycle_time_ms = 60000.0
-backpressure = "block"
-[model]
-path = "{model}"
-[log]
-path = "{tmp_path / 'log.sqlite'}"
-image_dir = "{tmp_path / 'rejects'}"
 """)
     with (GvCameraServer(str(line), defect_rate=0.5, seed=3),
           GvCameraServer(str(side), defect_rate=0.5, seed=3, interface="127.0.0.2", serial="POLARSIM2")):
@@ -293,23 +302,7 @@ def serve_and_run(ds: Path, model: Path, tmp_path: Path, parts: int, camera: str
             line = server.stdout.readline()
             assert line, f"serve-camera ended: {banner}"
             banner += line
-        cfg_path = tmp_path / "station.toml"
-        cfg_path.write_text(f"""
-[camera]
-kind = "aravis"
-device = "127.0.0.1"
-frame_rate_hz = 50.0
-reconnect = false
-{camera}
-[acquisition]
-cycle_time_ms = 60000.0
-backpressure = "block"
-[model]
-path = "{model}"
-[log]
-path = "{tmp_path / 'log.sqlite'}"
-image_dir = "{tmp_path / 'rejects'}"
-""")
+        cfg_path = aravis_config(tmp_path, model, f"frame_rate_hz = 50.0\n{camera}")
         assert main(["run", "--camera", "aravis", "--config", str(cfg_path), "--frames", str(parts)]) == 0
     finally:
         server.send_signal(signal.SIGTERM)
