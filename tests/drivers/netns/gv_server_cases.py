@@ -225,25 +225,11 @@ def test_two_served_cameras_give_each_part_its_two_frames(tmp_path: Path) -> Non
 
 def aravis_config(tmp_path: Path, model: Path, camera: str = "", extra: str = "") -> Path:
     """``station.toml`` for ``station run --camera aravis`` on the camera served at 127.0.0.1 (``camera``: more
-    ``[camera]`` lines; ``extra``: more tables)."""
-    cfg = tmp_path / "station.toml"
-    cfg.write_text(f"""
-[camera]
-kind = "aravis"
-device = "127.0.0.1"
-reconnect = false
-{camera}
-[acquisition]
-cycle_time_ms = 60000.0
-backpressure = "block"
-[model]
-path = "{model}"
-[log]
-path = "{tmp_path / 'log.sqlite'}"
-image_dir = "{tmp_path / 'rejects'}"
-{extra}
-""")
-    return cfg
+    ``[camera]`` lines; ``extra``: more tables): the simulated run's, with its ``[sim]`` table unused."""
+    from tests.station.test_run import write_config
+
+    return write_config(tmp_path, model, tmp_path / "unused", extra,
+                        f'kind = "aravis"\ndevice = "127.0.0.1"\nreconnect = false\n{camera}')
 
 
 def test_station_run_judges_two_served_cameras_as_one_part_each(tmp_path: Path) -> None:
@@ -302,7 +288,7 @@ def serve_and_run(ds: Path, model: Path, tmp_path: Path, parts: int, camera: str
             line = server.stdout.readline()
             assert line, f"serve-camera ended: {banner}"
             banner += line
-        cfg_path = aravis_config(tmp_path, model, f"frame_rate_hz = 50.0\n{camera}")
+        cfg_path = aravis_config(tmp_path, model, camera)
         assert main(["run", "--camera", "aravis", "--config", str(cfg_path), "--frames", str(parts)]) == 0
     finally:
         server.send_signal(signal.SIGTERM)
