@@ -175,13 +175,22 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
 
 
 def _set_list(data: str | Path | Sequence[str], option: str) -> list[str]:
-    """One or several sets as a list of paths; a set named twice would count its parts twice."""
+    """One or several sets as a list of paths. A set named twice, or two rendered sets of one seed (the same parts),
+    would count their parts twice: refused."""
+    from sim.dataset import open_dataset
+
     sets = [str(d) for d in ([data] if isinstance(data, str | Path) else data)]
     if not sets:
         raise UserError(f"{option}: name a set")
     paths = [Path(d).resolve() for d in sets]
     if len(set(paths)) < len(paths):
         raise UserError(f"{', '.join(sets)}: a set is named twice; its parts would count twice")
+    if len(sets) > 1:
+        seeds = [open_dataset(d).manifest.get("seed") for d in sets]
+        same = [d for d, s in zip(sets, seeds, strict=True) if s is not None and seeds.count(s) > 1]
+        if same:
+            raise UserError(f"{', '.join(same)}: the same seed ({seeds[sets.index(same[0])]}) holds the same parts; "
+                            "pool sets of other seeds")
     return sets
 
 
@@ -514,18 +523,10 @@ def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], s
 
 
 def _twin_sets(first: str | Sequence[str], second: str | Sequence[str]) -> tuple[list[str], list[str]]:
-    """The twin validation sets of ``split_camera_thresholds`` as two lists of paths, one pair per index; a set
-    named twice, or two pairs of the same seed, would count their parts twice."""
-    from sim.dataset import open_dataset
-
+    """The twin validation sets of ``split_camera_thresholds`` as two lists of paths, one pair per index
+    (``_set_list`` each)."""
     firsts, seconds = _set_list(first, "--data"), _set_list(second, "--second-data")
     if len(firsts) != len(seconds):
         raise UserError(f"--data names {len(firsts)} sets and --second-data {len(seconds)}: each first camera's set "
                         "needs its twin, in the same order")
-    if len(firsts) > 1:
-        seeds = [open_dataset(d).manifest.get("seed") for d in firsts]
-        same = [d for d, s in zip(firsts, seeds, strict=True) if s is not None and seeds.count(s) > 1]
-        if same:
-            raise UserError(f"{', '.join(same)}: the same seed ({seeds[firsts.index(same[0])]}) holds the same parts; "
-                            "pool sets of other seeds")
     return firsts, seconds

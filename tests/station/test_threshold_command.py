@@ -114,6 +114,10 @@ def test_threshold_on_several_sets_pools_their_parts(tmp_path: Path, capsys) -> 
     a = make_dataset(tmp_path / "a", n=30, defective=lambda i: i == 12)  # val: 2, 12, 22
     b = make_dataset(tmp_path / "b", n=30, defective=lambda i: i == 2)
     model = make_model(tmp_path / "m" / "last", ("intensity", "aolp"))
+    assert main(["threshold", "--model", str(model), "--data", str(a), str(b)]) == 2  # both of seed 0
+    assert "the same seed (0) holds the same parts" in capsys.readouterr().err.splitlines()[-1]
+    manifest = json.loads((b / "manifest.json").read_text())
+    (b / "manifest.json").write_text(json.dumps({**manifest, "seed": 1}))  # the fixture draws both alike
     assert main(["threshold", "--model", str(model), "--data", str(a), str(b)]) == 0
     assert f"on 6 val parts of {a}, {b} (2 sets pooled; recorded in the sidecar)" in capsys.readouterr().out
     scores, labels = [], []
