@@ -15,6 +15,11 @@ Files under ``OUT``::
 Numbering continues after the files already in the label's folder: a second ``station capture`` into the same
 ``OUT`` adds frames (same bit depth and layout required). A frame whose ground truth (the virtual camera's) says it
 is not a ``--label`` part is left out and counted (``contradicts``); ``capture.jsonl`` then records it.
+
+With a second camera (``[second_camera]``: the camera is a ``drivers.camera_pair.CameraPair``), each part's second
+frame goes to a folder of its own, ``SECOND_OUT``, under the same name: the two folders are twins, file for file,
+as ``station split`` needs them (after ``station import`` of each). A good part is left out when either camera's
+ground truth shows a defect; a defective one when neither does.
 """
 
 from __future__ import annotations
@@ -22,9 +27,10 @@ from __future__ import annotations
 import json
 import time
 from collections.abc import Callable
+from contextlib import ExitStack
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 import cv2
 import numpy as np
@@ -50,8 +56,15 @@ class CaptureReport:
     left_out: int = 0
     """Parts not written: the camera's ground truth (the virtual camera's) contradicted ``--label``."""
     frames_per_part: int = 1
+    second: CaptureReport | None = None
+    """The second camera's twin folder (``second_out``), or None with one camera."""
 
     def describe(self) -> str:
+        if self.second is not None:
+            return f"{self._describe()}\nsecond camera: {self.second._describe()}"
+        return self._describe()
+
+    def _describe(self) -> str:
         if not self.stats:
             return f"no frames written to {self.folder}"
         r = StatisticsRange.from_frames(self.stats)
@@ -75,6 +88,15 @@ def contradicts(frame: Frame, label: str) -> bool:
     part: no part in view, a defective part for "good", a good one for a defect type."""
     gt = frame.ground_truth
     return gt is not None and (not gt.present or (label == "good") == bool(gt.label))
+
+
+def part_contradicts(frame: Frame, label: str) -> bool:
+    """``contradicts`` for a part seen by two cameras (``frame.companion``): a good part when either camera's ground
+    truth shows a defect (or no part), a defective one when neither shows it."""
+    if frame.companion is None:
+        return contradicts(frame, label)
+    seen = (contradicts(frame, label), contradicts(frame.companion, label))
+    return any(seen) if label == "good" else all(seen)
 
 
 def label_folder(out: Path, label: str, split: str | None) -> Path:
@@ -110,32 +132,102 @@ def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, .
 
 
 
-def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", split: str | None = None,
-            settings: dict[str, Any] | None = None, layout: str = "imx250mzr", software_trigger: bool = True,
-            timeout_ms: int | None = None, progress: bool = True,
-            on_frame: Callable[[int, FrameStatistics], None] | None = None,
-            bit_depth: int | None = None, segments: tuple[float, ...] = ()) -> CaptureReport:
-    """Grab ``frames`` parts from the open ``camera`` (started and stopped here) into ``out`` (module docstring):
-    one frame each, or with ``segments`` (``[camera] dome_segments``) one per segment, each triggered.
-    ``settings``: the camera settings to record with each part; ``on_frame(n, stats)`` after each part;
-    ``bit_depth``: ``[priors] bit_depth``, the significant bits when the pixel format's are wider."""
-    from tqdm import tqdm
+@dataclass
+class _CameraFolder:
+    """One camera's capture folder while parts are written: its report, its ``capture.jsonl`` and what each part's
+    line records (module docstring)."""
 
-    if frames < 1:
-        raise UserError(f"--frames must be >= 1, got {frames}")
-    out = Path(out)
+    report: CaptureReport
+    log: TextIO
+    layout: str
+    segments: tuple[float, ...]
+    settings: dict[str, Any]
+    priors_bit_depth: int | None
+    label: str
+
+    def write(self, number: int, shots: list[Frame]) -> FrameStatistics:
+        """Part ``number``'s frames (one, or one per dome segment) as PNGs, its line in ``capture.jsonl``."""
+        out, folder, frame = self.report.out, self.report.folder, shots[0]
+        try:
+            bits = significant_bits(frame, self.priors_bit_depth)
+        except ValueError as exc:
+            raise UserError(str(exc)) from None
+        if not self.report.files:
+            _check_info(out, bits, self.layout, self.segments)
+            self.report.bit_depth = bits
+        elif bits != self.report.bit_depth:
+            raise UserError(f"frame {frame.frame_id}: {bits}-bit after {self.report.bit_depth}-bit frames; one "
+                            "capture, one pixel format")
+        rel = str((folder / f"{number:06d}.png").relative_to(out))
+        paths = [out / rel] + [later_frame(out, rel, k) for k in range(1, len(shots))]
+        for path, shot in zip(paths, shots, strict=True):
+            path.parent.mkdir(parents=True, exist_ok=True)
+            if not cv2.imwrite(str(path), np.ascontiguousarray(shot.raw)):
+                raise UserError(f"could not write {path}")
+        priors = compute_set_priors([s.raw for s in shots], self.segments, self.layout, priors=("intensity", "dolp"),
+                                    bit_depth=bits)  # the whole dome's, as the station reads a set
+        stats = frame_statistics(priors, raw=frame.raw, bit_depth=bits)
+        self.log.write(json.dumps({
+            "file": rel, **({"frame_ids": [s.frame_id for s in shots]} if self.segments else {}),
+            "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
+            "timestamp_ns": frame.timestamp_ns, "host_timestamp_ns": frame.host_timestamp_ns,
+            "pixel_format": frame.pixel_format, "bit_depth": bits, "label": self.label,
+            "camera": self.settings, "statistics": stats.as_dict(),
+            **({"ground_truth": frame.ground_truth.label} if frame.ground_truth is not None else {})}) + "\n")
+        self.log.flush()
+        self.report.files.append(rel)
+        self.report.stats.append(stats)
+        return stats
+
+
+def _capture_folder(out: Path, label: str, split: str | None) -> Path:
+    """The label's folder under ``out``, created; UserError for a data set's or a model's folder."""
     if (out / "manifest.json").exists() or any(out.glob("*.pt")):
         raise UserError(f"--out {out}: a rendered data set or a model folder, not a capture folder; capture into "
                         "a folder of its own (station import turns it into a data set)")
     folder = label_folder(out, label, split)
     folder.mkdir(parents=True, exist_ok=True)
+    return folder
+
+
+def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", split: str | None = None,
+            settings: dict[str, Any] | None = None, layout: str = "imx250mzr", software_trigger: bool = True,
+            timeout_ms: int | None = None, progress: bool = True,
+            on_frame: Callable[[int, FrameStatistics], None] | None = None,
+            bit_depth: int | None = None, segments: tuple[float, ...] = (),
+            second_out: str | Path | None = None, second_settings: dict[str, Any] | None = None) -> CaptureReport:
+    """Grab ``frames`` parts from the open ``camera`` (started and stopped here) into ``out`` (module docstring):
+    one frame each, or with ``segments`` (``[camera] dome_segments``) one per segment, each triggered.
+    ``settings``: the camera settings to record with each part; ``on_frame(n, stats)`` after each part;
+    ``bit_depth``: ``[priors] bit_depth``, the significant bits when the pixel format's are wider.
+    ``second_out``: the second camera's twin folder (the camera is a ``CameraPair``), ``second_settings`` its
+    settings; each part's ``companion`` frame is written there under the same name."""
+    from tqdm import tqdm
+
+    if frames < 1:
+        raise UserError(f"--frames must be >= 1, got {frames}")
+    out = Path(out)
+    folder = _capture_folder(out, label, split)
     report = CaptureReport(out, folder, frames_per_part=frames_per_part(segments))
     number = _next_number(folder)
+    if second_out is not None:
+        second_out = Path(second_out)
+        if second_out.resolve() == out.resolve():
+            raise UserError(f"--second-out {second_out}: the same folder as --out; the second camera's frames need "
+                            "a twin folder of their own")
+        second_folder = _capture_folder(second_out, label, split)
+        report.second = CaptureReport(second_out, second_folder)
+        if _next_number(second_folder) != number:
+            raise UserError(f"{folder} and {second_folder} are not twins: their next frame numbers are {number} and "
+                            f"{_next_number(second_folder)}; capture both cameras into new folders")
     t0 = time.perf_counter()
     camera.start()
     try:
-        with open(out / "capture.jsonl", "a") as log, tqdm(total=frames, unit="frame", disable=not progress,
-                                                           dynamic_ncols=True) as bar:
+        with ExitStack() as stack:
+            bar = stack.enter_context(tqdm(total=frames, unit="frame", disable=not progress, dynamic_ncols=True))
+            writers = [_CameraFolder(r, stack.enter_context(open(r.out / "capture.jsonl", "a")), layout,
+                                     segments if r is report else (), s or {}, bit_depth, label)
+                       for r, s in ((report, settings), (report.second, second_settings)) if r is not None]
             grabs = 0
             while len(report.files) < frames:
                 grabs += 1
@@ -149,39 +241,15 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                         camera.trigger()
                     shots.append(camera.grab(timeout_ms) if timeout_ms else camera.grab())
                 frame = shots[0]
-                if contradicts(frame, label):
+                if report.second is not None and frame.companion is None:
+                    raise UserError(f"frame {frame.frame_id}: no second camera's frame with it; --second-out needs "
+                                    "[second_camera] enabled in the config")
+                if part_contradicts(frame, label):
                     report.left_out += 1
                     continue
-                try:
-                    bits = significant_bits(frame, bit_depth)
-                except ValueError as exc:
-                    raise UserError(str(exc)) from None
-                if n == 0:
-                    _check_info(out, bits, layout, segments)
-                    report.bit_depth = bits
-                elif bits != report.bit_depth:
-                    raise UserError(f"frame {frame.frame_id}: {bits}-bit after {report.bit_depth}-bit "
-                                    f"frames; one capture, one pixel format")
-                name = f"{number:06d}.png"
-                rel = str((folder / name).relative_to(out))
-                paths = [folder / name] + [later_frame(out, rel, k) for k in range(1, len(shots))]
-                for path, shot in zip(paths, shots, strict=True):
-                    path.parent.mkdir(parents=True, exist_ok=True)
-                    if not cv2.imwrite(str(path), np.ascontiguousarray(shot.raw)):
-                        raise UserError(f"could not write {path}")
-                priors = compute_set_priors([s.raw for s in shots], segments, layout, priors=("intensity", "dolp"),
-                                            bit_depth=bits)  # the whole dome's, as the station reads a set
-                stats = frame_statistics(priors, raw=frame.raw, bit_depth=bits)
-                log.write(json.dumps({
-                    "file": rel, **({"frame_ids": [s.frame_id for s in shots]} if segments else {}),
-                    "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
-                    "timestamp_ns": frame.timestamp_ns, "host_timestamp_ns": frame.host_timestamp_ns,
-                    "pixel_format": frame.pixel_format, "bit_depth": bits, "label": label,
-                    "camera": settings or {}, "statistics": stats.as_dict(),
-                    **({"ground_truth": frame.ground_truth.label} if frame.ground_truth is not None else {})}) + "\n")
-                log.flush()
-                report.files.append(rel)
-                report.stats.append(stats)
+                stats = writers[0].write(number, shots)
+                if report.second is not None:
+                    writers[1].write(number, [frame.companion])
                 bar.set_postfix(level=f"{stats.median_level:.3f}", clipped=f"{100 * stats.clipped_fraction:.2f}%",
                                 dolp=f"{stats.dolp_level:.3f}")
                 bar.update(1)
@@ -191,4 +259,6 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
     finally:
         camera.stop()
     report.seconds = time.perf_counter() - t0
+    if report.second is not None:
+        report.second.seconds = report.seconds
     return report

@@ -1,6 +1,7 @@
 """``station capture``: record raw mosaics from the camera of ``station.toml`` (or ``--camera``) into the MVTec AD
 layout, with the camera's settings, timestamps and brightness statistics (``station.capture``). With ``--model``
-the statistics are compared with the range the model was trained (or adapted) on."""
+the statistics are compared with the range the model was trained (or adapted) on. With ``[second_camera]``, the
+second camera's frames go to ``--second-out``, a twin folder."""
 
 from __future__ import annotations
 
@@ -22,6 +23,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="override the split folder (default: train for good, test otherwise)")
     p.add_argument("--model", default=None,
                    help="checkpoint whose trained frame statistics to compare with (default: none)")
+    p.add_argument("--second-out", default=None, metavar="DIR",
+                   help="with [second_camera] enabled: the second camera's frames, a twin folder of --out (the same "
+                        "names for the same parts; station split reads the two after station import)")
     p.set_defaults(func=run)
 
 
@@ -50,15 +54,22 @@ def run(args: argparse.Namespace) -> int:
         else:
             print(f"{args.model} was trained on: {trained.describe()}")
             monitor = DriftMonitor(trained, window=min(50, args.frames), min_frames=min(10, args.frames))
-    settings = {k: getattr(cfg.camera, k) for k in ("kind", "device", "pixel_format", "exposure_us", "gain_db",
-                                                    "width", "height", "offset_x", "offset_y", "trigger",
-                                                    "dome_segments")}
+    keys = ("kind", "device", "pixel_format", "exposure_us", "gain_db", "width", "height", "offset_x", "offset_y",
+            "trigger", "dome_segments")
+    settings = {k: getattr(cfg.camera, k) for k in keys}
+    second = cfg.second_camera.enabled
+    if second != (args.second_out is not None):
+        raise UserError(f"{cfg.source}: [second_camera] is enabled: name --second-out DIR for its frames (a twin "
+                        "folder of --out)" if second else
+                        f"--second-out {args.second_out}: {cfg.source} has no [second_camera] enabled")
     camera = open_camera(cfg)
     try:
         report = capture(camera, args.frames, args.out, args.label, args.split, settings, cfg.priors.layout,
                          software_trigger=cfg.camera.trigger == "software", bit_depth=cfg.priors.bit_depth,
                          segments=tuple(cfg.camera.dome_segments or ()),
-                         on_frame=(lambda _n, s: _warn(monitor.update(s))) if monitor else None)
+                         on_frame=(lambda _n, s: _warn(monitor.update(s))) if monitor else None,
+                         second_out=args.second_out,
+                         second_settings={k: getattr(cfg.second_camera, k) for k in keys} if second else None)
     finally:
         camera.close()
     print(report.describe())

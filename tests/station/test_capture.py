@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import cv2
 import numpy as np
 from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
 from test_run import make_model, write_config
@@ -99,3 +100,39 @@ def test_capture_refuses_to_write_into_a_data_set_or_a_model_folder(tmp_path: Pa
         with pytest.raises(UserError, match="not a capture folder"):
             capture(ScriptedCamera([0, 0], trigger="software"), 1, out, progress=False)
         assert not (out / "train").exists()
+
+
+def test_capture_with_a_second_camera_writes_twin_folders_that_station_split_reads(tmp_path: Path, capsys) -> None:
+    """A two-camera line sets its two thresholds on its own parts: ``station capture --second-out`` writes each
+    part's second frame under the same name, the two folders import as twin sets, and ``station split`` reads
+    them. Without ``--second-out`` the second camera's frames were grabbed and dropped."""
+    ds = make_line_set(tmp_path / "ds", 20, defective=lambda i: i % 4 == 1)
+    twin = make_line_set(tmp_path / "twin", 20, defective=lambda i: i % 4 == 1, seed=1)  # other pixels, same parts
+    model = make_model(tmp_path / "m" / "best")
+    cfg = write_config(tmp_path, model, ds, f'[second_camera]\nenabled = true\nmodel = "{model}"\n'
+                                            f'dataset = "{twin}"\npresence_rule = "dolp_contrast"\n')
+    out, side = tmp_path / "cap", tmp_path / "cap-side"
+    base = ["capture", "--camera", "sim", "--config", str(cfg), "--out", str(out)]
+    assert main([*base, "--frames", "2"]) == 2
+    assert "[second_camera] is enabled: name --second-out DIR" in capsys.readouterr().err.splitlines()[-1]
+    assert main([*base, "--frames", "6", "--second-out", str(side)]) == 0
+    assert main([*base, "--frames", "2", "--second-out", str(side), "--label", "stain"]) == 0
+    assert "second camera: wrote 6 frames" in capsys.readouterr().out.split("wrote 2 frames")[0]
+    for folder in ("train/good", "test/stain"):
+        assert sorted(p.name for p in (out / folder).iterdir()) == sorted(p.name for p in (side / folder).iterdir())
+    first, second = ([json.loads(x) for x in (d / "capture.jsonl").read_text().splitlines()] for d in (out, side))
+    assert [x["file"] for x in first] == [x["file"] for x in second] and len(first) == 8
+    assert [x["ground_truth"] for x in first] == [x["ground_truth"] for x in second] == [0] * 6 + [1] * 2
+    src, other = open_dataset(ds), open_dataset(twin)
+    for line, frame_dir in ((first, out), (second, side)):  # each folder holds its own camera's mosaics
+        raw = cv2.imread(str(frame_dir / line[0]["file"]), cv2.IMREAD_UNCHANGED)
+        own, twin_set = (src, other) if frame_dir == out else (other, src)
+        assert any(np.array_equal(raw, own.load(i).raw) for i in own.indices(None))
+        assert not any(np.array_equal(raw, twin_set.load(i).raw) for i in twin_set.indices(None))
+    for d in (out, side):
+        assert main(["import", "--from", str(d), "--out", str(d) + "-set", "--val-fraction", "0"]) == 0
+    report = tmp_path / "split.json"
+    assert main(["split", "--model", str(model), "--data", f"{out}-set", "--second-model", str(model),
+                 "--second-data", f"{side}-set", "--split", "train", "--second-presence-rule", "dolp_contrast",
+                 "--max-good-flagged", "0.25", "--budget", "count", "--out", str(report)]) == 0
+    assert json.loads(report.read_text())["parts"] == 6  # the good parts (imported into train) of both cameras
