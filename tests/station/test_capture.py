@@ -115,10 +115,10 @@ def test_capture_with_a_second_camera_writes_twin_folders_that_station_split_rea
     base = ["capture", "--camera", "sim", "--config", str(cfg), "--out", str(out)]
     assert main([*base, "--frames", "2"]) == 2
     assert "[second_camera] is enabled: name --second-out DIR" in capsys.readouterr().err.splitlines()[-1]
-    assert main([*base, "--frames", "6", "--second-out", str(side)]) == 0
+    assert main([*base, "--frames", "6", "--second-out", str(side), "--split", "test"]) == 0  # good, never fitted on
     assert main([*base, "--frames", "2", "--second-out", str(side), "--label", "stain"]) == 0
     assert "second camera: wrote 6 frames" in capsys.readouterr().out.split("wrote 2 frames")[0]
-    for folder in ("train/good", "test/stain"):
+    for folder in ("test/good", "test/stain"):
         assert sorted(p.name for p in (out / folder).iterdir()) == sorted(p.name for p in (side / folder).iterdir())
     first, second = ([json.loads(x) for x in (d / "capture.jsonl").read_text().splitlines()] for d in (out, side))
     assert [x["file"] for x in first] == [x["file"] for x in second] and len(first) == 8
@@ -130,9 +130,10 @@ def test_capture_with_a_second_camera_writes_twin_folders_that_station_split_rea
         assert any(np.array_equal(raw, own.load(i).raw) for i in own.indices(None))
         assert not any(np.array_equal(raw, twin_set.load(i).raw) for i in twin_set.indices(None))
     for d in (out, side):
-        assert main(["import", "--from", str(d), "--out", str(d) + "-set", "--val-fraction", "0"]) == 0
+        assert main(["import", "--from", str(d), "--out", str(d) + "-set"]) == 0
     report = tmp_path / "split.json"
     assert main(["split", "--model", str(model), "--data", f"{out}-set", "--second-model", str(model),
-                 "--second-data", f"{side}-set", "--split", "train", "--second-presence-rule", "dolp_contrast",
+                 "--second-data", f"{side}-set", "--split", "test", "--second-presence-rule", "dolp_contrast",
                  "--max-good-flagged", "0.25", "--budget", "count", "--out", str(report)]) == 0
-    assert json.loads(report.read_text())["parts"] == 6  # the good parts (imported into train) of both cameras
+    split = json.loads(report.read_text())
+    assert (split["parts"], split["good"], split["defective"]) == (8, 6, 2)  # both cameras' parts, matched
