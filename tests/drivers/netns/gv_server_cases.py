@@ -272,6 +272,45 @@ threshold = 0.9
     assert {(r[0], r[8].split(" >")[0]) for r in rows} == {("reject", "second camera: score 0.5478")}
 
 
+def test_station_capture_writes_two_served_cameras_frames_as_twin_folders(tmp_path: Path) -> None:
+    """``station capture --second-out`` on two GigE Vision cameras: the same file name in both folders is the same
+    part (pixel (0, 0) holds its index), and each folder holds its own camera's mosaic byte for byte."""
+    pytest.importorskip("torch")
+    import cv2
+
+    from station.cli import main
+    from tests.station.test_run import make_model
+
+    subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
+    line, side = make_dataset(tmp_path / "line"), make_dataset(tmp_path / "side", shift=101)
+    model = make_model(tmp_path / "model" / "best")
+    cfg = aravis_config(tmp_path, model, 'trigger = "software"', f"""
+[second_camera]
+enabled = true
+kind = "aravis"
+device = "127.0.0.2"
+trigger = "software"
+reconnect = false
+model = "{model}"
+""")
+    out, side_out = tmp_path / "cap", tmp_path / "cap-side"
+    with (GvCameraServer(str(line), defect_rate=0.5, seed=4),
+          GvCameraServer(str(side), defect_rate=0.5, seed=4, interface="127.0.0.2", serial="POLARSIM2")):
+        assert main(["capture", "--camera", "aravis", "--config", str(cfg), "--frames", "6", "--out", str(out),
+                     "--second-out", str(side_out)]) == 0
+    names = sorted(p.name for p in (out / "train" / "good").iterdir())
+    assert names == sorted(p.name for p in (side_out / "train" / "good").iterdir()) and len(names) == 6
+    raws = {"line": mosaics(line), "side": mosaics(side)}
+    parts = set()
+    for name in names:
+        a, b = (cv2.imread(str(d / "train" / "good" / name), cv2.IMREAD_UNCHANGED) for d in (out, side_out))
+        assert int(a[0, 0]) == int(b[0, 0])  # one part in both
+        parts.add(int(a[0, 0]))
+        assert a.tobytes() == raws["line"][int(a[0, 0])].tobytes()
+        assert b.tobytes() == raws["side"][int(b[0, 0])].tobytes()
+    assert len(parts) > 1
+
+
 def serve_and_run(ds: Path, model: Path, tmp_path: Path, parts: int, camera: str = "") -> tuple[str, str]:
     """``station serve-camera --dataset ds`` in a subprocess, ``station run --camera aravis`` on it here for
     ``parts`` parts (``camera``: more ``[camera]`` lines); returns the server's banner and its whole output."""
