@@ -133,3 +133,21 @@ def test_threshold_on_several_sets_pools_their_parts(tmp_path: Path, capsys) -> 
     assert (record["n_good"], record["n_defective"]) == (4, 2)
     assert main(["threshold", "--model", str(model), "--data", str(a), str(tmp_path / "a")]) == 2
     assert "a set is named twice" in capsys.readouterr().err.splitlines()[-1]
+
+
+def test_concat_joins_splits_in_order_and_fills_a_missing_mask_known() -> None:
+    """``station.datasets.concat``: tensors and per-sample lists joined in order; a split without ``mask_known``
+    (every mask ground truth) next to one with it counts as all known; object masks known only if in every split."""
+    from station.datasets import SplitTensors, concat
+
+    def split(n: int, first: int, known=None, objects: bool = True) -> SplitTensors:
+        return SplitTensors(torch.full((n, 1, 2, 2), float(first)), torch.ones(n, 2, 2), torch.zeros(n, 2, 2),
+                            torch.arange(n) % 2, ["stain" if i % 2 else "" for i in range(n)],
+                            list(range(first, first + n)), known, object_masks_known=objects,
+                            unjudged=[None] * n)
+
+    both = concat([split(2, 0), split(3, 10, torch.tensor([True, False, True]), objects=False)])
+    assert both.index == [0, 1, 10, 11, 12] and both.priors[:, 0, 0, 0].tolist() == [0, 0, 10, 10, 10]
+    assert both.mask_known.tolist() == [True, True, True, False, True] and not both.object_masks_known
+    assert both.label.tolist() == [0, 1, 0, 1, 0] and both.defect_type == ["", "stain", "", "stain", ""]
+    assert concat([split(1, 0), split(1, 5)]).mask_known is None and len(both.unjudged) == 5
