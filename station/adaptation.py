@@ -24,7 +24,7 @@ class AdaptSummary:
         from station.evaluation import describe_left_out, new_good_rate
 
         r = self.record
-        held = new_good_rate(round(r["heldout_false_reject"] * r["n_heldout"]), r["n_heldout"])
+        held = new_good_rate(r["n_heldout_rejected"], r["n_heldout"])
         return (f"{self.out}: adapted on {r['n_good']} good parts of {r['data']} ({r['scheme']}); threshold "
                 f"{r['threshold']:.4g}, {100 * r['heldout_false_reject']:.1f} % of held-out good parts rejected "
                 f"({held}; target {100 * r['false_reject_target']:.1f} %){self._networks()}; frames: "

@@ -141,6 +141,7 @@ class AdaptResult:
         return {"n_good": self.n_good, "n_heldout": self.n_heldout, "scheme": self.scheme,
                 "threshold": self.threshold.threshold, "threshold_rule": self.threshold.rule,
                 "heldout_false_reject": self.heldout_false_reject,
+                "n_heldout_rejected": int((s > self.threshold.threshold).sum()),
                 "heldout_scores": {"median": float(np.median(s)), "p95": float(np.percentile(s, 95)),
                                    "max": float(s.max())},
                 "normalization_before": asdict(self.normalizer_before),
@@ -328,7 +329,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         scheme = f"{what} and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
         steps = cfg.fine_tune_steps
     choice = false_reject_threshold(heldout, cfg.false_reject)
-    fr = float((heldout >= choice.threshold).mean())
+    fr = float((heldout > choice.threshold).mean())  # rejected as the station rejects: score > threshold
     log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
              choice.threshold, 100 * fr)
     if (detector.variation is not None and detector.variation.second_look.references and final.variation is not None

@@ -12,7 +12,7 @@ that is undefined (only one class present) is NaN, never a made-up number.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import ndimage
@@ -273,7 +273,8 @@ class DetectionReport:
     type (held fixed); threshold_source: "validation" or "evaluated set" (its good parts); false_reject_observed:
     {rate: share of the evaluated set's good parts rejected at that threshold} (can exceed the rate when the
     threshold came from validation); n_good: good parts evaluated; overall: all defective parts together
-    (``defect_type`` "all"); per_type: {type: TypeDetection}, sorted by type."""
+    (``defect_type`` "all"); per_type: {type: TypeDetection}, sorted by type; good_rejected: {rate: the count of
+    good parts behind ``false_reject_observed``}."""
 
     thresholds: dict[float, float]
     threshold_source: str
@@ -281,6 +282,7 @@ class DetectionReport:
     n_good: int
     overall: TypeDetection
     per_type: dict[str, TypeDetection]
+    good_rejected: dict[float, int] = field(default_factory=dict)
 
 
 def detection_by_type(labels: np.ndarray, scores: np.ndarray, types: np.ndarray | list[str],
@@ -307,8 +309,8 @@ def detection_by_type(labels: np.ndarray, scores: np.ndarray, types: np.ndarray 
     vy, vs = (y, s) if validation is None else _check_scores("detection_by_type validation", *validation)
     thresholds = {fr: false_reject_threshold(vs[~vy], fr) for fr in false_rejects}
     good, good_forced = s[~y], forced[~y]
-    observed = {fr: float(((good > t) | good_forced).mean()) if good.size else math.nan
-                for fr, t in thresholds.items()}
+    counts = {fr: int(((good > t) | good_forced).sum()) for fr, t in thresholds.items()}
+    observed = {fr: k / good.size if good.size else math.nan for fr, k in counts.items()}
 
     def one(name: str, sel: np.ndarray) -> TypeDetection:
         d, f = s[sel], forced[sel]
@@ -319,7 +321,7 @@ def detection_by_type(labels: np.ndarray, scores: np.ndarray, types: np.ndarray 
     names = sorted({str(t) for t in ty[y]})
     per_type = {n: one(n, y & (ty.astype(str) == n)) for n in names}
     return DetectionReport(thresholds, "evaluated set" if validation is None else "validation", observed,
-                           int(good.size), one("all", y), per_type)
+                           int(good.size), one("all", y), per_type, counts)
 
 
 def rank_auroc(labels: np.ndarray, scores: np.ndarray) -> float:

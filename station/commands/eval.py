@@ -198,17 +198,17 @@ def industrial_rows(report, train_meta: dict) -> list[dict]:
     return rows
 
 
-def rate_note(rate: float, threshold: float, val_good: np.ndarray, observed: float, n_good: int) -> str:
+def rate_note(rate: float, threshold: float, val_good: np.ndarray, k: int, n_good: int) -> str:
     """One false-reject rate's threshold in the report: how many good validation parts lie above it and what that
-    says of new good parts, then the share of this set's good parts it rejected with its exact 95 % interval
-    (``model.draem.rate_bounds``)."""
+    says of new good parts, then the ``k`` of this set's ``n_good`` good parts it rejected, with the share's exact
+    95 % interval (``model.draem.rate_bounds``)."""
     from model.draem.rate_bounds import interval
     from station.evaluation import new_good_rate
 
-    k = round(observed * n_good)
     low, high = interval(k, n_good) if n_good else (math.nan, math.nan)
+    observed = 100 * k / n_good if n_good else math.nan
     return (f"{100 * rate:g} % -> {threshold:.4g} ({new_good_rate(int((val_good > threshold).sum()), len(val_good))}), "
-            f"observed here {100 * observed:.1f} % ({k} of {n_good}: 95 % interval {100 * low:.1f}-{100 * high:.1f} %)")
+            f"observed here {observed:.1f} % ({k} of {n_good}: 95 % interval {100 * low:.1f}-{100 * high:.1f} %)")
 
 
 def unjudged_note(unjudged: dict[int, str], sp, rule: str) -> str:
@@ -410,7 +410,7 @@ def run(args: argparse.Namespace) -> int:
             val_good = vev.scores[judged][vsp.label.numpy()[judged] == 0]
             industrial_note = ("Defective parts caught at a fixed share of good parts rejected (thresholds set on the "
                                "val split's good parts and held fixed: " + ", ".join(
-                                   rate_note(fr, t, val_good, rep.false_reject_observed[fr], rep.n_good)
+                                   rate_note(fr, t, val_good, rep.good_rejected[fr], rep.n_good)
                                    for fr, t in rep.thresholds.items())
                                + f"; val split of {val_data}, {len(val_good)} good parts"
                                + unjudged_note(unjudged, sp, args.presence_rule) + "):")

@@ -68,6 +68,7 @@ def test_detection_by_type():
     r = M.detection_by_type(y, s, types, false_rejects=(0.0, 0.25))
     assert r.thresholds == {0.0: 0.4, 0.25: 0.3} and r.threshold_source == "evaluated set"
     assert r.false_reject_observed == {0.0: 0.0, 0.25: 0.25} and r.n_good == 4
+    assert r.good_rejected == {0.0: 0, 0.25: 1}  # the counts behind the shares
     assert list(r.per_type) == ["dent", "scratch", "stud"]
     dent, scratch, stud = r.per_type.values()
     assert dent.n_defective == 2 and dent.image_auroc == 1.0 and dent.caught == {0.0: 1.0, 0.25: 1.0}

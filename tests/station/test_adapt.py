@@ -58,7 +58,8 @@ def test_adapt_lowers_false_rejects_on_a_shifted_line(line, tmp_path: Path, caps
     out_text = capsys.readouterr().out
     assert "adapted on 140 good parts" in out_text and "recommended" not in out_text  # no variation model: no note
     held = json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]
-    k = round(held["heldout_false_reject"] * held["n_heldout"])
+    k = held["n_heldout_rejected"]  # the count itself, kept beside the share
+    assert k == round(held["heldout_false_reject"] * held["n_heldout"])
     assert f"({k} of {held['n_heldout']}; new good parts: about " in out_text  # what the count can promise
     after = _false_rejects(out, shifted)  # test split: parts the adaptation never saw
     assert after < before and after <= 0.2
