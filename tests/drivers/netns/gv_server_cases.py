@@ -18,6 +18,7 @@ import subprocess
 import sys
 import time
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -204,12 +205,9 @@ def test_two_served_cameras_give_each_part_its_two_frames(tmp_path: Path) -> Non
     draws): ``CameraPair`` over the real protocol, software-triggered, pairs each part's two frames."""
     from drivers.camera_pair import CameraPair
 
-    # a second loopback address for the second camera, in this private namespace only
-    subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
     line, side = make_dataset(tmp_path / "line"), make_dataset(tmp_path / "side", shift=101)
     seen = mosaics(side)
-    with (GvCameraServer(str(line), defect_rate=0.5, seed=5),
-          GvCameraServer(str(side), defect_rate=0.5, seed=5, interface="127.0.0.2", serial="POLARSIM2"),
+    with (two_servers(line, side, seed=5),
           CameraPair(AravisCamera(cfg(trigger="software")), AravisCamera(cfg(device="127.0.0.2", trigger="software")),
                      max_skew_ms=500.0) as pair):
         pair.start()
@@ -232,6 +230,31 @@ def aravis_config(tmp_path: Path, model: Path, camera: str = "", extra: str = ""
                         f'kind = "aravis"\ndevice = "127.0.0.1"\nreconnect = false\n{camera}')
 
 
+def two_camera_config(tmp_path: Path, model: Path, second_model: Path, second: str = "") -> Path:
+    """``aravis_config`` for two cameras, both software-triggered: the first at 127.0.0.1, the second
+    (``[second_camera]``, judged by ``second_model``; ``second``: more of its lines, then any tables) at 127.0.0.2."""
+    return aravis_config(tmp_path, model, 'trigger = "software"', f"""
+[second_camera]
+enabled = true
+kind = "aravis"
+device = "127.0.0.2"
+trigger = "software"
+reconnect = false
+model = "{second_model}"
+{second}
+""")
+
+
+@contextmanager
+def two_servers(line: Path, side: Path, seed: int) -> Iterator[None]:
+    """``line`` served at 127.0.0.1 and its twin ``side`` at 127.0.0.2 (added to loopback in this namespace), the
+    same ``seed``, so both serve the same parts in the same order."""
+    subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
+    with (GvCameraServer(str(line), defect_rate=0.5, seed=seed),
+          GvCameraServer(str(side), defect_rate=0.5, seed=seed, interface="127.0.0.2", serial="POLARSIM2")):
+        yield
+
+
 def test_station_run_judges_two_served_cameras_as_one_part_each(tmp_path: Path) -> None:
     """A station with a second camera (``[second_camera]``) on two GigE Vision cameras, as a line would have them:
     ``station run --camera aravis``, both cameras software-triggered by the station, each frame judged by its own
@@ -241,24 +264,11 @@ def test_station_run_judges_two_served_cameras_as_one_part_each(tmp_path: Path) 
     from tests.station.test_run import make_dataset as make_station_dataset
     from tests.station.test_run import make_model
 
-    subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
     line, side = make_station_dataset(tmp_path / "line"), make_station_dataset(tmp_path / "side")
     model, side_model = make_model(tmp_path / "model" / "best"), make_model(tmp_path / "side" / "side")
-    cfg = aravis_config(tmp_path, model, 'trigger = "software"', f"""
-[second_camera]
-enabled = true
-kind = "aravis"
-device = "127.0.0.2"
-trigger = "software"
-reconnect = false
-model = "{side_model}"
-threshold = 0.5
-presence_rule = "dolp_contrast"
-[decision]
-threshold = 0.9
-""")
-    with (GvCameraServer(str(line), defect_rate=0.5, seed=3),
-          GvCameraServer(str(side), defect_rate=0.5, seed=3, interface="127.0.0.2", serial="POLARSIM2")):
+    cfg = two_camera_config(tmp_path, model, side_model, 'threshold = 0.5\npresence_rule = "dolp_contrast"\n'
+                                                         '[decision]\nthreshold = 0.9')
+    with two_servers(line, side, seed=3):
         assert main(["run", "--camera", "aravis", "--config", str(cfg), "--frames", "5"]) == 0
     rows = sqlite3.connect(tmp_path / "log.sqlite").execute(
         "SELECT decision, score, threshold, second_score, second_threshold, camera_frame_id, second_frame_id, "
@@ -281,21 +291,11 @@ def test_station_capture_writes_two_served_cameras_frames_as_twin_folders(tmp_pa
     from station.cli import main
     from tests.station.test_run import make_model
 
-    subprocess.run(["ip", "addr", "add", "127.0.0.2/8", "dev", "lo"], check=False, capture_output=True)
     line, side = make_dataset(tmp_path / "line"), make_dataset(tmp_path / "side", shift=101)
     model = make_model(tmp_path / "model" / "best")
-    cfg = aravis_config(tmp_path, model, 'trigger = "software"', f"""
-[second_camera]
-enabled = true
-kind = "aravis"
-device = "127.0.0.2"
-trigger = "software"
-reconnect = false
-model = "{model}"
-""")
+    cfg = two_camera_config(tmp_path, model, model)
     out, side_out = tmp_path / "cap", tmp_path / "cap-side"
-    with (GvCameraServer(str(line), defect_rate=0.5, seed=4),
-          GvCameraServer(str(side), defect_rate=0.5, seed=4, interface="127.0.0.2", serial="POLARSIM2")):
+    with two_servers(line, side, seed=4):
         assert main(["capture", "--camera", "aravis", "--config", str(cfg), "--frames", "6", "--out", str(out),
                      "--second-out", str(side_out)]) == 0
     names = sorted(p.name for p in (out / "train" / "good").iterdir())
