@@ -180,10 +180,11 @@ class _CameraFolder:
         return stats
 
 
-def _capture_folder(out: Path, label: str, split: str | None) -> Path:
-    """The label's folder under ``out``, created; UserError for a data set's or a model's folder."""
+def _capture_folder(out: Path, label: str, split: str | None, option: str = "--out") -> Path:
+    """The label's folder under ``out`` (given as ``option``), created; UserError for a data set's or a model's
+    folder."""
     if (out / "manifest.json").exists() or any(out.glob("*.pt")):
-        raise UserError(f"--out {out}: a rendered data set or a model folder, not a capture folder; capture into "
+        raise UserError(f"{option} {out}: a rendered data set or a model folder, not a capture folder; capture into "
                         "a folder of its own (station import turns it into a data set)")
     folder = label_folder(out, label, split)
     folder.mkdir(parents=True, exist_ok=True)
@@ -215,7 +216,7 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
         if second_out.resolve() == out.resolve():
             raise UserError(f"--second-out {second_out}: the same folder as --out; the second camera's frames need "
                             "a twin folder of their own")
-        second_folder = _capture_folder(second_out, label, split)
+        second_folder = _capture_folder(second_out, label, split, "--second-out")
         report.second = CaptureReport(second_out, second_folder)
         if _next_number(second_folder) != number:
             raise UserError(f"{folder} and {second_folder} are not twins: their next frame numbers are {number} and "
