@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -117,12 +117,9 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
     (``station.presence.PresenceRule``: the one the camera's ``[presence]`` uses) at its defaults. ``confidence``:
     ``max_good_flagged`` is promised for new good parts at that confidence, not counted on these
     (``metrics.choose_threshold``)."""
-    import numpy as np
-
     from model.draem.checkpoint import load_checkpoint, read_sidecar, save_checkpoint
     from model.draem.metrics import choose_threshold
-    from station.datasets import concat, judged_part_of, manifest_sha256
-    from station.presence import PresenceCheck
+    from station.datasets import concat, manifest_sha256
 
     check_max_good_flagged(max_good_flagged)
     sets = _set_list(data, "--data")
@@ -134,10 +131,9 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
                         f"held out: use --split val")
     ck = load_checkpoint(model)
     parts, left_out = [], {}
-    for j, d in enumerate(sets):
-        sp, lo = judged_part_of(model_split(ck, model, d, split, presence=PresenceCheck(rule=presence_rule)))
-        parts.append(without_held_out_type(sp, ck.meta.get("train", {})))
-        left_out.update({(i if len(sets) == 1 else f"{j}:{i}"): why for i, why in lo.items()})
+    for j, (sp, lo) in enumerate(_judged_splits(ck, model, sets, split, presence_rule)):
+        parts.append(sp)
+        left_out.update({_sample_key(j, i, len(sets) > 1): why for i, why in lo.items()})
     name = ", ".join(sets)
     if not any(p.index for p in parts):
         raise UserError(f"{name}: the station would judge none of split {split!r}'s frames "
@@ -153,8 +149,7 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
         choice = choose_threshold(labels, ev.scores, max_good_flagged, confidence)
     except ValueError as exc:
         raise UserError(f"{name}: split {split!r}: {exc}") from None
-    scores = np.asarray(ev.scores)
-    n_good, good_flagged = len(labels) - n_bad, int((scores[labels == 0] > choice.threshold).sum())
+    n_good, good_flagged = len(labels) - n_bad, int((ev.scores[labels == 0] > choice.threshold).sum())
     train = dict(ck.meta.get("train", {}))
     others = len(trained_on) < len(sets)
     if others:
@@ -172,6 +167,23 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
             f"{name}{where} it flags {choice.flagged_good_fraction:.1%} of good parts "
             f"({new_good_rate(good_flagged, n_good)}){detected}{skipped}")
+
+
+def _judged_splits(ck, model: str, sets: Sequence[str], split: str,
+                   presence_rule: str) -> Iterator[tuple[Any, dict[int, str]]]:
+    """Each set's ``split`` in turn as the station would judge it (``judged_part_of``, with the presence rule
+    ``presence_rule``), without the type the model held out of training, and the unjudged samples' reasons."""
+    from station.datasets import judged_part_of
+    from station.presence import PresenceCheck
+
+    for data in sets:
+        sp, unjudged = judged_part_of(model_split(ck, model, data, split, presence=PresenceCheck(rule=presence_rule)))
+        yield without_held_out_type(sp, ck.meta.get("train", {})), unjudged
+
+
+def _sample_key(j: int, i: int, pooled: bool) -> str:
+    """A sample's name in a report: its index, or ``set:index`` when several sets are pooled."""
+    return f"{j}:{i}" if pooled else str(i)
 
 
 def _set_list(data: str | Path | Sequence[str], option: str) -> list[str]:
@@ -460,8 +472,6 @@ def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], s
     from model.draem.camera_split import count_budget, expected_budget, split_thresholds
     from model.draem.checkpoint import load_checkpoint
     from model.draem.metrics import choose_threshold
-    from station.datasets import judged_part_of
-    from station.presence import PresenceCheck
 
     check_max_good_flagged(rate)
     firsts, seconds = _twin_sets(first_data, second_data)
@@ -470,9 +480,8 @@ def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], s
                                                    ("second", second_model, seconds, second_presence))):
         ck = load_checkpoint(model)
         net = inference_net(ck, model, "fp32")
-        for j, data in enumerate(sets):
-            sp, unjudged = judged_part_of(model_split(ck, model, data, split, presence=PresenceCheck(rule=rule)))
-            sp = without_held_out_type(sp, ck.meta.get("train", {}))
+        for j, (data, (sp, unjudged)) in enumerate(zip(sets, _judged_splits(ck, model, sets, split, rule),
+                                                        strict=True)):
             _, ev = evaluate_tensors(net, sp)
             keys = [(j, i) for i in sp.index]
             scores[c].update(zip(keys, np.asarray(ev.scores, np.float64).tolist(), strict=True))
@@ -505,10 +514,6 @@ def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], s
         alone[name] = {"threshold": choice.threshold, "good_rejected": choice.flagged_good_fraction,
                        "caught": choice.detected_fraction}
     one = len(firsts) == 1
-
-    def key(k: tuple[int, int]) -> str:  # a sample's index, or set:index when several sets are pooled
-        return str(k[1]) if one else f"{k[0]}:{k[1]}"
-
     part_scores = [{"set": j, "index": int(i), "defective": bool(d),
                     "defect_type": types[0][(j, i)] or types[1][(j, i)], "first": s1, "second": s2}
                    for (j, i), d, s1, s2 in zip(both, y, a, b, strict=True)]
@@ -517,7 +522,7 @@ def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], s
                        "presence_rule": second_presence},
             "split": split, "rate": rate, "parts": len(both), "good": int((~y).sum()), "defective": int(y.sum()),
             "budget": budget, "expected": expected,
-            "left_out": {key(k): why for k, why in sorted(left_out.items())},
+            "left_out": {_sample_key(j, i, not one): why for (j, i), why in sorted(left_out.items())},
             "splits": [dataclasses.asdict(r) for r in rows], "chosen": best, "chosen_good_above": above,
             "alone": alone, "part_scores": part_scores}
 
