@@ -226,9 +226,12 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
     try:
         with ExitStack() as stack:
             bar = stack.enter_context(tqdm(total=frames, unit="frame", disable=not progress, dynamic_ncols=True))
-            writers = [_CameraFolder(r, stack.enter_context(open(r.out / "capture.jsonl", "a")), layout,
-                                     segments if r is report else (), s or {}, bit_depth, label)
-                       for r, s in ((report, settings), (report.second, second_settings)) if r is not None]
+            def folder_of(r: CaptureReport, segs: tuple[float, ...], s: dict[str, Any] | None) -> _CameraFolder:
+                return _CameraFolder(r, stack.enter_context(open(r.out / "capture.jsonl", "a")), layout, segs,
+                                     s or {}, bit_depth, label)
+
+            first = folder_of(report, segments, settings)
+            second = folder_of(report.second, (), second_settings) if report.second is not None else None
             grabs = 0
             while len(report.files) < frames:
                 grabs += 1
@@ -242,15 +245,15 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                         camera.trigger()
                     shots.append(camera.grab(timeout_ms) if timeout_ms else camera.grab())
                 frame = shots[0]
-                if report.second is not None and frame.companion is None:
+                if second is not None and frame.companion is None:
                     raise UserError(f"frame {frame.frame_id}: no second camera's frame with it; --second-out needs "
                                     "[second_camera] enabled in the config")
                 if part_contradicts(frame, label):
                     report.left_out += 1
                     continue
-                stats = writers[0].write(number, shots)
-                if report.second is not None:
-                    writers[1].write(number, [frame.companion])
+                stats = first.write(number, shots)
+                if second is not None:
+                    second.write(number, [frame.companion])
                 bar.set_postfix(level=f"{stats.median_level:.3f}", clipped=f"{100 * stats.clipped_fraction:.2f}%",
                                 dolp=f"{stats.dolp_level:.3f}")
                 bar.update(1)
