@@ -229,11 +229,14 @@ def concat(parts: list[SplitTensors]) -> SplitTensors:
         parts = [p if p.mask_known is not None else
                  dataclasses.replace(p, mask_known=torch.ones(len(p.index), dtype=torch.bool)) for p in parts]
     first = parts[0]
-    return dataclasses.replace(first, **{
-        f.name: (torch.cat([getattr(p, f.name) for p in parts]) if isinstance(v, torch.Tensor)
-                 else [x for p in parts for x in getattr(p, f.name)] if isinstance(v, list)
-                 else all(p.object_masks_known for p in parts) if f.name == "object_masks_known" else v)
-        for f in dataclasses.fields(first) for v in [getattr(first, f.name)]})
+    joined = {}
+    for f in dataclasses.fields(first):
+        values = [getattr(p, f.name) for p in parts]
+        if isinstance(values[0], torch.Tensor):
+            joined[f.name] = torch.cat(values)
+        elif isinstance(values[0], list):
+            joined[f.name] = [x for v in values for x in v]
+    return dataclasses.replace(first, **joined, object_masks_known=all(p.object_masks_known for p in parts))
 
 
 def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
