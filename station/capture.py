@@ -131,7 +131,6 @@ def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, .
                                  "note": "written by station capture"}, indent=1))
 
 
-
 @dataclass
 class _CameraFolder:
     """One camera's capture folder while parts are written: its report, its ``capture.jsonl`` and what each part's
