@@ -19,7 +19,9 @@ is not a ``--label`` part is left out and counted (``contradicts``); ``capture.j
 With a second camera (``[second_camera]``: the camera is a ``drivers.camera_pair.CameraPair``), each part's second
 frame goes to a folder of its own, ``SECOND_OUT``, under the same name: the two folders are twins, file for file,
 as ``station split`` needs them (after ``station import`` of each). A good part is left out when either camera's
-ground truth shows a defect; a defective one when neither does.
+ground truth shows a defect; a defective one when neither does. A part goes to both folders or to neither: its
+frames are written to both before either ``capture.jsonl`` line, and when a frame cannot be written (a full disk)
+what was written of the part is removed, so the pair stays twins and the next capture continues it.
 """
 
 from __future__ import annotations
@@ -132,6 +134,17 @@ def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, .
 
 
 @dataclass
+class _StagedPart:
+    """One camera's part on disk before its ``capture.jsonl`` line (``_CameraFolder.stage``): its file relative to
+    the folder, the PNGs written, the line, the frame statistics."""
+
+    rel: str
+    paths: list[Path]
+    line: dict[str, Any]
+    stats: FrameStatistics
+
+
+@dataclass
 class _CameraFolder:
     """One camera's capture folder while parts are written: its report, its ``capture.jsonl`` and what each part's
     line records (module docstring)."""
@@ -144,8 +157,10 @@ class _CameraFolder:
     priors_bit_depth: int | None
     label: str
 
-    def write(self, number: int, shots: list[Frame]) -> FrameStatistics:
-        """Part ``number``'s frames (one, or one per dome segment) as PNGs, its line in ``capture.jsonl``."""
+    def stage(self, number: int, shots: list[Frame]) -> _StagedPart:
+        """Part ``number``'s frames (one, or one per dome segment) written as PNGs, its ``capture.jsonl`` line not
+        yet: ``commit`` writes it, ``discard`` removes the PNGs (a part goes to every camera's folder or to none).
+        UserError when a frame cannot be written; what was written of the part is removed first."""
         out, folder, frame = self.report.out, self.report.folder, shots[0]
         try:
             bits = significant_bits(frame, self.priors_bit_depth)
@@ -158,25 +173,42 @@ class _CameraFolder:
             raise UserError(f"frame {frame.frame_id}: {bits}-bit after {self.report.bit_depth}-bit frames; one "
                             "capture, one pixel format")
         rel = str((folder / f"{number:06d}.png").relative_to(out))
-        paths = [out / rel] + [later_frame(out, rel, k) for k in range(1, len(shots))]
-        for path, shot in zip(paths, shots, strict=True):
-            path.parent.mkdir(parents=True, exist_ok=True)
-            if not cv2.imwrite(str(path), np.ascontiguousarray(shot.raw)):
-                raise UserError(f"could not write {path}")
-        priors = compute_set_priors([s.raw for s in shots], self.segments, self.layout, priors=("intensity", "dolp"),
-                                    bit_depth=bits)  # the whole dome's, as the station reads a set
+        written: list[Path] = []
+        try:
+            for path, shot in zip([out / rel] + [later_frame(out, rel, k) for k in range(1, len(shots))], shots,
+                                  strict=True):
+                path.parent.mkdir(parents=True, exist_ok=True)
+                written.append(path)
+                if not cv2.imwrite(str(path), np.ascontiguousarray(shot.raw)):
+                    raise UserError(f"could not write {path}")
+            priors = compute_set_priors([s.raw for s in shots], self.segments, self.layout,
+                                        priors=("intensity", "dolp"), bit_depth=bits)  # the whole dome's, as a set
+        except BaseException:
+            self.discard(written)
+            raise
         stats = frame_statistics(priors, raw=frame.raw, bit_depth=bits)
-        self.log.write(json.dumps({
+        line = {
             "file": rel, **({"frame_ids": [s.frame_id for s in shots]} if self.segments else {}),
             "frame_id": frame.frame_id, "device_frame_id": frame.device_frame_id,
             "timestamp_ns": frame.timestamp_ns, "host_timestamp_ns": frame.host_timestamp_ns,
             "pixel_format": frame.pixel_format, "bit_depth": bits, "label": self.label,
             "camera": self.settings, "statistics": stats.as_dict(),
-            **({"ground_truth": frame.ground_truth.label} if frame.ground_truth is not None else {})}) + "\n")
+            **({"ground_truth": frame.ground_truth.label} if frame.ground_truth is not None else {})}
+        return _StagedPart(rel, written, line, stats)
+
+    def commit(self, part: _StagedPart) -> FrameStatistics:
+        """The staged part's line in ``capture.jsonl``, and the part in the report."""
+        self.log.write(json.dumps(part.line) + "\n")
         self.log.flush()
-        self.report.files.append(rel)
-        self.report.stats.append(stats)
-        return stats
+        self.report.files.append(part.rel)
+        self.report.stats.append(part.stats)
+        return part.stats
+
+    @staticmethod
+    def discard(paths: list[Path]) -> None:
+        """Remove a staged part's PNGs (``_StagedPart.paths``)."""
+        for path in paths:
+            path.unlink(missing_ok=True)
 
 
 def _capture_folder(out: Path, label: str, split: str | None, option: str = "--out") -> Path:
@@ -250,9 +282,15 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
                 if part_contradicts(frame, label):
                     report.left_out += 1
                     continue
-                stats = first.write(number, shots)
-                if second is not None:
-                    second.write(number, [frame.companion])
+                part = first.stage(number, shots)
+                if second is not None:  # a part goes to both folders or to neither
+                    try:
+                        companion = second.stage(number, [frame.companion])
+                    except BaseException:
+                        first.discard(part.paths)
+                        raise
+                    second.commit(companion)
+                stats = first.commit(part)
                 bar.set_postfix(level=f"{stats.median_level:.3f}", clipped=f"{100 * stats.clipped_fraction:.2f}%",
                                 dolp=f"{stats.dolp_level:.3f}")
                 bar.update(1)

@@ -102,15 +102,22 @@ def test_capture_refuses_to_write_into_a_data_set_or_a_model_folder(tmp_path: Pa
         assert not (out / "train").exists()
 
 
-def test_capture_with_a_second_camera_writes_twin_folders_that_station_split_reads(tmp_path: Path, capsys) -> None:
-    """A two-camera line sets its two thresholds on its own parts: ``station capture --second-out`` writes each
-    part's second frame under the same name, the two folders import as twin sets, and ``station split`` reads
-    them. Without ``--second-out`` the second camera's frames were grabbed and dropped."""
+def two_camera_line(tmp_path: Path) -> tuple[Path, Path, Path, Path]:
+    """Two virtual cameras on the same 20 parts (every fourth defective), the second's pixels another render's: the
+    two sets, a model and the station.toml with ``[second_camera]`` enabled."""
     ds = make_line_set(tmp_path / "ds", 20, defective=lambda i: i % 4 == 1)
     twin = make_line_set(tmp_path / "twin", 20, defective=lambda i: i % 4 == 1, seed=1)  # other pixels, same parts
     model = make_model(tmp_path / "m" / "best")
     cfg = write_config(tmp_path, model, ds, f'[second_camera]\nenabled = true\nmodel = "{model}"\n'
                                             f'dataset = "{twin}"\npresence_rule = "dolp_contrast"\n')
+    return ds, twin, model, cfg
+
+
+def test_capture_with_a_second_camera_writes_twin_folders_that_station_split_reads(tmp_path: Path, capsys) -> None:
+    """A two-camera line sets its two thresholds on its own parts: ``station capture --second-out`` writes each
+    part's second frame under the same name, the two folders import as twin sets, and ``station split`` reads
+    them. Without ``--second-out`` the second camera's frames were grabbed and dropped."""
+    ds, twin, model, cfg = two_camera_line(tmp_path)
     out, side = tmp_path / "cap", tmp_path / "cap-side"
     base = ["capture", "--camera", "sim", "--config", str(cfg), "--out", str(out)]
     assert main([*base, "--frames", "2"]) == 2
@@ -137,3 +144,31 @@ def test_capture_with_a_second_camera_writes_twin_folders_that_station_split_rea
                  "--max-good-flagged", "0.25", "--budget", "count", "--out", str(report)]) == 0
     split = json.loads(report.read_text())
     assert (split["parts"], split["good"], split["defective"]) == (8, 6, 2)  # both cameras' parts, matched
+
+
+def test_a_twin_capture_that_fails_on_the_second_camera_leaves_both_folders_twins(tmp_path: Path, monkeypatch,
+                                                                                   capsys) -> None:
+    """The first camera's frame and line were written before the second camera's; when the second's write failed
+    (a full disk), the first folder kept a part the second had not, and every later capture into the pair was
+    refused as not twins. A part is now written to both folders or to neither."""
+    _, _, _, cfg = two_camera_line(tmp_path)
+    out, side = tmp_path / "cap", tmp_path / "cap-side"
+    args = ["capture", "--camera", "sim", "--config", str(cfg), "--out", str(out), "--second-out", str(side)]
+    real_imwrite, writes = cv2.imwrite, []
+
+    def imwrite(path: str, image: np.ndarray) -> bool:  # the second camera's third frame finds the disk full
+        writes.append(path)
+        return False if path.startswith(str(side)) and path.endswith("000002.png") else real_imwrite(path, image)
+
+    monkeypatch.setattr(cv2, "imwrite", imwrite)
+    assert main([*args, "--frames", "4"]) == 2
+    assert "could not write" in capsys.readouterr().err.splitlines()[-1]
+    assert any(p.endswith("cap/train/good/000002.png") for p in writes)  # the first camera's frame was written
+    monkeypatch.setattr(cv2, "imwrite", real_imwrite)
+    for d in (out, side):
+        assert sorted(p.name for p in (d / "train" / "good").iterdir()) == ["000000.png", "000001.png"]
+        assert [json.loads(x)["file"] for x in (d / "capture.jsonl").read_text().splitlines()] == [
+            "train/good/000000.png", "train/good/000001.png"]
+    assert main([*args, "--frames", "2"]) == 0  # the pair takes the next parts
+    for d in (out, side):
+        assert len(list((d / "train" / "good").iterdir())) == 4
