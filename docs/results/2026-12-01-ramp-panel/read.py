@@ -1,0 +1,90 @@
+"""The ramp screen's reading (plan.md, plan-2.md): two models' ``station eval`` scores on twin validation sets (the
+same parts under two panels): image AUROC per group with the paired bootstrap SE of the difference, caught at 1 %
+and 5 % of each set's own good parts. Several pairs of sets (each four arguments) are pooled: their parts keyed by
+the pair, each set's own good parts setting its caught-at thresholds.
+
+    python read.py data/line-pv-val F/scores.csv data/ramp-pv-val R/scores.csv > read.md
+    python read.py A1 FA1 B1 RB1 A2 FA2 B2 RB2 > pooled.md
+"""
+import csv
+import json
+import os
+import sys
+
+import numpy as np
+from sklearn.metrics import roc_auc_score
+
+GROUPS = ["all", "dent", "dent-top", "dent-other", "scratch", "scratch-top", "scratch-other", "stain", "chip",
+          "missing_stud"]
+RESAMPLES = 2000
+
+
+def meta(root: str) -> dict[int, tuple[int, str]]:
+    """index -> (label, group key type-face) of the val split; face top: the horizontal top face."""
+    out = {}
+    for n in sorted(os.listdir(f"{root}/samples")):
+        p = json.load(open(f"{root}/samples/{n}/params.json"))
+        if p["split"] != "val":
+            continue
+        d = p.get("defect") or {}
+        z = d["normal"][2] if "normal" in d else (1.0 if d.get("start_m", [0, 0, 0])[2] >= 0.0095 else 0.0)
+        out[int(n)] = (p["label"], f'{d.get("type")}-{"top" if z > 0.9 else "other"}' if p["label"] else "good")
+    return out
+
+
+def scores(path: str) -> dict[int, float]:
+    return {int(r["index"]): float(r["score"]) for r in csv.DictReader(open(path))}
+
+
+def in_group(key: str, group: str) -> bool:
+    return group == "all" or key == group or key.rsplit("-", 1)[0] == group
+
+
+def caught(s: dict, info: dict, idx: list, rate: float) -> float:
+    """The share of ``idx`` above each pair's own ``rate`` point on its good parts (keys (pair, index))."""
+    points = {}
+    for k in {key[0] for key in info}:
+        good = np.sort([s[i] for i in info if i[0] == k and info[i][0] == 0])
+        points[k] = good[len(good) - int(rate * len(good)) - 1]
+    return float(np.mean([s[i] > points[i[0]] for i in idx]))
+
+
+def load(quads: list[str]) -> tuple[dict, dict, dict]:
+    """(meta, scores A, scores B) keyed by (pair, index) over every pair of twin sets."""
+    info, sa, sb = {}, {}, {}
+    for k in range(0, len(quads), 4):
+        set_a, scores_a, set_b, scores_b = quads[k:k + 4]
+        ia = meta(set_a)
+        assert ia == meta(set_b), "the two sets must be twins: the same parts, labels and defects"
+        a, b = scores(scores_a), scores(scores_b)
+        for i, m in ia.items():
+            info[(k, i)], sa[(k, i)], sb[(k, i)] = m, a[i], b[i]
+    return info, sa, sb
+
+
+def main(quads: list[str]) -> None:
+    info, sa, sb = load(quads)
+    good = [i for i in info if info[i][0] == 0]
+    rng = np.random.default_rng(0)
+    print(f"{len(good)} good parts, {len(info) - len(good)} defective; A = {quads[1::4]}, B = {quads[3::4]}\n")
+    print("| group | n | image AUROC A | B | B - A (paired SE) | SEs | caught at 1 % A / B | at 5 % A / B |")
+    print("|---|---|---|---|---|---|---|---|")
+    for g in GROUPS:
+        d = [i for i in info if info[i][0] and in_group(info[i][1], g)]
+        if not d:
+            continue
+        y = np.r_[np.zeros(len(good)), np.ones(len(d))]
+        ga, gb = np.array([sa[i] for i in good + d]), np.array([sb[i] for i in good + d])
+        auc_a, auc_b = roc_auc_score(y, ga), roc_auc_score(y, gb)
+        diffs = []
+        for _ in range(RESAMPLES):
+            pick = np.r_[rng.integers(0, len(good), len(good)), len(good) + rng.integers(0, len(d), len(d))]
+            diffs.append(roc_auc_score(y[pick], gb[pick]) - roc_auc_score(y[pick], ga[pick]))
+        se = float(np.std(diffs))
+        print(f"| {g} | {len(d)} | {auc_a:.3f} | {auc_b:.3f} | {auc_b - auc_a:+.3f} ({se:.3f}) | "
+              f"{(auc_b - auc_a) / max(se, 1e-9):+.1f} | {caught(sa, info, d, 0.01):.0%} / "
+              f"{caught(sb, info, d, 0.01):.0%} | {caught(sa, info, d, 0.05):.0%} / {caught(sb, info, d, 0.05):.0%} |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
