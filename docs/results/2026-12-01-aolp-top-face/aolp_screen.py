@@ -98,7 +98,8 @@ def zmaps(sample: str) -> dict[float, tuple[float, np.ndarray | None]]:
 
 
 def sample_meta(root: str, name: str) -> dict:
-    """Split, label, type and face (top: a defect on the horizontal top face) of a rendered sample."""
+    """Split, label, type and face of a rendered sample: top when the defect lies on the horizontal top face (its
+    recorded surface normal within 25 deg of up; a scratch by its start on the top face, 9.6 mm above the belt)."""
     p = json.load(open(f"{root}/samples/{name}/params.json"))
     d = p.get("defect") or {}
     z = d["normal"][2] if "normal" in d else (1.0 if d.get("start_m", [0, 0, 0])[2] >= 0.0095 else 0.0)

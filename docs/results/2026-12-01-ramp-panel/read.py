@@ -7,12 +7,14 @@ the pair, each set's own good parts setting its caught-at thresholds.
     python read.py A1 FA1 B1 RB1 A2 FA2 B2 RB2 > pooled.md
 """
 import csv
-import json
 import os
 import sys
 
 import numpy as np
 from sklearn.metrics import roc_auc_score
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "2026-12-01-aolp-top-face"))
+from aolp_screen import sample_meta
 
 GROUPS = ["all", "dent", "dent-top", "dent-other", "scratch", "scratch-top", "scratch-other", "stain", "chip",
           "missing_stud"]
@@ -20,15 +22,12 @@ RESAMPLES = 2000
 
 
 def meta(root: str) -> dict[int, tuple[int, str]]:
-    """index -> (label, group key type-face) of the val split; face top: the horizontal top face."""
+    """index -> (label, group key type-face) of the val split (``aolp_screen.sample_meta``'s face)."""
     out = {}
     for n in sorted(os.listdir(f"{root}/samples")):
-        p = json.load(open(f"{root}/samples/{n}/params.json"))
-        if p["split"] != "val":
-            continue
-        d = p.get("defect") or {}
-        z = d["normal"][2] if "normal" in d else (1.0 if d.get("start_m", [0, 0, 0])[2] >= 0.0095 else 0.0)
-        out[int(n)] = (p["label"], f'{d.get("type")}-{"top" if z > 0.9 else "other"}' if p["label"] else "good")
+        m = sample_meta(root, n)
+        if m["split"] == "val":
+            out[int(n)] = (m["label"], f'{m["type"]}-{m["face"]}' if m["label"] else "good")
     return out
 
 

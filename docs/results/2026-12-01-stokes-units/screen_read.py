@@ -5,27 +5,26 @@ face, which mirrors the panel).
     python screen_read.py DIR Fv Pv    # DIR/eval-<model>-<set>/scores.csv
 """
 import csv
-import json
 import os
 import sys
 
 import numpy as np
 from sklearn.metrics import roc_auc_score
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "2026-12-01-aolp-top-face"))
+from aolp_screen import sample_meta
+
 SETS = ["line-pv-val", "line-pv-val-1176"]
 GROUPS = ["all", "dent", "dent-top", "scratch", "scratch-top", "stain", "chip", "missing_stud"]
 
 
 def meta(s: str) -> dict[int, tuple[int, str, str]]:
-    """index -> (label, type, face) of the val split."""
+    """index -> (label, type, face) of the val split (``aolp_screen.sample_meta``'s face)."""
     out = {}
     for n in sorted(os.listdir(f"data/{s}/samples")):
-        p = json.load(open(f"data/{s}/samples/{n}/params.json"))
-        if p["split"] != "val":
-            continue
-        d = p.get("defect") or {}
-        z = d["normal"][2] if "normal" in d else (1.0 if d.get("start_m", [0, 0, 0])[2] >= 0.0095 else 0.0)
-        out[int(n)] = (p["label"], d.get("type", "good") if p["label"] else "good", "top" if z > 0.9 else "other")
+        m = sample_meta(f"data/{s}", n)
+        if m["split"] == "val":
+            out[int(n)] = (m["label"], m["type"] if m["label"] else "good", m["face"])
     return out
 
 
