@@ -12,6 +12,8 @@ import numpy as np
 from scipy.stats import spearmanr
 from sklearn.metrics import roc_auc_score
 
+from model.draem.metrics import false_reject_threshold
+
 GROUPS = ["all", "dent-top", "dent-other", "scratch-top", "scratch-other", "stain", "chip", "missing_stud"]
 
 
@@ -19,18 +21,12 @@ def members(rows: list[dict], group: str) -> list[dict]:
     return [r for r in rows if r["label"] and group in ("all", r["type"], f'{r["type"]}-{r["face"]}')]
 
 
-def top_point(values: list[float], rate: float) -> float:
-    """The threshold leaving floor(rate x n) of ``values`` above it."""
-    v = np.sort(values)
-    return float(v[len(v) - int(rate * len(v)) - 1])
-
-
 def own(rows: list[dict], keys: list[str]) -> None:
     good = [r for r in rows if r["label"] == 0]
     print(f"good parts {len(good)}")
     for k in keys:
         g = [r[k] for r in good]
-        t = top_point(g, 0.01)
+        t = false_reject_threshold(g, 0.01)
         cells = []
         for grp in GROUPS:
             d = [r[k] for r in members(rows, grp)]
@@ -52,8 +48,9 @@ def beside(rows: list[dict], shipped_csv: str, key: str) -> None:
         print(f"  image AUROC, top-face dents against good parts, {name}: "
               f"{roc_auc_score([0] * len(good) + [1] * len(dents), [f(r) for r in good + dents]):.3f}")
     for rate in (0.01, 0.02):
-        ts, ta = top_point([ship[r["name"]] for r in odd], rate), top_point([r[key] for r in odd], rate)
-        hs, ha = top_point([ship[r["name"]] for r in odd], rate / 2), top_point([r[key] for r in odd], rate / 2)
+        odd_ship, odd_screen = [ship[r["name"]] for r in odd], [r[key] for r in odd]
+        ts, ta = false_reject_threshold(odd_ship, rate), false_reject_threshold(odd_screen, rate)
+        hs, ha = false_reject_threshold(odd_ship, rate / 2), false_reject_threshold(odd_screen, rate / 2)
         rules = {"shipped": lambda r, ts=ts: ship[r["name"]] > ts, "screen": lambda r, ta=ta: r[key] > ta,
                  "either, each at half": lambda r, hs=hs, ha=ha: ship[r["name"]] > hs or r[key] > ha,
                  "either, each at full": lambda r, ts=ts, ta=ta: ship[r["name"]] > ts or r[key] > ta}

@@ -1,7 +1,8 @@
 """The ramp screen's reading (plan.md, plan-2.md): two models' ``station eval`` scores on twin validation sets (the
-same parts under two panels): image AUROC per group with the paired bootstrap SE of the difference, caught at 1 %
-and 5 % of each set's own good parts. Several pairs of sets (each four arguments) are pooled: their parts keyed by
-the pair, each set's own good parts setting its caught-at thresholds.
+same parts under two panels): image AUROC per group with the paired bootstrap SE of the difference
+(``model.draem.metrics.paired_auroc_gains``), caught at 1 % and 5 % of each set's own good parts
+(``false_reject_threshold``). Several pairs of sets (each four arguments) are pooled: their parts keyed by the pair,
+each set's own good parts setting its caught-at thresholds.
 
     python read.py data/line-pv-val F/scores.csv data/ramp-pv-val R/scores.csv > read.md
     python read.py A1 FA1 B1 RB1 A2 FA2 B2 RB2 > pooled.md
@@ -11,7 +12,8 @@ import os
 import sys
 
 import numpy as np
-from sklearn.metrics import roc_auc_score
+
+from model.draem.metrics import false_reject_threshold, paired_auroc_gains
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "2026-12-01-aolp-top-face"))
 from aolp_screen import sample_meta
@@ -41,10 +43,8 @@ def in_group(key: str, group: str) -> bool:
 
 def caught(s: dict, info: dict, idx: list, rate: float) -> float:
     """The share of ``idx`` above each pair's own ``rate`` point on its good parts (keys (pair, index))."""
-    points = {}
-    for k in {key[0] for key in info}:
-        good = np.sort([s[i] for i in info if i[0] == k and info[i][0] == 0])
-        points[k] = good[len(good) - int(rate * len(good)) - 1]
+    points = {k: false_reject_threshold([s[i] for i in info if i[0] == k and info[i][0] == 0], rate)
+              for k in {key[0] for key in info}}
     return float(np.mean([s[i] > points[i[0]] for i in idx]))
 
 
@@ -63,25 +63,23 @@ def load(quads: list[str]) -> tuple[dict, dict, dict]:
 
 def main(quads: list[str]) -> None:
     info, sa, sb = load(quads)
-    good = [i for i in info if info[i][0] == 0]
-    rng = np.random.default_rng(0)
-    print(f"{len(good)} good parts, {len(info) - len(good)} defective; A = {quads[1::4]}, B = {quads[3::4]}\n")
+    keys = list(info)
+    labels = np.array([info[i][0] for i in keys])
+    a, b = np.array([sa[i] for i in keys]), np.array([sb[i] for i in keys])
+    by_face = [info[i][1] if info[i][0] else "" for i in keys]
+    rows = {r["type"]: r for types in ([t.rsplit("-", 1)[0] if t else "" for t in by_face], by_face)
+            for r in paired_auroc_gains(labels, types, a, b, resamples=RESAMPLES, seed=0)}
+    good = int((labels == 0).sum())
+    print(f"{good} good parts, {len(keys) - good} defective; A = {quads[1::4]}, B = {quads[3::4]}\n")
     print("| group | n | image AUROC A | B | B - A (paired SE) | SEs | caught at 1 % A / B | at 5 % A / B |")
     print("|---|---|---|---|---|---|---|---|")
     for g in GROUPS:
-        d = [i for i in info if info[i][0] and in_group(info[i][1], g)]
+        d = [i for i in keys if info[i][0] and in_group(info[i][1], g)]
         if not d:
             continue
-        y = np.r_[np.zeros(len(good)), np.ones(len(d))]
-        ga, gb = np.array([sa[i] for i in good + d]), np.array([sb[i] for i in good + d])
-        auc_a, auc_b = roc_auc_score(y, ga), roc_auc_score(y, gb)
-        diffs = []
-        for _ in range(RESAMPLES):
-            pick = np.r_[rng.integers(0, len(good), len(good)), len(good) + rng.integers(0, len(d), len(d))]
-            diffs.append(roc_auc_score(y[pick], gb[pick]) - roc_auc_score(y[pick], ga[pick]))
-        se = float(np.std(diffs))
-        print(f"| {g} | {len(d)} | {auc_a:.3f} | {auc_b:.3f} | {auc_b - auc_a:+.3f} ({se:.3f}) | "
-              f"{(auc_b - auc_a) / max(se, 1e-9):+.1f} | {caught(sa, info, d, 0.01):.0%} / "
+        r = rows[g]
+        print(f"| {g} | {len(d)} | {r['base']:.3f} | {r['other']:.3f} | {r['gain']:+.3f} ({r['se']:.3f}) | "
+              f"{r['gain'] / max(r['se'], 1e-9):+.1f} | {caught(sa, info, d, 0.01):.0%} / "
               f"{caught(sb, info, d, 0.01):.0%} | {caught(sa, info, d, 0.05):.0%} / {caught(sb, info, d, 0.05):.0%} |")
 
 

@@ -11,6 +11,8 @@ import sys
 import numpy as np
 from sklearn.metrics import roc_auc_score
 
+from model.draem.metrics import false_reject_threshold
+
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "2026-12-01-aolp-top-face"))
 from aolp_screen import sample_meta
 
@@ -34,8 +36,7 @@ def main(root: str, models: list[str]) -> None:
         open(f"{root}/eval-{m}-{s}/scores.csv"))} for m in models for s in SETS}
 
     def point(m: str, s: str, rate: float) -> float:
-        g = np.sort([v for i, v in scores[(m, s)].items() if info[s][i][0] == 0])
-        return float(g[len(g) - int(rate * len(g)) - 1])
+        return false_reject_threshold([v for i, v in scores[(m, s)].items() if info[s][i][0] == 0], rate)
 
     for m in models:
         print(f"== {m}")
