@@ -135,10 +135,9 @@ def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, .
 
 @dataclass
 class _StagedPart:
-    """One camera's part on disk before its ``capture.jsonl`` line (``_CameraFolder.stage``): its file relative to
-    the folder, the PNGs written, the line, the frame statistics."""
+    """One camera's part on disk before its ``capture.jsonl`` line (``_CameraFolder.stage``): the PNGs written, the
+    line (its ``file``: the part's first PNG relative to the folder), the frame statistics."""
 
-    rel: str
     paths: list[Path]
     line: dict[str, Any]
     stats: FrameStatistics
@@ -194,13 +193,13 @@ class _CameraFolder:
             "pixel_format": frame.pixel_format, "bit_depth": bits, "label": self.label,
             "camera": self.settings, "statistics": stats.as_dict(),
             **({"ground_truth": frame.ground_truth.label} if frame.ground_truth is not None else {})}
-        return _StagedPart(rel, written, line, stats)
+        return _StagedPart(written, line, stats)
 
     def commit(self, part: _StagedPart) -> FrameStatistics:
         """The staged part's line in ``capture.jsonl``, and the part in the report."""
         self.log.write(json.dumps(part.line) + "\n")
         self.log.flush()
-        self.report.files.append(part.rel)
+        self.report.files.append(part.line["file"])
         self.report.stats.append(part.stats)
         return part.stats
 
