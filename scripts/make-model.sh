@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The shipped model, from nothing to model/weights/default, in one command: `make model` (or this script).
 # Every step resumes: rerun it after an interruption and finished work is kept (renders per sample, training per
-# checkpoint). Sizes and steps are environment variables; the defaults are the shipped recipe on 2 CPU cores
-# (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
+# checkpoint, the look networks every 250 steps). Sizes and steps are environment variables; the defaults are the
+# shipped recipe on 2 CPU cores (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
 #
 #   1. render the training set: line-polar preset + line variation + bright-field panel, its radiance drawn per
 #      part (sim/presets/panel-vary.toml), the plastic's finish drawn wider (sim/presets/finish-vary.toml), defects

@@ -5,7 +5,9 @@ Shared by ``station eval``, ``threshold``, ``ensemble``, ``quantize``, ``adapt``
 
 from __future__ import annotations
 
+import json
 import math
+import shutil
 import time
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
@@ -377,6 +379,25 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
             f"image AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")
 
 
+def residual_states(out: str, recipe: dict[str, Any]) -> Path:
+    """The folder of ``station residual``'s resume states for ``out`` (``OUT.resume``), checked against the
+    training's ``recipe`` (what its networks learn from; its ``recipe.json``, written when training starts): a rerun
+    of the same training continues from the members' states there; of another, it stops with one line naming the
+    folder and what differs (a folder with no member's state is taken over)."""
+    folder = Path(f"{out}.resume")
+    f = folder / "recipe.json"
+    if f.is_file() and any(folder.glob("member-*.pt")):
+        try:
+            saved = json.loads(f.read_text())
+        except (OSError, ValueError) as exc:
+            raise UserError(f"{f}: unreadable ({exc}); delete {folder} to train from the start") from None
+        if saved != recipe:
+            diff = ", ".join(k for k in sorted(set(saved) | set(recipe)) if saved.get(k) != recipe.get(k))
+            raise UserError(f"{folder}: the resume states of another training ({diff} differ); delete the folder "
+                            f"or give another --out")
+    return folder
+
+
 def fit_residual(model: str, data: str, out: str, val_data: str | None = None, members: int = 3, steps: int = 3000,
                  seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = GOOD_REJECTED_RATE,
                  look: bool = False, more_defects: Sequence[str] = ()) -> str:
@@ -391,7 +412,7 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
 
     import torch
 
-    from model.draem.checkpoint import load_checkpoint
+    from model.draem.checkpoint import load_checkpoint, paths, sha256_file
     from model.draem.errors import ModelError
     from model.draem.with_variation import add_residual, can_look
     from sim.defects import DEFECT_TYPES
@@ -414,6 +435,10 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     for d in more_defects:  # before minutes of loading
         if Path(d).resolve() == Path(data).resolve():
             raise UserError(f"--more-defects {d}: the training set itself (--data); give another rendered set")
+    recipe = {"model_sha256": sha256_file(paths(model)[0]), "data": str(data), "manifest_sha256": manifest_sha256(data),
+              "more_defects": [manifest_sha256(d) for d in more_defects], "holdout_type": holdout_type, "steps": steps,
+              "seed": seed}  # what the networks learn from
+    states = residual_states(out, recipe)  # before minutes of loading
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
     defects, masks = [], []
@@ -433,17 +458,20 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
           f"{f' ({n_def - len(defects[0])} from --more-defects)' if more_defects else ''}"
           f"{f' (without {holdout_type})' if holdout_type else ''}; {members} networks x {steps} steps",
           file=sys.stderr, flush=True)
+    record = {"data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good),
+              "more_defects": [{"data": str(d), "manifest_sha256": manifest_sha256(d)} for d in more_defects],
+              "defective_parts": n_def, "holdout_type": holdout_type, "members": members, "steps": steps,
+              "seed": seed, "look": look}
+    states.mkdir(parents=True, exist_ok=True)
+    (states / "recipe.json").write_text(json.dumps(recipe, indent=1))
     try:
         det = add_residual(ck.detector, tr.priors[good], tr.object_mask[good] if tr.object_masks_known else None,
                            torch.cat(defects), torch.cat(masks), va.priors[good_va], members, steps, seed,
-                           progress=lambda line: print(line, file=sys.stderr, flush=True), look=look)
+                           progress=lambda line: print(line, file=sys.stderr, flush=True), look=look, states=states)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
-    choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "residual", {
-        "data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good),
-        "more_defects": [{"data": str(d), "manifest_sha256": manifest_sha256(d)} for d in more_defects],
-        "defective_parts": n_def, "holdout_type": holdout_type, "members": members, "steps": steps,
-        "seed": seed, "look": look})
+    choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "residual", record)
+    shutil.rmtree(states)
     detected = f" and {choice.detected_fraction:.1%} of defective" if int(labels.sum()) else ""
     role = "are the variation model's second look" if look else "decide"
     return (f"{out}: {members} residual networks {role}; threshold {choice.threshold:.4g} ({choice.rule}); on "

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 import torch
@@ -122,7 +123,7 @@ def can_look(detector: Detector) -> bool:
 def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
                  defects: torch.Tensor, defect_masks: torch.Tensor, val_good: torch.Tensor, members: int = 3,
                  steps: int = 3000, seed: int = 0, progress: Callable[[str], None] | None = None,
-                 look: bool = False) -> Detector:
+                 look: bool = False, states: Path | None = None) -> Detector:
     """A copy of ``detector`` (which has the variation model) with ``members`` residual networks
     (``model.draem.residual``) deciding: trained on the left-out residuals of ``good`` (N, C, H, W) good training
     parts (the variation model fitted again on them, in a copy: the same parts give the same fit, and the model's
@@ -130,7 +131,9 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
     ``defect_masks`` (M, H, W) registered as the frames, member k trained with seed ``seed + k``; both detectors
     then calibrated on ``val_good`` (good validation parts). ``look``: the networks do not decide but are the
     variation model's second look (``ResidualDetector.look``, calibrated on ``val_good``); the model's decision is
-    kept, and it needs a fitted second look (``add_second_look``). ``progress``: one line per 250 steps."""
+    kept, and it needs a fitted second look (``add_second_look``). ``progress``: one line per 250 steps. ``states``: a
+    folder for each member's resume state (``member-K.pt``, ``train_member``'s ``state``): an interrupted run given
+    the same folder continues where it stopped; the caller removes it when the detector is saved."""
     if detector.variation is None:
         raise ModelError("the residual networks read the variation model: add it first (station variation)")
     if detector.residual is not None:
@@ -163,7 +166,8 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
             if progress is not None:
                 progress(f"residual network {k + 1}/{members}: step {step + 1}/{steps}, loss {loss:.3f}")
         with torch.enable_grad():
-            train_member(net, good_in, defect_in, masks, steps, seed + k, progress=report)
+            train_member(net, good_in, defect_in, masks, steps, seed + k, progress=report,
+                         state=None if states is None else states / f"member-{k}.pt")
     var.calibrate(*member_scores(out, val_good))
     res.calibrate(residual_raw(out, val_good))
     if look:

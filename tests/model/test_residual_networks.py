@@ -115,3 +115,55 @@ def test_adapting_keeps_the_residual_decision_and_recalibrates_it_on_the_lines_g
     bad = adapted.predict(parts(10, 13, defect=True) * torch.tensor([0.7, 1.0, 1.0, 1.0]).view(1, 4, 1, 1)).score
     assert float((good > result.threshold.threshold).float().mean()) <= 0.2
     assert float((bad > result.threshold.threshold).float().mean()) >= 0.8
+
+
+def member_inputs(n: int, seed: int) -> np.ndarray:
+    """(n, 6, H, W) network inputs: four signed z channels, the part region and a spread channel."""
+    rng = np.random.default_rng(seed)
+    x = rng.standard_normal((n, 6, H, W)).astype(np.float32)
+    x[:, 4] = 0.0
+    x[:, 4, 4:H - 4, 6:W - 6] = 1.0
+    return x
+
+
+def test_an_interrupted_member_resumes_from_its_state_to_the_weights_of_an_uninterrupted_run(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import model.draem.residual as residual
+
+    good, defects = member_inputs(8, 0), member_inputs(3, 1)
+    masks = np.zeros((3, H, W), bool)
+    masks[:, 10:14, 20:26] = True
+
+    def member() -> residual.ResidualNet:
+        torch.manual_seed(5)
+        return residual.ResidualNet(6)
+
+    whole = member()
+    residual.train_member(whole, good, defects, masks, steps=12, seed=3, batch=4)
+
+    state = tmp_path / "member-0.pt"
+    calls, real_loss = [0], residual.training_loss
+
+    def killed_at_step_8(*args: torch.Tensor) -> torch.Tensor:
+        calls[0] += 1
+        if calls[0] == 8:
+            raise KeyboardInterrupt  # the session ends mid-training
+        return real_loss(*args)
+
+    monkeypatch.setattr(residual, "training_loss", killed_at_step_8)
+    with pytest.raises(KeyboardInterrupt):
+        residual.train_member(member(), good, defects, masks, steps=12, seed=3, batch=4, state=state, every=5)
+    monkeypatch.setattr(residual, "training_loss", real_loss)
+    assert state.is_file()
+
+    resumed = member()
+    torch.manual_seed(99)  # whatever the global generator did in between
+    residual.train_member(resumed, good, defects, masks, steps=12, seed=3, batch=4, state=state, every=5)
+    for a, b in zip(whole.state_dict().values(), resumed.state_dict().values(), strict=True):
+        assert torch.equal(a, b)
+
+    with pytest.raises(ModelError, match=r"member-0\.pt.*another training"):
+        residual.train_member(member(), good, defects, masks, steps=20, seed=3, batch=4, state=state)
+    state.write_bytes(b"not a state")
+    with pytest.raises(ModelError, match=r"member-0\.pt: cannot resume"):
+        residual.train_member(member(), good, defects, masks, steps=12, seed=3, batch=4, state=state)

@@ -7,6 +7,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
+import torch
 from line_sets import make_line_set
 from test_variation_command import trained  # same folder (pytest puts it on sys.path)
 
@@ -133,3 +135,39 @@ def test_a_held_out_type_stays_out_of_the_parts_that_threshold_the_model(tmp_pat
         assert main(["threshold", "--model", str(out), "--data", str(val)]) == 0
         assert json.loads(out.with_suffix(".json").read_text())["train"]["threshold_set"]["n_defective"] == defective
     capsys.readouterr()
+
+
+def test_an_interrupted_training_continues_where_it_stopped_and_its_states_go_once_saved(
+        tmp_path: Path, capsys, monkeypatch: pytest.MonkeyPatch) -> None:
+    import model.draem.residual as residual
+
+    data, model = trained(tmp_path, capsys)
+    var = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(var)]) == 0
+    out, states = tmp_path / "r", tmp_path / "r.resume"
+    args = ["residual", "--model", str(var), "--data", str(data), "--out", str(out), "--members", "2", "--steps", "3"]
+    real, steps_run = residual.training_loss, [0]
+
+    def counted(kill_at: int | None):
+        def loss(*a: torch.Tensor) -> torch.Tensor:
+            steps_run[0] += 1
+            if steps_run[0] == kill_at:
+                raise KeyboardInterrupt  # the session ends in the second network's second step
+            return real(*a)
+        return loss
+
+    monkeypatch.setattr(residual, "training_loss", counted(5))
+    assert main(args) == 130
+    assert (states / "member-0.pt").is_file() and not out.with_suffix(".json").exists()
+    capsys.readouterr()
+    # another training into the same --out: refused in one line naming the folder and what differs
+    assert main([*args, "--seed", "4"]) == 2
+    err = capsys.readouterr().err
+    assert f"{states}: the resume states of another training (seed differ)" in err
+    assert len(err.strip().splitlines()) == 1
+    # the same training again: the first network is not trained again, the second from its start
+    steps_run[0] = 0
+    monkeypatch.setattr(residual, "training_loss", counted(None))
+    assert main(args) == 0
+    assert steps_run[0] == 3 and out.with_suffix(".json").is_file() and not states.exists()
+    assert "2 residual networks decide" in capsys.readouterr().out
