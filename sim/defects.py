@@ -59,6 +59,41 @@ def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
     return None
 
 
+FACES = ("top", "front", "back", "end", "bottom", "edge")
+"""The faces ``defect_face`` names, in the part's frame (x along the part, y across it, z up): top (+z), front (-y:
+the side both line presets' cameras look from, ``camera_azimuth_deg`` about 270), back (+y), end (+-x), bottom
+(-z), and edge (between two faces: a chip's cut, whose normal is their bisector)."""
+
+LEGACY_TOP_MM = 9.5
+"""Records written before 2026-12-01 carry no normal for a scratch or a stain: one whose middle lies at least this
+high (the built-in brick's top face is at 9.6 mm; a face below it has its picked centre lower) is on the top face,
+others unknown."""
+
+
+def defect_face(defect: dict[str, Any] | None) -> str | None:
+    """The face of the part a rendered defect lies on (``FACES``), from ``params.json``'s ``defect`` record: by the
+    recorded surface normal (within 25 deg of a face's), a missing stud on the top; None for a good part or a
+    record without the fields (an older scratch or stain off the top face: ``LEGACY_TOP_MM``)."""
+    if not defect:
+        return None
+    if defect.get("type") == "missing_stud":
+        return "top"
+    try:
+        n = defect.get("normal")
+        if n is None:
+            z = (float(defect["centre_m"][2]) if "centre_m" in defect  # a scratch's middle lies on its face
+                 else (float(defect["start_m"][2]) + float(defect["end_m"][2])) / 2)
+            return "top" if z * 1000 >= LEGACY_TOP_MM else None
+        x, y, z = (float(v) for v in n)
+    except (KeyError, TypeError, ValueError, IndexError):
+        return None
+    for face, ok in (("top", z > 0.9), ("bottom", z < -0.9), ("front", y < -0.9), ("back", y > 0.9),
+                     ("end", abs(x) > 0.9)):
+        if ok:
+            return face
+    return "edge"
+
+
 def apparent_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
     """("visible_px", the defect's pixels in the rendered frame: its mask's area, what the camera gives a detector
     of it, whatever its type; a defect on a face seen at a grazing angle or partly hidden has few) from
@@ -320,7 +355,7 @@ def _scratch(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.
     new_v = v - (depth * w)[:, None] * n
     mat = dict(b.material, alpha=float(rng.uniform(*cfg.scratch_alpha)))
     new_model, good = _split_body(b.model, body, new_v, region, DEFECT_PART)
-    info = {**b.info, "start_m": a.tolist(), "end_m": e.tolist(), "length_mm": length * 1000,
+    info = {**b.info, "start_m": a.tolist(), "end_m": e.tolist(), "normal": n.tolist(), "length_mm": length * 1000,
             "width_mm": width * 1000, "depth_mm": depth * 1000, "alpha": mat["alpha"]}
     return DefectResult(new_model, good if depth > 0 else None, body.name, mat, info)
 
@@ -337,7 +372,8 @@ def _stain(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nd
     mat = dict(b.material, colour=[k * x for x in b.material.get("colour", [0.5, 0.5, 0.5])],
                alpha=float(rng.uniform(*cfg.stain_alpha)))
     new_model, _ = _split_body(b.model, b.part, b.v, region, DEFECT_PART)
-    info = {**b.info, "centre_m": c.tolist(), "radius_mm": radius * 1000, "darken": k, "alpha": mat["alpha"]}
+    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "radius_mm": radius * 1000, "darken": k,
+            "alpha": mat["alpha"]}
     return DefectResult(new_model, None, b.part.name, mat, info)
 
 

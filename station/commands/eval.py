@@ -328,6 +328,9 @@ def run(args: argparse.Namespace) -> int:
     from sim.dataset import defect_records, open_dataset
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256
+    from station.defect_face import COLUMNS as FACE_COLUMNS
+    from station.defect_face import by_face as detection_by_face
+    from station.defect_face import plot as face_plot
     from station.defect_size import COLUMNS as SIZE_COLUMNS
     from station.defect_size import by_size as detection_by_sizes
     from station.defect_size import plot as size_plot
@@ -391,6 +394,10 @@ def run(args: argparse.Namespace) -> int:
                if source == "rendered" else [])
     if by_size and not args.no_plots:
         files.append(size_plot(out, by_size))
+    by_face = (detection_by_face(records, sp.label.numpy(), ev.scores, thr, sp.defect_type)
+               if source == "rendered" else [])
+    if by_face and not args.no_plots:
+        files.append(face_plot(out, by_face))
     industrial, industrial_note, rep = [], "", None
     if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
         val_data = args.val_data or args.data
@@ -428,7 +435,8 @@ def run(args: argparse.Namespace) -> int:
                "same_dataset_as_training": manifest_ok == manifest_sha256(args.data),
                "normal_prior": normal_prior_record(ck), "rows": rows,
                "ablation": ablation, "early_exit": early, "detectors": detectors, "channels": channels,
-               "by_detectability": by_snr, "by_size": by_size, "told_where": where,
+               "by_detectability": by_snr, "by_size": by_size, "by_face": by_face,
+               "told_where": where,
                "industrial": industrial, "industrial_note": industrial_note,
                "industrial_val_data": str(args.val_data or args.data), "presence_rule": args.presence_rule,
                "unjudged": {str(i): why for i, why in unjudged.items()}, "plots": files}
@@ -453,6 +461,11 @@ def run(args: argparse.Namespace) -> int:
                   "radius, a chip's cut; and visible_px, its pixels in the frame; caught: score > threshold, the "
                   "station's rule; image AUROC: these defects against all good parts):\n\n"
                   + markdown_table(by_size, SIZE_COLUMNS))
+    if by_face:
+        table += ("\n\nDetection by the face the defect lies on (station/defect_face.py, in the part's frame: top; "
+                  "front, toward the cameras; back; end; bottom; edge, a chip's cut; caught: score > threshold, "
+                  "the station's rule; image AUROC: these defects against all good parts):\n\n"
+                  + markdown_table(by_face, FACE_COLUMNS))
     if where:
         table += (f"\n\nTold where to look (station/told_where.py): the share of each type's defects whose "
                   f"residual at their own pixels lies above {100 * TOLD_WHERE_FALSE_REJECT:g} % of this split's good "

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sim.defects import _DEFECTS, DEFECT_TYPES, DefectConfig, apply_defect
+from sim.defects import _DEFECTS, DEFECT_TYPES, FACES, DefectConfig, apply_defect, defect_face
 from sim.meshes import usb_brick
 
 # Drawn by apply_defect before it became one function per type (seed 7, camera at (0.05, -0.08, 0.25)):
@@ -38,3 +38,26 @@ def test_a_seed_draws_the_same_defect_as_before(kind: str) -> None:
         np.testing.assert_allclose(r.info[key], value, rtol=1e-9, atol=1e-9, err_msg=key)
     assert r.model.part("defect").faces.shape[0] == defect_faces
     assert (None if r.good_region is None else r.good_region.faces.shape[0]) == good_faces
+
+
+def test_every_drawn_defect_names_the_face_it_lies_on() -> None:
+    model = usb_brick()
+    materials = {p.material: {"colour": [0.3, 0.4, 0.5], "alpha": 0.2} for p in model.parts}
+    faces = {kind: defect_face({"type": kind, **apply_defect(model, kind, np.random.default_rng(7), DefectConfig(),
+                                                             np.array([0.05, -0.08, 0.25]), materials).info})
+             for kind in DEFECT_TYPES}
+    # the pinned draws: dent, scratch and stain on the face toward the camera (y = -7.9 mm), the chip on the top
+    # face's end edge, the stud on the top
+    assert faces == {"dent": "front", "scratch": "front", "stain": "front", "chip": "edge", "missing_stud": "top"}
+    assert set(faces.values()) <= set(FACES)
+
+
+def test_an_older_record_without_a_normal_is_on_the_top_face_or_unknown() -> None:
+    top = {"type": "scratch", "start_m": [-0.0044, -0.0115, 0.0096], "end_m": [-0.0144, -0.0032, 0.0096]}
+    front = {"type": "scratch", "start_m": [-0.0072, -0.0079, -0.0003], "end_m": [-0.0116, -0.0079, 0.0006]}
+    assert defect_face(top) == "top" and defect_face(front) is None
+    assert defect_face({"type": "stain", "centre_m": [-0.0011, -0.0039, 0.0096]}) == "top"
+    assert defect_face({"type": "dent", "normal": [0.0, 1.0, 0.0]}) == "back"
+    assert defect_face({"type": "dent", "normal": [-1.0, 0.0, 0.0]}) == "end"
+    assert defect_face(None) is None and defect_face({"type": "dent"}) is None
+    assert defect_face({"type": "dent", "normal": "up"}) is None

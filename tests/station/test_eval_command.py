@@ -93,11 +93,12 @@ def test_eval_reports_detection_by_detectability_on_a_set_with_oracle_values(set
     assert "Detection by detectability" in (tmp_path / "rep" / "eval.md").read_text()
 
 
-def test_eval_reports_detection_by_defect_size_with_its_plot(setup, tmp_path) -> None:
-    """Rendered defects' sizes in params.json (as station render writes them) add the by-size table and plot."""
+def test_eval_reports_detection_by_defect_size_and_face_with_their_plots(setup, tmp_path) -> None:
+    """Rendered defects' sizes and normals in params.json (as station render writes them) add the by-size and
+    by-face tables and plots."""
     _, data, r, _ = setup
-    ds = with_defect_records(data, tmp_path / "ds", {1: {"radius_mm": 1.2, "visible_px": 900},
-                                                      11: {"radius_mm": 3.1, "visible_px": 40}})
+    ds = with_defect_records(data, tmp_path / "ds", {1: {"radius_mm": 1.2, "visible_px": 900, "normal": [0, 0, 1]},
+                                                      11: {"radius_mm": 3.1, "visible_px": 40, "normal": [0, -1, 0]}})
     assert main(["eval", "--model", str(r), "--data", str(ds), "--no-synthetic", "--out", str(tmp_path / "rep")]) == 0
     rep = json.loads((tmp_path / "rep" / "eval.json").read_text())
     assert [(row["type"], row["size"], row["range"], row["defects"]) for row in rep["by_size"]] == [
@@ -105,3 +106,8 @@ def test_eval_reports_detection_by_defect_size_with_its_plot(setup, tmp_path) ->
         ("stain", "visible_px", "40-40", 1), ("stain", "visible_px", "900-900", 1)]
     assert "by-size.png" in rep["plots"] and (tmp_path / "rep" / "by-size.png").stat().st_size > 1000
     assert "Detection by defect size" in (tmp_path / "rep" / "eval.md").read_text()
+    assert [(row["face"], row["type"], row["defects"]) for row in rep["by_face"]] == [
+        ("top", "all", 1), ("top", "stain", 1), ("front", "all", 1), ("front", "stain", 1)]
+    assert all(0.0 <= row["caught"] <= 1.0 and 0.0 <= row["image_auroc"] <= 1.0 for row in rep["by_face"])
+    assert "by-face.png" in rep["plots"] and (tmp_path / "rep" / "by-face.png").stat().st_size > 1000
+    assert "Detection by the face" in (tmp_path / "rep" / "eval.md").read_text()
