@@ -287,7 +287,7 @@ def train_member(net: ResidualNet, good: np.ndarray, defects: np.ndarray, masks:
     of rendered defective parts with ``masks`` (M, H, W) (M may be 0). Adam at ``lr``, divided by 5 at 80 % of
     ``steps``; ``progress(step, loss)`` every 250 steps and at the last. ``state``: a file the training's state
     (weights, optimiser, schedule, random generators) is written to every ``every`` steps and at the end; when it
-    exists, training continues from it, to the weights an uninterrupted run reaches (a state of another training,
+    exists, training continues from it with an uninterrupted run's draws and schedule (a state of another training,
     by its shapes, steps, seed, batch or rate, is refused: ModelError naming the file)."""
     rng = np.random.default_rng(seed)
     torch.manual_seed(seed)
