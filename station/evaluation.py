@@ -435,9 +435,9 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     for d in more_defects:  # before minutes of loading
         if Path(d).resolve() == Path(data).resolve():
             raise UserError(f"--more-defects {d}: the training set itself (--data); give another rendered set")
-    recipe = {"model_sha256": sha256_file(paths(model)[0]), "data": str(data), "manifest_sha256": manifest_sha256(data),
+    recipe = {"model_sha256": sha256_file(paths(model)[0]), "manifest_sha256": manifest_sha256(data),
               "more_defects": [manifest_sha256(d) for d in more_defects], "holdout_type": holdout_type, "steps": steps,
-              "seed": seed}  # what the networks learn from
+              "seed": seed}  # what the networks learn from, whatever the paths it is given by
     states = residual_states(out, recipe)  # before minutes of loading
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]

@@ -165,9 +165,10 @@ def test_an_interrupted_training_continues_where_it_stopped_and_its_states_go_on
     err = capsys.readouterr().err
     assert f"{states}: the resume states of another training (seed differ)" in err
     assert len(err.strip().splitlines()) == 1
-    # the same training again: the first network is not trained again, the second from its start
+    # the same training again, the set named by another path: the first network is not trained again, the second
+    # from its start
     steps_run[0] = 0
     monkeypatch.setattr(residual, "training_loss", counted(None))
-    assert main(args) == 0
+    assert main([a if a != str(data) else f"{data}/." for a in args]) == 0
     assert steps_run[0] == 3 and out.with_suffix(".json").is_file() and not states.exists()
     assert "2 residual networks decide" in capsys.readouterr().out
