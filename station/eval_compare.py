@@ -114,6 +114,15 @@ def read_scores(folder: str | Path) -> dict[int, tuple[int, str, float]]:
         raise UserError(f"{path}: no per-part scores ({exc}); run station eval again to write them") from None
 
 
+def read_faces(folder: str | Path) -> dict[int, str]:
+    """The face each defect lies on (``scores.csv``'s ``face`` column, ``station eval`` on a rendered set since
+    2026-12-01): dataset index -> face, for the parts whose face is known; empty for older reports."""
+    import csv
+
+    with open(Path(folder) / "scores.csv", newline="") as fh:
+        return {int(r["index"]): r["face"] for r in csv.DictReader(fh) if r.get("face")}
+
+
 def paired(folders: list[str], out: str | Path, resamples: int = 1000) -> tuple[list[dict[str, Any]], str]:
     """Each report after the first against the first, on the same parts (``model.draem.metrics.paired_auroc_gains``):
     image AUROC overall and per type, the gain and its paired bootstrap standard error. Writes ``paired.json`` and
@@ -158,6 +167,7 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
     import numpy as np
 
     from model.draem.camera_split import SplitThresholds, split_rejects
+    from sim.defects import FACES
 
     a, b = read_scores(first), read_scores(second)
     idx = sorted(set(a) & set(b))
@@ -166,6 +176,8 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
                         f"{len(idx)} in both)")
     y = np.array([bool(a[i][0] or b[i][0]) for i in idx])
     types = np.array([a[i][1] or b[i][1] for i in idx])
+    fa, fb = read_faces(first), read_faces(second)
+    faces = np.array([fa.get(i) or fb.get(i) or "" for i in idx])
     sa, sb = (np.array([s[i][2] for i in idx]) for s in (a, b))
     reports = [read_report(first), read_report(second)]
     left = [np.array([str(i) in r.get("unjudged", {}) for i in idx]) for r in reports]
@@ -179,6 +191,7 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
              f"second camera alone (its threshold {alone[1]:.4f})": (sb > alone[1]) | left[1],
              f"both, split ({pair.first:.4f}, {pair.second:.4f})": split_rejects(sa, sb, pair) | left[0] | left[1]}
     base = next(iter(rules.values()))
+    on = [f for f in FACES if (y & (faces == f)).any()]  # faces known (station eval on rendered sets since 2026-12-01)
     rows = []
     for name, rejected in rules.items():
         d = rejected[y].astype(float) - base[y].astype(float)
@@ -186,7 +199,8 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
                      "caught": int(rejected[y].sum()), "defective": int(y.sum()),
                      "gain_points": 100 * float(d.mean()) if y.any() else float("nan"),
                      "gain_se": 100 * float(d.std(ddof=1) / np.sqrt(d.size)) if y.sum() > 1 else float("nan"),
-                     "by_type": {str(t): float(rejected[y & (types == t)].mean()) for t in sorted(set(types[y]))}})
+                     "by_type": {str(t): float(rejected[y & (types == t)].mean()) for t in sorted(set(types[y]))},
+                     "by_face": {f: float(rejected[y & (faces == f)].mean()) for f in on}})
     kinds = sorted(set(types[y]))
     lines = [f"{len(idx)} parts ({int((~y).sum())} good, {int(y.sum())} defective); frames not judged: first camera "
              f"{int(left[0].sum())}, second camera {int(left[1].sum())}. Reports: {first}, {second}; split: {split}.",
@@ -198,6 +212,12 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
                      f" | {r['caught']} of {r['defective']} ({r['caught'] / bad:.1%}) | "
                      f"{r['gain_points']:+.1f} ({r['gain_se']:.1f}) | "
                      + " | ".join(f"{r['by_type'][k]:.0%}" for k in kinds) + " |")
+    if on:
+        lines += ["", "Defective parts caught by the face the defect lies on (station/defect_face.py; "
+                  f"{int((y & (faces == '')).sum())} of unknown face left out):", "",
+                  "| rule | " + " | ".join(f"{f} ({int((y & (faces == f)).sum())})" for f in on) + " |",
+                  "|---|" + "---|" * len(on)]
+        lines += [f"| {r['rule']} | " + " | ".join(f"{r['by_face'][f]:.0%}" for f in on) + " |" for r in rows]
     text = "\n".join(lines)
     report = {"first": str(first), "second": str(second), "split": str(split), "parts": len(idx), "rules": rows}
     out = Path(out)

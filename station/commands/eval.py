@@ -140,22 +140,25 @@ FALSE_REJECTS = (0.01, 0.05)
 """The industrial pair's fixed shares of good parts rejected."""
 
 
-def write_scores(path: Path, sp, ev, separable: list[bool | None] | None = None) -> None:
+def write_scores(path: Path, sp, ev, separable: list[bool | None] | None = None,
+                 faces: list[str | None] | None = None) -> None:
     """One row per part of the evaluated split: its dataset index, label, defect type ("" for good parts), the
     model's decision score, and each member's image score (``ev.member_scores``, e.g. "variation"), so two models
     on the same parts can be compared part by part (a paired bootstrap) and any row audited; with ``separable``
-    (``station.told_where``), whether the localised oracle separates each defect (1 / 0, "" for good parts)."""
+    (``station.told_where``), whether the localised oracle separates each defect (1 / 0, "" for good parts); with
+    ``faces`` (a rendered set), the face each defect lies on (``sim.defects.defect_face``; "" when unknown)."""
     import csv
 
     members = sorted(ev.member_scores)
-    told = [] if separable is None else ["separable"]
+    extra = ([] if separable is None else ["separable"]) + ([] if faces is None else ["face"])
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["index", "label", "defect_type", "score", *members, *told])
+        w.writerow(["index", "label", "defect_type", "score", *members, *extra])
         for k, (i, y, t) in enumerate(zip(sp.index, sp.label.tolist(), sp.defect_type, strict=True)):
             flag = [] if separable is None else ["" if separable[k] is None else int(separable[k])]
+            face = [] if faces is None else [faces[k] or ""]
             w.writerow([i, y, t, f"{float(ev.scores[k]):.6g}", *(f"{float(ev.member_scores[m][k]):.6g}"
-                                                                for m in members), *flag])
+                                                                for m in members), *flag, *face])
 
 
 def detector_rows(ev, label, types: list[str]) -> list[dict]:
@@ -326,6 +329,7 @@ def run(args: argparse.Namespace) -> int:
     from model.draem.metrics import detection_by_type, summary
     from model.draem.train import TensorData
     from sim.dataset import defect_records, open_dataset
+    from sim.defects import defect_face
     from station.benchmarks.report import markdown_table, write_report
     from station.datasets import manifest_sha256
     from station.defect_face import COLUMNS as FACE_COLUMNS
@@ -388,7 +392,7 @@ def run(args: argparse.Namespace) -> int:
     detectors = detector_rows(ev, sp.label.numpy(), sp.defect_type) if cfg.variation else []
     if ablation and not args.no_plots:
         files.append(_ablation_plot(out, ablation))
-    records = defect_records(args.data, sp.index)  # read once, for both tables
+    records = defect_records(args.data, sp.index)  # read once, for the tables and scores.csv's faces
     by_snr = detection_by_detectability(sp.label.numpy(), ev.scores, thr, oracle_snr(records), sp.defect_type)
     by_size = (detection_by_sizes(records, sp.label.numpy(), ev.scores, thr, sp.defect_type)
                if source == "rendered" else [])
@@ -427,7 +431,9 @@ def run(args: argparse.Namespace) -> int:
     ) if ck.detector.variation is not None else ([], None)
     if where and not args.no_plots:
         files.append(told_where_plot(out, where))
-    write_scores(out / "scores.csv", sp, ev, separable if where else None)
+    faces = ([defect_face(r) if int(lab) else None for r, lab in zip(records, sp.label.tolist(), strict=True)]
+             if source == "rendered" else None)
+    write_scores(out / "scores.csv", sp, ev, separable if where else None, faces)
     manifest_ok = ck.meta.get("data_manifest_sha256")
     payload = {"scores": "scores.csv", "model": str(args.model), "precision": args.precision,
                "model_config": cfg.to_dict(), "threshold": thr,

@@ -111,3 +111,7 @@ def test_eval_reports_detection_by_defect_size_and_face_with_their_plots(setup, 
     assert all(0.0 <= row["caught"] <= 1.0 and 0.0 <= row["image_auroc"] <= 1.0 for row in rep["by_face"])
     assert "by-face.png" in rep["plots"] and (tmp_path / "rep" / "by-face.png").stat().st_size > 1000
     assert "Detection by the face" in (tmp_path / "rep" / "eval.md").read_text()
+    import csv  # scores.csv carries each defect's face, for station compare's two-camera table
+
+    faces = {r["index"]: r["face"] for r in csv.DictReader(open(tmp_path / "rep" / "scores.csv"))}
+    assert faces["1"] == "top" and faces["11"] == "front" and faces["0"] == ""

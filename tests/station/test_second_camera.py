@@ -304,11 +304,14 @@ def test_a_station_built_without_its_second_model_loads_it(tmp_path):
     assert isinstance(station.inspector, PairInspector) and station.second_threshold == 0.5
 
 
-def write_eval(folder, labels, types, scores, threshold, unjudged=None):
-    """A ``station eval --out`` folder's two files that ``station compare`` reads."""
+def write_eval(folder, labels, types, scores, threshold, unjudged=None, faces=None):
+    """A ``station eval --out`` folder's two files that ``station compare`` reads (``faces``: its face column)."""
     folder.mkdir(parents=True)
-    rows = "".join(f"{i},{y},{t},{s}\n" for i, (y, t, s) in enumerate(zip(labels, types, scores, strict=True)))
-    (folder / "scores.csv").write_text("index,label,defect_type,score\n" + rows)
+    face = [""] * len(labels) if faces is None else [f",{f}" for f in faces]
+    rows = "".join(f"{i},{y},{t},{s}{f}\n"
+                   for i, (y, t, s, f) in enumerate(zip(labels, types, scores, face, strict=True)))
+    (folder / "scores.csv").write_text("index,label,defect_type,score" + ("" if faces is None else ",face") + "\n"
+                                       + rows)
     (folder / "eval.json").write_text(json.dumps({"threshold": threshold, "industrial": [{"defect_type": "all"}],
                                                   "unjudged": unjudged or {}}))
     return folder
@@ -331,6 +334,25 @@ def test_compare_split_scores_the_two_camera_station_on_held_out_parts(tmp_path,
     assert round(rules[2]["gain_points"], 1) == 33.3 and round(rules[2]["gain_se"], 1) == 33.3
     assert "frames not judged: first camera 0, second camera 1" in capsys.readouterr().out
     assert main(["compare", str(first), "--split", str(split), "--out", str(tmp_path / "o2")]) == 2
+    assert "by the face" not in (tmp_path / "out" / "two-cameras.md").read_text()  # reports before faces: no table
+
+
+def test_compare_split_says_what_each_face_loses_when_the_reports_know_the_faces(tmp_path):
+    first = write_eval(tmp_path / "line", [0, 0, 1, 1, 0], ["", "", "dent", "chip", ""], [0.1, 0.2, 0.99, 0.3, 0.1],
+                       0.9, faces=["", "", "top", "edge", ""])
+    # the side report knows the face of the scratch only it sees; the line report's faces stand for the rest
+    second = write_eval(tmp_path / "side", [0, 0, 1, 0, 1], ["", "", "dent", "", "scratch"], [0.1, 0.6, 0.4, 0.2, 0.9],
+                        0.8, faces=["", "", "top", "", "front"])
+    split = tmp_path / "split.json"
+    split.write_text(json.dumps({"splits": [{"first": 0.97, "second": 0.5, "k": 1, "good_rejected": 1, "caught": 0.7}],
+                                 "chosen": 0}))
+    assert main(["compare", str(first), str(second), "--split", str(split), "--out", str(tmp_path / "out")]) == 0
+    rules = json.loads((tmp_path / "out" / "two-cameras.json").read_text())["rules"]
+    assert [r["by_face"] for r in rules] == [{"top": 1.0, "front": 0.0, "edge": 0.0},
+                                             {"top": 0.0, "front": 1.0, "edge": 0.0},
+                                             {"top": 1.0, "front": 1.0, "edge": 0.0}]
+    md = (tmp_path / "out" / "two-cameras.md").read_text()
+    assert "| rule | top (1) | front (1) | edge (1) |" in md and "0 of unknown face left out" in md
 
 
 def test_station_split_prints_thresholds_that_keep_its_decisions():
