@@ -15,21 +15,21 @@ from pathlib import Path
 
 import numpy as np
 
-from sim.defects import FACES, defect_face
+from sim.defects import FACES
 
 COLUMNS = ["face", "type", "defects", "caught", "image_auroc"]
 
 
-def by_face(records: Sequence[dict | None], labels: Sequence[int], scores: Sequence[float],
+def by_face(faces: Sequence[str | None], labels: Sequence[int], scores: Sequence[float],
             threshold: float | None, types: Sequence[str]) -> list[dict]:
-    """Rows (``COLUMNS``) per face in ``FACES`` order ("all" types first), from the samples' defect records
-    (``sim.dataset.defect_records``); empty when no defect has a face. ``caught`` is NaN without a threshold,
-    ``image_auroc`` NaN without good parts."""
+    """Rows (``COLUMNS``) per face in ``FACES`` order ("all" types first), from each sample's face
+    (``sim.defects.defect_face`` of its defect record; None when unknown, ignored for good parts); empty when no
+    defect has a face. ``caught`` is NaN without a threshold, ``image_auroc`` NaN without good parts."""
     from model.draem.metrics import auroc
 
     y = np.asarray(labels, bool)
     s = np.asarray(scores, np.float64)
-    face = [defect_face(r) if y[i] else None for i, r in enumerate(records)]
+    face = [f if y[i] else None for i, f in enumerate(faces)]
     rows = []
     for f in FACES:
         on = [i for i, g in enumerate(face) if g == f]

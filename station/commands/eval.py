@@ -398,8 +398,9 @@ def run(args: argparse.Namespace) -> int:
                if source == "rendered" else [])
     if by_size and not args.no_plots:
         files.append(size_plot(out, by_size))
-    by_face = (detection_by_face(records, sp.label.numpy(), ev.scores, thr, sp.defect_type)
-               if source == "rendered" else [])
+    faces = ([defect_face(r) if int(lab) else None for r, lab in zip(records, sp.label.tolist(), strict=True)]
+             if source == "rendered" else None)  # for the table and scores.csv
+    by_face = detection_by_face(faces, sp.label.numpy(), ev.scores, thr, sp.defect_type) if faces else []
     if by_face and not args.no_plots:
         files.append(face_plot(out, by_face))
     industrial, industrial_note, rep = [], "", None
@@ -431,8 +432,6 @@ def run(args: argparse.Namespace) -> int:
     ) if ck.detector.variation is not None else ([], None)
     if where and not args.no_plots:
         files.append(told_where_plot(out, where))
-    faces = ([defect_face(r) if int(lab) else None for r, lab in zip(records, sp.label.tolist(), strict=True)]
-             if source == "rendered" else None)
     write_scores(out / "scores.csv", sp, ev, separable if where else None, faces)
     manifest_ok = ck.meta.get("data_manifest_sha256")
     payload = {"scores": "scores.csv", "model": str(args.model), "precision": args.precision,
