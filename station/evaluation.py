@@ -435,8 +435,9 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     for d in more_defects:  # before minutes of loading
         if Path(d).resolve() == Path(data).resolve():
             raise UserError(f"--more-defects {d}: the training set itself (--data); give another rendered set")
-    recipe = {"model_sha256": sha256_file(paths(model)[0]), "manifest_sha256": manifest_sha256(data),
-              "more_defects": [manifest_sha256(d) for d in more_defects], "holdout_type": holdout_type, "steps": steps,
+    manifests = {d: manifest_sha256(d) for d in (data, *more_defects)}
+    recipe = {"model_sha256": sha256_file(paths(model)[0]), "manifest_sha256": manifests[data],
+              "more_defects": [manifests[d] for d in more_defects], "holdout_type": holdout_type, "steps": steps,
               "seed": seed}  # what the networks learn from, whatever the paths it is given by
     states = residual_states(out, recipe)  # before minutes of loading
     tr = model_split(ck, model, data, "train")
@@ -458,8 +459,8 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
           f"{f' ({n_def - len(defects[0])} from --more-defects)' if more_defects else ''}"
           f"{f' (without {holdout_type})' if holdout_type else ''}; {members} networks x {steps} steps",
           file=sys.stderr, flush=True)
-    record = {"data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(good),
-              "more_defects": [{"data": str(d), "manifest_sha256": manifest_sha256(d)} for d in more_defects],
+    record = {"data": str(data), "manifest_sha256": manifests[data], "good_parts": len(good),
+              "more_defects": [{"data": str(d), "manifest_sha256": manifests[d]} for d in more_defects],
               "defective_parts": n_def, "holdout_type": holdout_type, "members": members, "steps": steps,
               "seed": seed, "look": look}
     states.mkdir(parents=True, exist_ok=True)
