@@ -13,6 +13,12 @@ Types (sizes in millimetres, drawn uniformly from ``DefectConfig`` ranges):
   stain         a disc (radius) of darker, rougher material (contamination)
   chip          a sharp edge or corner cut off by a plane (size = cut depth along the edge's bisector)
   missing_stud  one stud of the brick removed (objects with studs only)
+Kinds drawn only when a set names them (``[defects] types``; ``NEW_KINDS``, not in the default draw, so every set
+rendered before them draws the same), for measuring what a model does on a kind nobody rendered before:
+  blister       the dent's profile pushed *out* of the face (radius, height): a raised bump, convex where a dent
+                is concave (gas trapped under a moulded skin)
+  debris        a matte particle resting on a face (radius, grey level): a sphere of ``diffuse`` material (dust, a
+                flake of something else); it adds material and changes nothing of the part
 Each type is one function (``_dent``, ``_scratch``, ...; the table ``_DEFECTS``) that ``apply_defect`` dispatches to.
 Deformations are functions of position applied to all body vertices, so the duplicated vertices along sharp
 edges move together and the surface never cracks.
@@ -30,6 +36,9 @@ from .errors import SimError
 from .meshes import ObjectModel, Part, face_normals, vertex_normals
 
 DEFECT_TYPES = ("dent", "scratch", "stain", "chip", "missing_stud")
+"""The kinds a set draws by default (``DefectConfig.types``) and that models are trained and evaluated on."""
+NEW_KINDS = ("blister", "debris")
+"""Kinds drawn only when a set names them: for evaluating a model on kinds nobody trained or chose anything on."""
 DEFECT_PART = "defect"
 
 
@@ -116,20 +125,26 @@ class DefectConfig:
     """Factor on the material colour inside the stain."""
     stain_alpha: tuple[float, float] = (0.15, 0.5)
     chip_size_mm: tuple[float, float] = (0.5, 1.2)
+    blister_radius_mm: tuple[float, float] = (1.0, 2.5)
+    blister_height_mm: tuple[float, float] = (0.05, 0.3)
+    debris_radius_mm: tuple[float, float] = (0.15, 0.5)
+    debris_grey: tuple[float, float] = (0.05, 0.9)
+    """The particle's diffuse reflectance (grey): soot to light dust."""
     facing_camera: bool = True
     """Place defects on faces that face the camera (they can still be occluded)."""
 
     def __post_init__(self) -> None:
-        bad = [t for t in self.types if t not in DEFECT_TYPES]
+        bad = [t for t in self.types if t not in DEFECT_TYPES + NEW_KINDS]
         if bad or not self.types:
-            raise SimError(f"defects.types: unknown {bad or list(self.types)}; choose from {', '.join(DEFECT_TYPES)}")
+            raise SimError(f"defects.types: unknown {bad or list(self.types)}; choose from "
+                           f"{', '.join(DEFECT_TYPES + NEW_KINDS)}")
         for f in fields(self):
             v = getattr(self, f.name)
             if isinstance(v, tuple) and f.name != "types":
                 if len(v) != 2 or not all(np.isfinite(x) for x in v) or v[0] > v[1] or v[0] < 0:
                     raise SimError(f"defects.{f.name}: need a range (lo, hi) with 0 <= lo <= hi, got {v}")
         for key in ("dent_radius_mm", "scratch_length_mm", "scratch_width_mm", "stain_radius_mm", "chip_size_mm",
-                    "scratch_alpha", "stain_alpha"):
+                    "scratch_alpha", "stain_alpha", "blister_radius_mm", "debris_radius_mm"):
             if getattr(self, key)[0] <= 0:
                 raise SimError(f"defects.{key}: must be > 0, got {getattr(self, key)}")
 
@@ -319,19 +334,51 @@ def _chip(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nda
     return DefectResult(new_model, good, body.name, b.material, info)
 
 
-def _dent(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
-    """A smooth cosine-profile depression pushed in along the face normal."""
+def _bump(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray, radius_mm: tuple[float, float],
+          size_mm: tuple[float, float], sign: float) -> tuple[DefectResult, float]:
+    """A smooth cosine-profile bump of a drawn radius and size pushed along the face normal times ``sign`` (-1 in,
+    a dent; +1 out, a blister); returns the result and the size drawn (m)."""
     v, body = b.v, b.part
     _, c, n = _pick_face(rng, b.part, cam_obj, cfg.facing_camera)
-    radius, depth = _mm(rng, cfg.dent_radius_mm), _mm(rng, cfg.dent_depth_mm)
+    radius, size = _mm(rng, radius_mm), _mm(rng, size_mm)
     r = np.linalg.norm(v - c, axis=1)
     w = np.where(r < radius, 0.5 * (1 + np.cos(np.pi * np.minimum(r / radius, 1))), 0.0)
-    new_v = v - (depth * w)[:, None] * n
+    new_v = v + (sign * size * w)[:, None] * n
     region = (r[body.faces] < radius).any(1)
     new_model, good = _split_body(b.model, body, new_v, region, body.material)
-    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "radius_mm": radius * 1000,
-            "depth_mm": depth * 1000}
-    return DefectResult(new_model, good, body.name, b.material, info)
+    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "radius_mm": radius * 1000}
+    return DefectResult(new_model, good, body.name, b.material, info), size
+
+
+def _dent(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A smooth cosine-profile depression pushed in along the face normal."""
+    r, depth = _bump(b, rng, cfg, cam_obj, cfg.dent_radius_mm, cfg.dent_depth_mm, -1.0)
+    r.info["depth_mm"] = depth * 1000
+    return r
+
+
+def _blister(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A smooth cosine-profile bump pushed out along the face normal (a dent's mirror image)."""
+    r, height = _bump(b, rng, cfg, cam_obj, cfg.blister_radius_mm, cfg.blister_height_mm, 1.0)
+    r.info["height_mm"] = height * 1000
+    return r
+
+
+def _debris(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A matte sphere resting on a face, sunk by a fifth of its radius (its contact), of ``diffuse`` grey."""
+    import trimesh
+
+    _, c, n = _pick_face(rng, b.part, cam_obj, cfg.facing_camera)
+    radius = _mm(rng, cfg.debris_radius_mm)
+    grey = float(rng.uniform(*cfg.debris_grey))
+    ball = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    unit = np.asarray(ball.vertices, dtype=np.float64)
+    v = c + 0.8 * radius * n + radius * unit
+    particle = Part(DEFECT_PART, v.astype(np.float32), np.asarray(ball.faces, dtype=np.int32),
+                    unit.astype(np.float32), DEFECT_PART)
+    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "radius_mm": radius * 1000, "grey": grey}
+    material = {"type": "diffuse", "colour": [grey] * 3}
+    return DefectResult(b.model.with_parts([*b.model.parts, particle]), None, b.part.name, material, info)
 
 
 def _scratch(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
@@ -378,5 +425,6 @@ def _stain(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nd
 
 
 _DEFECTS: dict[str, Callable[[_Body, np.random.Generator, DefectConfig, np.ndarray], DefectResult]] = {
-    "dent": _dent, "scratch": _scratch, "stain": _stain, "chip": _chip, "missing_stud": _missing_stud}
-"""Defect type -> the function that puts it on a body (one per name of ``DEFECT_TYPES``)."""
+    "dent": _dent, "scratch": _scratch, "stain": _stain, "chip": _chip, "missing_stud": _missing_stud,
+    "blister": _blister, "debris": _debris}
+"""Defect type -> the function that puts it on a body (one per name of ``DEFECT_TYPES`` and ``NEW_KINDS``)."""

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sim.defects import _DEFECTS, DEFECT_TYPES, FACES, DefectConfig, apply_defect, defect_face
+from sim.defects import _DEFECTS, DEFECT_TYPES, FACES, NEW_KINDS, DefectConfig, apply_defect, defect_face
+from sim.errors import SimError
 from sim.meshes import usb_brick
 
 # Drawn by apply_defect before it became one function per type (seed 7, camera at (0.05, -0.08, 0.25)):
@@ -24,7 +25,7 @@ PINNED = {
 
 
 def test_every_defect_type_has_its_function() -> None:
-    assert set(_DEFECTS) == set(DEFECT_TYPES) == set(PINNED)
+    assert set(DEFECT_TYPES) == set(PINNED) and set(DEFECT_TYPES) <= set(_DEFECTS)
 
 
 @pytest.mark.parametrize("kind", DEFECT_TYPES)
@@ -61,3 +62,52 @@ def test_an_older_record_without_a_normal_is_on_the_top_face_or_unknown() -> Non
     assert defect_face({"type": "dent", "normal": [-1.0, 0.0, 0.0]}) == "end"
     assert defect_face(None) is None and defect_face({"type": "dent"}) is None
     assert defect_face({"type": "dent", "normal": "up"}) is None
+
+
+def _draw(kind: str, seed: int = 7):
+    model = usb_brick()
+    materials = {p.material: {"colour": [0.3, 0.4, 0.5], "alpha": 0.2} for p in model.parts}
+    cfg = DefectConfig(types=(kind,))
+    return model, apply_defect(model, kind, np.random.default_rng(seed), cfg, np.array([0.05, -0.08, 0.25]), materials)
+
+
+def test_the_new_kinds_are_not_in_the_default_draw() -> None:
+    # every set rendered before them draws the same five kinds
+    assert DefectConfig().types == DEFECT_TYPES == ("dent", "scratch", "stain", "chip", "missing_stud")
+    assert set(NEW_KINDS) == {"blister", "debris"} and not set(NEW_KINDS) & set(DEFECT_TYPES)
+    assert set(_DEFECTS) == set(DEFECT_TYPES) | set(NEW_KINDS)
+    with pytest.raises(SimError, match="unknown"):
+        DefectConfig(types=("bubble",))
+
+
+def test_a_blister_pushes_the_face_out_where_a_dent_pushes_it_in() -> None:
+    _, b = _draw("blister")
+    _, d = _draw("dent")
+    for r, size in ((b, "height_mm"), (d, "depth_mm")):
+        h = (r.model.part("defect").vertices.astype(np.float64) - np.asarray(r.info["centre_m"])) @ np.asarray(
+            r.info["normal"])
+        r.info["out_mm"], r.info["in_mm"] = h.max() * 1000, -h.min() * 1000
+    # the same draw's place: the blister rises by its height, the dent sinks by its depth (up to where the mesh's
+    # 0.5 mm grid samples the profile's top)
+    assert b.info["centre_m"] == d.info["centre_m"] and b.info["normal"] == d.info["normal"]
+    assert 0.8 * b.info["height_mm"] < b.info["out_mm"] <= b.info["height_mm"] + 1e-6 and b.info["in_mm"] < 1e-6
+    assert 0.8 * d.info["depth_mm"] < d.info["in_mm"] <= d.info["depth_mm"] + 1e-6 and d.info["out_mm"] < 1e-6
+    assert 1.0 <= b.info["radius_mm"] <= 2.5 and 0.05 <= b.info["height_mm"] <= 0.3
+    assert b.good_region is not None and defect_face({"type": "blister", **b.info}) == "front"
+
+
+def test_debris_is_a_matte_particle_resting_on_a_face() -> None:
+    model, r = _draw("debris")
+    particle = r.model.part("defect")
+    c, n = np.asarray(r.info["centre_m"]), np.asarray(r.info["normal"])
+    radius = r.info["radius_mm"] / 1000
+    assert 0.15 <= r.info["radius_mm"] <= 0.5 and 0.05 <= r.info["grey"] <= 0.9
+    h = (particle.vertices.astype(np.float64) - c) @ n
+    # it sits on the face: its lowest point a little below it (contact), its top one diameter up at most
+    assert -0.5 * radius < h.min() < 0 and h.max() < 2 * radius
+    # the part itself is unchanged: the body keeps every face, nothing disappeared (no good region)
+    assert r.model.part("body").faces.shape == model.part("body").faces.shape and r.good_region is None
+    assert r.material == {"type": "diffuse", "colour": [r.info["grey"]] * 3}
+    assert defect_face({"type": "debris", **r.info}) == "front"
+    # seeded
+    assert _draw("debris")[1].info == r.info and _draw("debris", 8)[1].info != r.info
