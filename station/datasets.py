@@ -241,7 +241,7 @@ def concat(parts: list[SplitTensors]) -> SplitTensors:
 
 def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
     """The defective samples of a training split (without ``holdout_type``) as ``model.draem.mixed.TensorDefectData``
-    for mixed supervision; UserError when there are none."""
+    for mixed supervision, and their defect types (sorted, each once); UserError when there are none."""
     from model.draem.holdout import indices_without_type
     from model.draem.mixed import TensorDefectData
 
@@ -258,4 +258,4 @@ def rendered_defects(sp: SplitTensors, holdout_type: str | None, data: str):
                         + (f" besides {holdout_type}" if holdout_type else "")
                         + " (render it with defects in training: station render --defects-in-train)")
     d = subset(sp, defective)
-    return TensorDefectData(d.priors, d.object_mask, d.defect_mask)
+    return TensorDefectData(d.priors, d.object_mask, d.defect_mask), tuple(sorted(set(d.defect_type)))

@@ -442,7 +442,7 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     states = residual_states(out, recipe)  # before minutes of loading
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
-    defects, masks = [], []
+    defects, masks, learned = [], [], set()
     for root, sp in ((data, tr), *((d, model_split(ck, model, d, "train")) for d in more_defects)):
         keep = [i for i, (lab, t) in enumerate(zip(sp.label.tolist(), sp.defect_type, strict=True))
                 if lab and t != holdout_type and sp.mask_known is not None and bool(sp.mask_known[i])]
@@ -451,6 +451,7 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
                             f"--defects-in-train){f' besides {holdout_type}' if holdout_type else ''}")
         defects.append(sp.priors[keep])
         masks.append(sp.defect_mask[keep].bool())
+        learned |= {sp.defect_type[i] for i in keep}
     val_data = val_data or data
     va = model_split(ck, model, val_data, "val")
     good_va = va.label == 0
@@ -461,8 +462,8 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
           file=sys.stderr, flush=True)
     record = {"data": str(data), "manifest_sha256": manifests[data], "good_parts": len(good),
               "more_defects": [{"data": str(d), "manifest_sha256": manifests[d]} for d in more_defects],
-              "defective_parts": n_def, "holdout_type": holdout_type, "members": members, "steps": steps,
-              "seed": seed, "look": look}
+              "defective_parts": n_def, "holdout_type": holdout_type, "types": sorted(learned), "members": members,
+              "steps": steps, "seed": seed, "look": look}
     states.mkdir(parents=True, exist_ok=True)
     (states / "recipe.json").write_text(json.dumps(recipe, indent=1))
     try:

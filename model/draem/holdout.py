@@ -33,3 +33,12 @@ def held_out_type(train: Mapping) -> str | None:
     networks' (``train.rendered_defects``). None when no type was held out."""
     record = train.get("residual") or train.get("rendered_defects") or {}
     return record.get("holdout_type") or None
+
+
+def learned_types(train: Mapping) -> tuple[str, ...] | None:
+    """The defect types whose rendered parts the record ``train`` (as ``held_out_type``) says were learned from, or
+    None for a record that does not name them (records before 2026-12-01; their sets drew from the five default
+    kinds at most)."""
+    record = train.get("residual") or train.get("rendered_defects") or {}
+    types = record.get("types")
+    return None if types is None else tuple(types)

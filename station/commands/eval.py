@@ -18,8 +18,9 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from model.draem.holdout import held_out_type
+from model.draem.holdout import held_out_type, learned_types
 from model.draem.runtime import EVAL_PRECISIONS
+from sim.defects import DEFECT_TYPES
 from station.commands.arguments import add_presence_rule, positive_int
 from station.errors import UserError
 from station.evaluation import ABLATION, describe_left_out, evaluate_split, load_and_evaluate, normal_prior_record
@@ -187,14 +188,18 @@ def detector_rows(ev, label, types: list[str]) -> list[dict]:
 def industrial_rows(report, train_meta: dict) -> list[dict]:
     """``model.draem.metrics.detection_by_type``'s report as table rows: per defect type (and all), parts, image
     AUROC and the share caught at each of ``FALSE_REJECTS``, and whether the type was among the model's rendered
-    training defects ("trained on"), left out of them ("held out") or the model saw none ("synthetic only")."""
+    training defects ("trained on"), left out of them ("held out"), a kind its training sets never drew ("never in
+    training": ``learned_types``; a record without them drew from ``sim.defects.DEFECT_TYPES``) or the model saw
+    none ("synthetic only")."""
     # the residual networks, where there are any, learned from rendered defects whatever the networks did
     learned = bool(train_meta.get("residual") or train_meta.get("rendered_defects"))
     held = held_out_type(train_meta)
+    drawn = learned_types(train_meta) or DEFECT_TYPES
     rows = []
     for det in [report.overall, *report.per_type.values()]:
         seen = ("" if det.defect_type == "all" else "synthetic only" if not learned
-                else "held out" if det.defect_type == held else "trained on")
+                else "held out" if det.defect_type == held
+                else "trained on" if det.defect_type in drawn else "never in training")
         rows.append({"type": det.defect_type, "parts": det.n_defective, "in_training": seen,
                      "image_auroc": det.image_auroc,
                      **{f"caught_at_{100 * fr:g}%_false_rejects": det.caught[fr] for fr in FALSE_REJECTS}})

@@ -177,7 +177,7 @@ def run(args: argparse.Namespace) -> int:
     tr = load_split(args.data, "train", priors, size, args.limit, good_only=not mixed, roi=config.roi,
                     normals=normals, frame_aspect=config.frame_aspect,
                     dome_segments=config.dome_segments)
-    defects = rendered_defects(tr, args.holdout_type, args.data) if mixed else None
+    defects, learned = rendered_defects(tr, args.holdout_type, args.data) if mixed else (None, ())
     if mixed:
         tr = good_part_of(tr)
     va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals,
@@ -209,7 +209,7 @@ def run(args: argparse.Namespace) -> int:
         meta["normal_prior"] = normal_prior
     if defects is not None:
         meta["rendered_defects"] = {"fraction": args.rendered_fraction, "parts": len(defects),
-                                    "holdout_type": args.holdout_type}
+                                    "holdout_type": args.holdout_type, "types": list(learned)}
     if args.polarization_noise:
         meta["polarization_noise"] = args.polarization_noise
     if args.init:

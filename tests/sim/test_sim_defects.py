@@ -83,7 +83,7 @@ def test_the_new_kinds_are_not_in_the_default_draw() -> None:
 def test_a_blister_pushes_the_face_out_where_a_dent_pushes_it_in() -> None:
     _, b = _draw("blister")
     _, d = _draw("dent")
-    for r, size in ((b, "height_mm"), (d, "depth_mm")):
+    for r in (b, d):
         h = (r.model.part("defect").vertices.astype(np.float64) - np.asarray(r.info["centre_m"])) @ np.asarray(
             r.info["normal"])
         r.info["out_mm"], r.info["in_mm"] = h.max() * 1000, -h.min() * 1000

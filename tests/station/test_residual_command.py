@@ -101,6 +101,9 @@ def test_more_defects_are_learned_from_and_recorded_and_a_set_without_them_refus
     capsys.readouterr()
     alone = json.loads((tmp_path / "r1.json").read_text())["train"]["residual"]["defective_parts"]
     assert rec["defective_parts"] > alone > 0  # the other set's defective train parts were added to the set's own
+    # the kinds learned from are recorded (station eval's in_training column reads them): the set's and the other's
+    assert rec["types"] == ["chip", "stain"]
+    assert json.loads((tmp_path / "r1.json").read_text())["train"]["residual"]["types"] == ["stain"]
     # a set whose train split has no defective parts (or only the held-out type's) is refused in one line, once
     # loaded (after the loading progress), before any training
     for extra in (["--holdout-type", "chip"], []):

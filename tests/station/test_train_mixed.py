@@ -23,7 +23,7 @@ def test_rendered_defects_of_the_train_split_join_every_batch_and_are_recorded(t
     manifest = json.loads((data / "manifest.json").read_text())
     assert side["model"]["frame_aspect"] == manifest["width"] / manifest["height"]  # the region's view (roi.py)
     assert meta["rendered_defects"]["fraction"] == 0.25 and meta["rendered_defects"]["parts"] > 0
-    assert meta["rendered_defects"]["holdout_type"] is None
+    assert meta["rendered_defects"]["holdout_type"] is None and meta["rendered_defects"]["types"] == ["stain"]
     assert meta["train_config"]["rendered_fraction"] == 0.25
 
 
