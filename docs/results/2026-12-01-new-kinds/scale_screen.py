@@ -1,10 +1,12 @@
 """screen.md: the curvature window at finer scales beside the shipped one (sigma 3), on validation sets only.
 
-Usage: python scale_screen.py MODEL VAL NEWKINDS_VAL OUT.json
+Usage: [SIGMAS=1,1.5,2,3] python scale_screen.py MODEL VAL NEWKINDS_VAL OUT.json
+SIGMAS (input px): the curvature's scales, each alone and each finer one with the largest (default as screen.md).
 Calibration as ../2026-11-29-ridge/window_screen.py (stop 60): per-pixel median / 95th percentile (blurred) of each
 statistic from the even good parts of VAL's val split (A), scores over their A 99th percentile, thresholds at 1 % and
 5 % from its odd good parts (B); VAL scored on B and its defective parts, NEWKINDS_VAL on its val split."""
 import json
+import os
 import sys
 
 import cv2
@@ -16,8 +18,8 @@ from model.draem.metrics import auroc
 from model.draem.variation import NOISE_CAP, WINDOW_BLUR_PX, WINDOW_QUANTILE
 from station.evaluation import model_split
 
-SIGMAS = (1.0, 1.5, 2.0, 3.0)
-COMBOS = [(f"log{s}",) for s in SIGMAS] + [(f"log{s}", "log3.0") for s in SIGMAS[:-1]]
+SIGMAS = tuple(float(s) for s in os.environ.get("SIGMAS", "1,1.5,2,3").split(","))
+COMBOS = [(f"log{s}",) for s in SIGMAS] + [(f"log{s}", f"log{SIGMAS[-1]}") for s in SIGMAS[:-1]]
 
 
 def stats(z: np.ndarray) -> dict[str, np.ndarray]:
