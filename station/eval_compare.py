@@ -3,8 +3,8 @@
 The standard held-out report: per defect type, the industrial pair (defective parts caught at 1 % and 5 % of good
 parts rejected, thresholds from validation) and image AUROC of the model that trained on rendered defects of that
 type ("trained on"), of the one that never saw it ("held out", ``station train --holdout-type``) and of the one that
-saw no rendered defect at all ("synthetic only", DRAEM's recipe), and on a kind no training set drew ("never in
-training": ``sim.defects.NEW_KINDS``). Each report's rows say which of those it is
+saw no rendered defect at all ("synthetic only", DRAEM's recipe), and on a kind its training never drew ("never in
+training", e.g. ``sim.defects.NEW_KINDS``). Each report's rows say which of those it is
 (``station eval``'s ``in_training`` column), so the reports can be given in any order.
 """
 

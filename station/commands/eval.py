@@ -194,7 +194,8 @@ def industrial_rows(report, train_meta: dict) -> list[dict]:
     # the residual networks, where there are any, learned from rendered defects whatever the networks did
     learned = bool(train_meta.get("residual") or train_meta.get("rendered_defects"))
     held = held_out_type(train_meta)
-    drawn = learned_types(train_meta) or DEFECT_TYPES
+    drawn = learned_types(train_meta)
+    drawn = DEFECT_TYPES if drawn is None else drawn
     rows = []
     for det in [report.overall, *report.per_type.values()]:
         seen = ("" if det.defect_type == "all" else "synthetic only" if not learned

@@ -26,6 +26,9 @@ def test_a_kind_the_training_never_drew_is_not_called_trained_on() -> None:
     # a record that names the kinds its networks learned from
     named = {"rendered_defects": {"holdout_type": None, "types": ["stain"]}}
     assert _status(["dent", "stain"], named) == {"all": "", "dent": "never in training", "stain": "trained on"}
+    # networks whose record names no type learned from none of them
+    empty = {"residual": {"holdout_type": None, "types": []}}
+    assert _status(["dent"], empty) == {"all": "", "dent": "never in training"}
     # no network learned from a rendered defect
     assert _status(["dent", "blister"], {}) == {"all": "", "dent": "synthetic only", "blister": "synthetic only"}
 
