@@ -26,7 +26,9 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               test splits (270 parts, image AUROC at 0.5x detail): per-pixel median/MAD 0.764, mean-centred
               0.788, 5 components 0.799, 10 components 0.818, 20 0.812, 30 0.812; in the shipped model, on the
               test split, 0.744 -> 0.833. More detail buys nothing here (0.798 at 0.4x and 0.5x, 0.796 at
-              0.75x): what hides dents and scratches is the part-to-part variation, not the pixel size
+              0.75x): what hides dents and scratches is the part-to-part variation, not the pixel size; so
+              for particles of 0.3-1 mm too (2026-12-01: at twice the shipped detail fewer caught at 1 %, at
+              every window, docs/results/2026-12-01-new-kinds/detail.md)
     z map     per pixel and channel residual / scale (scale = 1.4826 MAD of the good parts' residuals, each
               from an appearance fitted without that part (``FOLDS``), floored at the ``floor_quantile`` of the
               scales over the region and at ``MIN_SCALE``, so flat regions do not divide by ~0); the window
