@@ -50,16 +50,19 @@ def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
       slope): what turns a mirrored light or the shading away;
     - scratch: ``area_mm2``, length x width: the rough stripe that scatters a mirrored light away;
     - stain: ``radius_mm``;
-    - chip: ``size_mm``, the cut's depth along the edge's bisector."""
+    - chip: ``size_mm``, the cut's depth along the edge's bisector;
+    - blister: ``slope_deg``, as a dent's (its profile is a dent's, raised);
+    - debris: ``radius_mm``, the particle's."""
     if not defect:
         return None
     kind = defect.get("type")
     try:
-        if kind == "dent":
-            return "slope_deg", float(np.degrees(np.arctan(np.pi / 2 * defect["depth_mm"] / defect["radius_mm"])))
+        if kind in ("dent", "blister"):
+            rise = defect["depth_mm"] if kind == "dent" else defect["height_mm"]
+            return "slope_deg", float(np.degrees(np.arctan(np.pi / 2 * rise / defect["radius_mm"])))
         if kind == "scratch":
             return "area_mm2", float(defect["length_mm"] * defect["width_mm"])
-        if kind == "stain":
+        if kind in ("stain", "debris"):
             return "radius_mm", float(defect["radius_mm"])
         if kind == "chip":
             return "size_mm", float(defect["size_mm"])

@@ -19,6 +19,10 @@ def test_each_type_has_the_size_that_governs_it() -> None:
     assert defect_size({"type": "stain", "radius_mm": 1.5}) == ("radius_mm", 1.5)
     assert defect_size({"type": "chip", "size_mm": 0.7}) == ("size_mm", 0.7)
     assert defect_size({"type": "missing_stud", "radius_mm": 2.4}) is None  # all alike
+    # the kinds nobody trained on: a blister's steepest tilt as a dent's, a particle's radius
+    name, slope = defect_size({"type": "blister", "radius_mm": 2.0, "height_mm": 0.2})
+    assert name == "slope_deg" and slope == pytest.approx(math.degrees(math.atan(math.pi / 2 * 0.1)))
+    assert defect_size({"type": "debris", "radius_mm": 0.3, "grey": 0.5}) == ("radius_mm", 0.3)
     assert defect_size(None) is None and defect_size({"type": "dent", "radius_mm": 2.0}) is None
     assert apparent_size({"type": "missing_stud", "visible_px": 1600}) == ("visible_px", 1600.0)  # every type
     assert apparent_size({"type": "dent"}) is None and apparent_size(None) is None
