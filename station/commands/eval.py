@@ -469,8 +469,9 @@ def run(args: argparse.Namespace) -> int:
     if by_size:
         table += ("\n\nDetection by defect size (each type's defects in thirds by a size, station/defect_size.py: "
                   "the one that governs the type's visibility, a dent's or blister's steepest tilt, a scratch's "
-                  "area, a stain's or particle's radius, a chip's cut; and visible_px, its pixels in the frame; caught: score > threshold, the "
-                  "station's rule; image AUROC: these defects against all good parts):\n\n"
+                  "area, a stain's or particle's radius, a chip's cut; and visible_px, its pixels in the frame; "
+                  "caught: score > threshold, the station's rule; image AUROC: these defects against all good "
+                  "parts):\n\n"
                   + markdown_table(by_size, SIZE_COLUMNS))
     if by_face:
         table += ("\n\nDetection by the face the defect lies on (station/defect_face.py, in the part's frame: top; "
