@@ -2,7 +2,8 @@
 line can state which defects of a type it catches, not only how many. Two sizes (``MEASURES``): the physical one
 that governs each type's visibility (``sim.defects.defect_size``: a dent's steepest tilt, a scratch's area, a
 stain's radius, a chip's cut, a blister's tilt, a particle's radius; missing studs are all alike) and the apparent
-one, the defect's pixels in the frame (``sim.defects.apparent_size``), which also says how squarely its face is seen and how much of it is hidden.
+one, the defect's pixels in the frame (``sim.defects.apparent_size``), which also says how squarely its face is
+seen and how much of it is hidden.
 
 Rows per size and type: each third of that type's defects in the split, by size (equal counts), with the size
 range, the defects, the share caught (image score > the threshold, as ``station eval``'s ``detected``) and the image
