@@ -3,7 +3,8 @@ file's variation model (as ``zmaps`` computes z: clusters, noise level; no secon
 log_screen.py of 2026-11-29-curvature: per-pixel median / 95th percentile (blurred) from the even good parts of the val
 split (A); each statistic's scores divided by its A 99th percentile (so a max of several is fair); thresholds at 1 %
 and 5 % from the odd good parts (B). Selection on the val split only; used held-out sets are printed beside it.
-``screen(stats, combos)`` reads MODEL VAL OUT.json [HELDOUT...] from the command line; ``stats(z, judged)`` maps
+``screen(stats, combos)`` reads MODEL VAL OUT.json [HELDOUT...] from the command line (a HELDOUT given as DATA:val is
+scored on its val split, e.g. a validation set of other kinds: stop 76); ``stats(z, judged)`` maps
 (C, H, W) z (zero outside judged) to {name: (H, W) map}; ``combos`` lists tuples of names, each scored as the
 larger of its statistics."""
 import json
@@ -83,6 +84,7 @@ def screen(stats: Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]],
 
     result = {"val (B good, all defective)": report("val", vs, vl, vt, (vl == 1) | np.isin(np.arange(len(vl)), B))}
     for t in tests:
-        tm, tj, tl, tt = run(t, "test")
+        data, _, split = t.partition(":")
+        tm, tj, tl, tt = run(data, split or "test")
         result[t] = report(t.split("/")[-1], scores(tm, tj), tl, tt, np.ones(len(tl), bool))
     json.dump(result, open(out, "w"), indent=1)

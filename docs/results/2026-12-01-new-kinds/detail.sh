@@ -13,7 +13,7 @@ for v in "V1 96 3" "V2 192 6"; do
     [ -f $R/$1.json ] || /usr/bin/time -v .venv/bin/station variation --model $R/$1-net/best --data data/line-pf-train \
         --val-data data/line-pf-val --curvature $3 --out $R/$1 > $R/$1-fit.log 2>&1
 done
-SIGMAS=1,1.5,2,3 .venv/bin/python $D/scale_screen.py $R/V1 data/line-pv-val data/new-kinds-val-1180 \
-    $D/detail-V1.json > $D/detail-V1.txt
-SIGMAS=2,3,4,6 .venv/bin/python $D/scale_screen.py $R/V2 data/line-pv-val data/new-kinds-val-1180 \
-    $D/detail-V2.json > $D/detail-V2.txt
+SIGMAS=1,1.5,2,3 .venv/bin/python $D/scale_screen.py $R/V1 data/line-pv-val $D/detail-V1.json \
+    data/new-kinds-val-1180:val > $D/detail-V1.txt
+SIGMAS=2,3,4,6 .venv/bin/python $D/scale_screen.py $R/V2 data/line-pv-val $D/detail-V2.json \
+    data/new-kinds-val-1180:val > $D/detail-V2.txt
