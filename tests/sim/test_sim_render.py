@@ -293,11 +293,12 @@ def brick_case(variant: str):
 def _defect(model, params, kind: str):
     to_world = object_to_world(params["pose"])
     cam_obj = np.linalg.solve(to_world, np.r_[params["camera"]["origin"], 1.0])[:3]
-    cfg = DefectConfig(stain_radius_mm=(3.0, 3.5), dent_radius_mm=(2.5, 3.0), dent_depth_mm=(0.4, 0.5))
+    cfg = DefectConfig(types=(kind,), stain_radius_mm=(3.0, 3.5), dent_radius_mm=(2.5, 3.0), dent_depth_mm=(0.4, 0.5),
+                       blister_radius_mm=(2.5, 3.0), blister_height_mm=(0.4, 0.5), debris_radius_mm=(1.0, 1.2))
     return apply_defect(model, kind, np.random.default_rng(1), cfg, cam_obj, params["materials"])
 
 
-@pytest.mark.parametrize("kind", ["stain", "dent", "missing_stud"])
+@pytest.mark.parametrize("kind", ["stain", "dent", "missing_stud", "blister", "debris"])
 def test_defect_mask_visible_then_hidden(brick_case, kind: str) -> None:
     model, params = brick_case
     defect = _defect(model, params, kind)
