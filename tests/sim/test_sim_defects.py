@@ -83,15 +83,17 @@ def test_the_new_kinds_are_not_in_the_default_draw() -> None:
 def test_a_blister_pushes_the_face_out_where_a_dent_pushes_it_in() -> None:
     _, b = _draw("blister")
     _, d = _draw("dent")
-    for r in (b, d):
-        h = (r.model.part("defect").vertices.astype(np.float64) - np.asarray(r.info["centre_m"])) @ np.asarray(
-            r.info["normal"])
-        r.info["out_mm"], r.info["in_mm"] = h.max() * 1000, -h.min() * 1000
+
+    def out_and_in_mm(r) -> tuple[float, float]:  # how far the defect's faces lie out of and into the face
+        h = (r.model.part("defect").vertices.astype(np.float64) - r.info["centre_m"]) @ np.asarray(r.info["normal"])
+        return h.max() * 1000, -h.min() * 1000
+
+    (b_out, b_in), (d_out, d_in) = out_and_in_mm(b), out_and_in_mm(d)
     # the same draw's place: the blister rises by its height, the dent sinks by its depth (up to where the mesh's
     # 0.5 mm grid samples the profile's top)
     assert b.info["centre_m"] == d.info["centre_m"] and b.info["normal"] == d.info["normal"]
-    assert 0.8 * b.info["height_mm"] < b.info["out_mm"] <= b.info["height_mm"] + 1e-6 and b.info["in_mm"] < 1e-6
-    assert 0.8 * d.info["depth_mm"] < d.info["in_mm"] <= d.info["depth_mm"] + 1e-6 and d.info["out_mm"] < 1e-6
+    assert 0.8 * b.info["height_mm"] < b_out <= b.info["height_mm"] + 1e-6 and b_in < 1e-6
+    assert 0.8 * d.info["depth_mm"] < d_in <= d.info["depth_mm"] + 1e-6 and d_out < 1e-6
     assert 1.0 <= b.info["radius_mm"] <= 2.5 and 0.05 <= b.info["height_mm"] <= 0.3
     assert b.good_region is not None and defect_face({"type": "blister", **b.info}) == "front"
 
