@@ -338,9 +338,9 @@ def _chip(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nda
 
 
 def _bump(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray, radius_mm: tuple[float, float],
-          size_mm: tuple[float, float], sign: float) -> tuple[DefectResult, float]:
-    """A smooth cosine-profile bump of a drawn radius and size pushed along the face normal times ``sign`` (-1 in,
-    a dent; +1 out, a blister); returns the result and the size drawn (m)."""
+          size_mm: tuple[float, float], sign: float, size_key: str) -> DefectResult:
+    """A smooth cosine-profile bump of a drawn radius and size (recorded as ``size_key``, mm) pushed along the face
+    normal times ``sign``: -1 in (a dent), +1 out (a blister)."""
     v, body = b.v, b.part
     _, c, n = _pick_face(rng, b.part, cam_obj, cfg.facing_camera)
     radius, size = _mm(rng, radius_mm), _mm(rng, size_mm)
@@ -349,22 +349,18 @@ def _bump(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nda
     new_v = v + (sign * size * w)[:, None] * n
     region = (r[body.faces] < radius).any(1)
     new_model, good = _split_body(b.model, body, new_v, region, body.material)
-    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "radius_mm": radius * 1000}
-    return DefectResult(new_model, good, body.name, b.material, info), size
+    info = {**b.info, "centre_m": c.tolist(), "normal": n.tolist(), "radius_mm": radius * 1000, size_key: size * 1000}
+    return DefectResult(new_model, good, body.name, b.material, info)
 
 
 def _dent(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
     """A smooth cosine-profile depression pushed in along the face normal."""
-    r, depth = _bump(b, rng, cfg, cam_obj, cfg.dent_radius_mm, cfg.dent_depth_mm, -1.0)
-    r.info["depth_mm"] = depth * 1000
-    return r
+    return _bump(b, rng, cfg, cam_obj, cfg.dent_radius_mm, cfg.dent_depth_mm, -1.0, "depth_mm")
 
 
 def _blister(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
     """A smooth cosine-profile bump pushed out along the face normal (a dent's mirror image)."""
-    r, height = _bump(b, rng, cfg, cam_obj, cfg.blister_radius_mm, cfg.blister_height_mm, 1.0)
-    r.info["height_mm"] = height * 1000
-    return r
+    return _bump(b, rng, cfg, cam_obj, cfg.blister_radius_mm, cfg.blister_height_mm, 1.0, "height_mm")
 
 
 def _debris(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
