@@ -32,6 +32,9 @@
 #      their variation model counts them (decision combined)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
 #      int8 networks of an earlier model scored a hostile frame across the threshold, see model/weights/README.md)
+#   9. kinds nobody rendered: a held-out set of the line as built with blisters and particles only
+#      (sim/presets/new-kinds.toml, its own seed), the shipped model evaluated on it (RUNS/eval-new-kinds-*, or
+#      model/weights/default-eval-new-kinds when shipped); NEW_KINDS_COUNT=0 skips it
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
@@ -43,6 +46,9 @@ RUNS=${RUNS:-runs/make-model}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
 HELDOUT_COUNT=${HELDOUT_COUNT:-400}
 HELDOUT_SEED=${HELDOUT_SEED:-1130}
+NEW_KINDS=${NEW_KINDS:-data/new-kinds-heldout}
+NEW_KINDS_COUNT=${NEW_KINDS_COUNT:-400}
+NEW_KINDS_SEED=${NEW_KINDS_SEED:-1179}
 VAL_COUNT=${VAL_COUNT:-600}
 BASE_STEPS=${BASE_STEPS:-1000}
 BASE_STOP=${BASE_STOP:-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
@@ -75,6 +81,10 @@ render "$DATA" "${VARY[@]}" "${FINISH[@]}" --count "$TRAIN_COUNT" --seed 101 --d
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 --heldout --visibility
 render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 render "$VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
+if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
+    render "$NEW_KINDS" --config sim/presets/new-kinds.toml --count "$NEW_KINDS_COUNT" --seed "$NEW_KINDS_SEED" \
+        --defects 0.6 --heldout --visibility
+fi
 
 "$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
     --eval-every 100 --out "$RUNS/base"
@@ -127,4 +137,9 @@ if [ "$SHIP" = 1 ]; then
     "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$VAL" \
         --out model/weights/default-eval
     cp "$RUNS"/compare/compare.* model/weights/default-eval/
+fi
+if [ "$NEW_KINDS_COUNT" -gt 0 ]; then  # step 9: the shipped model (the copy in model/weights when shipped)
+    if [ "$SHIP" = 1 ]; then WHICH=(model/weights/default model/weights/default-eval-new-kinds)
+    else WHICH=("$RUNS/$SHIPPED" "$RUNS/eval-new-kinds-$SHIPPED"); fi
+    "$BIN/station" eval --model "${WHICH[0]}" --data "$NEW_KINDS" --val-data "$VAL" --no-synthetic --out "${WHICH[1]}"
 fi

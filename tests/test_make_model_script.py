@@ -5,7 +5,10 @@ from __future__ import annotations
 
 import os
 import subprocess
+import tomllib
 from pathlib import Path
+
+from sim.defects import DEFECT_TYPES, NEW_KINDS
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -137,7 +140,7 @@ def test_make_model_varies_the_panel_in_training_and_validation_only(tmp_path: P
     configs = {args[args.index("--out") + 1]: [args[i + 1] for i, a in enumerate(args) if a == "--config"]
                for args in renders}
     seeds = {args[args.index("--out") + 1]: args[args.index("--seed") + 1] for args in renders}
-    assert len(renders) == 8  # four sets, two shards each
+    assert len(renders) == 10  # five sets (the last: step 9's new kinds), two shards each
     vary, finish = "sim/presets/panel-vary.toml", "sim/presets/finish-vary.toml"
     train = json.loads((ROOT / "model" / "weights" / "default.json").read_text())["train"]
     fit, look, threshold = train["variation"], train["residual"], train["threshold_set"]
@@ -150,3 +153,25 @@ def test_make_model_varies_the_panel_in_training_and_validation_only(tmp_path: P
     shipped = [args[args.index("--data") + 1] for args in calls
                if args[0] == "threshold" and args[args.index("--model") + 1].endswith("runs/band-look")]
     assert shipped == [threshold["data"]]
+
+
+def test_make_model_judges_the_shipped_model_on_kinds_nobody_rendered(tmp_path: Path) -> None:
+    """Step 9: a held-out set of the line as built with only the kinds no training draws (sim/presets/new-kinds.toml,
+    last; its own seed), the shipped model evaluated on it with the line's validation thresholds; NEW_KINDS_COUNT=0
+    skips both."""
+    calls = dry_run(tmp_path)
+    renders = {args[args.index("--out") + 1]: args for args in calls if args[0] == "render"}
+    configs = {out: [a[i + 1] for i, x in enumerate(a) if x == "--config"] for out, a in renders.items()}
+    seeds = {out: a[a.index("--seed") + 1] for out, a in renders.items()}
+    assert configs["data/new-kinds-heldout"] == [*configs["data/line-panel-heldout"], "sim/presets/new-kinds.toml"]
+    assert seeds["data/new-kinds-heldout"] not in {s for out, s in seeds.items() if out != "data/new-kinds-heldout"}
+    assert "--heldout" in renders["data/new-kinds-heldout"]
+    judged = [a for a in calls if a[0] == "eval" and a[a.index("--data") + 1] == "data/new-kinds-heldout"]
+    assert len(judged) == 1 and judged[0][judged[0].index("--model") + 1] == str(tmp_path / "runs/band-look")
+    assert judged[0][judged[0].index("--val-data") + 1] == "data/line-pv-val"
+    kinds = tomllib.loads((ROOT / "sim/presets/new-kinds.toml").read_text())["defects"]["types"]
+    assert tuple(kinds) == NEW_KINDS and not set(kinds) & set(DEFECT_TYPES)
+    (tmp_path / "skip").mkdir()
+    skipped = dry_run(tmp_path / "skip", NEW_KINDS_COUNT="0")
+    assert not [a for a in skipped if "data/new-kinds-heldout" in a]
+
