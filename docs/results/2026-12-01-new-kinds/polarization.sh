@@ -11,3 +11,8 @@ export OMP_NUM_THREADS=2
     --val-data data/line-pf-val --curvature 3 --out $R/VI > $R/VI-fit.log 2>&1
 .venv/bin/python $D/scale_screen.py $R/VI data/line-pv-val $D/polarization-VI.json data/new-kinds-val-1180:val \
     > $D/polarization-VI.txt
+# follow-up (polarization.md, "One line disagrees"): the same screen with the calibration set as VAL
+for m in V1 VI; do
+    .venv/bin/python $D/scale_screen.py $R/$m data/line-pf-val $D/polarization-$m-pfval.json \
+        > $D/polarization-$m-pfval.txt
+done
