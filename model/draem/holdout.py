@@ -27,18 +27,20 @@ def indices_without_type(types: Sequence[str | None], holdout: str | Iterable[st
     return np.flatnonzero(~np.isin(names, list(held))).astype(np.int64)
 
 
+def learning_record(train: Mapping) -> Mapping:
+    """The part of a checkpoint's sidecar record ``train`` that says what learned from rendered defects: its
+    residual networks' (``train.residual``) when it has them, which then decide or look; else its networks'
+    (``train.rendered_defects``); empty when nothing learned from a rendered defect."""
+    return train.get("residual") or train.get("rendered_defects") or {}
+
+
 def held_out_type(train: Mapping) -> str | None:
-    """The defect type a checkpoint's sidecar record ``train`` says was left out of what learned from rendered
-    defects: its residual networks' (``train.residual``) when it has them, which then decide or look; else its
-    networks' (``train.rendered_defects``). None when no type was held out."""
-    record = train.get("residual") or train.get("rendered_defects") or {}
-    return record.get("holdout_type") or None
+    """The defect type ``learning_record(train)`` says was left out; None when no type was held out."""
+    return learning_record(train).get("holdout_type") or None
 
 
 def learned_types(train: Mapping) -> tuple[str, ...] | None:
-    """The defect types whose rendered parts the record ``train`` (as ``held_out_type``) says were learned from, or
-    None for a record that does not name them (records before 2026-12-01; their sets drew from the five default
-    kinds at most)."""
-    record = train.get("residual") or train.get("rendered_defects") or {}
-    types = record.get("types")
+    """The defect types whose rendered parts ``learning_record(train)`` says were learned from, or None for a record
+    that does not name them (records before 2026-12-01; their sets drew from the five default kinds at most)."""
+    types = learning_record(train).get("types")
     return None if types is None else tuple(types)

@@ -18,7 +18,7 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from model.draem.holdout import held_out_type, learned_types
+from model.draem.holdout import held_out_type, learned_types, learning_record
 from model.draem.runtime import EVAL_PRECISIONS
 from sim.defects import DEFECT_TYPES
 from station.commands.arguments import add_presence_rule, positive_int
@@ -192,7 +192,7 @@ def industrial_rows(report, train_meta: dict) -> list[dict]:
     training": ``learned_types``; a record without them drew from ``sim.defects.DEFECT_TYPES``) or the model saw
     none ("synthetic only")."""
     # the residual networks, where there are any, learned from rendered defects whatever the networks did
-    learned = bool(train_meta.get("residual") or train_meta.get("rendered_defects"))
+    learned = bool(learning_record(train_meta))
     held = held_out_type(train_meta)
     drawn = learned_types(train_meta)
     drawn = DEFECT_TYPES if drawn is None else drawn
