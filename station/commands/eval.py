@@ -46,7 +46,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--val-data", default=None, metavar="DATA",
                    help="set whose val split fixes the industrial thresholds (default: --data; a held-out set, "
                         "rendered with --heldout, has none: give a validation set, rendered with --validation, or "
-                        "the set the model was trained and selected on)")
+                        "the set the model was trained and selected on; with --split val, another set: e.g. a "
+                        "validation set of other kinds scored against the line's thresholds)")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--out", default=None, help="report folder (default: <model folder>/eval-<split>)")
     add_presence_rule(p)
@@ -410,7 +411,8 @@ def run(args: argparse.Namespace) -> int:
     if by_face and not args.no_plots:
         files.append(face_plot(out, by_face))
     industrial, industrial_note, rep = [], "", None
-    if args.split != "val":  # thresholds from the val split's good parts, held fixed on this split
+    other_val = bool(args.val_data) and Path(args.val_data).resolve() != Path(args.data).resolve()
+    if args.split != "val" or other_val:  # thresholds from a val split's good parts, held fixed on this split
         val_data = args.val_data or args.data
         try:
             if not args.val_data and not evaluated.indices("val"):

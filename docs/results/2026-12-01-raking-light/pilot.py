@@ -51,8 +51,9 @@ def main() -> None:
         for face in ("top", "front"):
             rs = [r for r in defects if r["type"] == kind and r["face"] == face]
             if rs:
+                above = sum(r["c_k"] > r["c_line"] for r in rs)
                 print(f"{kind} {face}: n {len(rs)}, median contrast line {np.median([r['c_line'] for r in rs]):.3f}, "
-                      f"K {np.median([r['c_k'] for r in rs]):.3f}; K above line {sum(r['c_k'] > r['c_line'] for r in rs)}")
+                      f"K {np.median([r['c_k'] for r in rs]):.3f}; K above line {above}")
     print(f"clipped share of the part's pixels under K: median {np.median([r['clip_part'] for r in rows]):.4f}, "
           f"max {max(r['clip_part'] for r in rows):.4f}")
     fig, ax = plt.subplots(2, len(crops), figsize=(2.2 * len(crops), 4.6), squeeze=False)
