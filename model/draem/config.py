@@ -191,7 +191,7 @@ class ModelConfig:
         NetworkConfig(1, self.reconstructive_width, self.discriminative_width, self.input_size_px)
         if self.roi not in ROIS:
             raise ModelError(f"roi must be one of {', '.join(ROIS)}, got {self.roi!r}")
-        if self.roi in ("frame", "band") and "normal" in self.priors:
+        if self.roi == "frame" and "normal" in self.priors:  # the band lies inside the square: cut from it
             raise ModelError(f"roi {self.roi!r} cannot take the normal prior: its estimator reads the centre square")
         if self.variation and "intensity" not in self.priors:
             raise ModelError("the variation model registers parts by their intensity: add the intensity prior")

@@ -136,8 +136,13 @@ class Predictor:
         top, left, h, w = roi_box(self.config.roi, shape, frame_aspect=self.config.frame_aspect)
         # stack only the region the network sees, not whole frames (the same values crop_resize would cut out)
         cut = {k: v[top:top + h, left:left + w] for k, v in maps.items()}
-        if self.normals is not None:  # same square as the DRAEM's: both read roi "center" ("frame" has no normal)
-            cut["normal"] = self.normals.predict_box(cut, shape, (top, left, h, w))
+        if self.normals is not None:
+            # the estimator reads the centre square, as in training (station.datasets: predict_frame); the DRAEM's
+            # region is that square or the band inside it (ModelConfig refuses roi "frame" with the normal prior)
+            st, sl, sh, sw = roi_box("center", shape, frame_aspect=self.config.frame_aspect)
+            square = {k: maps[k][st:st + sh, sl:sl + sw] for k in PRIOR_MAPS["normal"]}
+            n = self.normals.predict_box(square, shape, (st, sl, sh, sw))
+            cut["normal"] = n[top - st:top - st + h, left - sl:left - sl + w]
         x = stack_priors(cut, self.used_priors)
         xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_shape, self.used_priors)
         xt = self._all_channels(xt).unsqueeze(0).to(self.device)

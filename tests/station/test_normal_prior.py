@@ -41,6 +41,20 @@ def trained(tmp_path_factory) -> tuple[Path, Path, Path]:
     return ds, tmp / "nets" / "my_net", out
 
 
+@pytest.fixture(scope="module")
+def trained_band(trained, tmp_path_factory) -> Path:
+    """The same over the band across the middle of the frame (``roi = "band"``, the shipped model's region): the
+    estimator reads its centre square, and the band is cut from it."""
+    _, net_stem, _ = trained
+    tmp = tmp_path_factory.mktemp("normal_prior_band")
+    ds = make_dataset(tmp / "ds", 20, defective=lambda i: i % 2 == 1 or i == 12)  # val: a good part and a defect
+    out = tmp / "train"
+    assert main(["train", "--data", str(ds), "--priors", "intensity,normal", "--preset", "tiny", "--fusion", "fused",
+                 "--size", "32", "--roi", "band", "--steps", "2", "--batch-size", "2", "--eval-every", "2",
+                 "--device", "cpu", "--normal-net", str(net_stem), "--out", str(out)]) == 0
+    return out
+
+
 def test_checkpoint_names_its_estimator_and_carries_a_copy(trained) -> None:
     _, net_stem, out = trained
     record = json.loads((out / "best.json").read_text())["train"]["normal_prior"]
@@ -62,11 +76,13 @@ def test_eval_refuses_a_normal_model_that_does_not_say_where_its_normals_came_fr
     assert "does not record how that was made" in capsys.readouterr().err
 
 
-def test_station_feeds_the_model_what_training_fed_it(trained) -> None:
-    ds, _, out = trained
+@pytest.mark.parametrize("roi", ["center", "band"])
+def test_station_feeds_the_model_what_training_fed_it(roi, trained, request) -> None:
+    ds = trained[0]
+    out = trained[2] if roi == "center" else request.getfixturevalue("trained_band")
     det = DraemDetector(out / "best", device="cpu")
-    assert det.normals is not None and set(det.priors) == set(MAP_NAMES)
-    sp = load_split(ds, "test", det.config.priors, det.config.input_size_px, progress=False, roi="center",
+    assert det.normals is not None and set(det.priors) == set(MAP_NAMES) and det.config.roi == roi
+    sp = load_split(ds, "test", det.config.priors, det.config.input_shape, progress=False, roi=roi,
                     normals=det.normals)
     seen = []
     predict = det.net.predict
