@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import hashlib
-import shutil
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -91,10 +90,7 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
     train = {**ck.meta.get("train", {}), "adapted": record, "frame_statistics": stats.to_dict()}
     save_checkpoint(out, det, res.threshold.threshold, res.threshold.rule, ck.meta.get("data_manifest_sha256"),
                     {}, train)
-    src_dir, dst_dir = paths(model)[1].parent, paths(out)[1].parent
-    from model.normals.estimator import BESIDE_CHECKPOINT
+    from model.normals.estimator import copy_beside
 
-    for name in (BESIDE_CHECKPOINT + ".pt", BESIDE_CHECKPOINT + ".json"):  # a learned normal prior's estimator
-        if (src_dir / name).is_file() and src_dir.resolve() != dst_dir.resolve():
-            shutil.copy2(src_dir / name, dst_dir / name)
+    copy_beside(paths(model)[1], paths(out)[1])  # a learned normal prior's estimator
     return AdaptSummary(Path(out), record)

@@ -232,6 +232,7 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
     Returns (the threshold choice, the evaluation, the val labels)."""
     from model.draem.checkpoint import save_checkpoint
     from model.draem.metrics import choose_threshold
+    from model.normals.estimator import copy_beside
     from station.datasets import manifest_sha256
 
     train = {**ck.meta.get("train", {}), key: record}
@@ -245,6 +246,7 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
     if frame_statistics is not None:
         train["frame_statistics"] = frame_statistics
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
+    copy_beside(model, out)  # a learned normal prior's estimator goes with the new checkpoint
     return choice, ev, labels
 
 

@@ -91,6 +91,19 @@ class NormalEstimator:
         return out
 
 
+def copy_beside(src: str | Path, dst: str | Path) -> None:
+    """Copy the learned normal estimator (``BESIDE_CHECKPOINT``) that checkpoint ``src`` (a path stem) carries beside
+    it to beside checkpoint ``dst``, when there is one and the folders differ: a checkpoint made from another
+    (``station variation``, ``residual``, ``adapt``) loads its estimator from its own folder."""
+    import shutil
+
+    src_dir, dst_dir = Path(src).parent, Path(dst).parent
+    for name in (BESIDE_CHECKPOINT + ".pt", BESIDE_CHECKPOINT + ".json"):
+        if (src_dir / name).is_file() and src_dir.resolve() != dst_dir.resolve():
+            dst_dir.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src_dir / name, dst_dir / name)
+
+
 def describe(estimator: NormalEstimator | None, file: str = BESIDE_CHECKPOINT + ".json") -> dict[str, Any]:
     """What a DRAEM checkpoint records about its normal prior (``train.normal_prior`` in its sidecar): the
     learned estimator's sidecar ``file`` (beside the checkpoint), weights hash and field of view, or the

@@ -151,3 +151,14 @@ def test_lens_field_of_view_overrides_the_training_sets(trained) -> None:
     assert default.normals.fov_x_deg is None and wide.normals.fov_x_deg == 60.0  # the test set has no fov: ortho
     a, b = default.normals.predict_frame(maps), wide.normals.predict_frame(maps)
     assert np.abs(a - b).max() > 1e-3  # other viewing directions, other normals
+
+
+def test_a_variation_model_fitted_elsewhere_carries_the_estimator(trained, tmp_path) -> None:
+    """``station variation --out`` in another folder: the new checkpoint needs its normal estimator beside it (it
+    was left behind, so ``station eval`` refused the file: "normal_net.json: normal-estimator sidecar missing")."""
+    _, _, out = trained
+    ds = make_dataset(tmp_path / "ds", 40)  # enough good parts to fit
+    assert main(["variation", "--model", str(out / "best"), "--data", str(ds), "--out",
+                 str(tmp_path / "elsewhere" / "v")]) == 0
+    det = DraemDetector(tmp_path / "elsewhere" / "v", device="cpu")
+    assert det.normals is not None
