@@ -78,10 +78,8 @@ def test_roi_band_sees_the_middle_half_of_the_centre_square_at_twice_its_resolut
     assert heat.shape == (64, 96) and heat[16:48, 16:80].all()
     assert not heat[:16].any() and not heat[48:].any() and not heat[:, :16].any() and not heat[:, 80:].any()
     # the band lies inside the centre square the normal estimator reads, so it takes the normal prior (cut from the
-    # square: tests/station/test_normal_prior.py); the whole frame does not
+    # square: tests/station/test_normal_prior.py); the whole frame does not (above)
     assert ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "band").roi == "band"
-    with pytest.raises(ModelError, match="centre square"):
-        ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "frame")
 
 
 def test_the_region_keeps_to_the_training_frames_view_on_a_taller_frame() -> None:
