@@ -1,6 +1,6 @@
-"""plan.md's reading against RAD alone at the line's 1 % threshold (from data/line-pv-val, as in the normal-prior report),
-which `station compare --split` does not print (it reads each file's own threshold, set on its calibration set):
-caught and good parts rejected on seed 1176, per type, and the pair's gain with a paired bootstrap SE.
+"""plan.md's reading against RAD alone at the line's 1 % threshold (from data/line-pv-val, as in the normal-prior
+report), which `station compare --split` does not print (it reads each file's own threshold, set on its calibration
+set): caught and good parts rejected on seed 1176, per type, and the pair's gain with a paired bootstrap SE.
 
 Usage: python read.py RUNS_DIR (RUNS_DIR: run.sh's runs/c77)"""
 import csv
@@ -37,4 +37,5 @@ for name, r in (("RAD alone, the line's 1 %", rad), ("pair, rule 64's split", pa
 d = (pair[lab == 1].astype(float) - rad[lab == 1])
 rng = np.random.default_rng(0)
 boot = [d[rng.integers(0, d.size, d.size)].mean() for _ in range(1000)]
-print(f"pair minus RAD alone, defective caught: {100 * d.mean():+.1f} points (paired bootstrap SE {100 * np.std(boot):.1f})")
+print(f"pair minus RAD alone, defective caught: {100 * d.mean():+.1f} points "
+      f"(paired bootstrap SE {100 * np.std(boot):.1f})")
