@@ -92,5 +92,5 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
                     {}, train)
     from model.normals.estimator import copy_beside
 
-    copy_beside(paths(model)[1], paths(out)[1])  # a learned normal prior's estimator
+    copy_beside(paths(model)[1], paths(out)[1], train.get("normal_prior"))  # a learned normal prior's estimator
     return AdaptSummary(Path(out), record)

@@ -246,7 +246,7 @@ def _threshold_and_save(ck, model: str, det, va, val_data: str, out: str, max_go
     if frame_statistics is not None:
         train["frame_statistics"] = frame_statistics
     save_checkpoint(out, det, choice.threshold, choice.rule, ck.meta.get("data_manifest_sha256"), ev.metrics, train)
-    copy_beside(model, out)  # a learned normal prior's estimator goes with the new checkpoint
+    copy_beside(model, out, train.get("normal_prior"))  # a learned normal prior's estimator goes with it
     return choice, ev, labels
 
 

@@ -91,17 +91,19 @@ class NormalEstimator:
         return out
 
 
-def copy_beside(src: str | Path, dst: str | Path) -> None:
-    """Copy the learned normal estimator (``BESIDE_CHECKPOINT``) that checkpoint ``src`` (a path stem) carries beside
-    it to beside checkpoint ``dst``, when there is one and the folders differ: a checkpoint made from another
-    (``station variation``, ``residual``, ``adapt``) loads its estimator from its own folder."""
-    import shutil
+def copy_beside(src: str | Path, dst: str | Path, record: Mapping[str, Any] | None) -> None:
+    """Copy the learned normal estimator that checkpoint ``src`` (a path stem or sidecar) carries beside it, as its
+    ``normal_prior`` ``record`` (``describe``) names it, to ``BESIDE_CHECKPOINT`` beside checkpoint ``dst``, checked
+    and written by ``copy_normal_net``: a checkpoint made from another (``station variation``, ``residual``,
+    ``adapt``, ``ensemble``) loads its estimator from its own folder. Nothing for a model without a learned normal
+    prior, or when both checkpoints share a folder (and so the copy)."""
+    if not record or record.get("source") != "learned":
+        return
+    from .net import copy_normal_net
 
-    src_dir, dst_dir = Path(src).parent, Path(dst).parent
-    for name in (BESIDE_CHECKPOINT + ".pt", BESIDE_CHECKPOINT + ".json"):
-        if (src_dir / name).is_file() and src_dir.resolve() != dst_dir.resolve():
-            dst_dir.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(src_dir / name, dst_dir / name)
+    source, target = Path(src).with_name(Path(record["file"]).stem), Path(dst).with_name(BESIDE_CHECKPOINT)
+    if source.resolve() != target.resolve():
+        copy_normal_net(source, target)
 
 
 def describe(estimator: NormalEstimator | None, file: str = BESIDE_CHECKPOINT + ".json") -> dict[str, Any]:

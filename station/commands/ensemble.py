@@ -63,14 +63,12 @@ def _copy_normal_prior(member: str, ck: Checkpoint, out: Path) -> dict:
     """The normal member's ``normal_prior`` record, its learned estimator copied beside ``out`` (as train does)."""
     from model.draem.checkpoint import paths
     from model.normals.estimator import BESIDE_CHECKPOINT as NORMAL_NET_FILE
-    from model.normals.net import copy_normal_net
+    from model.normals.estimator import copy_beside
 
     rec = (ck.meta.get("train") or {}).get("normal_prior")
     if not rec:
         raise UserError(f"{member}: reads the normal prior but does not record how it was made (train.normal_prior)")
     if rec.get("source") != "learned":
         return rec
-    src, dst = paths(member)[1].with_name(Path(rec["file"]).stem), out.with_name(NORMAL_NET_FILE)
-    if src.resolve() != dst.resolve():  # an ensemble written into the normal member's folder shares its copy
-        copy_normal_net(src, dst)
+    copy_beside(paths(member)[1], out, rec)  # an ensemble in the normal member's folder shares its copy
     return {**rec, "file": NORMAL_NET_FILE + ".json"}
