@@ -36,3 +36,5 @@ e=$R/eval-1176-T
 mkdir -p $D/eval
 cp $R/pair-T/* $R/split-T.json $D/eval/
 cp $e/eval.md $D/eval/eval-1176-T.md
+.venv/bin/python $D/read.py runs/c77/eval-1176-V1 "T=$e:$R/split-T.json" \
+    "IN-G=runs/c77/eval-1176-ING:runs/c77/split-ING.json" > $D/read.md
