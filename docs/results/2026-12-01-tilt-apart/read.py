@@ -1,7 +1,8 @@
 """Joins read against RAD alone at the line's 1 % threshold (from data/line-pv-val, as `station split` sets it),
 which `station compare --split` does not print (it reads each file's own threshold): caught and good parts rejected
 on seed 1176, per type, for RAD alone and for each pair at its split, and each pair's gain with a paired bootstrap
-SE. Used by this folder's run.sh and by 2026-12-01-normal-precision/run.sh.
+SE. A frame a file would not judge (its presence check: `eval.json`'s `unjudged`) is rejected, as the station
+rejects it and as `station compare` counts it. Used by this folder's run.sh and by 2026-12-01-normal-precision/run.sh.
 
 Usage: python read.py RAD_EVAL NAME=EVAL_DIR:SPLIT_JSON ...
 (RAD_EVAL: RAD's `station eval` folder on seed 1176; each pair: the second file's eval folder on seed 1176's twin or
@@ -14,11 +15,13 @@ import numpy as np
 
 
 def scores(path):
+    """Indices, labels, types and scores; a frame the file would not judge scores +inf (rejected at any threshold)."""
     rows = {int(r["index"]): (int(r["label"]), r["defect_type"], float(r["score"]))
             for r in csv.DictReader(open(f"{path}/scores.csv"))}
+    unjudged = {int(i) for i in json.load(open(f"{path}/eval.json")).get("unjudged", {})}
     idx = sorted(rows)
     return idx, np.array([rows[i][0] for i in idx]), np.array([rows[i][1] for i in idx]), \
-        np.array([rows[i][2] for i in idx])
+        np.array([np.inf if i in unjudged else rows[i][2] for i in idx])
 
 
 def split(path):

@@ -1,0 +1,47 @@
+"""How fine a tilt measurement the two dome halves give (the page's reading, after the screen): on the first good
+parts of T's validation twins, the tilt prior `tilt_x` against the renderer's normal's x component (camera frame,
+x right), over the part's pixels, at the priors' resolution (the mosaic's: half the frame's; the normals are
+averaged over 2 x 2) and smoothed with a Gaussian of 10 frame px (degrade.py's scale in
+2026-12-01-normal-precision). One line t = k n_x + c is fitted over all parts' pixels; the error of the
+measurement is (t - k n_x - c) / k, read as degrees of tilt along x. For comparison, the degraded normals' error
+along x alone: its median is 0.57 times their median angular error (two independent Gaussian components).
+
+Usage: PYTHONPATH=. python tilt_error.py [PARTS] (default 40; reads data/tilt-pv-val)"""
+import sys
+
+import numpy as np
+from scipy.ndimage import gaussian_filter
+
+from model.priors.api import compute_set_priors
+from sim.dataset import open_dataset
+
+ds = open_dataset("data/tilt-pv-val")
+want = int(sys.argv[1]) if len(sys.argv) > 1 else 40
+ts, ns, parts = {"pixel": [], "10 px": []}, {"pixel": [], "10 px": []}, 0
+for i in ds.indices("val"):
+    s = ds.load(i)
+    if s.label:
+        continue
+    t = compute_set_priors(s.raws, ds.dome_segments, ds.manifest["layout"], priors=["tilt_x"],
+                           bit_depth=ds.manifest["bit_depth"])["tilt_x"].astype(np.float64)
+    h, w_ = t.shape
+    f = s.normal.shape[0] // h
+    nx = s.normal[:h * f, :w_ * f, 0].reshape(h, f, w_, f).mean(axis=(1, 3)).astype(np.float64)
+    mask = s.object_mask[:h * f, :w_ * f].reshape(h, f, w_, f).all(axis=(1, 3))
+    sigma = 10.0 / f
+    w = gaussian_filter(mask.astype(np.float64), sigma)
+    inner = mask & (w > 0.9)  # away from the part's outline, where smoothing mixes in the belt
+    for name, (a, b) in (("pixel", (t, nx)),
+                         ("10 px", (gaussian_filter(t * mask, sigma) / np.maximum(w, 1e-9),
+                                    gaussian_filter(nx * mask, sigma) / np.maximum(w, 1e-9)))):
+        ts[name].append(a[inner])
+        ns[name].append(b[inner])
+    parts += 1
+    if parts == want:
+        break
+for name in ts:
+    t, nx = np.concatenate(ts[name]), np.concatenate(ns[name])
+    k, c = np.polyfit(nx, t, 1)
+    err = np.degrees(np.abs(t - k * nx - c) / abs(k))
+    print(f"{name}: {parts} good parts, {t.size} pixels; t = {k:.3f} n_x + {c:+.3f}; error along x: median "
+          f"{np.median(err):.2f} deg, 90th percentile {np.percentile(err, 90):.2f} deg")
