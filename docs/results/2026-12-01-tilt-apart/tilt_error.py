@@ -2,7 +2,9 @@
 parts of T's validation twins, the tilt prior `tilt_x` against the renderer's normal's x component (camera frame,
 x right), over the part's pixels, at the priors' resolution (the mosaic's: half the frame's; the normals are
 averaged over 2 x 2) and smoothed with a Gaussian of 10 frame px (degrade.py's scale in
-2026-12-01-normal-precision). One line t = k n_x + c is fitted over all parts' pixels; the error of the
+2026-12-01-normal-precision). One line t = k n_x + c is fitted over all parts' pixels at each scale (a region
+of the part, the body more than 2 mm from the studs and the outline or the rest, is read with its scale's line); the
+error of the
 measurement is (t - k n_x - c) / k, read as degrees of tilt along x. With --unpolarized the tilt is taken from each
 frame's unpolarized intensity S0 - sqrt(S1^2 + S2^2) instead of S0 (a check written after the screen: a glossy
 face's mirror image of the dome is partly polarized, its diffuse light barely). For comparison, the degraded
@@ -12,7 +14,7 @@ Usage: PYTHONPATH=. python tilt_error.py [PARTS] [--unpolarized] (default 40; re
 import sys
 
 import numpy as np
-from scipy.ndimage import gaussian_filter
+from scipy.ndimage import distance_transform_edt, gaussian_filter
 
 from model.priors.api import compute_set_priors, set_stokes
 from sim.dataset import open_dataset
@@ -21,7 +23,8 @@ ds = open_dataset("data/tilt-pv-val")
 args = [a for a in sys.argv[1:] if a != "--unpolarized"]
 unpolarized = "--unpolarized" in sys.argv
 want = int(args[0]) if args else 40
-ts, ns, parts = {"pixel": [], "10 px": []}, {"pixel": [], "10 px": []}, 0
+keys = ("pixel", "10 px", "10 px, body far from studs", "10 px, near studs or outline")
+ts, ns, parts = {k: [] for k in keys}, {k: [] for k in keys}, 0
 for i in ds.indices("val"):
     s = ds.load(i)
     if s.label:
@@ -40,17 +43,23 @@ for i in ds.indices("val"):
     sigma = 10.0 / f
     w = gaussian_filter(mask.astype(np.float64), sigma)
     inner = mask & (w > 0.9)  # away from the part's outline, where smoothing mixes in the belt
-    for name, (a, b) in (("pixel", (t, nx)),
-                         ("10 px", (gaussian_filter(t * mask, sigma) / np.maximum(w, 1e-9),
-                                    gaussian_filter(nx * mask, sigma) / np.maximum(w, 1e-9)))):
-        ts[name].append(a[inner])
-        ns[name].append(b[inner])
+    # the body (part 1) more than 20 frame px (about 2 mm) from any other part (the studs, the plug) and the outline
+    body = s.part_index[:h * f, :w_ * f].reshape(h, f, w_, f).min(axis=(1, 3)) == 1
+    far = body & (distance_transform_edt(body) * f > 20.0)
+    smooth = (gaussian_filter(t * mask, sigma) / np.maximum(w, 1e-9),
+              gaussian_filter(nx * mask, sigma) / np.maximum(w, 1e-9))
+    for name, (a, b), where in (("pixel", (t, nx), inner), ("10 px", smooth, inner),
+                                ("10 px, body far from studs", smooth, inner & far),
+                                ("10 px, near studs or outline", smooth, inner & ~far)):
+        ts[name].append(a[where])
+        ns[name].append(b[where])
     parts += 1
     if parts == want:
         break
-for name in ts:
+fits = {}
+for name in ts:  # the regions are read with the line of all the part's pixels at their scale
     t, nx = np.concatenate(ts[name]), np.concatenate(ns[name])
-    k, c = np.polyfit(nx, t, 1)
+    k, c = fits.setdefault(name.split(",")[0], tuple(np.polyfit(nx, t, 1)))
     err = np.degrees(np.abs(t - k * nx - c) / abs(k))
     head = f"{'unpolarized, ' if unpolarized else ''}{name}"
     print(f"{head}: {parts} good parts, {t.size} pixels; t = {k:.3f} n_x + {c:+.3f}; error along x: median "
