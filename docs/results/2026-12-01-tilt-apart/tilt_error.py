@@ -10,7 +10,8 @@ frame's unpolarized intensity S0 - sqrt(S1^2 + S2^2) instead of S0 (a check writ
 face's mirror image of the dome is partly polarized, its diffuse light barely). For comparison, the degraded
 normals' error along x alone: its median is 0.57 times their median angular error (two independent Gaussian components).
 
-Usage: PYTHONPATH=. python tilt_error.py [PARTS] [--unpolarized] (default 40; reads data/tilt-pv-val)"""
+Usage: PYTHONPATH=. python tilt_error.py [PARTS] [--unpolarized] [--data SET] (default 40 parts of
+data/tilt-pv-val; nostray.toml's check reads data/tilt-pv-val-nostray, the same parts with the stray lamp off)"""
 import sys
 
 import numpy as np
@@ -19,9 +20,11 @@ from scipy.ndimage import distance_transform_edt, gaussian_filter
 from model.priors.api import compute_set_priors, set_stokes
 from sim.dataset import open_dataset
 
-ds = open_dataset("data/tilt-pv-val")
-args = [a for a in sys.argv[1:] if a != "--unpolarized"]
-unpolarized = "--unpolarized" in sys.argv
+argv = sys.argv[1:]
+root = argv.pop(argv.index("--data") + 1) if "--data" in argv else "data/tilt-pv-val"
+ds = open_dataset(root)
+args = [a for a in argv if a not in ("--unpolarized", "--data")]
+unpolarized = "--unpolarized" in argv
 want = int(args[0]) if args else 40
 keys = ("pixel", "10 px", "10 px, body far from studs", "10 px, near studs or outline")
 ts, ns, parts = {k: [] for k in keys}, {k: [] for k in keys}, 0
@@ -38,7 +41,7 @@ for i in ds.indices("val"):
                                bit_depth=ds.manifest["bit_depth"])["tilt_x"].astype(np.float64)
     h, w_ = t.shape
     f = s.normal.shape[0] // h
-    nx = s.normal[:h * f, :w_ * f, 0].reshape(h, f, w_, f).mean(axis=(1, 3)).astype(np.float64)
+    n3 = s.normal[:h * f, :w_ * f].reshape(h, f, w_, f, 3).mean(axis=(1, 3)).astype(np.float64)
     mask = s.object_mask[:h * f, :w_ * f].reshape(h, f, w_, f).all(axis=(1, 3))
     sigma = 10.0 / f
     w = gaussian_filter(mask.astype(np.float64), sigma)
@@ -47,8 +50,8 @@ for i in ds.indices("val"):
     body = s.part_index[:h * f, :w_ * f].reshape(h, f, w_, f).min(axis=(1, 3)) == 1
     far = body & (distance_transform_edt(body) * f > 20.0)
     smooth = (gaussian_filter(t * mask, sigma) / np.maximum(w, 1e-9),
-              gaussian_filter(nx * mask, sigma) / np.maximum(w, 1e-9))
-    for name, (a, b), where in (("pixel", (t, nx), inner), ("10 px", smooth, inner),
+              np.stack([gaussian_filter(n3[..., j] * mask, sigma) / np.maximum(w, 1e-9) for j in range(3)], -1))
+    for name, (a, b), where in (("pixel", (t, n3), inner), ("10 px", smooth, inner),
                                 ("10 px, body far from studs", smooth, inner & far),
                                 ("10 px, near studs or outline", smooth, inner & ~far)):
         ts[name].append(a[where])
@@ -56,11 +59,25 @@ for i in ds.indices("val"):
     parts += 1
     if parts == want:
         break
+
+
+def cubic(n):
+    """The monomials of the normal's three components up to degree 3 (20 columns, the constant included)."""
+    x, y, z = n[:, 0], n[:, 1], n[:, 2]
+    return np.stack([x ** i * y ** j * z ** m for i in range(4) for j in range(4 - i) for m in range(4 - i - j)], 1)
+
+
 fits = {}
-for name in ts:  # the regions are read with the line of all the part's pixels at their scale
-    t, nx = np.concatenate(ts[name]), np.concatenate(ns[name])
-    k, c = fits.setdefault(name.split(",")[0], tuple(np.polyfit(nx, t, 1)))
-    err = np.degrees(np.abs(t - k * nx - c) / abs(k))
-    head = f"{'unpolarized, ' if unpolarized else ''}{name}"
-    print(f"{head}: {parts} good parts, {t.size} pixels; t = {k:.3f} n_x + {c:+.3f}; error along x: median "
-          f"{np.median(err):.2f} deg, 90th percentile {np.percentile(err, 90):.2f} deg")
+for name in ts:  # the regions are read with the fits of all the part's pixels at their scale
+    t, n = np.concatenate(ts[name]), np.concatenate(ns[name])
+    scale = name.split(",")[0]
+    if scale not in fits:
+        everything = np.concatenate(ts[scale]), np.concatenate(ns[scale])
+        fits[scale] = (tuple(np.polyfit(everything[1][:, 0], everything[0], 1)),
+                       np.linalg.lstsq(cubic(everything[1]), everything[0], rcond=None)[0])
+    (k, c), beta = fits[scale]
+    head = f"{root}: {'unpolarized, ' if unpolarized else ''}{name}"
+    for how, residual in (("t = k n_x + c", t - k * n[:, 0] - c), ("t = cubic(n)", t - cubic(n) @ beta)):
+        err = np.degrees(np.abs(residual) / abs(k))
+        print(f"{head}: {parts} good parts, {t.size} pixels; {how} (k = {k:.3f}); error along x: median "
+              f"{np.median(err):.2f} deg, 90th percentile {np.percentile(err, 90):.2f} deg")
