@@ -2,7 +2,8 @@
 which `station compare --split` does not print (it reads each file's own threshold): caught and good parts rejected
 on seed 1176, per type, for RAD alone and for each pair at its split, and each pair's gain with a paired bootstrap
 SE. A frame a file would not judge (its presence check: `eval.json`'s `unjudged`) is rejected, as the station
-rejects it and as `station compare` counts it. Used by this folder's run.sh and by 2026-12-01-normal-precision/run.sh.
+rejects it and as `station compare` counts it. Used by this folder's run.sh, 2026-12-01-normal-precision/run.sh
+and 2026-12-01-normal-prior/joined/run.sh.
 
 Usage: python read.py RAD_EVAL NAME=EVAL_DIR:SPLIT_JSON ...
 (RAD_EVAL: RAD's `station eval` folder on seed 1176; each pair: the second file's eval folder on seed 1176's twin or

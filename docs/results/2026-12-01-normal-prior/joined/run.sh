@@ -22,3 +22,6 @@ done
 mkdir -p $D
 cp $R/pair-ING/* $R/split-ING.json $D/
 for m in V1 ING; do cp $R/eval-1176-$m/eval.md $D/eval-1176-$m.md; done
+# the reading against RAD alone at the line's 1 % (read.md), by the join reader the later tilt studies share
+.venv/bin/python docs/results/2026-12-01-tilt-apart/read.py $R/eval-1176-V1 "IN-G=$R/eval-1176-ING:$R/split-ING.json" \
+    > $D/read.md
