@@ -99,6 +99,10 @@ class SceneConfig:
     ring_fringe_depth: float = 0.5
     """The fringes' modulation depth, 0-1 (0.5: the dark stripe at half the mean, so a rough patch that averages
     the panel still differs from the face at every stripe)."""
+    ring_fringe_phase_deg: float = 0.0
+    """The fringes' phase, degrees, added inside the cosine: ``cos(2 pi (e - e_lo) / period + phase)``. Frames of
+    the same part at phases 0 and 90 beside one under the uniform panel give each pixel the phase of the stripe its
+    face mirrors (phase-shifting deflectometry: the phase moves by 360 * 2 s / period for a slope s)."""
     front_light_radiance: float = 0.0
     """A flat light strip lying on the belt in front of the part, on the camera's side (in the fixture's base):
     Lambertian, radiance ``front_light_radiance`` upward, 0 = none. A vertical face turned toward a camera that
@@ -205,7 +209,8 @@ class SceneConfig:
 
 LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose", "background_colour",
               "ambient_gradient", "ambient_gradient_azimuth_deg", "ring_radiance", "ring_elevation_deg",
-              "ring_azimuth_deg", "ring_fringe_period_deg", "ring_fringe_depth", "front_light_radiance",
+              "ring_azimuth_deg", "ring_fringe_period_deg", "ring_fringe_depth", "ring_fringe_phase_deg",
+              "front_light_radiance",
               "front_light_span_m", "front_light_width_m", "front_light_azimuth_deg")
 """SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
@@ -451,7 +456,8 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
            if cfg.ring_radiance else {}),
         **({"ring_azimuth_deg": list(cfg.ring_azimuth_deg)}
            if cfg.ring_radiance and tuple(cfg.ring_azimuth_deg) != FULL_RING else {}),  # older sets lack it
-        **({"ring_fringe": [cfg.ring_fringe_period_deg, cfg.ring_fringe_depth]}
+        **({"ring_fringe": [cfg.ring_fringe_period_deg, cfg.ring_fringe_depth,
+                            *([cfg.ring_fringe_phase_deg] if cfg.ring_fringe_phase_deg else [])]}
            if cfg.ring_fringe_period_deg else {}),  # SceneConfig refuses fringes without a ring
         **({"front_light": {"radiance": cfg.front_light_radiance, "span_m": list(cfg.front_light_span_m),
                             "width_m": cfg.front_light_width_m, "azimuth_deg": cfg.front_light_azimuth_deg}}
@@ -630,8 +636,9 @@ def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float],
     degrees from world +x toward +y), as an envmap whose pole (its local +y) is world +z, so its rows are polar
     angles from the vertical. Mitsuba reads a direction's column as ``u = atan2(x, -z) / 2 pi`` in the map's
     frame, which is world azimuth ``phi = 90 - 360 u`` degrees here (a test checks a sector's side). ``fringe`` =
-    (period in degrees, depth): each row of the ring times ``1 + depth cos(2 pi (e - elevation_deg[0]) / period)``
-    at its centre's elevation e (``SceneConfig.ring_fringe_period_deg``); period 0: uniform. ``gradient`` (g) and
+    (period in degrees, depth[, phase in degrees, default 0]): each row of the ring times ``1 + depth cos(2 pi (e -
+    elevation_deg[0]) / period + phase)`` at its centre's elevation e (``SceneConfig.ring_fringe_period_deg``);
+    period 0: uniform. ``gradient`` (g) and
     ``gradient_azimuth_deg`` make the dome a gradient dome as ``ambient_dict`` does (``radiance`` (1 + g w_a), w_a
     the direction's component along that azimuth, at each cell's centre), so a segment of the dome and the ring
     share the one environment map."""
@@ -639,10 +646,11 @@ def ring_dict(radiance: float, ring: float, elevation_deg: Sequence[float],
 
     edges = np.linspace(0.0, 180.0, RING_ROWS + 1)  # polar angle of the rows' edges, degrees
     rows = _covered(edges, 90.0 - float(elevation_deg[1]), 90.0 - float(elevation_deg[0]))
-    period, depth = (float(v) for v in fringe)
+    period, depth, phase = (float(v) for v in (*fringe, 0.0)[:3])
     if period:
         elevation = 90.0 - 0.5 * (edges[:-1] + edges[1:])
-        rows = rows * (1.0 + depth * np.cos(2 * np.pi * (elevation - float(elevation_deg[0])) / period))
+        rows = rows * (1.0 + depth * np.cos(2 * np.pi * (elevation - float(elevation_deg[0])) / period
+                                            + math.radians(phase)))
     # columns run along u, i.e. toward decreasing azimuth: column j covers phi in [90 - 360 (j+1)/W, ...]
     u_edges = np.linspace(0.0, 1.0, 2 * RING_ROWS + 1)
     phi_edges = 90.0 - 360.0 * u_edges[::-1]  # increasing; reversed back to column order below

@@ -73,6 +73,7 @@ def test_a_bit_depth_on_the_command_line_wins_over_the_presets(tmp_path: Path, f
     ({"ring_radiance": 0.0, "ring_elevation_deg": [5.0, 15.0]}, True),  # the ring's keys at their defaults
     ({"ring_radiance": 5.0, "ring_elevation_deg": [5.0, 15.0]}, False),  # a set lit by a ring is another set
     ({"ring_fringe_period_deg": 0.0, "ring_fringe_depth": 0.5}, True),  # no fringes
+    ({"ring_fringe_phase_deg": 0.0}, True),  # the fringes' phase at its default
     ({"front_light_radiance": 0.0, "front_light_span_m": [0.011, 0.04]}, True),  # the front light off
     ({"front_light_radiance": 2.1}, False),  # a set with a front light is another set
 ])

@@ -177,8 +177,8 @@ def test_a_ring_sector_lights_the_faces_on_its_side(variant: str) -> None:
 
 def test_ring_fringes_modulate_the_panel_across_elevation(variant: str) -> None:
     """``SceneConfig.ring_fringe_period_deg``: the ring's rows (polar angles from the vertical, a quarter of a degree
-    each) carry 1 + depth cos(2 pi (e - e_lo) / period) at their elevation e, outside the ring nothing changes, and
-    three whole periods keep the ring's mean radiance."""
+    each) carry 1 + depth cos(2 pi (e - e_lo) / period + phase) at their elevation e, outside the ring nothing
+    changes, and three whole periods keep the ring's mean radiance."""
     from sim.scene import RING_ROWS, ring_dict
 
     plain = np.array(ring_dict(0.7, 10.0, (22.0, 46.0), (70.0, 110.0))["bitmap"]).reshape(RING_ROWS, -1)
@@ -192,6 +192,9 @@ def test_ring_fringes_modulate_the_panel_across_elevation(variant: str) -> None:
     assert striped.sum() == pytest.approx(plain.sum(), rel=1e-3)
     uniform = ring_dict(0.7, 10.0, (22.0, 46.0), (70.0, 110.0), (0.0, 0.5))["bitmap"]  # period 0: no fringes
     np.testing.assert_array_equal(np.array(uniform).reshape(RING_ROWS, -1), plain)
+    shifted = np.array(ring_dict(0.7, 10.0, (22.0, 46.0), (70.0, 110.0), (8.0, 0.5, 90.0))["bitmap"])
+    expected = 0.7 + 10.0 * (1 + 0.5 * np.cos(2 * np.pi * (elevation[inside] - 22.0) / 8.0 + np.pi / 2))
+    np.testing.assert_allclose(shifted.reshape(RING_ROWS, -1)[inside].max(1), expected, rtol=1e-5)
     with pytest.raises(SimError, match="ring_fringe_period_deg"):
         SceneConfig(ring_fringe_period_deg=8.0)
     with pytest.raises(SimError, match="ring_fringe_depth"):
