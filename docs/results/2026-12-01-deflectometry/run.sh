@@ -51,3 +51,4 @@ cp $e/eval.md $D/eval/eval-1176-F.md
 .venv/bin/python docs/results/2026-12-01-tilt-apart/read.py runs/c77/eval-1176-V1 "F=$e:$R/split-F.json" \
     "IN-G=runs/c77/eval-1176-ING:runs/c77/split-ING.json" "T=runs/c78/eval-1176-T:runs/c78/split-T.json" \
     > $D/read.md
+.venv/bin/python $D/precision.py data/fq-pv-val data/line-pv-val 40 > $D/precision.txt

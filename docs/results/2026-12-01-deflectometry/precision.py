@@ -1,0 +1,45 @@
+"""How fine a slope the stripes measure (the page's reading, as tilt-apart's tilt_error.py reads the dome halves):
+on the first good parts of an F set, where the face mirrors the panel (the stripes' share a > A_MIN after
+smoothing), the measured phase against the one the renderer's normal predicts. Both smoothed with a Gaussian of
+10 frame px (about 1 mm, a dent flank's scale; the phase through its (c, s) pair); the prediction is a cubic in the
+normal's three components fitted to exp(i phi) over all parts' pixels (what depends on the normal the same way on
+every part, the camera's mount included on average). The error is the phase's difference from it, wrapped, read as
+degrees of slope at 30 degrees of phase per degree (plan.md: 360 * 2 / 24). Normals from the line set's gt.npz
+(the F set's own "normal" is the measurement).
+
+Usage: PYTHONPATH=. python precision.py F_SET LINE_SET [PARTS]  (default 40 parts)"""
+import sys
+
+import numpy as np
+from scipy.ndimage import gaussian_filter
+
+from sim.dataset import open_dataset
+
+A_MIN = 0.08
+PHASE_PER_SLOPE = 360.0 * 2 / 24.0  # degrees of phase per degree of slope
+f_set, line_set = open_dataset(sys.argv[1]), open_dataset(sys.argv[2])
+want = int(sys.argv[3]) if len(sys.argv) > 3 else 40
+zs, ns, parts = [], [], 0
+for i in f_set.indices("val") + f_set.indices("train"):
+    s = f_set.load(i)
+    if s.label:
+        continue
+    n = line_set.load(i).normal.astype(np.float64)
+    mask = s.object_mask
+    w = gaussian_filter(mask.astype(np.float64), 10.0)
+    sm = [gaussian_filter(s.normal[..., k].astype(np.float64) * mask, 10.0) / np.maximum(w, 1e-9) for k in (0, 1)]
+    nsm = np.stack([gaussian_filter(n[..., k] * mask, 10.0) / np.maximum(w, 1e-9) for k in range(3)], -1)
+    where = mask & (w > 0.9) & (np.hypot(*sm) > A_MIN)
+    zs.append((sm[0] + 1j * sm[1])[where])
+    ns.append(nsm[where])
+    parts += 1
+    if parts == want:
+        break
+z, n = np.concatenate(zs), np.concatenate(ns)
+x, y, v = n[:, 0], n[:, 1], n[:, 2]
+cubic = np.stack([x ** i * y ** j * v ** m for i in range(4) for j in range(4 - i) for m in range(4 - i - j)], 1)
+beta = np.linalg.lstsq(cubic.astype(np.complex128), z / np.abs(z), rcond=None)[0]
+err = np.degrees(np.abs(np.angle(z * np.conj(cubic @ beta)))) / PHASE_PER_SLOPE
+print(f"{sys.argv[1]}: {parts} good parts, {z.size} pixels where the face mirrors the panel (a > {A_MIN} at 10 px); "
+      f"slope error along the stripes at 10 px: median {np.median(err):.3f} deg, 90th percentile "
+      f"{np.percentile(err, 90):.3f} deg")
