@@ -52,3 +52,4 @@ cp $e/eval.md $D/eval/eval-1176-F.md
     "IN-G=runs/c77/eval-1176-ING:runs/c77/split-ING.json" "T=runs/c78/eval-1176-T:runs/c78/split-T.json" \
     > $D/read.md
 .venv/bin/python $D/precision.py data/fq-pv-val data/line-pv-val 40 > $D/precision.txt
+.venv/bin/python $D/precision.py data/fq-pf-train data/line-pf-train 40 >> $D/precision.txt  # run by hand on 2026-12-01
