@@ -3,7 +3,7 @@ it) against RADF at its own 1 % point on its validation set, on the same parts o
 defective caught (all, per type, top-face dents and scratches), and the caught difference's paired bootstrap SE
 (2000 resamples over parts). Thresholds are read from each report's eval.md.
 
-Usage: python read-2.py RAD_EVAL RADF_EVAL"""
+Usage: python read-2.py RAD_EVAL RADF_EVAL [LABEL]  (LABEL: the table's first header, "seed 1176" unless given)"""
 import csv
 import re
 import sys
@@ -26,7 +26,8 @@ face = np.array([a[i]["face"] for i in idx])
 ca = np.array([float(a[i]["score"]) > t_a for i in idx])
 cb = np.array([float(b[i]["score"]) > t_b for i in idx])
 good, bad = label == 0, label == 1
-print("| seed 1176 (threshold) | good parts rejected | caught | "
+label_text = sys.argv[3] if len(sys.argv) > 3 else "seed 1176"
+print(f"| {label_text} (threshold) | good parts rejected | caught | "
       + " | ".join(sorted(set(kind[bad]))) + " | top-face dents | top-face scratches |")
 print("|---" * (5 + len(set(kind[bad]))) + "|")
 for name, t, c in (("RAD alone, the line's 1 %", t_a, ca), ("RADF, its 1 %", t_b, cb)):
