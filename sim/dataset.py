@@ -256,10 +256,10 @@ class Sample:
 
 OVERRIDE_SECTIONS = ("scene", "defects", "sensor", "variation", "view")
 VIEW_KEYS = (*VIEW_CAMERA_KEYS, "camera_height_m", "flat_dome_radiance", "flat_dome_distance_m", "flat_dome_width_m",
-             "flat_dome_top_m")
+             "flat_dome_top_m", "flat_dome_fringe_period_m", "flat_dome_fringe_depth", "flat_dome_fringe_phase_deg")
 """The keys of ``[view]`` (``DatasetSpec.view``): a second camera's ranges, as the scene's camera keys; its height
-above the belt, for a camera that looks level at the part; a flat dome it looks through (``sim.scene.ViewConfig``,
-``FlatDome``)."""
+above the belt, for a camera that looks level at the part; a flat dome it looks through, with stripes across it or not
+(``sim.scene.ViewConfig``, ``FlatDome``)."""
 
 
 def read_overrides(path: str | Path) -> dict[str, dict[str, Any]]:

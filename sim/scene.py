@@ -334,12 +334,21 @@ class FlatDome:
     and it reads dark. A face turned by theta against the camera's line of sight (the part's yaw less the camera's
     azimuth) mirrors a direction 2 theta away, and a point of the face x off its centre mirrors that direction from
     x: the whole face stays in bright field while width / 2 >= x_end + distance tan(2 theta_max + its view angle),
-    with some degrees more for a rough finish's lobe (``sim/presets/side-view.toml`` works it out for the line)."""
+    with some degrees more for a rough finish's lobe (``sim/presets/side-view.toml`` works it out for the line).
+
+    ``fringe_period_m`` > 0 puts stripes across the dome's width (deflectometry, as ``SceneConfig``'s
+    ``ring_fringe_*`` for the bright-field panel): its radiance times ``1 + fringe_depth * cos(2 pi x / period +
+    phase)``, x metres across the dome from its edge at u = 0 of the rectangle (``flat_dome_dict``), phase
+    ``fringe_phase_deg``. A face's slope t turns its mirror image by 2 t, which moves across the dome by about
+    ``distance_m * tan(2 t)``; a whole number of periods across ``width_m`` keeps the dome's mean radiance."""
 
     radiance: float
     distance_m: float = 0.30
     width_m: float = 0.36
     top_m: float = 0.03
+    fringe_period_m: float = 0.0
+    fringe_depth: float = 0.5
+    fringe_phase_deg: float = 0.0
 
     def __post_init__(self) -> None:
         for key in ("radiance", "distance_m", "width_m"):
@@ -348,6 +357,11 @@ class FlatDome:
                 raise SimError(f"flat_dome_{key}: must be a number > 0, got {v!r}")
         if not (isinstance(self.top_m, (int, float)) and self.top_m > FLAT_DOME_BOTTOM_M):
             raise SimError(f"flat_dome_top_m: must be above {FLAT_DOME_BOTTOM_M:g} m, got {self.top_m!r}")
+        for key, lo, hi in (("fringe_period_m", 0.0, math.inf), ("fringe_depth", 0.0, 1.0),
+                            ("fringe_phase_deg", -math.inf, math.inf)):
+            v = getattr(self, key)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and lo <= v <= hi):
+                raise SimError(f"flat_dome_{key}: must be a number in [{lo:g}, {hi:g}], got {v!r}")
 
     def placed(self, centre: np.ndarray, toward_camera: np.ndarray) -> dict[str, Any]:
         """The scene's ``flat_dome`` entry for a part centred at ``centre`` (world metres) seen from the horizontal
@@ -355,7 +369,9 @@ class FlatDome:
         mid = 0.5 * (self.top_m + FLAT_DOME_BOTTOM_M)
         at = np.array([centre[0], centre[1], mid]) + self.distance_m * toward_camera
         return {"centre": at.tolist(), "toward": (-toward_camera).tolist(), "width_m": self.width_m,
-                "height_m": self.top_m - FLAT_DOME_BOTTOM_M, "radiance": self.radiance}
+                "height_m": self.top_m - FLAT_DOME_BOTTOM_M, "radiance": self.radiance,
+                **({"fringe": [self.fringe_period_m, self.fringe_depth, self.fringe_phase_deg]}
+                   if self.fringe_period_m else {})}  # earlier records unchanged without stripes
 
 
 @dataclass(frozen=True)
@@ -705,16 +721,30 @@ def flat_dome_dict(dome: dict) -> dict:
     through, and a one-sided area emitter of ``radiance`` facing ``toward`` (the part): the camera behind it sees
     its unlit back. Its light-sampling weight is its irradiance on a face square to it, radiance times its solid
     angle from the fixture's centre (the world origin; ``emitter_weights``' units). The mask passes must not see it
-    (``sim.render.render_sample`` renders them without it)."""
+    (``sim.render.render_sample`` renders them without it). With ``fringe`` (period in metres, depth, phase in
+    degrees: ``FlatDome``'s stripes) the radiance is a texture of ``FLAT_DOME_FRINGE_COLUMNS`` columns across the
+    width (u), each at its centre's x; the weight keeps the mean radiance."""
     import mitsuba as mi
 
     c, toward = np.asarray(dome["centre"], float), np.asarray(dome["toward"], float)
     w, h, radiance = float(dome["width_m"]), float(dome["height_m"]), float(dome["radiance"])
     frame = mi.ScalarTransform4f().look_at(origin=c.tolist(), target=(c + toward).tolist(), up=[0, 0, 1])
+    texture: dict[str, Any] = {"type": "spectrum", "value": radiance}
+    if dome.get("fringe"):
+        period, depth, phase = (float(v) for v in dome["fringe"])
+        x = (np.arange(FLAT_DOME_FRINGE_COLUMNS) + 0.5) * w / FLAT_DOME_FRINGE_COLUMNS
+        row = radiance * (1.0 + depth * np.cos(2 * np.pi * x / period + math.radians(phase)))
+        texture = {"type": "bitmap", "bitmap": mi.Bitmap(row.astype(np.float32)[None, :, None]), "raw": True,
+                   "filter_type": "bilinear", "wrap_mode": "clamp"}
     return {"type": "rectangle", "bsdf": {"type": "null"},
             "to_world": frame @ mi.ScalarTransform4f().scale([w / 2, h / 2, 1.0]),
-            "emitter": {"type": "area", "radiance": {"type": "spectrum", "value": radiance},
+            "emitter": {"type": "area", "radiance": texture,
                         "sampling_weight": radiance * w * h / float(np.linalg.norm(c[:2])) ** 2}}
+
+
+FLAT_DOME_FRINGE_COLUMNS = 720
+"""Columns of a striped flat dome's radiance texture (``flat_dome_dict``): 2 mm each on the preset's 0.36 m dome,
+under a hundredth of the shortest period a screen would use (0.05 m and up)."""
 
 
 def build_scene(params: dict, parts: list[Part], materials: dict[str, dict], width: int, height: int, spp: int,

@@ -159,3 +159,47 @@ def test_the_presets_flat_dome_fills_the_whole_front_face_at_the_lines_worst_tur
     if yaw_deg < 0:  # check 67's dome, 0.22 m: two thirds of the face mirror past its edge and read dark
         narrow = front_face_thirds(yaw_deg, azimuth_deg, width_m=0.22)
         assert min(narrow) < 0.6 * max(narrow), narrow
+
+
+def test_a_striped_flat_dome_modulates_the_front_face_and_its_phases_average_to_the_plain_dome() -> None:
+    """``[view] flat_dome_fringe_*``: stripes across the dome's width. Light adds, so frames at phases 0 and 180
+    average to the plain dome's frame; each alone differs from it on the front face (the face mirrors a stripe; the
+    dome's diffuse light, spread over all the stripes, does not change)."""
+    from sim.render import render_sample
+    from sim.scene import flat_dome_dict
+
+    stripes = {"flat_dome_fringe_period_m": 0.12, "flat_dome_fringe_depth": 0.5}
+    spec = sd.DatasetSpec(seed=5, defect_fraction=0.0, scene=LINE, view={**SIDE, **DOME, **stripes},
+                          width=96, height=72, spp=16)
+    plain = sd.DatasetSpec(seed=5, defect_fraction=0.0, scene=LINE, view={**SIDE, **DOME}, width=96, height=72,
+                           spp=16)
+    model = sd.prepare(spec)
+    draw, base = sd.draw_sample(spec, model, 0), sd.draw_sample(plain, model, 0)
+    assert draw.params["flat_dome"].pop("fringe") == [0.12, 0.5, 0.0]
+    assert draw.params == base.params and "fringe" not in base.params["flat_dome"]  # the same part and dome
+    row = np.asarray(flat_dome_dict({**base.params["flat_dome"], "fringe": [0.11, 0.5, 0.0]})
+                     ["emitter"]["radiance"]["bitmap"]).reshape(-1)
+    x = (np.arange(row.size) + 0.5) * 0.22 / row.size
+    assert np.allclose(row, 5.0 * (1 + 0.5 * np.cos(2 * np.pi * x / 0.11)), rtol=1e-5)  # 2 periods: mean kept
+    assert abs(row.mean() - 5.0) < 1e-3
+
+    def front(phase_deg: float | None) -> np.ndarray:
+        dome = dict(base.params["flat_dome"])
+        if phase_deg is not None:
+            dome["fringe"] = [0.12, 0.5, phase_deg]
+        out = render_sample(model, {**base.params, "flat_dome": dome}, None, spec.render_settings(),
+                            base.mitsuba_seed)
+        face = out.object_mask & (out.normal[..., 2] > 0.9)
+        return out.s0[face]
+
+    uniform, at0, at180 = front(None), front(0.0), front(180.0)
+    assert uniform.size > 50
+    assert np.median(np.abs(0.5 * (at0 + at180) - uniform)) < 0.05 * np.median(uniform)
+    assert np.median(np.abs(at0 - uniform)) > 0.07 * np.median(uniform)  # 0.115 measured (seed 5, part 0)
+
+
+def test_bad_flat_dome_stripes_are_refused_by_key() -> None:
+    with pytest.raises(SimError, match=r"view: flat_dome_fringe_depth: must be a number in \[0, 1\]"):
+        sd.DatasetSpec(view={**SIDE, **DOME, "flat_dome_fringe_period_m": 0.1, "flat_dome_fringe_depth": 1.5})
+    with pytest.raises(SimError, match=r"view: flat_dome_fringe_period_m"):
+        sd.DatasetSpec(view={**SIDE, **DOME, "flat_dome_fringe_period_m": -0.1})
