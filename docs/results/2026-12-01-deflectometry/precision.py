@@ -7,7 +7,10 @@ every part, the camera's mount included on average). The error is the phase's di
 degrees of slope at 30 degrees of phase per degree (plan.md: 360 * 2 / 24). Normals from the line set's gt.npz
 (the F set's own "normal" is the measurement).
 
-Usage: PYTHONPATH=. python precision.py F_SET LINE_SET [PARTS]  (default 40 parts)"""
+Usage: PYTHONPATH=. python precision.py F_SET LINE_SET [PARTS [PHASE_PER_SLOPE [position]]]  (default 40 parts, 30
+degrees of phase per degree of slope: the panel's stripes; plan-4's flat dome: 31.4). With "position" the prediction
+also depends on the pixel's column (the cubic times (1, column)): a light at a finite distance (plan-4's flat dome,
+0.30 m) is mirrored from where the face is, not only from its normal, as the panel (an environment map) is not."""
 import sys
 
 import numpy as np
@@ -16,7 +19,7 @@ from scipy.ndimage import gaussian_filter
 from sim.dataset import open_dataset
 
 A_MIN = 0.08
-PHASE_PER_SLOPE = 360.0 * 2 / 24.0  # degrees of phase per degree of slope
+PHASE_PER_SLOPE = float(sys.argv[4]) if len(sys.argv) > 4 else 360.0 * 2 / 24.0  # phase degrees per slope degree
 f_set, line_set = open_dataset(sys.argv[1]), open_dataset(sys.argv[2])
 want = int(sys.argv[3]) if len(sys.argv) > 3 else 40
 zs, ns, parts = [], [], 0
@@ -31,13 +34,16 @@ for i in f_set.indices("val") + f_set.indices("train"):
     nsm = np.stack([gaussian_filter(n[..., k] * mask, 10.0) / np.maximum(w, 1e-9) for k in range(3)], -1)
     where = mask & (w > 0.9) & (np.hypot(*sm) > A_MIN)
     zs.append((sm[0] + 1j * sm[1])[where])
-    ns.append(nsm[where])
+    ns.append(np.concatenate([nsm, np.broadcast_to(np.linspace(-1, 1, mask.shape[1]), mask.shape)[..., None]],
+                             -1)[where])
     parts += 1
     if parts == want:
         break
 z, n = np.concatenate(zs), np.concatenate(ns)
 x, y, v = n[:, 0], n[:, 1], n[:, 2]
 cubic = np.stack([x ** i * y ** j * v ** m for i in range(4) for j in range(4 - i) for m in range(4 - i - j)], 1)
+if len(sys.argv) > 5 and sys.argv[5] == "position":
+    cubic = np.concatenate([cubic, cubic * n[:, 3:4]], 1)
 beta = np.linalg.lstsq(cubic.astype(np.complex128), z / np.abs(z), rcond=None)[0]
 err = np.degrees(np.abs(np.angle(z * np.conj(cubic @ beta)))) / PHASE_PER_SLOPE
 print(f"{sys.argv[1]}: {parts} good parts, {z.size} pixels where the face mirrors the panel (a > {A_MIN} at 10 px); "
