@@ -18,3 +18,7 @@ done
 .venv/bin/python $D/quadrature.py data/sw-pv-val data/sfr0-pv-val data/sfr90-pv-val data/sfq-pv-val > $R/sfq.log
 .venv/bin/python $D/precision.py data/sfq-pv-val data/sw-pv-val 40 31.4 > $D/precision-side.txt
 .venv/bin/python $D/precision.py data/sfq-pv-val data/sw-pv-val 40 31.4 position >> $D/precision-side.txt
+# After plan-4's reading, not deciding (precision-per-part.py): each part's own prediction, the flat dome's stripes
+# and the panel's (run-3.sh's quadrature makes data/fq-pv-val).
+.venv/bin/python $D/precision-per-part.py data/sfq-pv-val data/sw-pv-val 31.4 > $D/precision-per-part.txt
+.venv/bin/python $D/precision-per-part.py data/fq-pv-val data/line-pv-val 30 >> $D/precision-per-part.txt
