@@ -514,9 +514,10 @@ def mesh_shape(part: Part, bsdf: dict | None):
         props["bsdf"] = mi.load_dict(bsdf)
     mesh = mi.Mesh(part.name, len(part.vertices), len(part.faces), props, has_vertex_normals=True)
     params = mi.traverse(mesh)
-    params["vertex_positions"] = mi.Float(np.ascontiguousarray(part.vertices, dtype=np.float32).ravel())
-    params["faces"] = mi.UInt32(np.ascontiguousarray(part.faces, dtype=np.uint32).ravel())
-    params["vertex_normals"] = mi.Float(np.ascontiguousarray(part.normals, dtype=np.float32).ravel())
+    for key, values, dtype in (("vertex_positions", part.vertices, np.float32), ("faces", part.faces, np.uint32),
+                               ("vertex_normals", part.normals, np.float32)):
+        # the buffer's own type: mi.Float on the JIT variants, a dynamic scalar array on the scalar fallback
+        params[key] = type(params[key])(np.ascontiguousarray(values, dtype=dtype).ravel())
     params.update()
     return mesh
 

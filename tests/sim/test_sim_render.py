@@ -458,3 +458,31 @@ def test_a_dome_segment_set_images_each_part_once_per_segment_with_its_own_noise
     assert main([*base[:-2], "--dome-segments", "0,180", "--out", str(tmp_path / "flat")]) == 2
     err = capsys.readouterr().err
     assert "ambient_gradient" in err and len(err.strip().splitlines()) == 1
+
+
+def test_the_scalar_fallback_renders_a_part(tmp_path) -> None:
+    """Without LLVM >= 19 the renderer falls back to ``scalar_spectral_polarized`` (``sim.variant``). Its mesh
+    buffers are dynamic scalar arrays, not ``mi.Float``: a tiny sample, the striped flat dome included, renders finite
+    Stokes there. In a subprocess: a process keeps the variant it first set."""
+    import os
+    import subprocess
+    import sys
+
+    code = """
+import numpy as np
+from sim import dataset as sd
+from sim.render import render_sample
+import mitsuba as mi
+spec = sd.DatasetSpec(seed=5, defect_fraction=0.0, width=32, height=24, spp=1,
+                      view={"camera_height_m": [0.002, 0.002], "flat_dome_radiance": 5.0,
+                            "flat_dome_fringe_period_m": 0.12})
+model = sd.prepare(spec)
+draw = sd.draw_sample(spec, model, 0)
+out = render_sample(model, draw.params, None, spec.render_settings(), draw.mitsuba_seed)
+assert np.isfinite(out.s0).all() and out.s0.max() > 0 and out.object_mask.any()
+print(mi.variant())
+"""
+    env = {**os.environ, "POLAR_ANO_MI_VARIANT": "scalar_spectral_polarized", "PYTHONPATH": os.getcwd()}
+    run = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip().endswith("scalar_spectral_polarized")
