@@ -1,0 +1,28 @@
+"""After plan-3's reading, not deciding: where RADF-c's defective parts caught differ from RAD's on seed 1183, by type
+and by the face the defect lies on (each file at its 1 % threshold, read from its eval.md, as read-2.py does).
+
+Usage: python read-3-faces.py RAD_EVAL RADF_EVAL"""
+import csv
+import re
+import sys
+from collections import defaultdict
+
+
+def report(folder):
+    threshold = float(re.search(r"1 % -> ([0-9.]+)", open(f"{folder}/eval.md").read()).group(1))
+    return threshold, {r["index"]: r for r in csv.DictReader(open(f"{folder}/scores.csv"))}
+
+
+(t_a, a), (t_b, b) = report(sys.argv[1]), report(sys.argv[2])
+rows = defaultdict(lambda: [0, 0, 0, 0, 0])  # parts, RAD caught, RADF caught, RADF only, RAD only
+for i, r in a.items():
+    if r["label"] != "1":
+        continue
+    ca, cb = float(r["score"]) > t_a, float(b[i]["score"]) > t_b
+    row = rows[(r["defect_type"], r["face"])]
+    for k, v in enumerate((1, ca, cb, cb and not ca, ca and not cb)):
+        row[k] += v
+print("| type | face | defective | RAD caught | RADF-c caught | caught by RADF-c only | by RAD only |")
+print("|---|---|---|---|---|---|---|")
+for (kind, face), row in sorted(rows.items()):
+    print(f"| {kind} | {face} | " + " | ".join(str(v) for v in row) + " |")
