@@ -3,7 +3,8 @@ it) against RADF at its own 1 % point on its validation set, on the same parts o
 defective caught (all, per type, top-face dents and scratches), and the caught difference's paired bootstrap SE
 (2000 resamples over parts). Thresholds are read from each report's eval.md.
 
-Usage: python read-2.py RAD_EVAL RADF_EVAL [LABEL]  (LABEL: the table's first header, "seed 1176" unless given)"""
+Usage: python read-2.py RAD_EVAL RADF_EVAL [LABEL [NAME_A NAME_B]]  (LABEL: the table's first header, "seed 1176"
+unless given; NAME_A, NAME_B: the rows' names, "RAD alone, the line's 1 %" and "RADF, its 1 %" unless given)"""
 import csv
 import re
 import sys
@@ -30,7 +31,8 @@ label_text = sys.argv[3] if len(sys.argv) > 3 else "seed 1176"
 print(f"| {label_text} (threshold) | good parts rejected | caught | "
       + " | ".join(sorted(set(kind[bad]))) + " | top-face dents | top-face scratches |")
 print("|---" * (5 + len(set(kind[bad]))) + "|")
-for name, t, c in (("RAD alone, the line's 1 %", t_a, ca), ("RADF, its 1 %", t_b, cb)):
+names = sys.argv[4:6] if len(sys.argv) > 5 else ["RAD alone, the line's 1 %", "RADF, its 1 %"]
+for name, t, c in ((names[0], t_a, ca), (names[1], t_b, cb)):
     per = [f"{100 * c[bad & (kind == k)].mean():.0f} %" for k in sorted(set(kind[bad]))]
     on_top = [bad & (kind == k) & (face == "top") for k in ("dent", "scratch")]
     top = [f"{100 * c[m].mean():.0f} % of {m.sum()}" for m in on_top]
