@@ -2,16 +2,15 @@
 and by the face the defect lies on (each file at its 1 % threshold, read from its eval.md, as read-2.py does).
 
 Usage: python read-3-faces.py RAD_EVAL RADF_EVAL"""
-import csv
-import re
+import importlib.util
 import sys
 from collections import defaultdict
+from pathlib import Path
 
-
-def report(folder):
-    threshold = float(re.search(r"1 % -> ([0-9.]+)", open(f"{folder}/eval.md").read()).group(1))
-    return threshold, {r["index"]: r for r in csv.DictReader(open(f"{folder}/scores.csv"))}
-
+spec = importlib.util.spec_from_file_location("read_2", Path(__file__).with_name("read-2.py"))
+read_2 = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(read_2)
+report = read_2.report  # a report's 1 % threshold and scores, as read-2.py reads them
 
 (t_a, a), (t_b, b) = report(sys.argv[1]), report(sys.argv[2])
 rows = defaultdict(lambda: [0, 0, 0, 0, 0])  # parts, RAD caught, RADF caught, RADF only, RAD only
