@@ -12,21 +12,22 @@ P=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --co
    --config sim/presets/panel-vary.toml)
 FINISH=(--config sim/presets/finish-vary.toml)
 SIDE=(--config sim/presets/side-view.toml)
-for ph in 0 90; do  # the train split only (sample k % 10 >= 3), as scripts/make-side-model.sh
-    S=(--config $D/side-fringe-$ph.toml --no-ground-truth)
-    for half in 0 1; do
+for ph in base 0 90; do  # base: the side camera's sets themselves (sw-*, with ground truth); 0, 90: the stripes' twins
+    S=(--config $D/side-fringe-$ph.toml --no-ground-truth); out=sfr$ph
+    [ $ph = base ] && { S=(); out=sw; }
+    for half in 0 1; do  # the train split only (sample k % 10 >= 3), as scripts/make-side-model.sh
         (for j in 3 4 5 6 7 8 9; do
-            .venv/bin/station render --out data/sfr$ph-train "${P[@]}" "${FINISH[@]}" "${SIDE[@]}" "${S[@]}" \
+            .venv/bin/station render --out data/$out-train "${P[@]}" "${FINISH[@]}" "${SIDE[@]}" "${S[@]}" \
                 --count 900 --seed 101 --defects 0.4 --defects-in-train --shard $((j + 10 * half))/20
-        done) > $R/render-sfr$ph-train-$half.log 2>&1 &
+        done) > $R/render-$out-train-$half.log 2>&1 &
     done
     wait
     for set in pf-val:--config:sim/presets/finish-vary.toml pv-val pv-val-1176; do
         name=${set%%:*}; extra=(); [ "$set" = "$name" ] || { IFS=: read -r _ a b <<< "$set"; extra=("$a" "$b"); }
         seed=303; [ "$name" = pv-val-1176 ] && seed=1176
         for k in 0 1; do
-            .venv/bin/station render --out data/sfr$ph-$name "${P[@]}" "${extra[@]}" "${SIDE[@]}" "${S[@]}" \
-                --count 600 --seed $seed --defects 0.4 --validation --shard $k/2 > $R/render-sfr$ph-$name-$k.log 2>&1 &
+            .venv/bin/station render --out data/$out-$name "${P[@]}" "${extra[@]}" "${SIDE[@]}" "${S[@]}" \
+                --count 600 --seed $seed --defects 0.4 --validation --shard $k/2 > $R/render-$out-$name-$k.log 2>&1 &
         done
         wait
     done
