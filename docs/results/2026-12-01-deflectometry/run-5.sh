@@ -37,18 +37,17 @@ quadrature() {  # SET: data/sfq-SET from the side set and its stripes' twins
 }
 quadrature train & quadrature pf-val & wait
 quadrature pv-val & quadrature pv-val-1176 & wait
-export OMP_NUM_THREADS=2
 NET=(--preset fast --fusion fused --batch-size 8 --seed 0 --device cpu --roi band --size 96 --steps 2 --eval-every 2)
-for f in V:intensity,dolp,aolp F:intensity,dolp,aolp,normal; do
-    n=WS-${f%%:*}
-    [ -f $R/$n-net/best.json ] || .venv/bin/station train --data data/sfq-train --priors "${f#*:}" "${NET[@]}" \
+judge() {  # NAME PRIORS: the file WS-NAME (a 2-step container, its variation model) and its reading; one core each
+    local n=WS-$1 e=$R/eval-1176-WS-$1
+    [ -f $R/$n-net/best.json ] || .venv/bin/station train --data data/sfq-train --priors "$2" "${NET[@]}" \
         --out $R/$n-net > $R/$n-net.log 2>&1
     [ -f $R/$n.json ] || .venv/bin/station variation --model $R/$n-net/best --data data/sfq-train \
         --val-data data/sfq-pf-val --curvature 3 --out $R/$n > $R/$n-fit.log 2>&1
-    e=$R/eval-1176-$n
     [ -f $e/scores.csv ] || .venv/bin/station eval --model $R/$n --data data/sfq-pv-val-1176 --split val \
         --val-data data/sfq-pv-val --presence-rule row_contrast --no-synthetic --no-plots --out $e > $e.log 2>&1
-done
+}
+judge V intensity,dolp,aolp & judge F intensity,dolp,aolp,normal & wait
 mkdir -p $D/eval
 .venv/bin/python $D/read-2.py $R/eval-1176-WS-V $R/eval-1176-WS-F "side camera, seed 1176" \
     "WS-V, its 1 %" "WS-F, its 1 %" > $D/read-5.md
