@@ -37,10 +37,21 @@ quadrature() {  # SET: data/sfq-SET from the side set and its stripes' twins
 }
 quadrature train & quadrature pf-val & wait
 quadrature pv-val & quadrature pv-val-1176 & wait
+# station train needs a val split, which the side training set (its train split only) lacks: the container's 2-step
+# keep-best reads 60 calibration parts linked in as val samples (indices 10 j + 2). Its networks do not decide
+# (station variation's decision: the variation model alone).
+C=$R/sfq-container
+if [ ! -d $C ]; then
+    mkdir -p $C/samples; cp data/sfq-train/manifest.json $C/
+    for d in data/sfq-train/samples/*; do ln -sfn "$(realpath "$d")" $C/samples/"$(basename "$d")"; done
+    for j in $(seq 0 59); do
+        ln -sfn "$(realpath data/sfq-pf-val/samples/"$(printf %06d "$j")")" $C/samples/"$(printf %06d $((10 * j + 2)))"
+    done
+fi
 NET=(--preset fast --fusion fused --batch-size 8 --seed 0 --device cpu --roi band --size 96 --steps 2 --eval-every 2)
 judge() {  # NAME PRIORS: the file WS-NAME (a 2-step container, its variation model) and its reading; one core each
     local n=WS-$1 e=$R/eval-1176-WS-$1
-    [ -f $R/$n-net/best.json ] || .venv/bin/station train --data data/sfq-train --priors "$2" "${NET[@]}" \
+    [ -f $R/$n-net/best.json ] || .venv/bin/station train --data $C --priors "$2" "${NET[@]}" \
         --out $R/$n-net > $R/$n-net.log 2>&1
     [ -f $R/$n.json ] || .venv/bin/station variation --model $R/$n-net/best --data data/sfq-train \
         --val-data data/sfq-pf-val --curvature 3 --out $R/$n > $R/$n-fit.log 2>&1
