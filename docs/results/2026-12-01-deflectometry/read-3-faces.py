@@ -1,7 +1,8 @@
 """After plan-3's reading, not deciding: where RADF-c's defective parts caught differ from RAD's on seed 1183, by type
 and by the face the defect lies on (each file at its 1 % threshold, read from its eval.md, as read-2.py does).
 
-Usage: python read-3-faces.py RAD_EVAL RADF_EVAL"""
+Usage: python read-3-faces.py RAD_EVAL RADF_EVAL [NAME_A NAME_B]  (names default to RAD and RADF-c; plan 5 passes
+WS-V and WS-F)"""
 import importlib.util
 import sys
 from collections import defaultdict
@@ -13,7 +14,8 @@ spec.loader.exec_module(read_2)
 report = read_2.report  # a report's 1 % threshold and scores, as read-2.py reads them
 
 (t_a, a), (t_b, b) = report(sys.argv[1]), report(sys.argv[2])
-rows = defaultdict(lambda: [0, 0, 0, 0, 0])  # parts, RAD caught, RADF caught, RADF only, RAD only
+name_a, name_b = sys.argv[3:5] if len(sys.argv) > 4 else ("RAD", "RADF-c")
+rows = defaultdict(lambda: [0, 0, 0, 0, 0])  # parts, A caught, B caught, B only, A only
 for i, r in a.items():
     if r["label"] != "1":
         continue
@@ -21,7 +23,7 @@ for i, r in a.items():
     row = rows[(r["defect_type"], r["face"])]
     for k, v in enumerate((1, ca, cb, cb and not ca, ca and not cb)):
         row[k] += v
-print("| type | face | defective | RAD caught | RADF-c caught | caught by RADF-c only | by RAD only |")
+print(f"| type | face | defective | {name_a} caught | {name_b} caught | caught by {name_b} only | by {name_a} only |")
 print("|---|---|---|---|---|---|---|")
 for (kind, face), row in sorted(rows.items()):
     print(f"| {kind} | {face} | " + " | ".join(str(v) for v in row) + " |")

@@ -62,5 +62,5 @@ judge V intensity,dolp,aolp & judge F intensity,dolp,aolp,normal & wait
 mkdir -p $D/eval
 .venv/bin/python $D/read-2.py $R/eval-1176-WS-V $R/eval-1176-WS-F "side camera, seed 1176" \
     "WS-V, its 1 %" "WS-F, its 1 %" > $D/read-5.md
-.venv/bin/python $D/read-3-faces.py $R/eval-1176-WS-V $R/eval-1176-WS-F >> $D/read-5.md
+.venv/bin/python $D/read-3-faces.py $R/eval-1176-WS-V $R/eval-1176-WS-F WS-V WS-F >> $D/read-5.md
 for n in WS-V WS-F; do cp $R/eval-1176-$n/eval.md $D/eval/eval-1176-$n.md; done
