@@ -43,5 +43,6 @@ if __name__ == "__main__":
     rng = np.random.default_rng(0)
     d = (cb[bad].astype(float) - ca[bad].astype(float))
     boots = [d[rng.integers(0, d.size, d.size)].mean() for _ in range(2000)]
-    print(f"RADF minus RAD alone, defective caught: {100 * d.mean():+.1f} points (paired bootstrap SE "
+    short = [n.split(",")[0] for n in names]  # "RAD alone", "RADF" by default
+    print(f"{short[1]} minus {short[0]}, defective caught: {100 * d.mean():+.1f} points (paired bootstrap SE "
           f"{100 * np.std(boots):.1f})")
