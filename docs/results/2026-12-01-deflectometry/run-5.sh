@@ -22,9 +22,9 @@ for ph in base 0 90; do  # base: the side camera's sets themselves (sw-*, with g
         done) > $R/render-$out-train-$half.log 2>&1 &
     done
     wait
-    for set in pf-val:--config:sim/presets/finish-vary.toml pv-val pv-val-1176; do
-        name=${set%%:*}; extra=(); [ "$set" = "$name" ] || { IFS=: read -r _ a b <<< "$set"; extra=("$a" "$b"); }
-        seed=303; [ "$name" = pv-val-1176 ] && seed=1176
+    for name in pf-val pv-val pv-val-1176; do  # calibration (the finish drawn), thresholds, the reading
+        extra=(); [ $name = pf-val ] && extra=("${FINISH[@]}")
+        seed=303; [ $name = pv-val-1176 ] && seed=1176
         for k in 0 1; do
             .venv/bin/station render --out data/$out-$name "${P[@]}" "${extra[@]}" "${SIDE[@]}" "${S[@]}" \
                 --count 600 --seed $seed --defects 0.4 --validation --shard $k/2 > $R/render-$out-$name-$k.log 2>&1 &
