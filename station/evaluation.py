@@ -256,7 +256,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
                   blur_copies_sigma: float | None = None, refit: bool = False,
                   global_polarization: str | None = None, clusters: int | None = None,
                   global_contrast: str | None = None, second_look: bool | None = None,
-                  curvature_sigma: float | None = None, second_look_test: bool | None = None) -> str:
+                  curvature_sigma: float | None = None, second_look_test: bool | None = None,
+                  judged_priors: list[str] | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
@@ -275,7 +276,9 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     ``model.draem.variation.SECOND_LOOK``). ``curvature_sigma``: the window statistic, the curvature's sigma in
     input px, 0 for the box (None: the shipped recipe, ``model.draem.variation.CURVATURE_SIGMA``).
     ``second_look_test``: the second look tests where the map points (False: it only gates the parts a look network
-    is asked about; None: the shipped recipe, ``model.draem.variation.SECOND_LOOK_TEST``). The sidecar's
+    is asked about; None: the shipped recipe, ``model.draem.variation.SECOND_LOOK_TEST``). ``judged_priors``: the
+    priors whose channels the window is taken over (None: all, the shipped recipe; the others are read, intensity
+    registers the part: ``model.draem.variation``'s ``judged_channels``). The sidecar's
     frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
     variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
@@ -293,7 +296,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         SECOND_LOOK_TEST,
         shipped_alignment,
     )
-    from model.draem.with_variation import add_variation, without_variation
+    from model.draem.with_variation import add_variation, judged_channels, without_variation
     from model.priors.frame_stats import StatisticsRange
     from station.datasets import manifest_sha256
 
@@ -332,6 +335,10 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         networks.config.with_(variation=True, decision=decision)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
+    try:
+        judged_channels(networks.config.priors, judged_priors)
+    except ModelError as exc:
+        raise UserError(f"--judged-priors {','.join(judged_priors or [])}: {model}: {exc}") from None
     tr = model_split(ck, model, data, "train", limit=fit_parts, good_only=True)
     val_data = val_data or data
     va = model_split(ck, model, val_data, "val")
@@ -344,7 +351,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma,
                             global_polarization=alignment, clusters=clusters, global_contrast=contrast,
                             second_look=second_look, curvature_sigma=curvature_sigma,
-                            second_look_test=second_look_test)
+                            second_look_test=second_look_test, judged_priors=judged_priors)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
@@ -354,7 +361,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         "contrast_range": det.variation.contrast_range.tolist() if det.variation.aligns_contrast else None,
         "second_look_references": det.variation.second_look.references,
         "curvature_sigma": float(det.variation.curvature_sigma),
-        "second_look_test": det.variation.second_look.testing if det.variation.second_look.references else None},
+        "second_look_test": det.variation.second_look.testing if det.variation.second_look.references else None,
+        "judged_priors": judged_priors},
         StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
@@ -368,6 +376,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
                Alignment.RANGE: ", each frame's contrast aligned where beyond theirs"}.get(contrast, "")
     if curvature_sigma:
         copies += f", its window each channel's curvature over {curvature_sigma:g} px"
+    if judged_priors:
+        copies += f", judging {', '.join(judged_priors)} only"
     looks = det.variation.second_look.references
     if looks and det.variation.second_look.testing:
         copies += f", a second look at suspicious parts against {looks} of them"

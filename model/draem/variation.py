@@ -35,7 +35,9 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               statistic is either |z| maxed over channels and box-averaged over ``box_px`` (``curvature_sigma`` 0,
               files before 2026-11-29), or each channel's curvature: sigma^2 |LoG_sigma * z| of its signed z (the
               Laplacian of a Gaussian of sigma ``curvature_sigma`` input px, scale-normalised), maxed over channels
-              (``CURVATURE_SIGMA``); zero outside the eroded part region
+              (``CURVATURE_SIGMA``); zero outside the eroded part region. Only the judged channels take part
+              (``judged_channels``: every feature, unless fitted with fewer, as a judge of the stripes' channels
+              alone that reads intensity only to register the part)
     highlights  zero where the part is lit near the sensor's full scale: I (1 + DoLP), the brightest reading
               any polarizer angle can give (``model.priors.conventions``; I alone without the DoLP prior),
               registered with the features, at or above ``HIGHLIGHT_LEVEL``, grown by ``HIGHLIGHT_GROW_PX``.
@@ -102,6 +104,7 @@ buffers, so the checkpoint carries them); never NaN or Inf.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import cv2
@@ -207,14 +210,14 @@ MAX_HIDDEN = 0.5
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
                  "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged",
-                 "curvature_sigma", "second_look.tests")
+                 "curvature_sigma", "second_look.tests", "judged_channels")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
 initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
 a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
 polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
 clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look;
-``curvature_sigma`` 0: the box window; ``second_look.tests`` 1: a second look tests), which score as those models
-did. Dotted names are a submodule's (``nn.Module.get_buffer``)."""
+``curvature_sigma`` 0: the box window; ``second_look.tests`` 1: a second look tests; ``judged_channels`` all 1:
+every feature judged), which score as those models did. Dotted names are a submodule's (``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
 """``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
@@ -312,6 +315,19 @@ MAX_CURVATURE_SIGMA = 16.0
 """Largest ``curvature_sigma`` ``check`` accepts (input px): a wider filter sees the part's outline, not a defect."""
 
 
+def judged_from(channels: Sequence[int], count: int) -> torch.Tensor:
+    """Channel indices -> the (count,) float 0/1 ``judged_channels`` buffer; ModelError for an index outside
+    [0, count) or none at all."""
+    out = torch.zeros(count)
+    for c in channels:
+        if not 0 <= int(c) < count:
+            raise ModelError(f"judged channel {c} is not one of the model's {count} channels")
+        out[int(c)] = 1.0
+    if not out.any():
+        raise ModelError("the variation model must judge at least one channel")
+    return out
+
+
 def curvature_kernels(sigma: float) -> tuple[np.ndarray, np.ndarray]:
     """Sigma (input px, > 0) -> the 1-D Gaussian g (unit sum) and sigma^2 times its second derivative, sampled over
     +-ceil(4 sigma) px (float32): ``curvature`` filters with g2 along one axis and g along the other, then the other
@@ -387,7 +403,8 @@ class VariationModel(nn.Module):
     residual scale at the P pixels of ``region``, in units of ``scale``. ``second_look``: propose and test for
     parts the window finds suspicious (``model.draem.second_look``; no references: none). ``curvature_sigma``: the
     window statistic (module docstring: z map; 0: the box, else the curvature's sigma in input px; ``fit``), which a
-    refit keeps. ``intensity``,
+    refit keeps. ``judged_channels`` (C,) 1.0 for a channel the window statistic is taken over, 0.0 for one that is
+    only read (intensity still registers the part; ``fit``'s ``judged_channels``), which a refit keeps. ``intensity``,
     ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's cosine (its sine follows), None when
     the model does not read that prior."""
 
@@ -414,6 +431,7 @@ class VariationModel(nn.Module):
         self.register_buffer("contrast_range", torch.tensor(CONTRAST_GAIN_RANGE))
         self.register_buffer("cluster_spread", torch.ones(COMPONENTS))
         self.register_buffer("curvature_sigma", torch.tensor(0.0))
+        self.register_buffer("judged_channels", torch.ones(channels))
         self._resize_clusters(0, 0)
         self.second_look = SecondLook()
 
@@ -585,9 +603,18 @@ class VariationModel(nn.Module):
         """Whether DoLP is a feature of its own (``READ_DOLP``); always when there is no AoLP to carry it."""
         return self.dolp is None or self.aolp is None or bool(self.reads_dolp > 0.5)
 
+    def judged_mask(self) -> np.ndarray:
+        """(C,) bool: the channels the window statistic is taken over: judged (``judged_channels``) and features
+        (without DoLP when it is not read)."""
+        keep = self.judged_channels.numpy() > 0.5
+        if not self.dolp_read:
+            keep[self.dolp] = False
+        return keep
+
     def used(self, z: np.ndarray) -> np.ndarray:
-        """(C, ...) per-channel values -> the channels that are features (without DoLP when it is not read)."""
-        return z if self.dolp_read else np.delete(z, self.dolp, axis=0)
+        """(C, ...) per-channel values -> the channels that are judged (``judged_mask``)."""
+        keep = self.judged_mask()
+        return z if keep.all() else z[keep]
 
     def peak(self, x: np.ndarray) -> np.ndarray:
         """(C, H, W) physical priors -> (H, W) I (1 + DoLP) (I without the DoLP prior), finite."""
@@ -625,7 +652,7 @@ class VariationModel(nn.Module):
             keep_reference: bool = False, blur_copies_sigma: float | None = None,
             global_polarization: Alignment | str | bool | None = None,
             clusters: int | None = None, global_contrast: Alignment | str | None = None,
-            curvature_sigma: float | None = None) -> np.ndarray:
+            curvature_sigma: float | None = None, judged_channels: Sequence[int] | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -656,7 +683,9 @@ class VariationModel(nn.Module):
         measures it into ``contrast_range`` (before the clusters), so only frames beyond them are aligned
         (``align_contrast``); ``OFF`` keeps ``CONTRAST_GAIN_RANGE``, which aligns nothing. ``curvature_sigma`` (input
         px; None: the model's own, so a refit keeps it): the window statistic the fit calibrates and the model scores
-        with (0: the box; module docstring: z map)."""
+        with (0: the box; module docstring: z map). ``judged_channels`` (channel indices; None: the model's own, so a
+        refit keeps them): the channels the window statistic is taken over; the others are read (intensity still
+        registers the part) but not judged. ModelError when none of them is a feature."""
         xs = x.float().cpu().numpy()
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
@@ -673,6 +702,11 @@ class VariationModel(nn.Module):
             raise ModelError(f"clusters must be >= 0, got {wanted_clusters}")
         contrast = (self.contrast_alignment if global_contrast is None
                     else Alignment.of(global_contrast, "global_contrast"))
+        if judged_channels is not None:
+            self.judged_channels.copy_(judged_from(judged_channels, len(self.mean)))
+        if not self.judged_mask().any():
+            raise ModelError("the variation model judges no channel: judged_channels must name a feature other than "
+                             "DoLP")
         self.blur_copies_sigma.fill_(sigma)
         self.curvature_sigma.fill_(curvature_sigma)
         mode = (self.polarization_alignment if global_polarization is None
@@ -894,6 +928,10 @@ class VariationModel(nn.Module):
             if not (bool((value > 0).all()) and bool((value <= MAX_SPREAD).all())):
                 raise ModelError(f"variation model: {name} has values outside (0, {MAX_SPREAD:g}] "
                                  f"({float(value.min()):.3g} .. {float(value.max()):.3g})")
+        judged = self.judged_channels
+        if not bool(((judged == 0) | (judged == 1)).all()) or not self.judged_mask().any():
+            raise ModelError(f"variation model: judged_channels is {judged.tolist()}: each 0 or 1, at least one "
+                             f"feature judged")
         sigma = float(self.curvature_sigma)
         if not 0.0 <= sigma <= MAX_CURVATURE_SIGMA:  # NaN fails too
             raise ModelError(f"variation model: curvature_sigma is {sigma:g}, outside [0, {MAX_CURVATURE_SIGMA:g}] "
@@ -1004,18 +1042,20 @@ class VariationModel(nn.Module):
         """(C, H, W) residual in units of ``scale`` and (H, W) judged pixels -> the residual divided by the frame's
         noise level as ``window`` does (``level`` when already known), zero outside ``judged``, clipped to
         +-``SIGNED_CLIP``; float32, finite. A channel that is not a feature (DoLP when not read) is zero: its
-        features are."""
+        features are; a channel that is not judged (``judged_channels``) is zero too."""
         r = np.nan_to_num(r, nan=0.0, posinf=SIGNED_CLIP, neginf=-SIGNED_CLIP)
         if level is None:
             level = self.noise_level(self.used(np.abs(r)), judged)
         r = r / (level if 1.0 < level <= NOISE_CAP else 1.0)
+        if not self.judged_channels.numpy().all():
+            r = r * (self.judged_channels.numpy() > 0.5)[:, None, None]
         return (np.clip(r, -SIGNED_CLIP, SIGNED_CLIP) * judged).astype(np.float32)
 
     def window(self, z: np.ndarray, judged: np.ndarray) -> tuple[np.ndarray, float]:
         """(C, H, W) per-channel signed z of a part and its (H, W) judged pixels -> ((H, W) window statistic after
         the frame's noise level: the largest channel's |z| box-averaged over ``box_px``, or with ``curvature_sigma``
         the largest channel's ``curvature`` of its z, zero outside the judged pixels; the noise level). A channel
-        that is not a feature (DoLP when not read) takes no part."""
+        that is not a feature (DoLP when not read) or not judged (``judged_channels``) takes no part."""
         z = self.used(z)
         level = self.noise_level(np.abs(z), judged)
         z = z / (level if 1.0 < level <= NOISE_CAP else 1.0)

@@ -5,13 +5,13 @@ networks that read it (``model.draem.residual``)."""
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
 import torch
 
-from .config import Alignment
+from .config import Alignment, channel_slices
 from .detector import Detector
 from .errors import ModelError
 from .residual import train_member
@@ -25,7 +25,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
                   blur_copies_sigma: float = 0.0,
                   global_polarization: Alignment | str | bool = Alignment.OFF,
                   clusters: int = 0, global_contrast: Alignment | str = Alignment.OFF,
-                  second_look: bool = False, curvature_sigma: float = 0.0, second_look_test: bool = True) -> Detector:
+                  second_look: bool = False, curvature_sigma: float = 0.0, second_look_test: bool = True,
+                  judged_priors: Sequence[str] | None = None) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
@@ -39,7 +40,9 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     references for a second look at suspicious parts (``add_second_look``), when there are at least
     ``MIN_REFERENCES`` of them (fewer: none). ``curvature_sigma``: the window statistic (``VariationModel.fit``; 0:
     the box). ``second_look_test``: the second look tests the regions its map points at (False: it only gates the
-    parts a look network is asked about; ``model.draem.second_look``)."""
+    parts a look network is asked about; ``model.draem.second_look``). ``judged_priors``: the priors whose channels
+    the window statistic is taken over (``judged_channels``; None: all; the others are read, intensity registers the
+    part); ModelError for a prior the detector does not read."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -51,12 +54,26 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     assert out.variation is not None
     references = out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
                                    global_polarization=global_polarization, clusters=clusters,
-                                   global_contrast=global_contrast, curvature_sigma=curvature_sigma)
+                                   global_contrast=global_contrast, curvature_sigma=curvature_sigma,
+                                   judged_channels=judged_channels(detector.config.priors, judged_priors))
     if second_look and len(references) >= MIN_REFERENCES:
         add_second_look(out, references, val_good, batch, test=second_look_test)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()
     return out
+
+
+def judged_channels(priors: Sequence[str], judged_priors: Sequence[str] | None) -> list[int] | None:
+    """The channel indices of ``judged_priors`` in a detector reading ``priors`` (``config.channel_slices``; None:
+    None, every channel). ModelError for a prior it does not read, or none."""
+    if judged_priors is None:
+        return None
+    slices = channel_slices(tuple(priors))
+    unknown = [p for p in judged_priors if p not in slices]
+    if unknown or not judged_priors:
+        raise ModelError(f"judged priors {list(judged_priors)}: the model reads {', '.join(priors)}; name one or "
+                         f"more of them")
+    return sorted({c for p in judged_priors for c in range(slices[p].start, slices[p].stop)})
 
 
 @torch.no_grad()

@@ -561,3 +561,56 @@ def test_the_curvature_kernel_answers_a_blob_and_a_dip_not_a_flat_field_or_a_slo
     vm = VariationModel(4, (H, W), intensity=0)
     vm.curvature_sigma.fill_(3.0)
     assert sd == pytest.approx(vm.window_noise(), rel=0.05)
+
+
+def blotted(x: torch.Tensor, channel: slice, amount: float) -> torch.Tensor:
+    """The same parts with a blob on the flat face in ``channel`` only: intensity times (1 - amount blob), or
+    another channel plus amount blob."""
+    yy, xx = np.mgrid[0:H, 0:W].astype(np.float32)
+    blob = torch.from_numpy(np.exp(-((yy - H / 2) ** 2 + (xx - W / 2 + 8) ** 2) / 4.0).astype(np.float32))
+    out = x.clone()
+    if channel == slice(0, 1):
+        out[:, 0] *= 1 - amount * blob
+    else:
+        out[:, channel] += amount * blob
+    return out
+
+
+def test_a_fit_judging_some_channels_reads_the_others_without_scoring_them(tmp_path: Path) -> None:
+    """``judged_channels``: a judge of some priors alone (the deflectometry map beside the line's own file). A blob in
+    intensity only is scored by a fit judging every channel and not by one judging AoLP's channels; a blob in AoLP's
+    channels by both. The choice travels with the checkpoint, an unknown prior or a judge of nothing is refused."""
+    from model.draem.with_variation import judged_channels
+
+    x = parts(40, 0)
+    good = parts(20, 1)
+    dull, turned = blotted(good, slice(0, 1), 0.4), blotted(good, slice(2, 4), 0.5)
+    every, aolp = VariationModel(4, (H, W), intensity=0), VariationModel(4, (H, W), intensity=0)
+    every.fit(x, x[:, 0] > 0.15)
+    aolp.fit(x, x[:, 0] > 0.15, judged_channels=judged_channels(("intensity", "dolp", "aolp"), ["aolp"]))
+    assert aolp.judged_channels.tolist() == [0.0, 0.0, 1.0, 1.0]
+    top = {n: float(vm.zmaps(good)[1].max()) for n, vm in (("every", every), ("aolp", aolp))}
+    assert float(every.zmaps(dull)[1].min()) > top["every"]  # intensity judged: every dull part out
+    # intensity read, not judged: the typical dull part lies among the good ones (what is left is the registration,
+    # which the dark blob moves a little), an order of magnitude below where the fit judging it puts it
+    dull_every, dull_aolp = float(every.zmaps(dull)[1].median()), float(aolp.zmaps(dull)[1].median())
+    assert dull_aolp < top["aolp"] and dull_aolp < 0.1 * dull_every
+    for n, vm in (("every", every), ("aolp", aolp)):
+        assert float(vm.zmaps(turned)[1].min()) > top[n], n  # AoLP judged by both
+    signed = aolp.zmaps(dull, signed=True).signed
+    assert signed is not None and not bool(signed[:, :2].any()) and bool(signed[:, 2:].any())
+    aolp.fit(x[:20], keep_reference=True)  # a refit (station adapt) keeps the choice
+    assert aolp.judged_channels.tolist() == [0.0, 0.0, 1.0, 1.0]
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    with_var = add_variation(det.eval(), x, None, parts(10, 3), judged_priors=["aolp"])
+    save_checkpoint(tmp_path / "var", with_var, threshold=0.5, threshold_rule="test")
+    loaded = load_checkpoint(tmp_path / "var").detector.variation
+    assert loaded is not None and loaded.judged_channels.tolist() == [0.0, 0.0, 1.0, 1.0]
+    with pytest.raises(ModelError, match="judged priors"):
+        judged_channels(("intensity", "dolp", "aolp"), ["normal"])
+    with pytest.raises(ModelError, match="judges no channel"):
+        VariationModel(4, (H, W), intensity=0, dolp=1, aolp=2).fit(x, judged_channels=[1])  # DoLP is not read
+    loaded.judged_channels.zero_()
+    with pytest.raises(ModelError, match="judged_channels"):
+        loaded.check()

@@ -240,3 +240,21 @@ def test_a_second_look_without_its_test_is_recorded_and_said(tmp_path: Path, cap
     assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["second_look_test"] is False
     vm = load_checkpoint(out).detector.variation
     assert vm is not None and vm.second_look.references and not vm.second_look.testing
+
+
+def test_judged_priors_fit_a_judge_of_some_priors_alone_and_a_prior_the_model_lacks_is_refused(
+        tmp_path: Path, capsys) -> None:
+    """``--judged-priors aolp``: the window is taken over AoLP's channels only (intensity still registers the part),
+    recorded in the model and its sidecar; a prior the model does not read is refused in one line naming the flag."""
+    from model.draem.checkpoint import load_checkpoint
+
+    data, model = trained(tmp_path, capsys)
+    out = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--judged-priors", "aolp",
+                 "--out", str(out)]) == 0
+    assert "judging aolp only" in capsys.readouterr().out
+    assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["judged_priors"] == ["aolp"]
+    vm = load_checkpoint(out).detector.variation
+    assert vm is not None and vm.judged_channels.tolist() == [0.0, 0.0, 1.0, 1.0]
+    for bad in ("normal", ""):
+        refused_naming(capsys, "--judged-priors", bad, model, data, tmp_path / "w")
