@@ -42,6 +42,9 @@ log = logging.getLogger(__name__)
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("train", help="train the DRAEM detector on a rendered or imported set (checkpoints, keep-best)")
     p.add_argument("--data", required=True, help="dataset folder (station render --out, or station import --out)")
+    p.add_argument("--val-data", default=None, metavar="DATA",
+                   help="set whose val split keep-best and the threshold read (default: --data's; a validation set "
+                        "from `station render --validation`, for a training set rendered without a val split)")
     p.add_argument("--priors", default="intensity,dolp,aolp",
                    help="comma-separated, of intensity,dolp,aolp,normal (the default is the shipped model's; the "
                         "paper's adds normal)")
@@ -91,6 +94,24 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", default=None, help="output folder (default runs/train/<preset>-<fusion>)")
     p.add_argument("--no-resume", action="store_true", help="start over even if the output folder has a checkpoint")
     p.set_defaults(func=run)
+
+
+def val_set(data: str, val_data: str | None) -> str:
+    """The set whose val split keep-best and the threshold read: ``val_data``, else ``data``; UserError in one line
+    when it has none (a training set rendered without one: say how)."""
+    from sim.dataset import open_dataset
+    from sim.errors import SimError
+
+    root = val_data or data
+    try:
+        has_val = bool(open_dataset(root).indices("val"))
+    except SimError as exc:
+        raise UserError(f"--val-data {exc}" if val_data else str(exc)) from None
+    if not has_val:
+        hint = "" if val_data else (" (keep-best reads a val split: give --val-data, a set rendered with `station "
+                                    "render --validation`)")
+        raise UserError(f"{'--val-data ' if val_data else ''}{root}: no complete samples in split 'val'{hint}")
+    return root
 
 
 def dataset_fov_x_deg(root: str | Path) -> float | None:
@@ -174,14 +195,15 @@ def run(args: argparse.Namespace) -> int:
     if args.holdout_type and not mixed:
         raise UserError("--holdout-type leaves a type out of the rendered training defects: it needs "
                         "--rendered-fraction > 0")
+    val_set(args.data, args.val_data)  # before minutes of loading
     tr = load_split(args.data, "train", priors, size, args.limit, good_only=not mixed, roi=config.roi,
                     normals=normals, frame_aspect=config.frame_aspect,
                     dome_segments=config.dome_segments)
     defects, learned = rendered_defects(tr, args.holdout_type, args.data) if mixed else (None, ())
     if mixed:
         tr = good_part_of(tr)
-    va = load_split(args.data, "val", priors, size, args.limit, roi=config.roi, normals=normals,
-                    frame_aspect=config.frame_aspect, dome_segments=config.dome_segments)
+    va = load_split(val_set(args.data, args.val_data), "val", priors, size, args.limit, roi=config.roi,
+                    normals=normals, frame_aspect=config.frame_aspect, dome_segments=config.dome_segments)
     if args.holdout_type:  # keep-best and the threshold must not see the type held out either
         va = subset(va, [i for i, t in enumerate(va.defect_type) if t != args.holdout_type])
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
@@ -204,7 +226,9 @@ def run(args: argparse.Namespace) -> int:
             flag += f" with --batch-size {args.batch_size}"
         raise UserError(f"{flag}: {exc}") from None
     sha = manifest_sha256(args.data)
-    meta = {"frame_statistics": StatisticsRange.from_frames(tr.frame_stats).to_dict()}
+    meta: dict[str, Any] = {"frame_statistics": StatisticsRange.from_frames(tr.frame_stats).to_dict()}
+    if args.val_data:
+        meta["val_data"] = {"data": str(args.val_data), "manifest_sha256": manifest_sha256(args.val_data)}
     if normal_prior:
         meta["normal_prior"] = normal_prior
     if defects is not None:

@@ -160,3 +160,31 @@ def test_a_schedule_stopped_at_a_step_and_resumed_equals_the_straight_run(tmp_pa
     assert done[0]["weights_sha256"] == done[1]["weights_sha256"]
     assert main([*argv, "--stop-at-step", "5", "--out", str(tmp_path / "bad")]) == 2
     assert "--stop-at-step 5" in capsys.readouterr().err
+
+
+def test_a_validation_set_gives_keep_best_its_val_split_and_a_set_without_one_says_so(tmp_path: Path,
+                                                                                     capsys) -> None:
+    """``--val-data``: keep-best and the threshold read another set's val split (a validation set), for a training
+    set that has none; without it, such a set is refused in one line that says how."""
+    import shutil
+
+    from sim.dataset import split_of
+    from station.datasets import manifest_sha256
+
+    data = make_line_set(tmp_path / "ds", n=30, defective=lambda i: i % 3 == 1)
+    for i in range(30):  # the training set as the side camera's was rendered: no val split
+        if split_of(i) == "val":
+            shutil.rmtree(data / "samples" / f"{i:06d}")
+    val = make_line_set(tmp_path / "val", n=12, seed=3, defective=lambda i: i % 3 == 1, validation=True)
+    argv = ["train", "--data", str(data), *BASE, "--out", str(tmp_path / "t")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "no complete samples in split 'val'" in err and "--val-data" in err and len(err.strip().splitlines()) == 1
+    assert main([*argv, "--val-data", str(tmp_path / "nowhere")]) == 2
+    err = capsys.readouterr().err
+    assert "--val-data" in err and "nowhere" in err and len(err.strip().splitlines()) == 1
+    assert main([*argv, "--val-data", str(val)]) == 0
+    summary = json.loads((tmp_path / "t" / "train_summary.json").read_text())
+    assert summary["val_parts"] == 12 and summary["val_defective"] == 4 and summary["val_kind"] == "rendered"
+    rec = json.loads((tmp_path / "t" / "best.json").read_text())["train"]["val_data"]
+    assert rec == {"data": str(val), "manifest_sha256": manifest_sha256(val)}  # which parts selected it
