@@ -61,3 +61,5 @@ mkdir -p $D/eval
 cp $R/pair-F-top/two-cameras.md $D/eval/pair-1184-F-top.md
 cp $R/split-F-top.json $D/eval/split-1184-F-top.json
 for n in shipped F-top; do cp $R/eval-1184-$n/eval.md $D/eval/eval-1184-$n.md; done
+# beside the reading, not deciding: each file at its own 1 % point, by type and face
+.venv/bin/python $D/read-3-faces.py $R/eval-1184-shipped $R/eval-1184-F-top shipped F-top > $D/read-6-faces.md
