@@ -195,15 +195,15 @@ def run(args: argparse.Namespace) -> int:
     if args.holdout_type and not mixed:
         raise UserError("--holdout-type leaves a type out of the rendered training defects: it needs "
                         "--rendered-fraction > 0")
-    val_set(args.data, args.val_data)  # before minutes of loading
+    val_root = val_set(args.data, args.val_data)  # before minutes of loading
     tr = load_split(args.data, "train", priors, size, args.limit, good_only=not mixed, roi=config.roi,
                     normals=normals, frame_aspect=config.frame_aspect,
                     dome_segments=config.dome_segments)
     defects, learned = rendered_defects(tr, args.holdout_type, args.data) if mixed else (None, ())
     if mixed:
         tr = good_part_of(tr)
-    va = load_split(val_set(args.data, args.val_data), "val", priors, size, args.limit, roi=config.roi,
-                    normals=normals, frame_aspect=config.frame_aspect, dome_segments=config.dome_segments)
+    va = load_split(val_root, "val", priors, size, args.limit, roi=config.roi, normals=normals,
+                    frame_aspect=config.frame_aspect, dome_segments=config.dome_segments)
     if args.holdout_type:  # keep-best and the threshold must not see the type held out either
         va = subset(va, [i for i, t in enumerate(va.defect_type) if t != args.holdout_type])
     log.info("train: %d good samples; val: %d samples (%d with defects); input %dx%d; normals: %s",
