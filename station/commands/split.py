@@ -59,9 +59,15 @@ def format_split(report: dict) -> str:
     for name, a in report["alone"].items():
         lines.append(f"{name} camera alone at its own threshold {a['threshold']:.4f}: {100 * a['good_rejected']:.1f} % "
                      f"of good parts rejected, {100 * a['caught']:.1f} % of defective caught")
+    chosen = report["splits"][report["chosen"]]
+    first = report["alone"]["first"]
+    if chosen["caught"] <= first["caught"]:
+        lines.append(f"the first camera alone catches as many here ({100 * first['caught']:.1f} % at "
+                     f"{100 * first['good_rejected']:.1f} % of good parts rejected) as the chosen split "
+                     f"({100 * chosen['caught']:.1f} % at {100 * chosen['good_rejected'] / report['good']:.1f} %): on "
+                     "these parts the second camera does not pay for its share of the budget")
     if report["left_out"]:
         lines.append(f"left out {len(report['left_out'])} parts a camera would not judge (rejected at the station)")
-    chosen = report["splits"][report["chosen"]]
     above, n = report["chosen_good_above"], report["good"]
     mean, bound = either_rate([above["first"], above["second"]], n)
     lines.append(f"chosen split: {chosen['good_rejected']} of {n} good parts rejected (first camera {above['first']}, "
