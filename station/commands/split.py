@@ -62,7 +62,7 @@ def format_split(report: dict) -> str:
     chosen = report["splits"][report["chosen"]]
     first = report["alone"]["first"]
     if chosen["caught"] <= first["caught"]:
-        lines.append(f"the first camera alone catches as many here ({100 * first['caught']:.1f} % at "
+        lines.append(f"the first camera alone catches at least as many here ({100 * first['caught']:.1f} % at "
                      f"{100 * first['good_rejected']:.1f} % of good parts rejected) as the chosen split "
                      f"({100 * chosen['caught']:.1f} % at {100 * chosen['good_rejected'] / report['good']:.1f} %): on "
                      "these parts the second camera does not pay for its share of the budget")
