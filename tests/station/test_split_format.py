@@ -15,8 +15,8 @@ def _report(split_caught: float) -> dict:
 
 def test_a_split_that_catches_no_more_than_the_first_camera_alone_is_called_out():
     text = format_split(_report(0.700))
-    assert ("the first camera alone catches at least as many here (71.9 % at 1.0 % of good parts rejected) as the chosen "
-            "split (70.0 % at 0.7 %): on these parts the second camera does not pay for its share of the budget"
+    assert ("the first camera alone catches at least as many here (71.9 % at 1.0 % of good parts rejected) as the "
+            "chosen split (70.0 % at 0.7 %): on these parts the second camera does not pay for its share of the budget"
             in text)
 
 
