@@ -127,6 +127,21 @@ def _first(a: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(a[..., 0] if a.ndim == 3 else a, dtype=np.float32)
 
 
+LUMINANCE_RGB = (0.212671, 0.715160, 0.072169)
+"""Linear sRGB (Rec. 709) -> CIE Y weights, the ones Mitsuba's mono variants reduce an RGB value with."""
+
+
+def _mono(a: np.ndarray) -> np.ndarray:
+    """A film channel as the mono polarization camera sees it. Mono variants write R = G = B (the first is taken,
+    bit for bit as before); the spectral fallback writes a colour's R, G and B, whose luminance (CIE Y) is what the
+    mono variants render for the same scene. Stokes components are linear in radiance, so each is reduced alike."""
+    import mitsuba as mi
+
+    if a.ndim == 3 and "spectral" in mi.variant():
+        return np.ascontiguousarray(a[..., :3] @ np.asarray(LUMINANCE_RGB), dtype=np.float32)
+    return _first(a)
+
+
 def shape_ids(scene) -> dict[str, int]:
     """Scene shape key -> the value the ``shape_index`` AOV writes for it (0 = no surface)."""
     import drjit as dr
@@ -175,7 +190,7 @@ def render_sample(model: ObjectModel, params: dict, defect: DefectResult | None,
     seed = int(seed) & 0xFFFFFFFF
     mi.render(scene, integrator=_integrator("stokes", settings.max_depth), spp=settings.spp, seed=seed)
     ch = _channels(scene)
-    out = RenderOutput(_first(ch["S0"]), _first(ch["S1"]), _first(ch["S2"]))
+    out = RenderOutput(_mono(ch["S0"]), _mono(ch["S1"]), _mono(ch["S2"]))
     t2 = time.perf_counter()
     out.seconds = {"build_s": t1 - t0, "stokes_s": t2 - t1}
     if not settings.ground_truth and defect is None:
