@@ -11,8 +11,11 @@ import logging
 from contextlib import ExitStack
 from pathlib import Path
 
+import numpy as np
+
 from drivers.camera import Camera
 from drivers.camera import CameraConfig as DriverCameraConfig
+from model.priors.defect_pixels import read_defect_pixel_map
 from station.config import ConfigError, StationConfig
 from station.drift import DriftMonitor, trained_range
 from station.inspection_log import InspectionLog
@@ -205,6 +208,19 @@ def check_line_segments(cfg: StationConfig, segments: tuple[float, ...], what: s
                           f"{describe_segments(segments)}: set dome_segments {'= ' if segments else ''}{want}")
 
 
+def defect_pixel_map(cfg: StationConfig, second: bool = False) -> np.ndarray | None:
+    """``[camera] defect_pixels`` (``second``: ``[second_camera]``'s) read, or None when unset; ConfigError naming the
+    file and key when it cannot be read."""
+    section = "second_camera" if second else "camera"
+    path = (cfg.second_camera if second else cfg.camera).defect_pixels
+    if not path:
+        return None
+    try:
+        return read_defect_pixel_map(path)
+    except ValueError as exc:
+        raise ConfigError(f"{cfg.source}: [{section}] defect_pixels: {exc}") from None
+
+
 def presence_check(cfg: StationConfig, rule: str | None = None) -> PresenceCheck | None:
     """The ``[presence]`` check (``rule``: another than ``[presence] rule``, the second camera's), or None when
     disabled."""
@@ -224,12 +240,13 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
     inspector: Inspector | PairInspector = Inspector(
         detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
         display_priors=("intensity", "dolp", "aolp") if viewer else (), presence=presence_check(cfg),
-        statistics=drift is not None, bit_depth=cfg.priors.bit_depth, segments=detector.dome_segments)
+        statistics=drift is not None, bit_depth=cfg.priors.bit_depth, segments=detector.dome_segments,
+        defect_pixels=defect_pixel_map(cfg))
     if second_detector is not None:
         inspector = PairInspector(inspector, Inspector(
             second_detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
-            presence=presence_check(cfg, cfg.second_camera.presence_rule), bit_depth=cfg.priors.bit_depth),
-            cfg.second_camera.parallel)
+            presence=presence_check(cfg, cfg.second_camera.presence_rule), bit_depth=cfg.priors.bit_depth,
+            defect_pixels=defect_pixel_map(cfg, second=True)), cfg.second_camera.parallel)
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
                    grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,

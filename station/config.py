@@ -54,6 +54,10 @@ class CameraConfig:
     trigger: str = _opt("software", choices=TRIGGERS)
     timeout_ms: int = _opt(1000, range=(1, 600000))
     reconnect: bool = True
+    defect_pixels: str = ""
+    """A PNG of the camera's defective pixels (non-zero; the frame's size as streamed), filled from neighbours of the
+    same polarizer angle before the demosaic (``model.priors.defect_pixels``; ``station defect-pixels`` finds them).
+    "": none."""
     dome_segments: list[float] | None = None
     """Photometric stereo: azimuths (degrees, ``model.priors.photometric``) of the dome segments lit in turn, one
     frame each, in the order taken; None: one frame per part under the whole dome."""

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import hashlib
 import logging
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -21,6 +22,8 @@ from typing import TYPE_CHECKING, Any
 from station.errors import UserError
 
 if TYPE_CHECKING:
+    import numpy as np
+
     from model.normals.estimator import NormalEstimator
     from model.priors.frame_stats import FrameStatistics
     from station.presence import PresenceCheck
@@ -60,6 +63,20 @@ def unjudged_reason(priors: Any, n_pixels: int, presence: PresenceCheck | None =
     if invalid > MAX_INVALID_FRACTION:
         return f"{100 * invalid:.2f} % of input pixels invalid"
     return None if (presence or PresenceCheck())(priors).present else "no part in view"
+
+
+def set_defect_pixels(root: str | Path, manifest: Mapping[str, Any]) -> np.ndarray | None:
+    """The defect pixel map a set's manifest names (``defect_pixels``: a PNG path relative to the set, written by
+    ``station import --defect-pixels``), read; None when it names none. UserError naming the manifest and key."""
+    from model.priors.defect_pixels import read_defect_pixel_map
+
+    name = manifest.get("defect_pixels")
+    if not name:
+        return None
+    try:
+        return read_defect_pixel_map(Path(root) / str(name))
+    except ValueError as exc:
+        raise UserError(f"{Path(root) / 'manifest.json'}: defect_pixels: {exc}") from None
 
 
 def judged_part_of(sp: SplitTensors) -> tuple[SplitTensors, dict[int, str]]:
@@ -119,6 +136,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     from model.draem.preprocess import crop_resize, stack_priors
     from model.draem.roi import roi_box
     from model.priors.api import compute_set_priors
+    from model.priors.defect_pixels import fill_defect_pixels
     from model.priors.frame_stats import frame_statistics
     from model.priors.photometric import describe_segments
     from sim.dataset import open_dataset
@@ -138,6 +156,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
 
         names = list(dict.fromkeys(names + list(MAP_NAMES)))
     layout, bit_depth = ds.manifest.get("layout", "imx250mzr"), ds.manifest.get("bit_depth")
+    defect_pixels = set_defect_pixels(root, ds.manifest)
     xs, objs, defs, labels, types, used, known, stats, unjudged = [], [], [], [], [], [], [], [], []
     no_object = 0
     for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
@@ -146,7 +165,8 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         s = ds.load(i)
         if good_only and s.label:
             continue
-        computed = compute_set_priors(s.raws, ds.dome_segments, layout, priors=names, bit_depth=bit_depth)
+        raws = [fill_defect_pixels(r, defect_pixels) for r in s.raws]
+        computed = compute_set_priors(raws, ds.dome_segments, layout, priors=names, bit_depth=bit_depth)
         maps = dict(computed)
         if "normal" in priors and normals is not None:
             fov = fov_of(s.params)
@@ -179,7 +199,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         types.append(defect_type_of(s.params))
         used.append(i)
         known.append(not s.label or s.defect_mask is not None)
-        stats.append(frame_statistics(maps, raw=s.raw, bit_depth=bit_depth))
+        stats.append(frame_statistics(maps, raw=raws[0], bit_depth=bit_depth))
         unjudged.append(unjudged_reason(computed, s.raw.size, presence))
     if not xs:
         raise UserError(f"{root}: split {split!r} has no usable samples")

@@ -28,6 +28,7 @@ import numpy as np
 from drivers.frame import Frame
 from model.priors import MosaicLayout
 from model.priors.api import check_prior_names, needs_polarization, set_priors_from_stokes, set_stokes
+from model.priors.defect_pixels import fill_defect_pixels
 from model.priors.frame_stats import FrameStatistics, frame_statistics
 from model.priors.photometric import check_tilts, describe_segments, frame_motion, frames_per_part, motion_limit
 from station.presence import Presence, PresenceCheck
@@ -111,8 +112,10 @@ class Inspector:
     def __init__(self, detector: Detector, layout: MosaicLayout, method: str = "bilinear",
                  display_priors: tuple[str, ...] = (), presence: PresenceCheck | None = None,
                  statistics: bool = False, bit_depth: int | None = None,
-                 segments: Sequence[float] = ()) -> None:
+                 segments: Sequence[float] = (), defect_pixels: np.ndarray | None = None) -> None:
         self.detector = detector
+        self.defect_pixels = defect_pixels
+        """``[camera] defect_pixels`` read: (H, W) bool, filled in every frame before the demosaic; None: none."""
         self.bit_depth = bit_depth
         """``[priors] bit_depth``: significant bits of the codes when the pixel format's are wider (a Mono16 camera
         carrying 12-bit codes); None: the frame's own."""
@@ -140,7 +143,8 @@ class Inspector:
             if len(frames) != frames_per_part(self.segments):
                 raise ValueError(f"{len(frames)} frame(s) for a model that reads {describe_segments(self.segments)}")
             bits = significant_bits(frame, self.bit_depth)
-            norms, stokes = set_stokes([f.raw for f in frames], self.layout, self.method, self.polarization, bits)
+            raws = [fill_defect_pixels(f.raw, self.defect_pixels) for f in frames]
+            norms, stokes = set_stokes(raws, self.layout, self.method, self.polarization, bits)
             t_demosaic = time.perf_counter()
             result.timings_ms["demosaic"] = 1e3 * (t_demosaic - t)
             result.priors = set_priors_from_stokes(self.names, self.segments, stokes)
@@ -149,7 +153,7 @@ class Inspector:
             if self.statistics:
                 k = self.STATS_STRIDE
                 result.frame_stats = frame_statistics({n: result.priors[n][::k, ::k] for n in ("intensity", "dolp")},
-                                                      raw=frame.raw[::k, ::k], bit_depth=bits)
+                                                      raw=raws[0][::k, ::k], bit_depth=bits)
             t_priors = time.perf_counter()
             result.timings_ms["priors"] = 1e3 * (t_priors - t_demosaic)
             self._name_slow_priors(frame, 1e3 * (t_priors - t))

@@ -45,6 +45,8 @@ from station.errors import UserError
 IMAGE_SUFFIXES = (".png", ".tif", ".tiff")
 SPLIT_DIRS = ("train", "val", "test")
 INFO_FILE = "polar_ano.json"
+DEFECT_PIXELS_FILE = "defect-pixels.png"
+"""An imported set's copy of the camera's defect pixel map (``station import --defect-pixels``)."""
 BIT_DEPTHS = (8, 10, 12, 14, 16)
 
 
@@ -222,15 +224,25 @@ def _val_names(items: list[MvtecItem], fraction: float, seed: int) -> set[Path]:
 
 
 def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None, layout: str | None = None,
-                 val_fraction: float = 0.1, seed: int = 0, allow_dark: bool = False, progress: bool = True
-                 ) -> ImportReport:
+                 val_fraction: float = 0.1, seed: int = 0, allow_dark: bool = False, progress: bool = True,
+                 defect_pixels: str | Path | None = None) -> ImportReport:
     """Import the MVTec-layout folder ``src`` into a new dataset ``out`` (module docstring). ``bit_depth`` and
     ``layout`` default to ``src/polar_ano.json``'s, then to 8 bits for 8-bit files and the IMX250MZR layout; a
-    16-bit set needs its bit depth stated."""
+    16-bit set needs its bit depth stated. ``defect_pixels``: the camera's defect pixel map (a PNG of the frames'
+    size), copied into the set and named in its manifest, so every command that reads the set fills those pixels
+    (``station.datasets.set_defect_pixels``)."""
     from tqdm import tqdm
+
+    from model.priors.defect_pixels import read_defect_pixel_map
 
     src, out = Path(src), Path(out)
     info = read_info(src)
+    defect_map = None
+    if defect_pixels is not None:
+        try:
+            defect_map = read_defect_pixel_map(defect_pixels)
+        except ValueError as exc:
+            raise UserError(f"--defect-pixels: {exc}") from None
     layout = layout or info.get("layout") or "imx250mzr"
     segments = info.get("dome_segments") or []
     if layout not in LAYOUTS:
@@ -300,6 +312,9 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
             check_not_smaller(bit_depth, top, brightest)
         assert shape is not None
         report.height, report.width = shape
+        if defect_map is not None and defect_map.shape != shape:
+            raise UserError(f"--defect-pixels {defect_pixels}: a {defect_map.shape[1]}x{defect_map.shape[0]} map for "
+                            f"{shape[1]}x{shape[0]} frames: a map is made for one region of interest")
         manifest = {"format": FORMAT, "version": VERSION, "convention_version": CONVENTION_VERSION,
                     "width": shape[1], "height": shape[0], "layout": layout, "bit_depth": bit_depth,
                     "count": len(items), "split_rule": FOLDER_SPLIT_RULE, "sample_splits": splits,
@@ -308,6 +323,9 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
                                              "val_fraction": val_fraction if val else 0.0, "seed": seed,
                                              "defect_masks": report.n_defect_masks,
                                              "object_masks": report.n_object_masks}}
+        if defect_map is not None:
+            shutil.copyfile(defect_pixels, tmp / DEFECT_PIXELS_FILE)
+            manifest["defect_pixels"] = DEFECT_PIXELS_FILE
         (tmp / "manifest.json").write_text(json.dumps(manifest, indent=1))
         out.parent.mkdir(parents=True, exist_ok=True)
         if out.is_dir():

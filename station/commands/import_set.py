@@ -25,6 +25,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--seed", type=seed, default=0, help="which train/good images go to val (default 0)")
     p.add_argument("--allow-dark", action="store_true",
                    help="accept a 16-bit set whose codes all fit fewer bits (default: refused as a wrong bit depth)")
+    p.add_argument("--defect-pixels", default=None, metavar="PNG",
+                   help="the camera's defect pixel map (`station defect-pixels`), copied into the set: every "
+                        "command that reads it fills those pixels, as the station does with [camera] defect_pixels")
     p.set_defaults(func=run)
 
 
@@ -35,6 +38,6 @@ def run(args: argparse.Namespace) -> int:
     if not 0.0 <= args.val_fraction < 1.0:
         raise UserError(f"--val-fraction {args.val_fraction}: a fraction in [0, 1)")
     report = import_mvtec(args.src, args.out, args.bit_depth, args.layout, args.val_fraction, args.seed,
-                          args.allow_dark)
+                          args.allow_dark, defect_pixels=args.defect_pixels)
     print(report.describe())
     return 0
