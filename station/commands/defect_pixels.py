@@ -1,8 +1,9 @@
 """``station defect-pixels``: find a camera's defective pixels in frames of it and write the map the station fills.
 
-Capture about 20 frames with the lens capped (``station capture --label good --out captures/dark`` with the cap on,
-and the presence check off), and, for pixels stuck dark as well, 20 of an evenly lit plain target, then::
+Capture about 20 frames with the lens capped and, for pixels stuck dark as well, 20 of an evenly lit plain target
+into the same folder, then::
 
+    station capture --camera aravis --frames 20 --out captures/dark --label good    # lens capped
     station defect-pixels --frames captures/dark --out defect-pixels.png
     # station.toml: [camera] defect_pixels = "defect-pixels.png"
     station import --from captures/myline --out data/myline --defect-pixels defect-pixels.png
