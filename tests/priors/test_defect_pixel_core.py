@@ -81,3 +81,15 @@ def test_the_map_round_trips_and_names_a_bad_file(tmp_path) -> None:
         read_defect_pixel_map(tmp_path / "bad.png")
     with pytest.raises(ValueError, match=r"none\.png: no such file"):
         read_defect_pixel_map(tmp_path / "none.png")
+
+
+def test_a_lit_target_finds_the_pixels_stuck_dark() -> None:
+    """Dark frames cannot show a pixel stuck at 0; frames of an evenly lit plain target (here partly polarized:
+    each angle its own level) do, from its own angle's neighbours."""
+    rng = np.random.default_rng(2)
+    dead = np.zeros((96, 128), bool)
+    dead[[7, 50, 88], [9, 64, 127]] = True
+    level = np.tile(np.array([[1900, 2100], [2000, 2200]]), (48, 64))  # four angles, four levels
+    frames = [np.clip(np.where(dead, 0, level + rng.normal(0, 30, level.shape)), 0, 4095).astype(np.uint16)
+              for _ in range(5)]
+    assert (find_defect_pixels(frames, bit_depth=12) == dead).all()
