@@ -136,7 +136,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     from model.draem.preprocess import crop_resize, stack_priors
     from model.draem.roi import roi_box
     from model.priors.api import compute_set_priors
-    from model.priors.defect_pixels import fill_defect_pixels
+    from model.priors.defect_pixels import DefectPixelMap, fill_defect_pixels
     from model.priors.frame_stats import frame_statistics
     from model.priors.photometric import describe_segments
     from sim.dataset import open_dataset
@@ -156,7 +156,8 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
 
         names = list(dict.fromkeys(names + list(MAP_NAMES)))
     layout, bit_depth = ds.manifest.get("layout", "imx250mzr"), ds.manifest.get("bit_depth")
-    defect_pixels = set_defect_pixels(root, ds.manifest)
+    defect_map = set_defect_pixels(root, ds.manifest)
+    defect_pixels = None if defect_map is None else DefectPixelMap.of(defect_map)
     xs, objs, defs, labels, types, used, known, stats, unjudged = [], [], [], [], [], [], [], [], []
     no_object = 0
     for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):

@@ -28,7 +28,7 @@ import numpy as np
 from drivers.frame import Frame
 from model.priors import MosaicLayout
 from model.priors.api import check_prior_names, needs_polarization, set_priors_from_stokes, set_stokes
-from model.priors.defect_pixels import fill_defect_pixels
+from model.priors.defect_pixels import DefectPixelMap, fill_defect_pixels
 from model.priors.frame_stats import FrameStatistics, frame_statistics
 from model.priors.photometric import check_tilts, describe_segments, frame_motion, frames_per_part, motion_limit
 from station.presence import Presence, PresenceCheck
@@ -114,8 +114,8 @@ class Inspector:
                  statistics: bool = False, bit_depth: int | None = None,
                  segments: Sequence[float] = (), defect_pixels: np.ndarray | None = None) -> None:
         self.detector = detector
-        self.defect_pixels = defect_pixels
-        """``[camera] defect_pixels`` read: (H, W) bool, filled in every frame before the demosaic; None: none."""
+        self.defect_pixels = None if defect_pixels is None else DefectPixelMap.of(defect_pixels)
+        """``[camera] defect_pixels`` ((H, W) bool, listed once here), filled in every frame before the demosaic."""
         self.bit_depth = bit_depth
         """``[priors] bit_depth``: significant bits of the codes when the pixel format's are wider (a Mono16 camera
         carrying 12-bit codes); None: the frame's own."""

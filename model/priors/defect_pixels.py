@@ -13,6 +13,7 @@ its own polarizer angle: the eight 2 px away along its row, column and diagonals
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -48,39 +49,57 @@ def _neighbour_mean(raw: np.ndarray, valid: np.ndarray, ys: np.ndarray, xs: np.n
     return total, count
 
 
-def fill_defect_pixels(raw: np.ndarray, mask: np.ndarray | None) -> np.ndarray:
-    """``raw`` (H, W) mosaic (integer codes or float) with each pixel of ``mask`` (H, W bool) replaced by the mean of
-    its same-angle neighbours that are not in the mask (rounded for integer codes). A pixel whose neighbours are all
-    defective (a cluster) is filled in a later pass from those filled before it; after three passes, from the
-    median of the frame's good pixels of its angle. Returns ``raw`` itself when the mask is None or empty, else a
-    copy. ValueError when the shapes differ (a map made for another region of interest)."""
+@dataclass(frozen=True)
+class DefectPixelMap:
+    """A map with its pixels listed once (``where``: (K, 2) rows and columns), for filling frame after frame: the
+    listing is a pass over the whole frame, the fill touches only the K pixels (and copies the frame)."""
+
+    mask: np.ndarray
+    where: np.ndarray
+
+    @classmethod
+    def of(cls, mask: np.ndarray) -> DefectPixelMap:
+        return cls(mask, np.argwhere(mask))
+
+    def fill(self, raw: np.ndarray) -> np.ndarray:
+        """``fill_defect_pixels(raw, self.mask)``."""
+        if self.mask.shape != raw.shape[:2] or raw.ndim != 2:
+            raise ValueError(f"the defect pixel map is {self.mask.shape[1]}x{self.mask.shape[0]}, the frame "
+                             f"{raw.shape[1] if raw.ndim > 1 else '?'}x{raw.shape[0]}: a map is made for one region "
+                             f"of interest")
+        if not len(self.where):
+            return raw
+        out = raw.copy()
+        valid = ~self.mask
+        todo = self.where
+        for _ in range(3):
+            if not len(todo):
+                break
+            ys, xs = todo[:, 0], todo[:, 1]
+            total, count = _neighbour_mean(out, valid, ys, xs)
+            done = count > 0
+            value = total[done] / count[done]
+            out[ys[done], xs[done]] = np.rint(value) if np.issubdtype(out.dtype, np.integer) else value
+            valid[ys[done], xs[done]] = True
+            todo = todo[~done]
+        for y, x in todo:  # a cluster wider than three passes: its angle's median over the frame's good pixels
+            same = np.zeros_like(self.mask)
+            same[y % 2::2, x % 2::2] = True
+            pool = out[same & ~self.mask]
+            out[y, x] = np.median(pool) if pool.size else 0
+        return out
+
+
+def fill_defect_pixels(raw: np.ndarray, mask: np.ndarray | DefectPixelMap | None) -> np.ndarray:
+    """``raw`` (H, W) mosaic (integer codes or float) with each pixel of ``mask`` (H, W bool, or a
+    ``DefectPixelMap``) replaced by the mean of its same-angle neighbours that are not in the mask (rounded for
+    integer codes). A pixel whose neighbours are all defective (a cluster) is filled in a later pass from those
+    filled before it; after three passes, from the median of the frame's good pixels of its angle. Returns ``raw``
+    itself when the mask is None or empty, else a copy. ValueError when the shapes differ (a map made for another
+    region of interest)."""
     if mask is None:
         return raw
-    if mask.shape != raw.shape[:2] or raw.ndim != 2:
-        raise ValueError(f"the defect pixel map is {mask.shape[1]}x{mask.shape[0]}, the frame "
-                         f"{raw.shape[1] if raw.ndim > 1 else '?'}x{raw.shape[0]}: a map is made for one region of "
-                         f"interest")
-    if not mask.any():
-        return raw
-    out = raw.copy()
-    valid = ~mask
-    todo = np.argwhere(mask)
-    for _ in range(3):
-        if not len(todo):
-            break
-        ys, xs = todo[:, 0], todo[:, 1]
-        total, count = _neighbour_mean(out, valid, ys, xs)
-        done = count > 0
-        value = total[done] / count[done]
-        out[ys[done], xs[done]] = np.rint(value) if np.issubdtype(out.dtype, np.integer) else value
-        valid[ys[done], xs[done]] = True
-        todo = todo[~done]
-    for y, x in todo:  # a cluster wider than three passes: its angle's median over the frame's good pixels
-        same = np.zeros_like(mask)
-        same[y % 2::2, x % 2::2] = True
-        pool = out[same & ~mask]
-        out[y, x] = np.median(pool) if pool.size else 0
-    return out
+    return (mask if isinstance(mask, DefectPixelMap) else DefectPixelMap.of(mask)).fill(raw)
 
 
 def find_defect_pixels(raws: Sequence[np.ndarray], bit_depth: int | None = None, *, min_step: float = MIN_STEP,
