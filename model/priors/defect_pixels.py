@@ -123,10 +123,8 @@ def find_defect_pixels(raws: Sequence[np.ndarray], bit_depth: int | None = None,
     for raw in raws:
         fs = full_scale(raw.dtype, bit_depth) if np.issubdtype(raw.dtype, np.integer) else 1.0
         r = raw.astype(np.float64) / fs
-        stack = []
-        for dy, dx in SAME_ANGLE:
-            padded = np.pad(r, 2, mode="reflect")  # reflection by 2 keeps each pixel's angle (the 2x2 phase)
-            stack.append(padded[2 + dy:2 + dy + h, 2 + dx:2 + dx + w])
+        padded = np.pad(r, 2, mode="reflect")  # reflection by 2 keeps each pixel's angle (the 2x2 phase)
+        stack = [padded[2 + dy:2 + dy + h, 2 + dx:2 + dx + w] for dy, dx in SAME_ANGLE]
         steps.append(r - np.median(np.stack(stack), axis=0))
     step = np.median(np.stack(steps), axis=0)
     centre = np.median(step)
