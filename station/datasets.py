@@ -67,16 +67,23 @@ def unjudged_reason(priors: Any, n_pixels: int, presence: PresenceCheck | None =
 
 def set_defect_pixels(root: str | Path, manifest: Mapping[str, Any]) -> np.ndarray | None:
     """The defect pixel map a set's manifest names (``defect_pixels``: a PNG path relative to the set, written by
-    ``station import --defect-pixels``), read; None when it names none. UserError naming the manifest and key."""
+    ``station import --defect-pixels``), read; None when it names none. UserError naming the manifest and key when
+    it cannot be read or is not the size of the set's frames."""
     from model.priors.defect_pixels import read_defect_pixel_map
 
     name = manifest.get("defect_pixels")
     if not name:
         return None
+    where = f"{Path(root) / 'manifest.json'}: defect_pixels"
     try:
-        return read_defect_pixel_map(Path(root) / str(name))
+        mask = read_defect_pixel_map(Path(root) / str(name))
     except ValueError as exc:
-        raise UserError(f"{Path(root) / 'manifest.json'}: defect_pixels: {exc}") from None
+        raise UserError(f"{where}: {exc}") from None
+    frame = (manifest.get("height"), manifest.get("width"))
+    if mask.shape != frame:
+        raise UserError(f"{where}: a {mask.shape[1]}x{mask.shape[0]} map for the set's {frame[1]}x{frame[0]} "
+                        f"frames: a map is made for one region of interest")
+    return mask
 
 
 def judged_part_of(sp: SplitTensors) -> tuple[SplitTensors, dict[int, str]]:

@@ -87,6 +87,9 @@ def test_import_copies_the_map_and_the_set_s_priors_are_filled(tmp_path) -> None
     with pytest.raises(UserError, match=r"8x8 map for 64x64 frames: a map is made for one region of interest"):
         import_mvtec(src, tmp_path / "set2", bit_depth=12, val_fraction=0.0, progress=False,
                      defect_pixels=_small_map(tmp_path))
+    write_defect_pixel_map(tmp_path / "set" / manifest["defect_pixels"], np.zeros((8, 8), bool))
+    with pytest.raises(UserError, match=r"set/manifest\.json: defect_pixels: a 8x8 map for the set's 64x64 frames"):
+        load_split(tmp_path / "set", "train", ("dolp",), 64, progress=False)  # one line, not a traceback per sample
     (tmp_path / "set" / manifest["defect_pixels"]).write_text("broken")
     with pytest.raises(UserError, match=r"set/manifest\.json: defect_pixels: .*not a single-channel PNG"):
         set_defect_pixels(tmp_path / "set", manifest)
