@@ -490,7 +490,8 @@ def manifest_for(spec: DatasetSpec, count: int, spp_choice: dict[str, Any] | Non
             "renderer_version": RENDERER_VERSION, "width": spec.width, "height": spec.height,
             "layout": spec.sensor.layout, "bit_depth": spec.sensor.bit_depth, "seed": spec.seed, "count": count,
             "split_rule": WHOLE_SET_RULES.get(spec.whole_split or "", SPLIT_RULE), "config": spec.to_dict(),
-            "spp_choice": spp_choice}
+            "spp_choice": spp_choice,
+            **({"black_level": spec.sensor.black_level_dn} if spec.sensor.black_level_dn else {})}
 
 
 def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: dict[str, Any] | None = None

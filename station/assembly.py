@@ -241,12 +241,13 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
         detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
         display_priors=("intensity", "dolp", "aolp") if viewer else (), presence=presence_check(cfg),
         statistics=drift is not None, bit_depth=cfg.priors.bit_depth, segments=detector.dome_segments,
-        defect_pixels=defect_pixel_map(cfg))
+        defect_pixels=defect_pixel_map(cfg), black_level=cfg.camera.black_level)
     if second_detector is not None:
         inspector = PairInspector(inspector, Inspector(
             second_detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
             presence=presence_check(cfg, cfg.second_camera.presence_rule), bit_depth=cfg.priors.bit_depth,
-            defect_pixels=defect_pixel_map(cfg, second=True)), cfg.second_camera.parallel)
+            defect_pixels=defect_pixel_map(cfg, second=True), black_level=cfg.second_camera.black_level),
+            cfg.second_camera.parallel)
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
                    grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,

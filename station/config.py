@@ -54,6 +54,10 @@ class CameraConfig:
     trigger: str = _opt("software", choices=TRIGGERS)
     timeout_ms: int = _opt(1000, range=(1, 600000))
     reconnect: bool = True
+    black_level: int = _opt(0, range=(0, 65534))
+    """The code the camera's pixels read with no light (its pedestal, in the streamed pixel format's codes), removed
+    from every frame before the demosaic with full scale kept (``model.priors.black_level``; ``station
+    defect-pixels`` measures it from frames with the lens capped). 0: codes start at no light, as rendered."""
     defect_pixels: str = ""
     """A PNG of the camera's defective pixels (non-zero; the frame's size as streamed), filled from neighbours of the
     same polarizer angle before the demosaic (``model.priors.defect_pixels``; ``station defect-pixels`` finds them).
@@ -281,6 +285,25 @@ def _check_timing(cfg: StationConfig, source: str) -> None:
                           "gives up before its frame arrives leaves that frame to be taken for the next part")
 
 
+def _check_black_level(cfg: StationConfig, source: str) -> None:
+    """``black_level`` below full scale of the codes a real camera streams (``[priors] bit_depth``, else the pixel
+    format's); a virtual camera's bit depth is its set's, checked on its first frame (the part is rejected)."""
+    from drivers.errors import PixelFormatError
+    from drivers.pixel_formats import lookup
+
+    cameras = [("camera", cfg.camera)] + ([("second_camera", cfg.second_camera)] if cfg.second_camera.enabled else [])
+    for section, cam in cameras:
+        if cam.black_level == 0 or cam.kind != "aravis":
+            continue
+        try:
+            bits = cfg.priors.bit_depth or lookup(cam.pixel_format).bit_depth
+        except PixelFormatError:
+            continue  # a vendor format known by its frames only
+        if cam.black_level >= 2**bits - 1:
+            raise ConfigError(f"{source}: [{section}] black_level: {cam.black_level} is not below full scale "
+                              f"{2**bits - 1} of {bits}-bit codes ({cam.pixel_format})")
+
+
 def _check_second_camera(cfg: StationConfig, source: str) -> None:
     """``[second_camera]`` keys that cannot work with ``[camera]``'s."""
     second, where = cfg.second_camera, f"{source}: [second_camera]"
@@ -320,6 +343,7 @@ def parse_config(text: str, source: str = "<string>") -> StationConfig:
     _check_layout(cfg, source)
     _check_timing(cfg, source)
     _check_second_camera(cfg, source)
+    _check_black_level(cfg, source)
     return dataclasses.replace(cfg, source=source)
 
 

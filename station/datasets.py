@@ -65,6 +65,20 @@ def unjudged_reason(priors: Any, n_pixels: int, presence: PresenceCheck | None =
     return None if (presence or PresenceCheck())(priors).present else "no part in view"
 
 
+def set_black_level(root: str | Path, manifest: Mapping[str, Any]) -> int:
+    """The black level a set's manifest states (``black_level``: codes of the set's frames, written by ``station
+    import --black-level`` or a render with a sensor pedestal), 0 when it states none. UserError naming the manifest
+    and key unless it is a whole code below the set's full scale."""
+    from model.priors.black_level import check_black_level
+
+    level = manifest.get("black_level", 0)
+    try:
+        check_black_level(level, manifest.get("bit_depth") or 16)
+    except ValueError as exc:
+        raise UserError(f"{Path(root) / 'manifest.json'}: black_level: {exc}") from None
+    return int(level)
+
+
 def set_defect_pixels(root: str | Path, manifest: Mapping[str, Any]) -> np.ndarray | None:
     """The defect pixel map a set's manifest names (``defect_pixels``: a PNG path relative to the set, written by
     ``station import --defect-pixels``), read; None when it names none. UserError naming the manifest and key when
@@ -143,6 +157,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     from model.draem.preprocess import crop_resize, stack_priors
     from model.draem.roi import roi_box
     from model.priors.api import compute_set_priors
+    from model.priors.black_level import subtract_black_level
     from model.priors.defect_pixels import DefectPixelMap, fill_defect_pixels
     from model.priors.frame_stats import frame_statistics
     from model.priors.photometric import describe_segments
@@ -165,6 +180,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     layout, bit_depth = ds.manifest.get("layout", "imx250mzr"), ds.manifest.get("bit_depth")
     defect_map = set_defect_pixels(root, ds.manifest)
     defect_pixels = None if defect_map is None else DefectPixelMap.of(defect_map)
+    black_level = set_black_level(root, ds.manifest)
     xs, objs, defs, labels, types, used, known, stats, unjudged = [], [], [], [], [], [], [], [], []
     no_object = 0
     for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
@@ -173,7 +189,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         s = ds.load(i)
         if good_only and s.label:
             continue
-        raws = [fill_defect_pixels(r, defect_pixels) for r in s.raws]
+        raws = [fill_defect_pixels(subtract_black_level(r, black_level, bit_depth), defect_pixels) for r in s.raws]
         computed = compute_set_priors(raws, ds.dome_segments, layout, priors=names, bit_depth=bit_depth)
         maps = dict(computed)
         if "normal" in priors and normals is not None:

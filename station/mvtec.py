@@ -225,14 +225,16 @@ def _val_names(items: list[MvtecItem], fraction: float, seed: int) -> set[Path]:
 
 def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None, layout: str | None = None,
                  val_fraction: float = 0.1, seed: int = 0, allow_dark: bool = False, progress: bool = True,
-                 defect_pixels: str | Path | None = None) -> ImportReport:
+                 defect_pixels: str | Path | None = None, black_level: int = 0) -> ImportReport:
     """Import the MVTec-layout folder ``src`` into a new dataset ``out`` (module docstring). ``bit_depth`` and
     ``layout`` default to ``src/polar_ano.json``'s, then to 8 bits for 8-bit files and the IMX250MZR layout; a
     16-bit set needs its bit depth stated. ``defect_pixels``: the camera's defect pixel map (a PNG of the frames'
     size), copied into the set and named in its manifest, so every command that reads the set fills those pixels
-    (``station.datasets.set_defect_pixels``)."""
+    (``station.datasets.set_defect_pixels``). ``black_level``: the camera's pedestal in the files' codes, named in
+    the manifest and removed by every command that reads the set (``station.datasets.set_black_level``)."""
     from tqdm import tqdm
 
+    from model.priors.black_level import check_black_level
     from model.priors.defect_pixels import read_defect_pixel_map
 
     src, out = Path(src), Path(out)
@@ -260,6 +262,10 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
             bit_depth = 8
     if bit_depth not in BIT_DEPTHS:
         raise BitDepthError(f"--bit-depth {bit_depth}: choose from {', '.join(map(str, BIT_DEPTHS))}")
+    try:
+        check_black_level(black_level, bit_depth)
+    except ValueError as exc:
+        raise UserError(f"--black-level: {exc}") from None
     val = _val_names(items, val_fraction, seed)
     tmp = out.with_name(f"{out.name}.tmp-{os.getpid()}")
     if tmp.exists():
@@ -326,6 +332,8 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
         if defect_map is not None:
             shutil.copyfile(defect_pixels, tmp / DEFECT_PIXELS_FILE)
             manifest["defect_pixels"] = DEFECT_PIXELS_FILE
+        if black_level:
+            manifest["black_level"] = black_level
         (tmp / "manifest.json").write_text(json.dumps(manifest, indent=1))
         out.parent.mkdir(parents=True, exist_ok=True)
         if out.is_dir():

@@ -28,6 +28,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--defect-pixels", default=None, metavar="PNG",
                    help="the camera's defect pixel map (`station defect-pixels`), copied into the set: every "
                         "command that reads it fills those pixels, as the station does with [camera] defect_pixels")
+    p.add_argument("--black-level", type=int, default=0, metavar="CODES",
+                   help="the camera's black level in the files' codes (`station defect-pixels` measures it), named "
+                        "in the set: every command that reads it removes it, as the station does with [camera] "
+                        "black_level (default 0)")
     p.set_defaults(func=run)
 
 
@@ -38,6 +42,7 @@ def run(args: argparse.Namespace) -> int:
     if not 0.0 <= args.val_fraction < 1.0:
         raise UserError(f"--val-fraction {args.val_fraction}: a fraction in [0, 1)")
     report = import_mvtec(args.src, args.out, args.bit_depth, args.layout, args.val_fraction, args.seed,
-                          args.allow_dark, defect_pixels=args.defect_pixels)
+                          args.allow_dark, defect_pixels=args.defect_pixels,
+                          black_level=args.black_level)
     print(report.describe())
     return 0

@@ -2,7 +2,7 @@
 non-uniformity (PRNU), per-pixel polarizer angle errors with a finite extinction ratio, or all three.
 Fixed patterns are drawn once from SEED, the same in every frame; everything but the raw is linked.
 
-    python sensor_response.py SRC DST KIND SEED     KIND: pedestal64 | prnu1 | polarizer | camera
+    python sensor_response.py SRC DST KIND SEED     KIND: pedestal64 | pedestal256 | prnu1 | polarizer | camera
 """
 import json
 import os
@@ -14,7 +14,7 @@ import numpy as np
 
 from model.priors.mosaic import stokes_to_mosaic
 
-PEDESTAL = 64          # codes of a 12-bit frame (1.6 % of full scale)
+PEDESTAL = 64          # codes of a 12-bit frame (1.6 % of full scale); pedestal256: 256 (6.25 %)
 PRNU = 0.01            # sigma of each pixel's relative gain
 ANGLE_DEG = 1.0        # sigma of each micro-polarizer's angle error
 EXTINCTION = 100.0     # extinction ratio of every micro-polarizer
@@ -32,6 +32,8 @@ sin2t = 2 * stokes_to_mosaic(zero, zero, one)
 cos2d, sin2d = np.cos(2 * delta), np.sin(2 * delta)
 c_real = e * (cos2t * cos2d - sin2t * sin2d)       # cos 2(t + d), times e
 s_real = e * (sin2t * cos2d + cos2t * sin2d)
+if kind == "pedestal256":
+    PEDESTAL, kind = 256, "pedestal64"
 steps = {"pedestal64": ("pedestal",), "prnu1": ("gain",), "polarizer": ("polarizer",),
          "camera": ("polarizer", "gain", "pedestal")}[kind]
 
