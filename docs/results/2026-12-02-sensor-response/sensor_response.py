@@ -32,9 +32,8 @@ sin2t = 2 * stokes_to_mosaic(zero, zero, one)
 cos2d, sin2d = np.cos(2 * delta), np.sin(2 * delta)
 c_real = e * (cos2t * cos2d - sin2t * sin2d)       # cos 2(t + d), times e
 s_real = e * (sin2t * cos2d + cos2t * sin2d)
-if kind == "pedestal256":
-    PEDESTAL, kind = 256, "pedestal64"
-steps = {"pedestal64": ("pedestal",), "prnu1": ("gain",), "polarizer": ("polarizer",),
+PEDESTAL = 256 if kind == "pedestal256" else PEDESTAL
+steps = {"pedestal64": ("pedestal",), "pedestal256": ("pedestal",), "prnu1": ("gain",), "polarizer": ("polarizer",),
          "camera": ("polarizer", "gain", "pedestal")}[kind]
 
 
