@@ -3,7 +3,9 @@
 Format (contract with drivers' virtual camera and the station's train/eval commands):
   DIR/manifest.json                  format, version, convention_version, renderer_version, width, height, layout,
                                      bit_depth, seed, count, split_rule, config (everything that defines the set),
-                                     spp_choice (null, or how ``--dolp-error`` chose ``config.spp``)
+                                     spp_choice (null, or how ``--dolp-error`` chose ``config.spp``); black_level
+                                     (codes, only when the sensor has a pedestal: every reader removes it,
+                                     ``model.priors.black_level``)
   DIR/samples/<index:06d>/raw.png    raw mosaic, uint8 or uint16 PNG, codes of ``bit_depth`` bits
   DIR/samples/<index:06d>/raw-K.png  a dome-segment set's (``config.dome_segments``) frame K >= 1 of the part, one
                                      per segment in that order (raw.png is the first)

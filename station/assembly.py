@@ -114,6 +114,7 @@ def open_camera(cfg: StationConfig) -> Camera:
 
         dataset = ensure_sim_dataset(cfg)
         check_line_segments(cfg, open_dataset(dataset).dome_segments, f"the set {dataset} holds")
+        check_set_black_level(cfg, dataset)
         camera: Camera = VirtualCamera(dcfg, VirtualCameraConfig(dataset, cfg.sim.defect_rate,
                                                                  seed=cfg.sim.seed, empty_rate=cfg.sim.empty_rate))
         if cfg.second_camera.enabled:
@@ -121,6 +122,7 @@ def open_camera(cfg: StationConfig) -> Camera:
             if not (Path(twin) / "manifest.json").is_file():
                 raise ConfigError(f"{cfg.source}: [second_camera] dataset = {twin!r} is not a rendered set (no "
                                   "manifest.json)")
+            check_set_black_level(cfg, twin, second=True)
             second = VirtualCamera(driver_camera_config(cfg, second=True), VirtualCameraConfig(twin),
                                    leader=camera)  # type: ignore[arg-type]
     else:
@@ -206,6 +208,20 @@ def check_line_segments(cfg: StationConfig, segments: tuple[float, ...], what: s
         want = f"[{', '.join(f'{a:g}' for a in segments)}]" if segments else "unset"
         raise ConfigError(f"{cfg.source}: [camera] dome_segments takes {describe_segments(line)}, but {what} "
                           f"{describe_segments(segments)}: set dome_segments {'= ' if segments else ''}{want}")
+
+
+def check_set_black_level(cfg: StationConfig, dataset: str, second: bool = False) -> None:
+    """ConfigError unless ``[camera] black_level`` (``second``: ``[second_camera]``'s) is the black level the set the
+    virtual camera replays states (its frames carry that pedestal; ``station.datasets.set_black_level``)."""
+    from sim.dataset import open_dataset
+    from station.datasets import set_black_level
+
+    section = "second_camera" if second else "camera"
+    ours = (cfg.second_camera if second else cfg.camera).black_level
+    theirs = set_black_level(dataset, open_dataset(dataset).manifest)
+    if ours != theirs:
+        raise ConfigError(f"{cfg.source}: [{section}] black_level: {ours}, but the set {dataset} states "
+                          f"black_level {theirs} (its frames carry that pedestal): set black_level = {theirs}")
 
 
 def defect_pixel_map(cfg: StationConfig, second: bool = False) -> np.ndarray | None:

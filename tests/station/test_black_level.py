@@ -56,6 +56,7 @@ def test_the_config_key_is_checked_against_the_pixel_format(tmp_path) -> None:
 
 
 def test_import_states_the_level_and_the_set_s_priors_are_read_without_it(tmp_path) -> None:
+    from station.assembly import check_set_black_level
     from station.datasets import load_split, set_black_level
     from station.mvtec import import_mvtec
 
@@ -68,6 +69,11 @@ def test_import_states_the_level_and_the_set_s_priors_are_read_without_it(tmp_pa
     manifest = json.loads((tmp_path / "set" / "manifest.json").read_text())
     assert manifest["black_level"] == 64 and set_black_level(tmp_path / "set", manifest) == 64
     assert "black_level" not in json.loads((tmp_path / "plain" / "manifest.json").read_text())
+    replay = parse_config("[camera]\nblack_level = 64\n", source="s.toml")  # the virtual camera replaying the set
+    check_set_black_level(replay, str(tmp_path / "set"))
+    with pytest.raises(ConfigError, match=r"^s\.toml: \[camera\] black_level: 64, but the set .*plain states "
+                                          r"black_level 0 \(its frames carry that pedestal\): set black_level = 0$"):
+        check_set_black_level(replay, str(tmp_path / "plain"))
     plain = load_split(tmp_path / "plain", "train", ("dolp",), 64, progress=False)
     right = load_split(tmp_path / "set", "train", ("dolp",), 64, progress=False)
     assert float(plain.priors.median()) == pytest.approx(0.228, abs=0.005)
