@@ -10,11 +10,14 @@ Files under ``OUT``::
                                        reading OUT see one frame per part)
     OUT/capture.jsonl                  one line per part: file(s), ids, timestamps, pixel format, bit depth,
                                        camera settings, frame statistics, ground truth where known
-    OUT/polar_ano.json                 bit depth, layout and dome segments (station import reads them)
+    OUT/polar_ano.json                 bit depth, layout and dome segments, and the camera's black level and
+                                       defect pixel map (``[camera] black_level``, ``defect_pixels``, copied to
+                                       OUT/defect-pixels.png): station import reads them
 
 Numbering continues after the files already in the label's folder: a second ``station capture`` into the same
-``OUT`` adds frames (same bit depth and layout required). A frame whose ground truth (the virtual camera's) says it
-is not a ``--label`` part is left out and counted (``contradicts``); ``capture.jsonl`` then records it.
+``OUT`` adds frames (same bit depth, layout, black level and defect pixel map required). A frame whose ground truth
+(the virtual camera's) says it is not a ``--label`` part is left out and counted (``contradicts``);
+``capture.jsonl`` then records it.
 
 With a second camera (``[second_camera]``: the camera is a ``drivers.camera_pair.CameraPair``), each part's second
 frame goes to a folder of its own, ``SECOND_OUT``, under the same name: the two folders are twins, file for file,
@@ -44,7 +47,7 @@ from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_sta
 from model.priors.photometric import frames_per_part
 from station.errors import UserError
 from station.inspector import significant_bits
-from station.mvtec import INFO_FILE, later_frame, read_info
+from station.mvtec import DEFECT_PIXELS_FILE, INFO_FILE, later_frame, read_info
 
 
 @dataclass
@@ -116,7 +119,29 @@ def _next_number(folder: Path) -> int:
     return max(nums) + 1 if nums else 0
 
 
-def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, ...]) -> None:
+@dataclass(frozen=True)
+class SensorCalibration:
+    """What a capture folder records of its camera for ``station import`` (``polar_ano.json``): its black level
+    (codes, ``[camera] black_level``) and defect pixel map (a PNG path, ``[camera] defect_pixels``; "" for none)."""
+
+    black_level: int = 0
+    defect_pixels: str = ""
+
+    def same_as(self, out: Path, info: dict[str, Any]) -> bool:
+        """Whether the folder ``out`` (its ``polar_ano.json``: ``info``) records this calibration."""
+        from model.priors.defect_pixels import read_defect_pixel_map
+
+        if (info.get("black_level", 0) != self.black_level
+                or bool(info.get("defect_pixels")) != bool(self.defect_pixels)):
+            return False
+        return not self.defect_pixels or np.array_equal(read_defect_pixel_map(out / info["defect_pixels"]),
+                                                        read_defect_pixel_map(self.defect_pixels))
+
+
+def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, ...],
+                calibration: SensorCalibration) -> None:
+    import shutil
+
     from model.priors.photometric import describe_segments
 
     p = out / INFO_FILE
@@ -127,9 +152,18 @@ def _check_info(out: Path, bit_depth: int, layout: str, segments: tuple[float, .
             raise UserError(f"{p}: this folder holds {old.get('bit_depth')}-bit {old.get('layout')} frames, "
                             f"{describe_segments(old_segments)}; the camera gives {bit_depth}-bit {layout}, "
                             f"{describe_segments(segments)}: capture into another folder")
+        if not calibration.same_as(out, old):
+            raise UserError(f"{p}: this folder's frames were taken with black level {old.get('black_level', 0)} and "
+                            f"{'a' if old.get('defect_pixels') else 'no'} defect pixel map; the camera now has "
+                            f"{calibration.black_level} and {calibration.defect_pixels or 'none'}: capture into "
+                            "another folder")
     else:
+        if calibration.defect_pixels:
+            shutil.copyfile(calibration.defect_pixels, out / DEFECT_PIXELS_FILE)
         p.write_text(json.dumps({"bit_depth": bit_depth, "layout": layout,
                                  **({"dome_segments": list(segments)} if segments else {}),
+                                 **({"black_level": calibration.black_level} if calibration.black_level else {}),
+                                 **({"defect_pixels": DEFECT_PIXELS_FILE} if calibration.defect_pixels else {}),
                                  "note": "written by station capture"}, indent=1))
 
 
@@ -155,6 +189,7 @@ class _CameraFolder:
     settings: dict[str, Any]
     priors_bit_depth: int | None
     label: str
+    calibration: SensorCalibration
 
     def stage(self, number: int, shots: list[Frame]) -> _StagedPart:
         """Part ``number``'s frames (one, or one per dome segment) written as PNGs, its ``capture.jsonl`` line not
@@ -166,7 +201,7 @@ class _CameraFolder:
         except ValueError as exc:
             raise UserError(str(exc)) from None
         if not self.report.files:
-            _check_info(out, bits, self.layout, self.segments)
+            _check_info(out, bits, self.layout, self.segments, self.calibration)
             self.report.bit_depth = bits
         elif bits != self.report.bit_depth:
             raise UserError(f"frame {frame.frame_id}: {bits}-bit after {self.report.bit_depth}-bit frames; one "
@@ -226,13 +261,17 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
             timeout_ms: int | None = None, progress: bool = True,
             on_frame: Callable[[int, FrameStatistics], None] | None = None,
             bit_depth: int | None = None, segments: tuple[float, ...] = (),
-            second_out: str | Path | None = None, second_settings: dict[str, Any] | None = None) -> CaptureReport:
+            second_out: str | Path | None = None, second_settings: dict[str, Any] | None = None,
+            calibration: SensorCalibration = SensorCalibration(),
+            second_calibration: SensorCalibration = SensorCalibration()) -> CaptureReport:
     """Grab ``frames`` parts from the open ``camera`` (started and stopped here) into ``out`` (module docstring):
     one frame each, or with ``segments`` (``[camera] dome_segments``) one per segment, each triggered.
     ``settings``: the camera settings to record with each part; ``on_frame(n, stats)`` after each part;
     ``bit_depth``: ``[priors] bit_depth``, the significant bits when the pixel format's are wider.
     ``second_out``: the second camera's twin folder (the camera is a ``CameraPair``), ``second_settings`` its
-    settings; each part's ``companion`` frame is written there under the same name."""
+    settings; each part's ``companion`` frame is written there under the same name. ``calibration``,
+    ``second_calibration``: each camera's black level and defect pixel map, recorded in its folder's
+    ``polar_ano.json``."""
     from tqdm import tqdm
 
     if frames < 1:
@@ -256,12 +295,14 @@ def capture(camera: Camera, frames: int, out: str | Path, label: str = "good", s
     try:
         with ExitStack() as stack:
             bar = stack.enter_context(tqdm(total=frames, unit="frame", disable=not progress, dynamic_ncols=True))
-            def folder_of(r: CaptureReport, segs: tuple[float, ...], s: dict[str, Any] | None) -> _CameraFolder:
+            def folder_of(r: CaptureReport, segs: tuple[float, ...], s: dict[str, Any] | None,
+                          c: SensorCalibration) -> _CameraFolder:
                 return _CameraFolder(r, stack.enter_context(open(r.out / "capture.jsonl", "a")), layout, segs,
-                                     s or {}, bit_depth, label)
+                                     s or {}, bit_depth, label, c)
 
-            first = folder_of(report, segments, settings)
-            second = folder_of(report.second, (), second_settings) if report.second is not None else None
+            first = folder_of(report, segments, settings, calibration)
+            second = (folder_of(report.second, (), second_settings, second_calibration) if report.second is not None
+                      else None)
             grabs = 0
             while len(report.files) < frames:
                 grabs += 1

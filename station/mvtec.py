@@ -9,8 +9,10 @@ Layout (names of images are free; masks are matched by name)::
     DIR/test/<defect type>/<name>.png             defective test parts
     DIR/ground_truth/<defect type>/<name>_mask.png   optional defect masks (non-zero = defect)
     DIR/object_masks/<split>/<type>/<name>_object.png  optional object masks (our extension)
-    DIR/polar_ano.json                            optional: {"bit_depth", "layout", "dome_segments"}, written by
-                                                  export and capture
+    DIR/polar_ano.json                            optional: {"bit_depth", "layout", "dome_segments", "black_level",
+                                                  "defect_pixels"}, written by export and capture
+    DIR/defect-pixels.png                         optional: the camera's defect pixel map, when polar_ano.json
+                                                  names it (``DEFECT_PIXELS_FILE``)
     DIR/frame-K/<split>/<type>/<name>.png         with "dome_segments" (our extension): each part's frame K >= 1,
                                                   one per dome segment in that order; the image above is the first
 
@@ -40,13 +42,15 @@ import numpy as np
 from model.priors.conventions import CONVENTION_VERSION, LAYOUTS, is_bit_depth
 from model.priors.photometric import check_segments
 from sim.dataset import FOLDER_SPLIT_RULE, FORMAT, VERSION, Sample, open_dataset, write_sample
+from station.datasets import set_black_level, set_defect_pixels
 from station.errors import UserError
 
 IMAGE_SUFFIXES = (".png", ".tif", ".tiff")
 SPLIT_DIRS = ("train", "val", "test")
 INFO_FILE = "polar_ano.json"
 DEFECT_PIXELS_FILE = "defect-pixels.png"
-"""An imported set's copy of the camera's defect pixel map (``station import --defect-pixels``)."""
+"""An imported set's copy of the camera's defect pixel map (``station import --defect-pixels``), and a capture's
+or an export's (named in ``polar_ano.json``)."""
 BIT_DEPTHS = (8, 10, 12, 14, 16)
 
 
@@ -140,8 +144,9 @@ def later_frame(root: Path, rel: str | Path, k: int) -> Path:
 
 def read_info(root: str | Path) -> dict:
     """``polar_ano.json`` of an MVTec-layout folder ({} when absent); UserError naming the file and key unless it is
-    an object whose ``bit_depth`` (when present) is an integer in 1..16, ``layout`` a string and ``dome_segments``
-    azimuths (``model.priors.photometric.check_segments``)."""
+    an object whose ``bit_depth`` (when present) is an integer in 1..16, ``layout`` a string, ``dome_segments``
+    azimuths (``model.priors.photometric.check_segments``), ``black_level`` a code (an integer >= 0) and
+    ``defect_pixels`` a file in the folder (the camera's map)."""
     p = Path(root) / INFO_FILE
     if not p.is_file():
         return {}
@@ -164,6 +169,12 @@ def read_info(root: str | Path) -> dict:
             info["dome_segments"] = list(check_segments(segments))
         except ValueError as exc:
             raise UserError(f"{p}: dome_segments: {exc}") from None
+    level = info.get("black_level")
+    if level is not None and (isinstance(level, bool) or not isinstance(level, int) or level < 0):
+        raise UserError(f"{p}: black_level: expected a code (an integer >= 0), got {level!r}")
+    name = info.get("defect_pixels")
+    if name is not None and (not isinstance(name, str) or not (Path(root) / name).is_file()):
+        raise UserError(f"{p}: defect_pixels: {name!r} is not a file in {root}")
     return info
 
 
@@ -225,13 +236,14 @@ def _val_names(items: list[MvtecItem], fraction: float, seed: int) -> set[Path]:
 
 def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None, layout: str | None = None,
                  val_fraction: float = 0.1, seed: int = 0, allow_dark: bool = False, progress: bool = True,
-                 defect_pixels: str | Path | None = None, black_level: int = 0) -> ImportReport:
+                 defect_pixels: str | Path | None = None, black_level: int | None = None) -> ImportReport:
     """Import the MVTec-layout folder ``src`` into a new dataset ``out`` (module docstring). ``bit_depth`` and
     ``layout`` default to ``src/polar_ano.json``'s, then to 8 bits for 8-bit files and the IMX250MZR layout; a
     16-bit set needs its bit depth stated. ``defect_pixels``: the camera's defect pixel map (a PNG of the frames'
     size), copied into the set and named in its manifest, so every command that reads the set fills those pixels
     (``station.datasets.set_defect_pixels``). ``black_level``: the camera's pedestal in the files' codes, named in
-    the manifest and removed by every command that reads the set (``station.datasets.set_black_level``)."""
+    the manifest and removed by every command that reads the set (``station.datasets.set_black_level``). Both
+    default to ``src/polar_ano.json``'s (``station capture`` records the camera's), then to none."""
     from tqdm import tqdm
 
     from model.priors.black_level import check_black_level
@@ -239,6 +251,10 @@ def import_mvtec(src: str | Path, out: str | Path, bit_depth: int | None = None,
 
     src, out = Path(src), Path(out)
     info = read_info(src)
+    if defect_pixels is None and info.get("defect_pixels"):
+        defect_pixels = src / info["defect_pixels"]
+    if black_level is None:
+        black_level = info.get("black_level", 0)
     defect_map = None
     if defect_pixels is not None:
         try:
@@ -364,7 +380,8 @@ def export_mvtec(data: str | Path, out: str | Path, object_masks: bool = True, p
     """Write the set ``data`` in the MVTec AD layout under ``out``: each sample as ``<split>/<good|type>/<index>.png``
     (raw mosaic, codes unchanged), defect masks as ``ground_truth/<type>/<index>_mask.png`` (0/255), object masks
     (``object_masks=True``, when the set has them) under ``object_masks/``, and ``polar_ano.json`` (bit depth,
-    layout, source). The val split goes to ``val/``; defective train samples to ``test/``. A set with a frame per
+    layout, source; the set's black level and defect pixel map, when it has them). The val split goes to ``val/``;
+    defective train samples to ``test/``. A set with a frame per
     dome segment writes each part's later frames under ``frame-K/`` and its segments in ``polar_ano.json``."""
     from tqdm import tqdm
 
@@ -372,6 +389,8 @@ def export_mvtec(data: str | Path, out: str | Path, object_masks: bool = True, p
     out = Path(out)
     if out.exists() and any(out.iterdir()):
         raise UserError(f"{out}: exists and is not empty; export into a new folder")
+    black_level = set_black_level(data, ds.manifest)
+    has_map = set_defect_pixels(data, ds.manifest) is not None
     counts: Counter[str] = Counter()
     moved = 0
     for i in tqdm(ds.indices(), desc="exporting", unit="sample", disable=not progress):
@@ -389,9 +408,13 @@ def export_mvtec(data: str | Path, out: str | Path, object_masks: bool = True, p
         if object_masks and s.object_mask is not None:
             _write(out / "object_masks" / split / kind / f"{name}_object.png", s.object_mask.astype(np.uint8) * 255)
         counts[split] += 1
+    if has_map:
+        shutil.copyfile(Path(data) / ds.manifest["defect_pixels"], out / DEFECT_PIXELS_FILE)
     (out / INFO_FILE).write_text(json.dumps({
         "bit_depth": ds.manifest.get("bit_depth") or 8, "layout": ds.manifest.get("layout", "imx250mzr"),
         **({"dome_segments": list(ds.dome_segments)} if ds.dome_segments else {}),
+        **({"black_level": black_level} if black_level else {}),
+        **({"defect_pixels": DEFECT_PIXELS_FILE} if has_map else {}),
         "source": str(Path(data).resolve()), "note": "raw polarizer mosaics; codes of bit_depth bits"}, indent=1))
     return ExportReport(out, dict(counts), moved)
 

@@ -32,8 +32,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     import dataclasses
 
-    from station.assembly import open_camera
-    from station.capture import capture
+    from station.assembly import defect_pixel_map, open_camera
+    from station.capture import SensorCalibration, capture
     from station.config import load_config
     from station.errors import UserError
 
@@ -62,6 +62,9 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"{cfg.source}: [second_camera] is enabled: name --second-out DIR for its frames (a twin "
                         "folder of --out)" if second else
                         f"--second-out {args.second_out}: {cfg.source} has no [second_camera] enabled")
+    defect_pixel_map(cfg)  # a map that cannot be read is one line naming the key, before the camera opens
+    if second:
+        defect_pixel_map(cfg, second=True)
     camera = open_camera(cfg)
     try:
         report = capture(camera, args.frames, args.out, args.label, args.split, settings, cfg.priors.layout,
@@ -69,7 +72,10 @@ def run(args: argparse.Namespace) -> int:
                          segments=tuple(cfg.camera.dome_segments or ()),
                          on_frame=(lambda _n, s: _warn(monitor.update(s))) if monitor else None,
                          second_out=args.second_out,
-                         second_settings={k: getattr(cfg.second_camera, k) for k in keys} if second else None)
+                         second_settings={k: getattr(cfg.second_camera, k) for k in keys} if second else None,
+                         calibration=SensorCalibration(cfg.camera.black_level, cfg.camera.defect_pixels),
+                         second_calibration=SensorCalibration(cfg.second_camera.black_level,
+                                                              cfg.second_camera.defect_pixels))
     finally:
         camera.close()
     print(report.describe())

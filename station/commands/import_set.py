@@ -27,11 +27,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="accept a 16-bit set whose codes all fit fewer bits (default: refused as a wrong bit depth)")
     p.add_argument("--defect-pixels", default=None, metavar="PNG",
                    help="the camera's defect pixel map (`station defect-pixels`), copied into the set: every "
-                        "command that reads it fills those pixels, as the station does with [camera] defect_pixels")
-    p.add_argument("--black-level", type=int, default=0, metavar="CODES",
+                        "command that reads it fills those pixels, as the station does with [camera] defect_pixels "
+                        "(default: the map DIR/polar_ano.json names, which station capture records)")
+    p.add_argument("--black-level", type=int, default=None, metavar="CODES",
                    help="the camera's black level in the files' codes (`station defect-pixels` measures it), named "
                         "in the set: every command that reads it removes it, as the station does with [camera] "
-                        "black_level (default 0)")
+                        "black_level (default: DIR/polar_ano.json's, which station capture records, else 0)")
     p.set_defaults(func=run)
 
 

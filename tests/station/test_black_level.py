@@ -114,3 +114,48 @@ def test_the_command_prints_the_black_level_of_the_lens_capped_frames(tmp_path, 
     assert main(["defect-pixels", "--frames", str(tmp_path / "frames"), "--bit-depth", "12",
                  "--out", str(tmp_path / "map.png")]) == 0
     assert "black level: not measured" in capsys.readouterr().out
+
+
+def test_capture_records_the_camera_s_calibration_and_import_and_export_carry_it(tmp_path) -> None:
+    """A capture folder names the camera's black level and defect pixel map; `station import` then needs no flags,
+    a second capture with another calibration is refused, and an export carries both to the next import."""
+    from test_loop import ScriptedCamera
+
+    from model.priors.defect_pixels import read_defect_pixel_map, write_defect_pixel_map
+    from sim.dataset import open_dataset
+    from station.capture import SensorCalibration, capture
+    from station.mvtec import export_mvtec, import_mvtec
+
+    mask = np.zeros((48, 64), bool)
+    mask[5, 7] = True
+    write_defect_pixel_map(tmp_path / "map.png", mask)
+
+    class Camera(ScriptedCamera):
+        def grab(self, timeout_ms: int | None = None) -> Frame:
+            self.frame_id += 1
+            return Frame(_scene() * 8, "Mono16", 16, self.frame_id, 0, time.time_ns())  # bright enough for 12 bits
+
+    calibration = SensorCalibration(64, str(tmp_path / "map.png"))
+    capture(Camera([], trigger="software"), 3, tmp_path / "cap", progress=False, bit_depth=12,
+            calibration=calibration)
+    info = json.loads((tmp_path / "cap" / "polar_ano.json").read_text())
+    assert info["black_level"] == 64 and (read_defect_pixel_map(tmp_path / "cap" / info["defect_pixels"]) == mask).all()
+    with pytest.raises(UserError, match=r"taken with black level 64 and a defect pixel map; the camera now has 0 and "
+                                        r"none: capture into another folder"):
+        capture(Camera([], trigger="software"), 1, tmp_path / "cap", progress=False, bit_depth=12)
+    capture(Camera([], trigger="software"), 1, tmp_path / "cap", progress=False, bit_depth=12,
+            calibration=calibration)  # the same camera adds frames
+    import_mvtec(tmp_path / "cap", tmp_path / "set", val_fraction=0.0, progress=False)  # no flags
+    manifest = open_dataset(tmp_path / "set").manifest
+    assert manifest["black_level"] == 64 and (read_defect_pixel_map(tmp_path / "set" / manifest["defect_pixels"])
+                                              == mask).all()
+    export_mvtec(tmp_path / "set", tmp_path / "exported", progress=False)
+    import_mvtec(tmp_path / "exported", tmp_path / "again", val_fraction=0.0, progress=False)
+    again = open_dataset(tmp_path / "again").manifest
+    assert again["black_level"] == 64 and (read_defect_pixel_map(tmp_path / "again" / again["defect_pixels"])
+                                           == mask).all()
+    import_mvtec(tmp_path / "cap", tmp_path / "flagged", val_fraction=0.0, progress=False, black_level=0)
+    assert "black_level" not in open_dataset(tmp_path / "flagged").manifest  # a flag overrides the folder's
+    (tmp_path / "cap" / "defect-pixels.png").unlink()
+    with pytest.raises(UserError, match=r"cap/polar_ano\.json: defect_pixels: 'defect-pixels\.png' is not a file"):
+        import_mvtec(tmp_path / "cap", tmp_path / "broken", val_fraction=0.0, progress=False)
