@@ -35,7 +35,8 @@ def check_black_level(black_level: int, bit_depth: int) -> None:
 
 def subtract_black_level(raw: np.ndarray, black_level: int, bit_depth: int | None = None) -> np.ndarray:
     """``raw`` (uint8/uint16 codes of ``bit_depth`` significant bits; default the dtype's) with ``black_level``
-    removed and full scale kept (module docstring); ``raw`` itself when ``black_level`` is 0. ValueError when the
+    removed and full scale kept (module docstring); ``raw`` itself when ``black_level`` is 0. Codes above full scale
+    (junk in unused bits) stay above it, so the priors still count them out of range. ValueError when the
     black level is not below full scale, or the frame is not integer codes."""
     if black_level == 0:
         return raw
@@ -45,8 +46,9 @@ def subtract_black_level(raw: np.ndarray, black_level: int, bit_depth: int | Non
     top = full_scale(raw.dtype, bit_depth)
     check_black_level(black_level, int(np.log2(top + 1)))
     above = cv2.subtract(raw, np.full_like(raw, black_level))  # saturates at 0
-    out = cv2.multiply(above, np.ones_like(raw), scale=top / (top - black_level))  # rounds, in raw's dtype
-    return np.minimum(out, raw.dtype.type(top), out=out)
+    # rounds, in raw's dtype: codes up to full scale stay within it; junk above it (bits beyond ``bit_depth``) stays
+    # above, where ``normalize_mosaic`` counts it out of range
+    return cv2.multiply(above, np.ones_like(raw), scale=top / (top - black_level))
 
 
 DARK_SHARE = 0.05

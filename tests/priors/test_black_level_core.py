@@ -45,6 +45,17 @@ def test_a_level_that_is_not_a_code_below_full_scale_is_refused(level, bits) -> 
             subtract_black_level(raw, level, bits)
 
 
+def test_junk_above_the_bit_depth_stays_out_of_range() -> None:
+    """Fail closed: a code beyond the stated bits is counted invalid with or without a black level."""
+    raw = np.full((4, 4), 2000, np.uint16)
+    raw[0, 0] = 60000
+    for level in (0, 64):
+        priors = compute_priors(subtract_black_level(raw, level, 12), priors=("intensity",), bit_depth=12)
+        assert priors.n_out_of_range == 1
+    everything = np.arange(4096, dtype=np.uint16).reshape(64, 64)
+    assert int(subtract_black_level(everything, 64, 12).max()) == 4095  # in range stays in range
+
+
 def test_a_float_frame_takes_no_black_level() -> None:
     with pytest.raises(ValueError, match="integer codes"):
         subtract_black_level(np.zeros((4, 4), np.float32), 3)
