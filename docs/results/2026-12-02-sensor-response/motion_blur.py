@@ -17,10 +17,11 @@ from model.priors.mosaic import stokes_to_mosaic
 src, dst, length = Path(sys.argv[1]), Path(sys.argv[2]), float(sys.argv[3])
 m = json.loads((src / "manifest.json").read_text())
 full = 2 ** m["bit_depth"] - 1
-# a box of LENGTH px centred on each pixel, its two end taps fractional
-half = length / 2
-n = int(np.ceil(half - 0.5))
-taps = np.array([min(1.0, max(0.0, half - (abs(k) - 0.5))) for k in range(-n, n + 1)])
+# the frame's pixels read between their centres by linear interpolation, averaged over a shift of -L/2..L/2:
+# each tap is the mean over the shift of the interpolation's hat at that tap
+shifts = np.linspace(-length / 2, length / 2, 2001)
+n = int(np.ceil(length / 2))
+taps = np.array([np.maximum(0.0, 1 - np.abs(shifts - k)).mean() for k in range(-n, n + 1)])
 kernel = (taps / taps.sum()).reshape(1, -1).astype(np.float32)
 
 
