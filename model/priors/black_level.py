@@ -6,13 +6,13 @@ S1, S2, so it lowers DoLP everywhere, most on the darkest pixels. The renders th
 (``sim.sensor.SensorConfig.black_level_dn = 0``).
 
 Convention: a code ``c`` of a frame whose largest code is ``M = 2**bit_depth - 1`` becomes
-``round((c - b) * M / (M - b))``, clipped to ``[0, M]``, in the frame's own dtype. So 0 is no light and ``M`` is
-still the brightest reading the sensor can give: a pixel clipped at the ADC's top stays at full scale, where the
+``round((c - b) * M / (M - b))``, at least 0, in the frame's own dtype. So 0 is no light and ``M`` is still the
+brightest reading the sensor can give: a pixel clipped at the ADC's top stays at full scale, where the
 priors count it saturated and the model's highlight rule (``model.draem.variation.HIGHLIGHT_LEVEL``) looks for it.
 Codes below ``b`` (read noise in the dark) become 0, as the renders' sensor model clips them.
 
 The black level is measured with the lens capped, from the same frames ``station defect-pixels`` reads: the
-median code of every pixel of every frame (``measure_black_level``).
+median code of every pixel of the frames whose median is dark (``measure_black_level``).
 """
 
 from __future__ import annotations

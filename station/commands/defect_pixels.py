@@ -6,8 +6,8 @@ into the same folder, then::
 
     station capture --camera aravis --frames 20 --out captures/dark --label good    # lens capped
     station defect-pixels --frames captures/dark --out defect-pixels.png
-    # station.toml: [camera] defect_pixels = "defect-pixels.png", and black_level as printed
-    station import --from captures/myline --out data/myline --defect-pixels defect-pixels.png --black-level N
+    # station.toml: [camera] defect_pixels = "defect-pixels.png", and black_level as printed; captures made
+    # after that record both, and station import applies them to the set
 
 A pixel is defective where its median over the frames stands at least ``--min-step`` of full scale from its
 neighbours of the same polarizer angle, far outside the frame's spread (``model.priors.defect_pixels``). Every PNG
