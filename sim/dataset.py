@@ -127,6 +127,9 @@ class DatasetSpec:
     mesh: str = ""
     materials: dict[str, Any] = field(default_factory=dict)
     mesh_scale: float = 1.0
+    edge_mm: float = 0.0
+    """The brick's body edges chamfered at 45 degrees that far back along each face (``sim.meshes.usb_brick``);
+    0: sharp, as designed."""
     variant: str | None = None
     scene: SceneConfig = field(default_factory=SceneConfig)
     defects: DefectConfig = field(default_factory=DefectConfig)
@@ -164,6 +167,8 @@ class DatasetSpec:
             raise SimError(f"seed must be >= 0, got {self.seed}")
         if not (math.isfinite(self.mesh_scale) and self.mesh_scale > 0):
             raise SimError(f"mesh_scale must be a number > 0, got {self.mesh_scale}")
+        if not (math.isfinite(self.edge_mm) and 0 <= self.edge_mm <= 2):
+            raise SimError(f"edge_mm must be a number in [0, 2] (mm), got {self.edge_mm}")
         if self.heldout and self.validation:
             raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
         try:
@@ -203,7 +208,7 @@ class DatasetSpec:
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
-        for key in ("visibility", "heldout", "validation", "dome_segments", "view"):
+        for key in ("visibility", "heldout", "validation", "dome_segments", "view", "edge_mm"):
             if not d[key]:
                 d.pop(key)  # likewise for sets without the detectability oracle or a whole-set split
         if not self.variation.active:
@@ -307,7 +312,7 @@ def prepare(spec: DatasetSpec) -> ObjectModel:
     from .variant import set_variant
 
     set_variant(spec.variant)
-    model = object_from_config(spec.mesh, spec.materials, spec.mesh_scale)
+    model = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=spec.edge_mm)
     material_keys_check(model)
     if spec.defect_fraction > 0:
         usable = spec.defects.usable_types(model)

@@ -123,6 +123,55 @@ def box_mesh(lo: np.ndarray, hi: np.ndarray, cell: float, skip: tuple[str, ...] 
     return _merge([_grid(np.asarray(o), u, v, cell) for name, (o, u, v) in sides.items() if name not in skip])
 
 
+def chamfered_box_mesh(lo: np.ndarray, hi: np.ndarray, chamfer: float, cell: float) -> tuple[np.ndarray, np.ndarray]:
+    """Axis-aligned box [lo, hi] whose 12 edges are cut at 45 degrees, ``chamfer`` (metres) back along each face:
+    six faces shrunk by the chamfer, twelve strips and eight corner triangles, each with its own vertices
+    (outward normals; a strip meets its faces along edges subdivided alike)."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    ctr, half = (lo + hi) / 2, (hi - lo) / 2
+    if not 0 < chamfer < half.min():
+        raise SimError(f"edge chamfer {chamfer * 1000:g} mm must be > 0 and less than half the box's smallest side")
+    inner = half - chamfer
+    pieces: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def rectangle(p0: np.ndarray, p1: np.ndarray, p3: np.ndarray) -> None:
+        u, v = p1 - p0, p3 - p0
+        if np.dot(np.cross(u, v), p0 + (u + v) / 2 - ctr) < 0:
+            u, v = v, u
+        pieces.append(_grid(p0, u, v, cell))
+
+    for i in range(3):  # faces
+        j, k = (i + 1) % 3, (i + 2) % 3
+        for si in (-1, 1):
+            p0 = ctr.copy()
+            p0[i] += si * half[i]
+            p0[j] -= inner[j]
+            p0[k] -= inner[k]
+            p1, p3 = p0.copy(), p0.copy()
+            p1[j] += 2 * inner[j]
+            p3[k] += 2 * inner[k]
+            rectangle(p0, p1, p3)
+    for k in range(3):  # strips along axis k, between the faces normal to i and j
+        i, j = (k + 1) % 3, (k + 2) % 3
+        for si in (-1, 1):
+            for sj in (-1, 1):
+                on_i, on_j = ctr.copy(), ctr.copy()
+                on_i[i] += si * half[i]
+                on_i[j] += sj * inner[j]
+                on_j[i] += si * inner[i]
+                on_j[j] += sj * half[j]
+                on_i[k] = on_j[k] = ctr[k] - inner[k]
+                far = on_i.copy()
+                far[k] = ctr[k] + inner[k]
+                rectangle(on_i, on_j, far)
+    for signs in np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1], indexing="ij")).reshape(3, -1).T:  # corners
+        tri = np.array([ctr + signs * np.where(np.arange(3) == a, half, inner) for a in range(3)])
+        if np.dot(np.cross(tri[1] - tri[0], tri[2] - tri[0]), tri.mean(0) - ctr) < 0:
+            tri = tri[[0, 2, 1]]
+        pieces.append((tri, np.array([[0, 1, 2]])))
+    return _merge(pieces)
+
+
 def cylinder_mesh(center: np.ndarray, radius: float, height: float, segments: int, cell: float
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Vertical cylinder (side + top cap, open bottom) standing on ``center``; returns vertices, faces and
@@ -172,16 +221,18 @@ BRICK_MATERIALS: dict[str, dict] = {
 
 
 @functools.lru_cache(maxsize=4)
-def usb_brick(cell_mm: float = 0.5) -> ObjectModel:
+def usb_brick(cell_mm: float = 0.5, edge_mm: float = 0.0) -> ObjectModel:
     """The paper's reference object: a USB stick shaped as a 2x4 construction brick.
 
     Parts: ``body`` (the brick, polarized plastic ``pplastic``), ``studs`` (eight studs on top, same
     plastic; per-face ``tags`` = stud number 0..7), ``plug`` (USB-A plug shell, ``roughconductor``),
-    sticking out of the +x end, centred in y and z. Origin at the centre of the brick's bottom.
+    sticking out of the +x end, centred in y and z. Origin at the centre of the brick's bottom. ``edge_mm``: the
+    body's edges cut at 45 degrees that far back along each face (``chamfered_box_mesh``; 0: sharp, as designed).
     """
     cell = cell_mm / 1000.0
     lx, ly, lz = (s / 1000.0 for s in BRICK_SIZE_MM)
-    body_v, body_f = box_mesh(np.array([-lx / 2, -ly / 2, 0]), np.array([lx / 2, ly / 2, lz]), cell)
+    lo, hi = np.array([-lx / 2, -ly / 2, 0]), np.array([lx / 2, ly / 2, lz])
+    body_v, body_f = chamfered_box_mesh(lo, hi, edge_mm / 1000, cell) if edge_mm else box_mesh(lo, hi, cell)
     r, h, pitch = STUD_RADIUS_MM / 1000, STUD_HEIGHT_MM / 1000, STUD_PITCH_MM / 1000
     studs, tags = [], []
     for k, (i, j) in enumerate((i, j) for i in range(4) for j in range(2)):
@@ -245,15 +296,17 @@ def load_mesh(path: str | Path, materials: dict[str, str | dict], scale: float =
 
 
 def object_from_config(mesh: str | None, materials: dict[str, str | dict] | None, scale: float = 1.0,
-                       cell_mm: float = 0.5) -> ObjectModel:
+                       cell_mm: float = 0.5, edge_mm: float = 0.0) -> ObjectModel:
     """The brick when ``mesh`` is empty/None, else ``load_mesh``.
 
     For the brick, ``materials`` replaces the spec of its material keys (``BRICK_MATERIALS``: "plastic" for body and
     studs, "metal" for the plug), e.g. ``{"plastic": {"type": "pplastic", "finish": "smooth", "distribution":
     "ggx"}}``: the same part in another material, or rendered with another microfacet model. Raises SimError for a
-    key the brick does not have."""
+    key the brick does not have. ``edge_mm``: the brick's chamfered edges (``usb_brick``); a user mesh has its own."""
+    if mesh and edge_mm:
+        raise SimError(f"edge_mm: {edge_mm:g} chamfers the brick's edges; the mesh {mesh} brings its own")
     if not mesh:
-        brick = usb_brick(cell_mm)
+        brick = usb_brick(cell_mm, edge_mm)
         if not materials:
             return brick
         unknown = sorted(set(materials) - set(brick.materials))

@@ -74,6 +74,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         'material keys "plastic" and "metal", e.g. \'{"plastic": {"type": "pplastic", "finish": '
                         '"smooth", "distribution": "ggx"}}\'')
     p.add_argument("--mesh-scale", type=float, default=1.0, help="file units -> metres (0.001 for mm)")
+    p.add_argument("--edge-mm", type=float, default=0.0,
+                   help="the brick's body edges chamfered at 45 degrees, that far back along each face (mm; default "
+                        "0: sharp, as designed; a moulded part's edges are rounded)")
     p.add_argument("--visibility", action="store_true",
                    help="detectability oracle: render each defective sample's scene again without the defect (two "
                         "pairs at half the spp, around the defect only) and store the defect's SNR per prior in "
@@ -129,7 +132,7 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "visibility": getattr(args, "visibility", False), "heldout": getattr(args, "heldout", False),
         "validation": getattr(args, "validation", False),
         "materials": materials,
-        "mesh_scale": args.mesh_scale, "variant": args.variant,
+        "mesh_scale": args.mesh_scale, "edge_mm": getattr(args, "edge_mm", 0.0), "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
         "variation": extra.get("variation", {}), "dome_segments": getattr(args, "dome_segments", ()),
         "view": extra.get("view", {}),

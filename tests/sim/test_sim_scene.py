@@ -146,3 +146,39 @@ def test_finish_vary_preset_widens_only_the_plastics_roughness() -> None:
         assert (kb - 0.001) == pytest.approx((ka - 0.001) * 0.029 / 0.010, rel=1e-9)
         alphas.append(kb)
     assert max(alphas) > 0.011  # the wider range is drawn, not just allowed
+
+
+def test_chamfered_brick_is_closed_and_keeps_the_line_s_draws() -> None:
+    """`edge_mm`: the body's edges cut at 45 degrees; the same parts, poses and lights as the sharp brick's."""
+    import trimesh
+
+    from sim.meshes import chamfered_box_mesh, object_from_config
+
+    size, c = np.array([0.0318, 0.0158, 0.0096]), 0.0003
+    v, f = chamfered_box_mesh(np.zeros(3), size, c, 0.0005)
+    closed = trimesh.Trimesh(v, f, process=True)  # vertices merged: the pieces meet without cracks
+    assert closed.is_watertight and closed.is_winding_consistent
+    cut = 4 * (c * c / 2) * (size - 2 * c).sum()  # the twelve strips' prisms (the corners are smaller still)
+    assert closed.volume == pytest.approx(size.prod() - cut, rel=1e-3)  # positive: normals point out
+    line = SceneConfig.from_dict({"rest_pose": 0})
+    sharp = sample_scene(np.random.default_rng([7, 1]), line, usb_brick())
+    chamfered = sample_scene(np.random.default_rng([7, 1]), line, usb_brick(0.5, 0.3))
+    for d in (sharp, chamfered):
+        d["pose"].pop("probability")  # the resting poses' odds follow the hull, a little
+    a, b = _leaves(sharp), _leaves(chamfered)
+    assert a.keys() == b.keys()
+    for key, value in a.items():  # positions within 0.2 mm: the aim follows the centre of the part's vertices
+        assert value == b[key] if isinstance(value, str) else np.allclose(value, b[key], atol=2e-4, rtol=0), key
+    assert "edge_mm" not in DatasetSpec().to_dict() and DatasetSpec(edge_mm=0.3).to_dict()["edge_mm"] == 0.3
+    with pytest.raises(SimError, match=r"edge_mm must be a number in \[0, 2\]"):
+        DatasetSpec(edge_mm=3.0)
+    with pytest.raises(SimError, match=r"edge_mm: 0\.3 chamfers the brick.s edges; the mesh part\.ply brings its own"):
+        object_from_config("part.ply", None, edge_mm=0.3)
+
+
+def _leaves(d: dict, prefix: str = "") -> dict:
+    """A nested scene dict's leaves by their path."""
+    out = {}
+    for k, v in d.items():
+        out.update(_leaves(v, f"{prefix}{k}/") if isinstance(v, dict) else {f"{prefix}{k}": v})
+    return out
