@@ -50,7 +50,8 @@ def respond(raw: np.ndarray, gt: Path) -> np.ndarray:
 
 
 (dst / "samples").mkdir(parents=True, exist_ok=True)
-m["derived"] = f"{src.name} with the sensor response {kind} ({', '.join(steps)}), patterns seed {seed} (sensor_response.py)"
+m["derived"] = (f"{src.name} with the sensor response {kind} ({', '.join(steps)}), patterns seed {seed} "
+                "(sensor_response.py)")
 (dst / "manifest.json").write_text(json.dumps(m, indent=1))
 for d in sorted((src / "samples").iterdir()):
     o = dst / "samples" / d.name
