@@ -127,9 +127,10 @@ class DatasetSpec:
     mesh: str = ""
     materials: dict[str, Any] = field(default_factory=dict)
     mesh_scale: float = 1.0
-    edge_mm: float = 0.0
-    """The brick's body edges chamfered at 45 degrees that far back along each face (``sim.meshes.usb_brick``);
-    0: sharp, as designed."""
+    edge_mm: tuple[float, float] = (0.0, 0.0)
+    """The brick's body edges chamfered at 45 degrees that far back along each face (``sim.meshes.usb_brick``), in
+    mm: one value (a number, or lo == hi) for every part, or a range drawn per part to 0.01 mm (``part_of``) on the
+    sample's own stream ``default_rng([seed, index, 6])``, so every other draw stays. (0, 0): sharp, as designed."""
     variant: str | None = None
     scene: SceneConfig = field(default_factory=SceneConfig)
     defects: DefectConfig = field(default_factory=DefectConfig)
@@ -167,8 +168,15 @@ class DatasetSpec:
             raise SimError(f"seed must be >= 0, got {self.seed}")
         if not (math.isfinite(self.mesh_scale) and self.mesh_scale > 0):
             raise SimError(f"mesh_scale must be a number > 0, got {self.mesh_scale}")
-        if not (math.isfinite(self.edge_mm) and 0 <= self.edge_mm <= 2):
-            raise SimError(f"edge_mm must be a number in [0, 2] (mm), got {self.edge_mm}")
+        edge = self.edge_mm
+        edge = (edge, edge) if isinstance(edge, int | float) and not isinstance(edge, bool) else edge
+        try:
+            lo, hi = (float(x) for x in edge)
+        except (TypeError, ValueError):
+            raise SimError(f"edge_mm must be a number or a range [lo, hi] in [0, 2] (mm), got {edge!r}") from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo <= hi <= 2):
+            raise SimError(f"edge_mm must be a number or a range [lo, hi] in [0, 2] (mm), got {self.edge_mm!r}")
+        object.__setattr__(self, "edge_mm", (lo, hi))
         if self.heldout and self.validation:
             raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
         try:
@@ -208,9 +216,14 @@ class DatasetSpec:
         d.pop("variant")  # the variant changes speed, not the distribution of samples
         if not d["empty_rate"]:
             d.pop("empty_rate")  # manifests of sets without empty samples stay as they were before the key
-        for key in ("visibility", "heldout", "validation", "dome_segments", "view", "edge_mm"):
+        for key in ("visibility", "heldout", "validation", "dome_segments", "view"):
             if not d[key]:
                 d.pop(key)  # likewise for sets without the detectability oracle or a whole-set split
+        lo, hi = self.edge_mm
+        if hi == 0:
+            d.pop("edge_mm")  # and for sets of the sharp brick
+        elif lo == hi:
+            d["edge_mm"] = lo  # one edge for every part, as first written
         if not self.variation.active:
             d.pop("variation")  # and for sets without line variation
         else:
@@ -312,7 +325,7 @@ def prepare(spec: DatasetSpec) -> ObjectModel:
     from .variant import set_variant
 
     set_variant(spec.variant)
-    model = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=spec.edge_mm)
+    model = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=spec.edge_mm[0])
     material_keys_check(model)
     if spec.defect_fraction > 0:
         usable = spec.defects.usable_types(model)
@@ -344,10 +357,34 @@ class SampleDraw:
     empty: bool
     sensor: SensorConfig
     sensor_record: dict[str, float]
+    part: ObjectModel
+    """The part this sample shows (``part_of``): the prepared model, or its chamfer drawn for this sample."""
+    edge_mm: float | None = None
+    """The chamfer drawn for this sample (``params.json``'s ``edge_mm``); None when every part has the spec's."""
+
+
+_PARTS: dict[tuple[str, float], ObjectModel] = {}
+"""Parts built for a drawn chamfer (``part_of``), by the spec's object keys and the chamfer: each is built, and its
+resting poses found (about a second), once per process."""
+
+
+def part_of(spec: DatasetSpec, model: ObjectModel, index: int) -> tuple[ObjectModel, float | None]:
+    """Sample ``index``'s part and its chamfer in mm: ``model`` (prepared for ``spec``) and None, unless
+    ``spec.edge_mm`` is a range, when the chamfer is drawn on ``default_rng([seed, index, 6])`` to 0.01 mm."""
+    lo, hi = spec.edge_mm
+    if lo == hi:
+        return model, None
+    edge = round(float(np.random.default_rng([spec.seed, index, 6]).uniform(lo, hi)), 2)
+    key = (json.dumps([spec.mesh, spec.materials, spec.mesh_scale], sort_keys=True), edge)
+    if key not in _PARTS:
+        _PARTS[key] = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=edge)
+    return _PARTS[key], edge
 
 
 def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw:
-    """Draw sample ``index``'s scene and defect (deterministic in ``spec.seed`` and ``index``)."""
+    """Draw sample ``index``'s scene and defect (deterministic in ``spec.seed`` and ``index``) on its part
+    (``part_of``)."""
+    model, edge = part_of(spec, model, index)
     rng = np.random.default_rng([spec.seed, index])
     split = split_of(index, spec.whole_split)
     params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
@@ -366,7 +403,8 @@ def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw
     if spec.view:  # a second camera of the same part: everything above drawn as for the line's camera
         params = second_view(params, spec.view_config(), model, np.random.default_rng([spec.seed, index, 5]))
     sensor, sensor_record = spec.variation.draw(spec.sensor, spec.seed, index)
-    return SampleDraw(index, split, params, defect, int(rng.integers(2**32)), empty, sensor, sensor_record)
+    return SampleDraw(index, split, params, defect, int(rng.integers(2**32)), empty, sensor, sensor_record, model,
+                      edge)
 
 
 def oracle_record(result: DefectSNR) -> dict[str, Any]:
@@ -396,6 +434,7 @@ def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample
     geometry is the same)."""
     draw = draw_sample(spec, model, index)
     params, defect, mi_seed, split, empty = draw.params, draw.defect, draw.mitsuba_seed, draw.split, draw.empty
+    model = draw.part
     settings = spec.render_settings()
     segments: tuple[float | None, ...] = spec.dome_segments or (None,)
     seeds = segment_seeds(spec, index, mi_seed)
@@ -418,6 +457,8 @@ def generate_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> Sample
                                    for a, sd, f, o in zip(spec.dome_segments, seeds, frames, outs, strict=True)]
     if draw.sensor_record:
         record["sensor"] = draw.sensor_record
+    if draw.edge_mm is not None:
+        record["edge_mm"] = draw.edge_mm
     if empty:
         record["empty"] = True
     if defect is not None and out.defect_mask is not None:

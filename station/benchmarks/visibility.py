@@ -100,7 +100,7 @@ def measure_preset(path: str, args: argparse.Namespace, out: Path, progress: boo
             draw = draw_sample(spec, model, i)
             if draw.defect is None:
                 continue
-            result, _ = defect_snr(model, draw.params, draw.defect, settings, draw.mitsuba_seed, spec.sensor)
+            result, _ = defect_snr(draw.part, draw.params, draw.defect, settings, draw.mitsuba_seed, spec.sensor)
             rec = {"index": i, **draw.defect.info, **oracle_record(result)}
             fh.write(json.dumps(rec) + "\n")
             fh.flush()

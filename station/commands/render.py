@@ -32,6 +32,17 @@ def azimuths(text: str) -> tuple[float, ...]:
                                          f"got {text!r}") from None
 
 
+def edge_mm(text: str) -> tuple[float, float]:
+    """``0.3`` -> (0.3, 0.3), ``0,0.4`` -> (0.0, 0.4): ``--edge-mm`` (range checks: ``sim.dataset.DatasetSpec``)."""
+    try:
+        values = [float(x) for x in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) not in (1, 2):
+        raise argparse.ArgumentTypeError(f"--edge-mm must be MM or LO,HI in mm (e.g. 0.3 or 0,0.4), got {text!r}")
+    return values[0], values[-1]
+
+
 MAX_COUNT = 10_000_000
 """The most samples one set may hold (its index list is built whole)."""
 
@@ -74,9 +85,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         'material keys "plastic" and "metal", e.g. \'{"plastic": {"type": "pplastic", "finish": '
                         '"smooth", "distribution": "ggx"}}\'')
     p.add_argument("--mesh-scale", type=float, default=1.0, help="file units -> metres (0.001 for mm)")
-    p.add_argument("--edge-mm", type=float, default=0.0,
+    p.add_argument("--edge-mm", type=edge_mm, default=(0.0, 0.0), metavar="MM[,MM]",
                    help="the brick's body edges chamfered at 45 degrees, that far back along each face (mm; default "
-                        "0: sharp, as designed; a moulded part's edges are rounded)")
+                        "0: sharp, as designed; a moulded part's edges are rounded); LO,HI draws it per part")
     p.add_argument("--visibility", action="store_true",
                    help="detectability oracle: render each defective sample's scene again without the defect (two "
                         "pairs at half the spp, around the defect only) and store the defect's SNR per prior in "
@@ -132,7 +143,7 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "visibility": getattr(args, "visibility", False), "heldout": getattr(args, "heldout", False),
         "validation": getattr(args, "validation", False),
         "materials": materials,
-        "mesh_scale": args.mesh_scale, "edge_mm": getattr(args, "edge_mm", 0.0), "variant": args.variant,
+        "mesh_scale": args.mesh_scale, "edge_mm": getattr(args, "edge_mm", (0.0, 0.0)), "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
         "variation": extra.get("variation", {}), "dome_segments": getattr(args, "dome_segments", ()),
         "view": extra.get("view", {}),

@@ -170,10 +170,39 @@ def test_chamfered_brick_is_closed_and_keeps_the_line_s_draws() -> None:
     for key, value in a.items():  # positions within 0.2 mm: the aim follows the centre of the part's vertices
         assert value == b[key] if isinstance(value, str) else np.allclose(value, b[key], atol=2e-4, rtol=0), key
     assert "edge_mm" not in DatasetSpec().to_dict() and DatasetSpec(edge_mm=0.3).to_dict()["edge_mm"] == 0.3
-    with pytest.raises(SimError, match=r"edge_mm must be a number in \[0, 2\]"):
+    with pytest.raises(SimError, match=r"edge_mm must be a number or a range \[lo, hi\] in \[0, 2\]"):
         DatasetSpec(edge_mm=3.0)
+    with pytest.raises(SimError, match=r"edge_mm must be a number or a range"):
+        DatasetSpec(edge_mm=(0.4, 0.1))
     with pytest.raises(SimError, match=r"edge_mm: 0\.3 chamfers the brick.s edges; the mesh part\.ply brings its own"):
         object_from_config("part.ply", None, edge_mm=0.3)
+
+
+def test_a_range_of_edges_is_drawn_per_part_on_its_own_stream() -> None:
+    """`--edge-mm 0,0.4`: each part's chamfer drawn to 0.01 mm; every other draw as with sharp edges."""
+    from sim.dataset import draw_sample, generate_sample, prepare
+
+    line = {"scene": {"rest_pose": 0}, "defect_fraction": 0.0, "seed": 7}
+    sharp_spec = DatasetSpec.from_dict(line)
+    ranged = DatasetSpec.from_dict({**line, "edge_mm": [0.0, 0.4]})
+    assert ranged.to_dict()["edge_mm"] == [0.0, 0.4] and DatasetSpec.from_dict({"edge_mm": 0.3}).edge_mm == (0.3, 0.3)
+    sharp_model, ranged_model = prepare(sharp_spec), prepare(ranged)
+    edges = []
+    for i in range(6):
+        a, b = draw_sample(sharp_spec, sharp_model, i), draw_sample(ranged, ranged_model, i)
+        assert a.edge_mm is None and b.edge_mm is not None and 0.0 <= b.edge_mm <= 0.4
+        assert b.edge_mm == round(b.edge_mm, 2) and draw_sample(ranged, ranged_model, i).part is b.part
+        a.params["pose"].pop("probability"), b.params["pose"].pop("probability")
+        la, lb = _leaves(a.params), _leaves(b.params)
+        assert la.keys() == lb.keys() and a.mitsuba_seed == b.mitsuba_seed
+        for key, value in la.items():
+            assert value == lb[key] if isinstance(value, str) else np.allclose(value, lb[key], atol=2e-4, rtol=0)
+        edges.append(b.edge_mm)
+    assert len(set(edges)) > 3
+    tiny = DatasetSpec.from_dict({**line, "edge_mm": [0.1, 0.3], "width": 64, "height": 48, "spp": 1,
+                                  "ground_truth": False})
+    sample = generate_sample(tiny, prepare(tiny), 0)
+    assert sample.params["edge_mm"] == draw_sample(tiny, prepare(tiny), 0).edge_mm
 
 
 def _leaves(d: dict, prefix: str = "") -> dict:
