@@ -177,6 +177,8 @@ class DatasetSpec:
         if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo <= hi <= 2):
             raise SimError(f"edge_mm must be a number or a range [lo, hi] in [0, 2] (mm), got {self.edge_mm!r}")
         object.__setattr__(self, "edge_mm", (lo, hi))
+        if self.mesh and hi:
+            raise SimError(f"edge_mm: {hi:g} chamfers the brick's edges; the mesh {self.mesh} brings its own")
         if self.heldout and self.validation:
             raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
         try:

@@ -174,6 +174,8 @@ def test_chamfered_brick_is_closed_and_keeps_the_line_s_draws() -> None:
         DatasetSpec(edge_mm=3.0)
     with pytest.raises(SimError, match=r"edge_mm must be a number or a range"):
         DatasetSpec(edge_mm=(0.4, 0.1))
+    with pytest.raises(SimError, match=r"edge_mm: 0\.4 chamfers the brick.s edges; the mesh part\.ply brings its own"):
+        DatasetSpec(mesh="part.ply", edge_mm=(0.0, 0.4))  # before anything renders, not on the first drawn part
     with pytest.raises(SimError, match=r"edge_mm: 0\.3 chamfers the brick.s edges; the mesh part\.ply brings its own"):
         object_from_config("part.ply", None, edge_mm=0.3)
 
