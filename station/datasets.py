@@ -157,10 +157,9 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     from model.draem.preprocess import crop_resize, stack_priors
     from model.draem.roi import roi_box
     from model.priors.api import compute_set_priors
-    from model.priors.black_level import subtract_black_level
-    from model.priors.defect_pixels import DefectPixelMap, fill_defect_pixels
     from model.priors.frame_stats import frame_statistics
     from model.priors.photometric import describe_segments
+    from model.priors.sensor_correction import SensorCorrection
     from sim.dataset import open_dataset
 
     ds = open_dataset(root)
@@ -178,9 +177,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
 
         names = list(dict.fromkeys(names + list(MAP_NAMES)))
     layout, bit_depth = ds.manifest.get("layout", "imx250mzr"), ds.manifest.get("bit_depth")
-    defect_map = set_defect_pixels(root, ds.manifest)
-    defect_pixels = None if defect_map is None else DefectPixelMap.of(defect_map)
-    black_level = set_black_level(root, ds.manifest)
+    correction = SensorCorrection.of(set_black_level(root, ds.manifest), set_defect_pixels(root, ds.manifest))
     xs, objs, defs, labels, types, used, known, stats, unjudged = [], [], [], [], [], [], [], [], []
     no_object = 0
     for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
@@ -189,7 +186,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         s = ds.load(i)
         if good_only and s.label:
             continue
-        raws = [fill_defect_pixels(subtract_black_level(r, black_level, bit_depth), defect_pixels) for r in s.raws]
+        raws = [correction(r, bit_depth) for r in s.raws]
         computed = compute_set_priors(raws, ds.dome_segments, layout, priors=names, bit_depth=bit_depth)
         maps = dict(computed)
         if "normal" in priors and normals is not None:

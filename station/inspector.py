@@ -28,10 +28,9 @@ import numpy as np
 from drivers.frame import Frame
 from model.priors import MosaicLayout
 from model.priors.api import check_prior_names, needs_polarization, set_priors_from_stokes, set_stokes
-from model.priors.black_level import subtract_black_level
-from model.priors.defect_pixels import DefectPixelMap, fill_defect_pixels
 from model.priors.frame_stats import FrameStatistics, frame_statistics
 from model.priors.photometric import check_tilts, describe_segments, frame_motion, frames_per_part, motion_limit
+from model.priors.sensor_correction import SensorCorrection
 from station.presence import Presence, PresenceCheck
 
 log = logging.getLogger(__name__)
@@ -116,10 +115,9 @@ class Inspector:
                  segments: Sequence[float] = (), defect_pixels: np.ndarray | None = None,
                  black_level: int = 0) -> None:
         self.detector = detector
-        self.black_level = black_level
-        """``[camera] black_level``: codes taken from each frame before the demosaic (``model.priors.black_level``)."""
-        self.defect_pixels = None if defect_pixels is None else DefectPixelMap.of(defect_pixels)
-        """``[camera] defect_pixels`` ((H, W) bool, listed once here), filled in every frame before the demosaic."""
+        self.correction = SensorCorrection.of(black_level, defect_pixels)
+        """``[camera] black_level`` and ``defect_pixels`` (the map listed once here), undone in every frame before the
+        demosaic (``model.priors.sensor_correction``)."""
         self.bit_depth = bit_depth
         """``[priors] bit_depth``: significant bits of the codes when the pixel format's are wider (a Mono16 camera
         carrying 12-bit codes); None: the frame's own."""
@@ -147,8 +145,7 @@ class Inspector:
             if len(frames) != frames_per_part(self.segments):
                 raise ValueError(f"{len(frames)} frame(s) for a model that reads {describe_segments(self.segments)}")
             bits = significant_bits(frame, self.bit_depth)
-            raws = [fill_defect_pixels(subtract_black_level(f.raw, self.black_level, bits), self.defect_pixels)
-                    for f in frames]
+            raws = [self.correction(f.raw, bits) for f in frames]
             norms, stokes = set_stokes(raws, self.layout, self.method, self.polarization, bits)
             t_demosaic = time.perf_counter()
             result.timings_ms["demosaic"] = 1e3 * (t_demosaic - t)
