@@ -65,7 +65,7 @@ from model.priors.photometric import check_segments, mean_stokes
 
 from .defects import DefectConfig, DefectResult, apply_defect
 from .errors import SimError
-from .meshes import ObjectModel, object_from_config
+from .meshes import EDGE_SHAPES, ObjectModel, object_from_config
 from .oracle import DefectSNR, defect_snr
 from .render import RENDERER_VERSION, RenderSettings, render_sample
 from .scene import (
@@ -131,6 +131,9 @@ class DatasetSpec:
     """The brick's body edges chamfered at 45 degrees that far back along each face (``sim.meshes.usb_brick``), in
     mm: one value (a number, or lo == hi) for every part, or a range drawn per part to 0.01 mm (``part_of``) on the
     sample's own stream ``default_rng([seed, index, 6])``, so every other draw stays. (0, 0): sharp, as designed."""
+    edge_shape: str = "chamfer"
+    """How ``edge_mm`` breaks the edges (``sim.meshes.EDGE_SHAPES``): "chamfer" (45 degrees) or "round" (a fillet of
+    that radius, shaded smooth; a chip needs a crease, so a set of round edges leaves chips out of its types)."""
     variant: str | None = None
     scene: SceneConfig = field(default_factory=SceneConfig)
     defects: DefectConfig = field(default_factory=DefectConfig)
@@ -179,6 +182,11 @@ class DatasetSpec:
         object.__setattr__(self, "edge_mm", (lo, hi))
         if self.mesh and hi:
             raise SimError(f"edge_mm: {hi:g} chamfers the brick's edges; the mesh {self.mesh} brings its own")
+        if self.edge_shape not in EDGE_SHAPES:
+            raise SimError(f"edge_shape must be one of {', '.join(EDGE_SHAPES)}, got {self.edge_shape!r}")
+        if self.edge_shape == "round" and hi and self.defect_fraction and "chip" in self.defects.types:
+            raise SimError("edge_shape round: a chip cuts a crease and a rounded edge has none; name the other "
+                           "types in [defects] types")
         if self.heldout and self.validation:
             raise SimError("a set is held out (every sample test) or a validation set (every sample val), not both")
         try:
@@ -226,6 +234,8 @@ class DatasetSpec:
             d.pop("edge_mm")  # and for sets of the sharp brick
         elif lo == hi:
             d["edge_mm"] = lo  # one edge for every part, as first written
+        if self.edge_shape == "chamfer" or hi == 0:
+            d.pop("edge_shape")  # and for sets of chamfered or sharp edges, as first written
         if not self.variation.active:
             d.pop("variation")  # and for sets without line variation
         else:
@@ -327,7 +337,8 @@ def prepare(spec: DatasetSpec) -> ObjectModel:
     from .variant import set_variant
 
     set_variant(spec.variant)
-    model = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=spec.edge_mm[0])
+    model = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=spec.edge_mm[0],
+                               edge_shape=spec.edge_shape)
     material_keys_check(model)
     if spec.defect_fraction > 0:
         usable = spec.defects.usable_types(model)
@@ -362,7 +373,8 @@ class SampleDraw:
     part: ObjectModel
     """The part this sample shows (``part_of``): the prepared model, or its chamfer drawn for this sample."""
     edge_mm: float | None = None
-    """The chamfer drawn for this sample (``params.json``'s ``edge_mm``); None when every part has the spec's."""
+    """The chamfer (or round: ``DatasetSpec.edge_shape``) drawn for this sample (``params.json``'s ``edge_mm``);
+    None when every part has the spec's."""
 
 
 _PARTS: dict[tuple[str, float], ObjectModel] = {}
@@ -377,9 +389,10 @@ def part_of(spec: DatasetSpec, model: ObjectModel, index: int) -> tuple[ObjectMo
     if lo == hi:
         return model, None
     edge = round(float(np.random.default_rng([spec.seed, index, 6]).uniform(lo, hi)), 2)
-    key = (json.dumps([spec.mesh, spec.materials, spec.mesh_scale], sort_keys=True), edge)
+    key = (json.dumps([spec.mesh, spec.materials, spec.mesh_scale, spec.edge_shape], sort_keys=True), edge)
     if key not in _PARTS:
-        _PARTS[key] = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=edge)
+        _PARTS[key] = object_from_config(spec.mesh, spec.materials, spec.mesh_scale, edge_mm=edge,
+                                         edge_shape=spec.edge_shape)
     return _PARTS[key], edge
 
 

@@ -51,6 +51,7 @@ class ObjectModel:
     """An object: parts and the material spec of each material key (``sim.scene.MaterialSpec`` dicts).
 
     ``features`` lists what defects need beyond a surface ("studs"); ``body`` names the part defects go on.
+    ``rests_as``: an object whose resting poses this one takes (``stable_poses``), None for its own.
     """
 
     name: str
@@ -58,6 +59,7 @@ class ObjectModel:
     materials: dict[str, dict]
     body: str
     features: tuple[str, ...] = field(default=())
+    rests_as: ObjectModel | None = None
 
     def part(self, name: str) -> Part:
         for p in self.parts:
@@ -172,6 +174,61 @@ def chamfered_box_mesh(lo: np.ndarray, hi: np.ndarray, chamfer: float, cell: flo
     return _merge(pieces)
 
 
+EDGE_SHAPES = ("chamfer", "round")
+"""How the brick's body edges are broken (``usb_brick``'s ``edge_shape``): cut at 45 degrees, or rounded."""
+ROUND_SEGMENTS = 8
+"""Segments of a rounded edge's quarter circle (``rounded_box_mesh``): 11 degrees each, shaded smooth."""
+
+
+def rounded_box_mesh(lo: np.ndarray, hi: np.ndarray, radius: float, cell: float, segments: int = ROUND_SEGMENTS
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Axis-aligned box [lo, hi] whose 12 edges are rounded to ``radius`` (metres; a fillet, as a moulded part's):
+    six faces shrunk by the radius, twelve quarter cylinders and eight sphere octants, each with its own vertices.
+    Returns vertices, faces (outward normals) and unit shading normals: flat on the faces, radial on the rounds, so
+    a round shades smooth and meets its faces without a crease (a chip, which cuts a crease, finds none)."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    ctr, half = (lo + hi) / 2, (hi - lo) / 2
+    if not 0 < radius < half.min():
+        raise SimError(f"edge radius {radius * 1000:g} mm must be > 0 and less than half the box's smallest side")
+    inner, eye, n = half - radius, np.eye(3), segments
+    pieces: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+
+    def add(v: np.ndarray, f: np.ndarray, nrm: np.ndarray) -> None:  # wound to agree with the shading normals
+        geo = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+        pieces.append((v, f[:, [0, 2, 1]] if np.sum(geo * nrm[f].sum(1)) < 0 else f, nrm))
+
+    for i in range(3):  # faces
+        j, k = (i + 1) % 3, (i + 2) % 3
+        for si in (-1, 1):
+            p0 = ctr + si * half[i] * eye[i] - inner[j] * eye[j] - inner[k] * eye[k]
+            v, f = _grid(p0, 2 * inner[j] * eye[j], 2 * inner[k] * eye[k], cell)
+            add(v, f, np.tile(si * eye[i], (len(v), 1)))
+    arc = np.arange(n + 1)[:, None]
+    for k in range(3):  # quarter cylinders along axis k, between the faces normal to i and j
+        i, j = (k + 1) % 3, (k + 2) % 3
+        nk = max(1, int(np.ceil(2 * inner[k] / cell)))  # as the faces' grid along k: the rows meet
+        t = np.linspace(-inner[k], inner[k], nk + 1)
+        for si in (-1, 1):
+            for sj in (-1, 1):
+                d = (n - arc) * si * eye[i] + arc * sj * eye[j]
+                d /= np.linalg.norm(d, axis=1, keepdims=True)
+                axis = ctr + si * inner[i] * eye[i] + sj * inner[j] * eye[j] + t[:, None] * eye[k]
+                v = (axis[:, None, :] + radius * d[None]).reshape(-1, 3)
+                idx = np.arange(len(v)).reshape(nk + 1, n + 1)
+                a, b, c, e = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
+                add(v, np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, e], 1)]), np.tile(d, (nk + 1, 1)))
+    ab = [(a, b) for a in range(n + 1) for b in range(n + 1 - a)]  # octants: a triangle of n rows on the sphere
+    number = {key: m for m, key in enumerate(ab)}
+    tris = [(number[a, b], number[a + 1, b], number[a, b + 1]) for a, b in ab if a + b < n]
+    tris += [(number[a + 1, b], number[a + 1, b + 1], number[a, b + 1]) for a, b in ab if a + b < n - 1]
+    for signs in np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1], indexing="ij")).reshape(3, -1).T:
+        d = np.array([(a, b, n - a - b) for a, b in ab], float) * signs
+        d /= np.linalg.norm(d, axis=1, keepdims=True)
+        add(ctr + signs * inner + radius * d, np.array(tris), d)
+    verts, faces = _merge([(v, f) for v, f, _ in pieces])
+    return verts, faces, np.concatenate([nrm for _, _, nrm in pieces])
+
+
 def cylinder_mesh(center: np.ndarray, radius: float, height: float, segments: int, cell: float
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Vertical cylinder (side + top cap, open bottom) standing on ``center``; returns vertices, faces and
@@ -221,18 +278,27 @@ BRICK_MATERIALS: dict[str, dict] = {
 
 
 @functools.lru_cache(maxsize=4)
-def usb_brick(cell_mm: float = 0.5, edge_mm: float = 0.0) -> ObjectModel:
+def usb_brick(cell_mm: float = 0.5, edge_mm: float = 0.0, edge_shape: str = "chamfer") -> ObjectModel:
     """The paper's reference object: a USB stick shaped as a 2x4 construction brick.
 
     Parts: ``body`` (the brick, polarized plastic ``pplastic``), ``studs`` (eight studs on top, same
     plastic; per-face ``tags`` = stud number 0..7), ``plug`` (USB-A plug shell, ``roughconductor``),
     sticking out of the +x end, centred in y and z. Origin at the centre of the brick's bottom. ``edge_mm``: the
-    body's edges cut at 45 degrees that far back along each face (``chamfered_box_mesh``; 0: sharp, as designed).
+    body's edges cut at 45 degrees that far back along each face (``edge_shape`` "chamfer": ``chamfered_box_mesh``)
+    or rounded to that radius ("round": ``rounded_box_mesh``); 0: sharp, as designed.
     """
     cell = cell_mm / 1000.0
     lx, ly, lz = (s / 1000.0 for s in BRICK_SIZE_MM)
     lo, hi = np.array([-lx / 2, -ly / 2, 0]), np.array([lx / 2, ly / 2, lz])
-    body_v, body_f = chamfered_box_mesh(lo, hi, edge_mm / 1000, cell) if edge_mm else box_mesh(lo, hi, cell)
+    if edge_shape not in EDGE_SHAPES:
+        raise SimError(f"edge shape {edge_shape!r}: use one of {', '.join(EDGE_SHAPES)}")
+    body_n = None
+    if not edge_mm:
+        body_v, body_f = box_mesh(lo, hi, cell)
+    elif edge_shape == "round":
+        body_v, body_f, body_n = rounded_box_mesh(lo, hi, edge_mm / 1000, cell)
+    else:
+        body_v, body_f = chamfered_box_mesh(lo, hi, edge_mm / 1000, cell)
     r, h, pitch = STUD_RADIUS_MM / 1000, STUD_HEIGHT_MM / 1000, STUD_PITCH_MM / 1000
     studs, tags = [], []
     for k, (i, j) in enumerate((i, j) for i in range(4) for j in range(2)):
@@ -246,11 +312,14 @@ def usb_brick(cell_mm: float = 0.5, edge_mm: float = 0.0) -> ObjectModel:
     plug_lo = np.array([lx / 2, -py / 2, lz / 2 - pz / 2])
     plug_v, plug_f = box_mesh(plug_lo, plug_lo + np.array([px, py, pz]), cell * 2, skip=("-x",))
     parts = (
-        _part("body", body_v, body_f, "plastic"),
+        _part("body", body_v, body_f, "plastic", body_n),
         _part("studs", sv, sf, "plastic", sn, np.concatenate(tags)),
         _part("plug", plug_v, plug_f, "metal"),
     )
-    return ObjectModel("usb_brick", parts, dict(BRICK_MATERIALS), body="body", features=("studs",))
+    # a round's hull has its resting poses turned about z as trimesh pleases (the plug to the left); the brick rests
+    # on the same flat faces with its edges broken, so it takes the sharp brick's poses
+    rests_as = usb_brick(cell_mm) if edge_mm and edge_shape == "round" else None
+    return ObjectModel("usb_brick", parts, dict(BRICK_MATERIALS), body="body", features=("studs",), rests_as=rests_as)
 
 
 def material_spec(material: str | dict) -> dict:
@@ -296,17 +365,18 @@ def load_mesh(path: str | Path, materials: dict[str, str | dict], scale: float =
 
 
 def object_from_config(mesh: str | None, materials: dict[str, str | dict] | None, scale: float = 1.0,
-                       cell_mm: float = 0.5, edge_mm: float = 0.0) -> ObjectModel:
+                       cell_mm: float = 0.5, edge_mm: float = 0.0, edge_shape: str = "chamfer") -> ObjectModel:
     """The brick when ``mesh`` is empty/None, else ``load_mesh``.
 
     For the brick, ``materials`` replaces the spec of its material keys (``BRICK_MATERIALS``: "plastic" for body and
     studs, "metal" for the plug), e.g. ``{"plastic": {"type": "pplastic", "finish": "smooth", "distribution":
     "ggx"}}``: the same part in another material, or rendered with another microfacet model. Raises SimError for a
-    key the brick does not have. ``edge_mm``: the brick's chamfered edges (``usb_brick``); a user mesh has its own."""
+    key the brick does not have. ``edge_mm``, ``edge_shape``: the brick's broken edges (``usb_brick``); a user mesh has
+    its own."""
     if mesh and edge_mm:
         raise SimError(f"edge_mm: {edge_mm:g} chamfers the brick's edges; the mesh {mesh} brings its own")
     if not mesh:
-        brick = usb_brick(cell_mm, edge_mm)
+        brick = usb_brick(cell_mm, edge_mm, edge_shape)
         if not materials:
             return brick
         unknown = sorted(set(materials) - set(brick.materials))
@@ -335,8 +405,11 @@ def stable_poses(model: ObjectModel) -> tuple[np.ndarray, np.ndarray]:
 
     From trimesh's quasi-static drop model on the convex hull (centre of mass of the hull volume): the
     probability of a pose is the solid angle of initial orientations that end in it. Poses below 0.1 % are
-    dropped. The drop height of the paper's Table I does not enter this quasi-static model.
+    dropped. The drop height of the paper's Table I does not enter this quasi-static model. An object that
+    ``rests_as`` another takes that one's poses.
     """
+    if model.rests_as is not None:
+        return stable_poses(model.rests_as)
     hit = _POSES.get(id(model))
     if hit is None or hit[0] is not model:
         hit = (model, *_compute_stable_poses(model))

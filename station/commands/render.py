@@ -88,6 +88,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--edge-mm", type=edge_mm, default=(0.0, 0.0), metavar="MM[,MM]",
                    help="the brick's body edges chamfered at 45 degrees, that far back along each face (mm; default "
                         "0: sharp, as designed; a moulded part's edges are rounded); LO,HI draws it per part")
+    p.add_argument("--edge-shape", choices=("chamfer", "round"), default="chamfer",
+                   help="how --edge-mm breaks the edges: cut at 45 degrees (default), or rounded to that radius "
+                        "(shaded smooth; leave chip out of [defects] types: it cuts a crease)")
     p.add_argument("--visibility", action="store_true",
                    help="detectability oracle: render each defective sample's scene again without the defect (two "
                         "pairs at half the spp, around the defect only) and store the defect's SNR per prior in "
@@ -143,7 +146,8 @@ def build_spec(args: argparse.Namespace, spp: int = 16):
         "visibility": getattr(args, "visibility", False), "heldout": getattr(args, "heldout", False),
         "validation": getattr(args, "validation", False),
         "materials": materials,
-        "mesh_scale": args.mesh_scale, "edge_mm": getattr(args, "edge_mm", (0.0, 0.0)), "variant": args.variant,
+        "mesh_scale": args.mesh_scale, "edge_mm": getattr(args, "edge_mm", (0.0, 0.0)),
+        "edge_shape": getattr(args, "edge_shape", "chamfer"), "variant": args.variant,
         "scene": extra.get("scene", {}), "defects": extra.get("defects", {}), "sensor": sensor,
         "variation": extra.get("variation", {}), "dome_segments": getattr(args, "dome_segments", ()),
         "view": extra.get("view", {}),

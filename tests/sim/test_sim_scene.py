@@ -180,6 +180,48 @@ def test_chamfered_brick_is_closed_and_keeps_the_line_s_draws() -> None:
         object_from_config("part.ply", None, edge_mm=0.3)
 
 
+def test_rounded_brick_is_closed_smooth_and_refuses_chips() -> None:
+    """`edge_shape = "round"`: a fillet of the radius, closed, of the right volume, shaded smooth; a chip needs a
+    crease, so a set of round edges that would draw chips is refused before anything renders."""
+    import trimesh
+
+    from sim.defects import DefectConfig
+    from sim.meshes import rounded_box_mesh
+
+    size, r = np.array([0.0318, 0.0158, 0.0096]), 0.0003
+    v, f, n = rounded_box_mesh(np.zeros(3), size, r, 0.0005)
+    closed = trimesh.Trimesh(v, f, process=True)
+    assert closed.is_watertight and closed.is_winding_consistent
+    a, b, c = size / 2 - r  # Steiner: the inner box grown by a ball of radius r
+    exact = 8 * a * b * c + 8 * (a * b + b * c + c * a) * r + 2 * np.pi * (a + b + c) * r * r + 4 / 3 * np.pi * r**3
+    assert closed.volume == pytest.approx(exact, rel=1e-4) and closed.volume < size.prod() - 1e-9
+    assert np.allclose(np.linalg.norm(n, axis=1), 1)
+    geo = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    assert (np.einsum("ij,ij->i", geo, n[f].sum(1)) > 0).all()  # shading normals on the faces' outer side
+    key = np.round(v / 1e-7).astype(np.int64)  # where pieces meet, their normals agree: no crease anywhere
+    _, group = np.unique(key, axis=0, return_inverse=True)
+    mean = np.zeros((group.max() + 1, 3))
+    np.add.at(mean, group.ravel(), n)
+    assert (np.linalg.norm(mean / np.bincount(group.ravel())[:, None], axis=1) > 0.999).all()
+    brick = usb_brick(0.5, 0.3, "round")
+    assert len(brick.part("body").vertices) == len(v) and brick is not usb_brick(0.5, 0.3)
+    line = SceneConfig.from_dict({"rest_pose": 0})  # the sharp brick's pose, light and camera, not turned about z
+    sharp, rounded = (_leaves(sample_scene(np.random.default_rng([7, 1]), line, m)) for m in (usb_brick(), brick))
+    assert sharp.keys() == rounded.keys()
+    for k, value in sharp.items():  # the aim follows the centre of the part's vertices, within 0.2 mm
+        assert value == rounded[k] if isinstance(value, str) else np.allclose(value, rounded[k], atol=2e-4, rtol=0), k
+    with pytest.raises(SimError, match="edge shape 'oval'"):
+        usb_brick(0.5, 0.3, "oval")
+    assert DatasetSpec(edge_mm=0.3, edge_shape="round", defect_fraction=0.0).to_dict()["edge_shape"] == "round"
+    assert "edge_shape" not in DatasetSpec(edge_mm=0.3).to_dict()
+    with pytest.raises(SimError, match="edge_shape round: a chip cuts a crease"):
+        DatasetSpec(edge_mm=0.3, edge_shape="round")
+    spec = DatasetSpec(edge_mm=0.3, edge_shape="round", defects=DefectConfig(types=("dent", "stain")))
+    assert DatasetSpec.from_dict(spec.to_dict()) == spec
+    with pytest.raises(SimError, match="edge_shape must be one of chamfer, round"):
+        DatasetSpec(edge_mm=0.3, edge_shape="fillet")
+
+
 def test_a_range_of_edges_is_drawn_per_part_on_its_own_stream() -> None:
     """`--edge-mm 0,0.4`: each part's chamfer drawn to 0.01 mm; every other draw as with sharp edges."""
     from sim.dataset import draw_sample, generate_sample, prepare
@@ -213,3 +255,23 @@ def _leaves(d: dict, prefix: str = "") -> dict:
     for k, v in d.items():
         out.update(_leaves(v, f"{prefix}{k}/") if isinstance(v, dict) else {f"{prefix}{k}": v})
     return out
+
+
+def test_render_command_takes_the_edge_shape(tmp_path, capsys) -> None:
+    """`station render --edge-mm 0.3 --edge-shape round`: into the set's spec; with the default types (chips among
+    them) one line naming the key, before anything renders."""
+    from station.cli import build_parser, main
+    from station.commands.render import build_spec
+
+    types = tmp_path / "no-chips.toml"
+    types.write_text('[defects]\ntypes = ["dent", "stain"]\n')
+    args = build_parser().parse_args(["render", "--out", str(tmp_path / "x"), "--count", "1", "--edge-mm", "0.3",
+                                      "--edge-shape", "round", "--config", str(types)])
+    spec = build_spec(args)
+    assert spec.edge_shape == "round" and spec.edge_mm == (0.3, 0.3) and spec.to_dict()["edge_shape"] == "round"
+    chamfer = build_parser().parse_args(["render", "--out", "x", "--count", "1", "--edge-mm", "0.3"])
+    assert build_spec(chamfer).edge_shape == "chamfer"
+    code = main(["render", "--out", str(tmp_path / "y"), "--edge-mm", "0.3", "--edge-shape", "round", "--count", "1"])
+    err = capsys.readouterr().err.strip()
+    assert code != 0 and len(err.splitlines()) == 1 and "edge_shape round: a chip cuts a crease" in err, err
+    assert not (tmp_path / "y").exists()
