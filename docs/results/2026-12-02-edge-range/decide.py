@@ -5,6 +5,8 @@
 A is the shipped file (F63) at threshold --ta, B the candidate (E63) at --tb (a number or a sidecar with
 "threshold"). S is the line as built, E3 the same parts with 0.3 mm edges. Prints each file's figures on each set,
 the paired differences with bootstrap SEs over parts (2000 resamples, seed 0), and the rule's three conditions.
+``--also R3 A B`` reports another pair of the same parts (no condition), beside S without the defect types that
+set leaves out (``S-as-R3``).
 """
 import argparse
 import csv
@@ -41,13 +43,19 @@ def main() -> None:
     p.add_argument("a_s"), p.add_argument("b_s"), p.add_argument("a_e3"), p.add_argument("b_e3")
     p.add_argument("--ta", type=threshold, required=True)
     p.add_argument("--tb", type=threshold, required=True)
+    p.add_argument("--also", nargs=3, metavar=("NAME", "A", "B"), help="another set of the same parts, reported")
     p.add_argument("--out", help="write the figures as JSON here")
     args = p.parse_args()
     rng = np.random.default_rng(0)
     out = {}
-    for name, fa, fb in (("S", args.a_s, args.b_s), ("E3", args.a_e3, args.b_e3)):
+    sets = [("S", args.a_s, args.b_s, None), ("E3", args.a_e3, args.b_e3, None)]
+    if args.also:
+        name, fa, fb = args.also
+        kinds = {k for _, k, _ in read(fa).values() if k}
+        sets += [(f"S-as-{name}", args.a_s, args.b_s, kinds), (name, fa, fb, None)]
+    for name, fa, fb, kinds in sets:
         a, b = read(fa), read(fb)
-        idx = sorted(set(a) & set(b))
+        idx = sorted(i for i in set(a) & set(b) if kinds is None or a[i][0] == 0 or a[i][1] in kinds)
         assert all(a[i][0] == b[i][0] for i in idx), f"{name}: labels differ"
         label = np.array([a[i][0] for i in idx])
         kind = np.array([a[i][1] for i in idx])
