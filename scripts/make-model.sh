@@ -5,12 +5,12 @@
 # shipped recipe on 2 CPU cores (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
 #
 #   1. render the training set: line-polar preset + line variation + bright-field panel, its radiance drawn per
-#      part (sim/presets/panel-vary.toml), the plastic's finish drawn wider (sim/presets/finish-vary.toml), defects
-#      in all splits (for mixed supervision)
+#      part (sim/presets/panel-vary.toml), the plastic's finish drawn wider (sim/presets/finish-vary.toml), each
+#      part's edges chamfered 0-0.4 mm (EDGES; rule 67), defects in all splits (for mixed supervision)
 #   2. render a held-out set with its own seed (every sample test, with the detectability oracle; the line as
 #      built, panel constant), and with another seed two validation sets of the same parts (every sample val; 600
-#      parts, ~370 good): one with the panel and the finish drawn as in training (calibration: CALIBRATION), one
-#      with the panel drawn and the finish as built (thresholds and selection: VAL)
+#      parts, ~370 good): one with the panel, the finish and the edges drawn as in training (calibration:
+#      CALIBRATION), one with the panel drawn and the finish and edges as built (thresholds and selection: VAL)
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
@@ -23,8 +23,9 @@
 #      anomalies and of the rendered defective parts) asked about the parts above the second look's gate, beside it
 #      at each one's own 1 % threshold (station residual --second-look; rule 49, docs/results/2026-11-29-second-look.md;
 #      with the curvature window and no test of its own since rule 60, docs/results/2026-11-29-curvature.md)
-#   6c. threshold: the shipped model's threshold set again on VAL, the finish as built (rule 63,
-#      docs/results/2026-11-29-finish-vary.md: the fit knows a range of finishes, the operating point is the line's)
+#   6c. threshold: the shipped model's threshold set again on VAL, the finish and edges as built (rules 63 and 67,
+#      docs/results/2026-11-29-finish-vary.md, docs/results/2026-12-02-edge-range.md: the fit knows a range of
+#      finishes and edges, the operating point is the line's)
 #   7. held-out types: the shipped model without one type's rendered defects. With DECISION=variation (the shipped
 #      recipe) the look network is the only part that learns from defects, so it is trained again without the type,
 #      as in 6b, and thresholded as in 6c (station residual --holdout-type; the variation model never sees a defect).
@@ -38,10 +39,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-.venv/bin}
-DATA=${DATA:-data/line-pf-train}
+DATA=${DATA:-data/line-ef-train}
 HELDOUT=${HELDOUT:-data/line-panel-heldout}
 VAL=${VAL:-data/line-pv-val}
-CALIBRATION=${CALIBRATION:-data/line-pf-val}
+CALIBRATION=${CALIBRATION:-data/line-ef-val}
 RUNS=${RUNS:-runs/make-model}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
 HELDOUT_COUNT=${HELDOUT_COUNT:-400}
@@ -65,6 +66,7 @@ LOOK_STEPS=${LOOK_STEPS:-3000}
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
 VARY=(--config sim/presets/panel-vary.toml)  # training and validation only (rule 52)
 FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only (rules 62-63)
+EDGES=(--edge-mm 0,0.4)  # training and calibration only (rule 67): each part's chamfer drawn 0-0.4 mm
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
@@ -77,9 +79,9 @@ render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
     for p in "${pids[@]}"; do wait "$p"; done
 }
 
-render "$DATA" "${VARY[@]}" "${FINISH[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
+render "$DATA" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 --heldout --visibility
-render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
+render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 render "$VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
     render "$NEW_KINDS" --config sim/presets/new-kinds.toml --count "$NEW_KINDS_COUNT" --seed "$NEW_KINDS_SEED" \
