@@ -7,6 +7,7 @@ import json
 import logging
 from pathlib import Path
 
+from sim.meshes import EDGE_SHAPES
 from station.commands.arguments import seed
 
 log = logging.getLogger(__name__)
@@ -88,7 +89,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--edge-mm", type=edge_mm, default=(0.0, 0.0), metavar="MM[,MM]",
                    help="the brick's body edges chamfered at 45 degrees, that far back along each face (mm; default "
                         "0: sharp, as designed; a moulded part's edges are rounded); LO,HI draws it per part")
-    p.add_argument("--edge-shape", choices=("chamfer", "round"), default="chamfer",
+    p.add_argument("--edge-shape", choices=EDGE_SHAPES, default="chamfer",
                    help="how --edge-mm breaks the edges: cut at 45 degrees (default), or rounded to that radius "
                         "(shaded smooth; leave chip out of [defects] types: it cuts a crease)")
     p.add_argument("--visibility", action="store_true",

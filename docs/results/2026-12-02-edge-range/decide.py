@@ -15,17 +15,12 @@ from pathlib import Path
 
 import numpy as np
 
+from model.draem.metrics import rank_auroc
+
 
 def read(folder: str) -> dict[int, tuple[int, str, float]]:
     rows = csv.DictReader(open(Path(folder) / "scores.csv"))
     return {int(r["index"]): (int(r["label"]), r["defect_type"], float(r["score"])) for r in rows}
-
-
-def auroc(label: np.ndarray, score: np.ndarray) -> float:
-    """Mann-Whitney AUROC, ties counted half."""
-    pos, neg = score[label == 1], score[label == 0]
-    greater = (pos[:, None] > neg[None, :]).sum() + 0.5 * (pos[:, None] == neg[None, :]).sum()
-    return float(greater / (len(pos) * len(neg)))
 
 
 def threshold(value: str) -> float:
@@ -35,7 +30,7 @@ def threshold(value: str) -> float:
 def figures(label, score, t):
     good, bad = label == 0, label == 1
     return {"good_rejected": int((score[good] > t).sum()), "good": int(good.sum()),
-            "caught": float((score[bad] > t).mean()), "auroc": auroc(label, score)}
+            "caught": float((score[bad] > t).mean()), "auroc": rank_auroc(label, score)}
 
 
 def main() -> None:
