@@ -34,4 +34,25 @@ for name, data in SETS:
                               "defective": len(bad), "caught": int((bad > th).sum()), "auroc": rank_auroc(y, s)}
         print(f"| {name} | {f} | {100 * k / len(good):.1f} % ({k} of {len(good)}) | "
               f"{100 * (bad > th).mean():.1f} % | {rank_auroc(y, s):.3f} |")
+print()
+print("| kinds nobody rendered (seed 1189) | file | good parts rejected | blisters caught | particles caught | image AUROC |")
+print("|---|---|---|---|---|---|")
+for f in FILES:
+    d = runs / f"eval-{f}-new-kinds-1189"
+    if not (d / "eval.json").exists():
+        print(f"| | {f} | not measured | | | |")
+        continue
+    th = float(json.loads((d / "eval.json").read_text())["threshold"])
+    rows = read_scores(d).values()
+    y = np.array([label for label, _, _ in rows])
+    s = np.array([score for _, _, score in rows])
+    good = s[y == 0]
+    kinds = {t: np.array([score > th for label, kind, score in rows if label == 1 and kind == t])
+             for t in ("blister", "debris")}
+    k = int((good > th).sum())
+    out[f"{f}/new-kinds-1189"] = {"threshold": th, "good": len(good), "good_rejected": k,
+                                  **{t: [int(c.sum()), len(c)] for t, c in kinds.items()}, "auroc": rank_auroc(y, s)}
+    print(f"| | {f} | {100 * k / len(good):.1f} % ({k} of {len(good)}) | "
+          + " | ".join(f"{100 * c.mean():.1f} % ({int(c.sum())} of {len(c)})" for c in kinds.values())
+          + f" | {rank_auroc(y, s):.3f} |")
 (runs / "table.json").write_text(json.dumps(out, indent=1))
