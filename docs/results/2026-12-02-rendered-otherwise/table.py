@@ -35,7 +35,8 @@ for name, data in SETS:
         print(f"| {name} | {f} | {100 * k / len(good):.1f} % ({k} of {len(good)}) | "
               f"{100 * (bad > th).mean():.1f} % | {rank_auroc(y, s):.3f} |")
 print()
-print("| kinds nobody rendered (seed 1189) | file | good parts rejected | blisters caught | particles caught | image AUROC |")
+print("| kinds nobody rendered (seed 1189) | file | good parts rejected | blisters caught | particles caught "
+      "| image AUROC |")
 print("|---|---|---|---|---|---|")
 for f in FILES:
     d = runs / f"eval-{f}-new-kinds-1189"
