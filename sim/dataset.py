@@ -72,6 +72,7 @@ from .scene import (
     VIEW_CAMERA_KEYS,
     SceneConfig,
     ViewConfig,
+    ggx_lobes,
     material_keys_check,
     object_to_world,
     sample_scene,
@@ -403,6 +404,8 @@ def draw_sample(spec: DatasetSpec, model: ObjectModel, index: int) -> SampleDraw
     rng = np.random.default_rng([spec.seed, index])
     split = split_of(index, spec.whole_split)
     params = sample_scene(rng, spec.scene, model)  # an empty sample keeps the camera and light aimed at the pose
+    if spec.scene.ggx_share and np.random.default_rng([spec.seed, index, 7]).random() < spec.scene.ggx_share:
+        params["materials"] = ggx_lobes(params["materials"])  # before a defect copies a material
     panel = spec.variation.panel(spec.seed, index)
     if panel is not None:  # the line's variation of the panel (``LineVariation.panel_scale``), recorded in the scene
         params["ring_radiance"] *= panel

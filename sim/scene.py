@@ -122,6 +122,11 @@ class SceneConfig:
     """Reflectance range of the ground's colours; None = ``colour``'s."""
     alpha_rough: tuple[float, float] = (0.1, 0.7)
     alpha_smooth: tuple[float, float] = (0.001, 0.011)
+    ggx_share: float = 0.0
+    """The share of parts whose microfacet materials (``LOBE_TYPES``) have a GGX lobe instead of Mitsuba's default
+    Beckmann one, in [0, 1]. Drawn per part on its own stream (``sim.dataset.draw_sample``), so every other draw
+    stays; a material whose spec names its ``distribution`` keeps it. A moulded part's lobe is neither, and another
+    renderer may use either: GGX's longer tail spreads a mirrored light into a wider halo at the same alpha."""
     background_size_m: float = 1.0
     backgrounds: tuple[str, ...] = BACKGROUNDS
     max_depth: int = 6
@@ -164,6 +169,8 @@ class SceneConfig:
         if self.camera_radius_m[0] * np.cos(np.radians(self.camera_polar_deg[1])) < 0.05:
             raise SimError(f"scene: the camera can come within 5 cm of the ground ({self.camera_radius_m} m at "
                            f"{self.camera_polar_deg[1]} degrees)")
+        if self.ggx_share > 1:
+            raise SimError(f"scene.ggx_share: a share of parts, in [0, 1], got {self.ggx_share}")
         if self.ambient_gradient > 1:
             raise SimError(f"scene.ambient_gradient must be in [0, 1], got {self.ambient_gradient}")
         if self.ambient_gradient_azimuth_deg >= 360:
@@ -211,7 +218,7 @@ LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose",
               "ambient_gradient", "ambient_gradient_azimuth_deg", "ring_radiance", "ring_elevation_deg",
               "ring_azimuth_deg", "ring_fringe_period_deg", "ring_fringe_depth", "ring_fringe_phase_deg",
               "front_light_radiance",
-              "front_light_span_m", "front_light_width_m", "front_light_azimuth_deg")
+              "front_light_span_m", "front_light_width_m", "front_light_azimuth_deg", "ggx_share")
 """SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
 
@@ -271,6 +278,15 @@ def sample_material(rng: np.random.Generator, spec: dict, cfg: SceneConfig) -> d
     out["finish"] = finish
     out["alpha"] = _uniform(rng, cfg.alpha_rough if finish == "rough" else cfg.alpha_smooth)
     return out
+
+
+LOBE_TYPES = ALPHA_TYPES
+"""Mitsuba's BSDFs with a microfacet lobe, whose ``distribution`` is "beckmann" (the default) or "ggx"."""
+
+
+def ggx_lobes(materials: dict[str, dict]) -> dict[str, dict]:
+    """Sampled materials with every microfacet lobe (``LOBE_TYPES``) GGX, unless the material names its own."""
+    return {k: {"distribution": "ggx", **m} if m["type"] in LOBE_TYPES else m for k, m in materials.items()}
 
 
 def bsdf_dict(m: dict) -> dict:

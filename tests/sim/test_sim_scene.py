@@ -275,3 +275,36 @@ def test_render_command_takes_the_edge_shape(tmp_path, capsys) -> None:
     err = capsys.readouterr().err.strip()
     assert code != 0 and len(err.splitlines()) == 1 and "edge_shape round: a chip cuts a crease" in err, err
     assert not (tmp_path / "y").exists()
+
+
+def test_a_share_of_parts_draws_a_ggx_lobe_on_its_own_stream() -> None:
+    """`[scene] ggx_share`: that share of parts has every microfacet material's lobe GGX instead of Beckmann, drawn
+    on the part's own stream; every other draw as without it; a render takes the lobe; the manifest of a set
+    without it is as before; a share outside [0, 1] is refused naming the key."""
+    from sim.dataset import draw_sample, generate_sample, prepare
+    from sim.scene import bsdf_dict
+
+    line = {"scene": {"rest_pose": 0}, "defect_fraction": 0.0, "seed": 7}
+    plain = DatasetSpec.from_dict(line)
+    mixed = DatasetSpec.from_dict({**line, "scene": {"rest_pose": 0, "ggx_share": 0.5}})
+    assert "ggx_share" not in plain.to_dict()["scene"] and mixed.to_dict()["scene"]["ggx_share"] == 0.5
+    model = prepare(plain)
+    lobes = []
+    for i in range(12):
+        a, b = draw_sample(plain, model, i), draw_sample(mixed, model, i)
+        ggx = [m for m in b.params["materials"].values() if m.get("distribution") == "ggx"]
+        assert not any("distribution" in m for m in a.params["materials"].values())
+        assert ggx == [] or len(ggx) == sum(m["type"] in ("pplastic", "roughconductor")
+                                            for m in b.params["materials"].values())
+        assert all(bsdf_dict(m)["distribution"] == "ggx" for m in ggx)
+        for m in b.params["materials"].values():
+            m.pop("distribution", None)
+        assert a.params == b.params and a.mitsuba_seed == b.mitsuba_seed
+        lobes.append(bool(ggx))
+    assert 0 < sum(lobes) < 12
+    tiny = DatasetSpec.from_dict({**mixed.to_dict(), "width": 64, "height": 48, "spp": 1, "ground_truth": False})
+    first = lobes.index(True)
+    sample = generate_sample(tiny, prepare(tiny), first)
+    assert any(m.get("distribution") == "ggx" for m in sample.params["scene"]["materials"].values())
+    with pytest.raises(SimError, match="ggx_share"):
+        SceneConfig(ggx_share=1.5)
