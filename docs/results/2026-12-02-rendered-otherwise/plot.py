@@ -1,4 +1,4 @@
-"""Plan 68's figure: good parts rejected by each file on each set of seed 1188, beside rule 35's bar (table.json).
+"""Plan 68's figure: good parts rejected by each file on each set of seed 1188, beside plan 68's bar (table.json).
 
     python plot.py   (writes ../2026-12-02-rendered-otherwise.png)"""
 import json

@@ -16,18 +16,26 @@ SETS = (("as built", "line-panel-heldout-1188"), ("GGX microfacets", "om-ggx-118
 FILES = ("E63", "F63")
 runs = Path(sys.argv[1])
 out = {}
+
+
+def report(d: Path) -> tuple[float, list, np.ndarray, np.ndarray] | None:
+    """An eval folder's stored threshold, its (label, type, score) rows, labels and scores; None if not measured."""
+    if not (d / "eval.json").exists():
+        return None
+    rows = list(read_scores(d).values())
+    return (float(json.loads((d / "eval.json").read_text())["threshold"]), rows,
+            np.array([label for label, _, _ in rows]), np.array([score for _, _, score in rows]))
+
+
 print("| set | file | good parts rejected | defective parts caught | image AUROC |")
 print("|---|---|---|---|---|")
 for name, data in SETS:
     for f in FILES:
-        d = runs / f"eval-{f}-{data}"
-        if not (d / "eval.json").exists():
+        r = report(runs / f"eval-{f}-{data}")
+        if r is None:
             print(f"| {name} | {f} | not measured | | |")
             continue
-        th = float(json.loads((d / "eval.json").read_text())["threshold"])
-        rows = read_scores(d)
-        y = np.array([label for label, _, _ in rows.values()])
-        s = np.array([score for _, _, score in rows.values()])
+        th, _, y, s = r
         good, bad = s[y == 0], s[y == 1]
         k = int((good > th).sum())
         out[f"{f}/{data}"] = {"threshold": th, "good": len(good), "good_rejected": k,
@@ -39,14 +47,11 @@ print("| kinds nobody rendered (seed 1189) | file | good parts rejected | bliste
       "| image AUROC |")
 print("|---|---|---|---|---|---|")
 for f in FILES:
-    d = runs / f"eval-{f}-new-kinds-1189"
-    if not (d / "eval.json").exists():
+    r = report(runs / f"eval-{f}-new-kinds-1189")
+    if r is None:
         print(f"| | {f} | not measured | | | |")
         continue
-    th = float(json.loads((d / "eval.json").read_text())["threshold"])
-    rows = read_scores(d).values()
-    y = np.array([label for label, _, _ in rows])
-    s = np.array([score for _, _, score in rows])
+    th, rows, y, s = r
     good = s[y == 0]
     kinds = {t: np.array([score > th for label, kind, score in rows if label == 1 and kind == t])
              for t in ("blister", "debris")}
