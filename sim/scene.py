@@ -29,7 +29,8 @@ COLOUR_PARAM = {"pplastic": "diffuse_reflectance", "roughplastic": "diffuse_refl
                 "plastic": "diffuse_reflectance", "diffuse": "reflectance"}
 """BSDF types whose colour is randomised (Table I "material colour"), and the parameter that holds it."""
 ALPHA_TYPES = ("pplastic", "roughplastic", "roughconductor", "roughdielectric")
-"""BSDF types whose roughness alpha is randomised (Table I)."""
+"""BSDF types whose roughness alpha is randomised (Table I): Mitsuba's microfacet BSDFs, whose lobe
+(``distribution``) is "beckmann" (the default) or "ggx" (``ggx_lobes``)."""
 FINISHES = ("rough", "smooth", "either")
 BACKGROUNDS = ("plain", "checkerboard", "noise")
 BACKGROUND_MATERIALS = ("diffuse", "pplastic")
@@ -123,7 +124,7 @@ class SceneConfig:
     alpha_rough: tuple[float, float] = (0.1, 0.7)
     alpha_smooth: tuple[float, float] = (0.001, 0.011)
     ggx_share: float = 0.0
-    """The share of parts whose microfacet materials (``LOBE_TYPES``) have a GGX lobe instead of Mitsuba's default
+    """The share of parts whose microfacet materials (``ALPHA_TYPES``) have a GGX lobe instead of Mitsuba's default
     Beckmann one, in [0, 1]. Drawn per part on its own stream (``sim.dataset.draw_sample``), so every other draw
     stays; a material whose spec names its ``distribution`` keeps it. A moulded part's lobe is neither, and another
     renderer may use either: GGX's longer tail spreads a mirrored light into a wider halo at the same alpha."""
@@ -280,13 +281,9 @@ def sample_material(rng: np.random.Generator, spec: dict, cfg: SceneConfig) -> d
     return out
 
 
-LOBE_TYPES = ALPHA_TYPES
-"""Mitsuba's BSDFs with a microfacet lobe, whose ``distribution`` is "beckmann" (the default) or "ggx"."""
-
-
 def ggx_lobes(materials: dict[str, dict]) -> dict[str, dict]:
-    """Sampled materials with every microfacet lobe (``LOBE_TYPES``) GGX, unless the material names its own."""
-    return {k: {"distribution": "ggx", **m} if m["type"] in LOBE_TYPES else m for k, m in materials.items()}
+    """Sampled materials with every microfacet lobe (``ALPHA_TYPES``) GGX, unless the material names its own."""
+    return {k: {"distribution": "ggx", **m} if m["type"] in ALPHA_TYPES else m for k, m in materials.items()}
 
 
 def bsdf_dict(m: dict) -> dict:
