@@ -8,8 +8,9 @@ STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml scripts/system-deps.sh |
 demo: setup
 	$(BIN)/station run --camera sim --frames 200
 
+# Two workers, one per core; a test file stays on one worker (its module fixtures render once).
 test: setup
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n 2 --dist loadfile
 
 lint: setup
 	$(BIN)/ruff check .
