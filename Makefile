@@ -8,9 +8,8 @@ STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml scripts/system-deps.sh |
 demo: setup
 	$(BIN)/station run --camera sim --frames 200
 
-# Two workers, one per core; a test file stays on one worker (its module fixtures render once).
 test: setup
-	$(BIN)/python -m pytest -n 2 --dist loadfile
+	$(BIN)/python -m pytest
 
 lint: setup
 	$(BIN)/ruff check .
