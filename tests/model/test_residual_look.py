@@ -4,7 +4,6 @@ its second look kept, the look surviving a checkpoint, and files from before it 
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -30,16 +29,13 @@ def looked_detector() -> Detector:
 
 
 @pytest.fixture(scope="module")
-def with_look(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Detector, Detector, Path]]:
-    threads = torch.get_num_threads()  # a module fixture runs before conftest's two threads: set them here, so the
-    torch.set_num_threads(2)  # same steps train the same look whatever ran before (two workers once trained another)
+def with_look(tmp_path_factory: pytest.TempPathFactory) -> tuple[Detector, Detector, Path]:
     base = looked_detector()
     out = add_residual(base, parts(40, 0), None, parts(12, 9, defect=True), defect_masks(12), parts(30, 3),
                        members=1, steps=50, seed=0, look=True)
     path = tmp_path_factory.mktemp("look") / "look"
     save_checkpoint(path, out, threshold=0.5, threshold_rule="test")
-    torch.set_num_threads(threads)
-    yield base, out, path
+    return base, out, path
 
 
 def test_the_networks_raise_only_parts_above_the_gate_and_the_decision_and_second_look_are_kept(
