@@ -1,9 +1,8 @@
 #!/bin/bash
 # Plan 69 (plan.md), from anywhere; resumable (finished steps are skipped). After render.sh train and cal:
 #   lane A: render.sh val (the line as built, for the threshold)
-#   lane B: L's fit and its look network; then, once val is rendered, L63's threshold and the screen on seed
-#           1188's used sets (as built, GGX, duller) at L63's own threshold
-# The rule's renders and evaluations (fresh seed 1190) are rule.sh, run by hand once the screen has passed.
+#   lane B: L's fit and its look network; then, once val is rendered, L63's threshold
+# The rule's renders and evaluations (fresh seed 1190) are rule.sh (all.sh runs render.sh, run.sh, rule.sh).
 set -euo pipefail
 cd "$(dirname "$0")/../../.."  # the repository root
 S=docs/results/2026-12-02-lobe-fit
@@ -29,12 +28,6 @@ if [ ! -f $R/L63.done ]; then  # rule 63: L's scores, thresholded on the line as
   .venv/bin/station threshold --model $R/L63 --data data/line-pv-val > $R/L63.log 2>&1
   touch $R/L63.done
 fi
-echo "screen $(date +%T)"
-ev() { [ -f $S/screen/eval-L63-$1-1188/eval.md ] || .venv/bin/station eval --model $R/L63 --data data/$2-1188 \
-  --no-synthetic --no-plots --out $S/screen/eval-L63-$1-1188 > $R/eval-$1.log 2>&1
-  rm -f $S/screen/eval-L63-$1-1188/eval.json; }
-ev S line-panel-heldout & p=$!
-ev G om-ggx
-wait $p
-ev R om-rough
-echo "all done $(date +%T)"
+# Amended at stop 89 (plan.md's amendment, before any fit or score of L): the screen is dropped, seed 1188's sets
+# being lost with the machine; rule.sh follows (all.sh runs the whole chain).
+echo "L63 done $(date +%T)"
