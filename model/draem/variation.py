@@ -873,12 +873,24 @@ class VariationModel(nn.Module):
 
     @staticmethod
     def _appearance(u: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
-        """Mean (C, H, W) and first ``k`` principal components (COMPONENTS, C, H, W; zeros beyond k) of ``u``."""
+        """Mean (C, H, W) and first ``k`` principal components (COMPONENTS, C, H, W; zeros beyond k) of ``u``.
+
+        The components are the leading right singular vectors of the centred (N, D) matrix A, found from its (N, N)
+        Gram matrix A A^T in float64 (eigenvectors v, then v^T A / sigma): N parts are far fewer than D pixels, so
+        one matrix product replaces an SVD of the wide matrix, which on 2 cores took 1-4 s per call, several calls
+        per fit. In torch, on torch's threads (see ``_residual``). Signs are arbitrary, as an SVD's; a direction
+        whose singular value is below 1e-6 of the largest or of ``u``'s norm (no variance left, or only float32's
+        rounding of the centring) stays zero rather than noise."""
         mean = u.mean(0)
         components = np.zeros((COMPONENTS, *u.shape[1:]), np.float32)
         if k:
-            vt = np.linalg.svd((u - mean).reshape(len(u), -1), full_matrices=False)[2]
-            components[:k] = vt[:k].reshape(k, *u.shape[1:])
+            a = torch.from_numpy(np.ascontiguousarray(u - mean, np.float32)).reshape(len(u), -1).double()
+            w, v = torch.linalg.eigh(a @ a.T)  # ascending
+            k = min(k, len(u))
+            sigma = w.flip(0)[:k].clamp_min(0).sqrt()
+            vt = (v.flip(1)[:, :k].T @ a) / sigma.clamp_min(1e-300)[:, None]
+            vt[sigma <= 1e-6 * max(float(sigma[0]), float(np.linalg.norm(u)))] = 0  # also float32's centring noise
+            components[:k] = vt.float().numpy().reshape(k, *u.shape[1:])
         return mean, components
 
     @staticmethod

@@ -614,3 +614,21 @@ def test_a_fit_judging_some_channels_reads_the_others_without_scoring_them(tmp_p
     loaded.judged_channels.zero_()
     with pytest.raises(ModelError, match="judged_channels"):
         loaded.check()
+
+
+def test_the_appearance_components_span_an_svds_and_a_part_set_without_variance_gives_none() -> None:
+    """The Gram-matrix components are the SVD's leading right singular vectors (same subspace, unit length), and
+    identical parts (no variance) leave every component zero, not NaN or noise."""
+    rng = np.random.default_rng(0)
+    basis = rng.standard_normal((3, 2 * 8 * 12))
+    u = (rng.standard_normal((40, 3)) * [5.0, 3.0, 2.0]) @ basis + 0.01 * rng.standard_normal((40, 2 * 8 * 12))
+    u = u.reshape(40, 2, 8, 12).astype(np.float32)
+    mean, comp = VariationModel._appearance(u, 3)
+    assert np.allclose(mean, u.mean(0)) and not comp[3:].any()
+    ours = comp[:3].reshape(3, -1).astype(np.float64)
+    svd = np.linalg.svd((u - u.mean(0)).reshape(40, -1).astype(np.float64), full_matrices=False)[2][:3]
+    assert np.allclose(np.linalg.norm(ours, axis=1), 1.0, atol=1e-5)
+    assert np.allclose(np.abs((ours * svd).sum(1)), 1.0, atol=1e-5)  # each the SVD's vector, up to its sign
+    same = np.repeat(u[:1], 10, axis=0)
+    _, none = VariationModel._appearance(same, 2)
+    assert np.isfinite(none).all() and not none.any()
