@@ -877,8 +877,9 @@ class VariationModel(nn.Module):
 
         The components are the leading right singular vectors of the centred (N, D) matrix A, found from its (N, N)
         Gram matrix A A^T in float64 (eigenvectors v, then v^T A / sigma): N parts are far fewer than D pixels, so
-        one matrix product replaces an SVD of the wide matrix, which on 2 cores took 1-4 s per call, several calls
-        per fit. In torch, on torch's threads (see ``_residual``). Signs are arbitrary, as an SVD's; a direction
+        one matrix product replaces an SVD of the wide matrix. In torch, on torch's threads (see ``_residual``):
+        numpy's SVD ran on its BLAS's own threads and, with the cores busy (a fit beside renders), took 1-4 s a call,
+        several calls a fit. Signs are arbitrary, as an SVD's; a direction
         whose singular value is below 1e-6 of the largest or of ``u``'s norm (no variance left, or only float32's
         rounding of the centring) stays zero rather than noise."""
         mean = u.mean(0)
