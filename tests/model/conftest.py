@@ -1,5 +1,8 @@
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
+
 import pytest
 import torch
 
@@ -21,20 +24,30 @@ def toy():
     return toy_priors
 
 
-@pytest.fixture(autouse=True)
-def _few_threads():
+THREADS = 2
+"""torch threads for every model test and module fixture: the same steps then train the same network whatever ran
+before in the process."""
+
+
+@contextlib.contextmanager
+def _threads(n: int) -> Iterator[None]:
     old = torch.get_num_threads()
-    torch.set_num_threads(2)
-    yield
-    torch.set_num_threads(old)
+    torch.set_num_threads(n)
+    try:
+        yield
+    finally:
+        torch.set_num_threads(old)
+
+
+@pytest.fixture(autouse=True)
+def _few_threads() -> Iterator[None]:
+    with _threads(THREADS):
+        yield
 
 
 @pytest.fixture(scope="module", autouse=True)
-def _few_threads_for_module_fixtures():
-    """The same two threads while a module's fixtures train (they run before ``_few_threads``): the same steps then
-    train the same network whatever ran before in the process (under two pytest workers, test_residual_look's look
-    once trained at another count and raised no score)."""
-    old = torch.get_num_threads()
-    torch.set_num_threads(2)
-    yield
-    torch.set_num_threads(old)
+def _few_threads_for_module_fixtures() -> Iterator[None]:
+    """The same threads while a module's fixtures train (they run before ``_few_threads``; under two pytest workers
+    test_residual_look's look once trained at another count and raised no score)."""
+    with _threads(THREADS):
+        yield
