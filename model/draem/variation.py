@@ -879,13 +879,13 @@ class VariationModel(nn.Module):
         Gram matrix A A^T in float64 (eigenvectors v, then v^T A / sigma): N parts are far fewer than D pixels, so
         one matrix product replaces an SVD of the wide matrix. In torch, on torch's threads (see ``_residual``):
         numpy's SVD ran on its BLAS's own threads and, with the cores busy (a fit beside renders), took 1-4 s a call,
-        several calls a fit. Signs are arbitrary, as an SVD's; a direction
-        whose singular value is below 1e-6 of the largest or of ``u``'s norm (no variance left, or only float32's
-        rounding of the centring) stays zero rather than noise."""
+        several calls a fit. Signs are arbitrary, as an SVD's; a direction whose singular value is below 1e-6 of the
+        largest or of ``u``'s norm (no variance left, or only float32's rounding of the centring) stays zero rather
+        than noise."""
         mean = u.mean(0)
         components = np.zeros((COMPONENTS, *u.shape[1:]), np.float32)
         if k:
-            a = torch.from_numpy(np.ascontiguousarray(u - mean, np.float32)).reshape(len(u), -1).double()
+            a = torch.from_numpy(np.asarray(u - mean, np.float64).reshape(len(u), -1))
             w, v = torch.linalg.eigh(a @ a.T)  # ascending
             k = min(k, len(u))
             sigma = w.flip(0)[:k].clamp_min(0).sqrt()
