@@ -1,7 +1,8 @@
 #!/bin/bash
-# Rule 69 (plan.md), run by hand once the screen has passed; resumable. Renders fresh seed 1190 three ways as plan
-# 68's S, G and R (two processes, one half of every set each), then E63 (the shipped file) and L63 on each at their
-# own thresholds, two at a time, and decide.py's verdict into decide69.txt.
+# Rule 69 (plan.md), run once L63 has its threshold; resumable. Renders fresh seed 1190 three ways as plan 68's S,
+# G and R (two processes, one half of every set each), then E63 (the shipped file) and L63 on each at their own
+# thresholds, two at a time, and decide.py's verdict into decide69.txt. `rule.sh render K` renders half K only
+# (overlap.sh starts it early, on the core the fit and the look leave idle).
 set -euo pipefail
 cd "$(dirname "$0")/../../.."  # the repository root
 S=docs/results/2026-12-02-lobe-fit
@@ -19,6 +20,7 @@ half() {  # shard k of 2 of every set
     --config docs/results/2026-11-28-other-means/rough.toml
   touch $R/rule-render-$k.done
 }
+if [ "${1:-}" = render ]; then half "$2"; exit; fi  # one half alone: started early, on a core the look leaves idle
 half 0 > $R/rule-render-0.log 2>&1 &
 half 1 > $R/rule-render-1.log 2>&1 &
 wait
