@@ -1,15 +1,23 @@
 #!/bin/bash
 # Plan 69's tail with no idle core (stop 90): run.sh's fit and look run on one thread, so the rule's renders start
-# beside them instead of after. Same commands as all.sh's; only their timing differs. Resumable.
+# beside them instead of after. Same commands as all.sh's; only their timing differs. Resumable: after a stop, run
+# this alone (it restarts run.sh when it is not running and L63 has no threshold yet).
 #   half 0 of the rule's renders once the threshold set is rendered (run.sh's val.done), beside the fit and the look;
 #   half 1 once L63 has its threshold (run.sh done); then rule.sh (renders already done: the evaluations, decide.py).
 set -euo pipefail
 cd "$(dirname "$0")/../../.."  # the repository root
 S=docs/results/2026-12-02-lobe-fit
 R=runs/c88
-while [ ! -f $R/val.done ]; do sleep 30; done
+running() { pgrep -f "lobe-fit/run.sh" > /dev/null; }
+if ! running && [ ! -f $R/L63.done ]; then
+  $S/render.sh train  # all done already, unless data/ was lost
+  $S/render.sh cal
+  $S/run.sh > $R/run.log 2>&1 &
+  sleep 5
+fi
+while [ ! -f $R/val.done ] && running; do sleep 30; done
 $S/rule.sh render 0 > $R/rule-render-0.log 2>&1 &
-while pgrep -f "lobe-fit/run.sh" > /dev/null; do sleep 30; done
+while running; do sleep 30; done
 [ -f $R/L63.done ] || { echo "run.sh ended without L63's threshold: see $R/L63.log, $R/L.log, $R/Lv.log"; exit 1; }
 $S/rule.sh render 1 > $R/rule-render-1.log 2>&1
 wait
