@@ -9,6 +9,7 @@ int8 paths and ``station bench model`` all go through it. Needs the ``onnx`` ext
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import logging
 import warnings
 from collections.abc import Sequence
@@ -48,21 +49,90 @@ def export_network(net: nn.Module, path: str | Path) -> Path:
     nice 19): the fast, lean and tiny presets export, fused and per prior, with |ONNX Runtime - torch| <= 9e-8 at
     batch 1 and 3 for either; once ONNX Runtime has optimised them both graphs hold the same operators; their int8
     (QDQ) copies give identical maps; ONNX Runtime time at batch 1, 128 px, fast fused, new / old: 0.999 and 1.004
-    (medians of 200 interleaved runs each), inside the 3-7 % that two sessions of one file differ by here. The cost
-    is export time, ~8 s per fast network against ~3 s (``torch.export`` and its decompositions), paid at load by
-    ``precision = "onnx"`` and by ``station quantize``."""
+    (medians of 200 interleaved runs each), inside the 3-7 % that two sessions of one file differ by here.
+
+    The cost is the trace (``torch.export`` and its decompositions), ~8 s per network quiet whatever its size. So
+    the graph traced before optimisation is kept per architecture (``TRACES_KEPT_BYTES``): a later network of the
+    same architecture has its weights written into it, is optimised as ``torch.onnx.export(optimize=True)`` does
+    (batch norms folded into the convolutions), and is checked against torch on a random batch; a graph that
+    disagrees (state other than the weights) is traced afresh. On busy cores (two renders and a training): 4 s
+    against 95 s for the trace, the same operators and maps (``station bench model``'s onnx and int8 rows, the
+    tests)."""
+    try:  # the exporter needs onnx and onnxscript (which brings onnx_ir)
+        import onnx
+        import onnx_ir
+    except ImportError as exc:
+        raise ModelError(f"ONNX export needs the onnx extra (pip install '.[onnx]'): {exc}") from None
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     net.eval()
+    weights = _weights(net)
+    key = hashlib.sha256(repr((type(net).__qualname__, repr(net), repr(net.config),
+                               [(k, tuple(v.shape), str(v.dtype)) for k, v in weights.items()])).encode()).hexdigest()
+    kept = _TRACES.pop(key, None)
+    model = _filled(onnx.ModelProto.FromString(kept), weights) if kept else _trace(net)
+    data = kept or model.SerializeToString()  # before the optimiser works on the graph
+    program = torch.onnx.ONNXProgram(onnx_ir.from_proto(model), None)
+    with _quiet("onnxscript", "onnx_ir"):
+        program.optimize()
+    if kept and not _agrees(program.model_proto, net):  # never trust a refilled graph that torch contradicts
+        return export_network(net, path)
+    _keep(key, data, model, weights)
+    program.save(str(path), external_data=False)
+    return path
+
+
+TRACES_KEPT_BYTES = 64 * 2**20
+"""Most bytes of unoptimised graphs ``export_network`` keeps, least recently used dropped first (a fast network's
+is a few MB)."""
+
+_TRACES: dict[str, bytes] = {}
+
+
+def _weights(net: nn.Module) -> dict[str, torch.Tensor]:
+    """Every floating-point parameter and buffer of ``net`` by its name in the exported graph (``MapOnly``'s
+    ``net.`` prefix); the batch norms' step counters (integers) are not in the graph."""
+    named = {**dict(net.named_parameters()), **dict(net.named_buffers())}
+    return {f"net.{k}": v for k, v in named.items() if v.is_floating_point()}
+
+
+def _trace(net: nn.Module):  # -> onnx.ModelProto, unoptimised, ``net``'s weights as named initializers
     x = torch.zeros(1, net.config.in_channels, *net.config.input_shape)
     with warnings.catch_warnings(), _quiet("torch.onnx", "onnxscript", "onnx_ir"):
         warnings.simplefilter("ignore")  # e.g. torch.export's own deprecations; the check against torch is ours
-        try:
-            torch.onnx.export(MapOnly(net), (x,), str(path), input_names=["x"], output_names=["map"],
-                              dynamic_shapes={"x": {0: BATCH_AXIS}}, external_data=False, dynamo=True, verbose=False)
-        except ImportError as exc:  # the exporter needs onnx and onnxscript
-            raise ModelError(f"ONNX export needs the onnx extra (pip install '.[onnx]'): {exc}") from None
-    return path
+        return torch.onnx.export(MapOnly(net), (x,), None, input_names=["x"], output_names=["map"],
+                                 dynamic_shapes={"x": {0: BATCH_AXIS}}, dynamo=True, optimize=False,
+                                 verbose=False).model_proto
+
+
+def _filled(model, weights: dict[str, torch.Tensor]):  # onnx.ModelProto -> the same, holding ``weights``
+    from onnx import numpy_helper
+
+    for init in model.graph.initializer:
+        init.CopyFrom(numpy_helper.from_array(weights[init.name].detach().cpu().numpy(), init.name))
+    return model
+
+
+def _keep(key: str, data: bytes, model, weights: dict[str, torch.Tensor]) -> None:
+    """Keep an unoptimised graph whose initializers are exactly ``weights`` (by name), dropping the least
+    recently used beyond ``TRACES_KEPT_BYTES``."""
+    if {i.name for i in model.graph.initializer} != set(weights) or len(data) > TRACES_KEPT_BYTES:
+        return
+    while _TRACES and sum(map(len, _TRACES.values())) + len(data) > TRACES_KEPT_BYTES:
+        del _TRACES[next(iter(_TRACES))]
+    _TRACES[key] = data
+
+
+def _agrees(model, net: nn.Module) -> bool:
+    """ONNX Runtime's map of ``model`` (a ModelProto) on a seeded random batch of 2 within ``MAX_ABS_ERROR`` of
+    ``net``'s."""
+    import onnxruntime as ort
+
+    x = torch.rand(2, net.config.in_channels, *net.config.input_shape, generator=torch.Generator().manual_seed(0))
+    session = ort.InferenceSession(model.SerializeToString(), session_options(1), providers=["CPUExecutionProvider"])
+    with torch.no_grad():
+        ref = MapOnly(net)(x).numpy()
+    return float(abs(session.run(None, {"x": x.numpy()})[0] - ref).max()) <= MAX_ABS_ERROR
 
 
 @contextlib.contextmanager

@@ -76,10 +76,10 @@ def test_a_variation_only_decision_skips_the_networks_and_scores_the_same(tmp_pa
     from model.draem.predictor import Predictor
     from model.draem.with_variation import add_variation
 
-    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32))
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))  # test_onnx's
     det.init_weights(torch.Generator().manual_seed(0))
     det.eval()
-    x = torch.stack([torch.from_numpy(np.stack([maps(0)[k][8:40, 16:48] for k in MAP_NAMES])) for _ in range(12)])
+    x = torch.stack([torch.from_numpy(np.stack([maps(0)[k][8:40] for k in MAP_NAMES])) for _ in range(12)])
     x = x + 0.01 * torch.randn(x.shape, generator=torch.Generator().manual_seed(1))
     full = add_variation(det, x[:10], None, x[10:], decision="variation")
     save_checkpoint(tmp_path / "v", full, threshold=0.5, threshold_rule="test")

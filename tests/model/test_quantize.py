@@ -22,13 +22,13 @@ INT8_SCORE_BOUND = 0.1
 
 def _priors(n: int, seed: int) -> torch.Tensor:
     g = torch.Generator().manual_seed(seed)
-    intensity = torch.rand(n, 1, 64, 64, generator=g)
-    phi = torch.rand(n, 1, 64, 64, generator=g) * torch.pi
+    intensity = torch.rand(n, 1, 32, 32, generator=g)
+    phi = torch.rand(n, 1, 32, 32, generator=g) * torch.pi
     return torch.cat((intensity, torch.cos(2 * phi), torch.sin(2 * phi)), 1)
 
 
 def test_int8_copies_are_int8_score_close_and_tied_to_their_weights(tmp_path) -> None:
-    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "aolp"), "fused", 64)).eval()
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "aolp"), "fused", 32)).eval()  # test_run's make_model
     det.init_weights(torch.Generator().manual_seed(1))
     folder = quantize_detector(det, _priors(8, 0), int8_dir(tmp_path / "m"), "a" * 64, {"data": "test"})
     assert folder == tmp_path / "m.int8"
