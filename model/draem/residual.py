@@ -32,6 +32,7 @@ threshold on the good validation parts, are put side by side; the part scores th
 from __future__ import annotations
 
 import logging
+import math
 from collections.abc import Callable
 from pathlib import Path
 from typing import NamedTuple
@@ -280,17 +281,32 @@ def training_loss(logit: torch.Tensor, mask: torch.Tensor, inside: torch.Tensor)
     return pix + 0.5 * img
 
 
+def seeded_init(net: nn.Module, seed: int) -> None:
+    """PyTorch's default initialisation of every convolution of ``net`` (Kaiming-uniform weights with a = sqrt(5),
+    biases U(-1/sqrt(fan_in), 1/sqrt(fan_in))), drawn from ``seed`` alone. A member's start was the global
+    generator's at its construction, so the same seed trained another network after other code had drawn from it
+    (test_residual_look's look once raised no score that way); the global generator is not touched."""
+    g = torch.Generator().manual_seed(seed)
+    with torch.no_grad():
+        for m in net.modules():
+            if isinstance(m, nn.Conv2d):
+                nn.init.kaiming_uniform_(m.weight, a=math.sqrt(5), generator=g)
+                if m.bias is not None:
+                    bound = 1.0 / math.sqrt(m.weight[0].numel())
+                    m.bias.uniform_(-bound, bound, generator=g)
+
+
 def train_member(net: ResidualNet, good: np.ndarray, defects: np.ndarray, masks: np.ndarray, steps: int, seed: int,
                  batch: int = 16, lr: float = 1e-3, progress: Callable[[int, float], None] | None = None,
                  state: Path | None = None, every: int = STATE_EVERY) -> None:
     """Train one member on network inputs: ``good`` (N, C + 2, H, W) of good parts, ``defects`` (M, C + 2, H, W)
     of rendered defective parts with ``masks`` (M, H, W) (M may be 0). Adam at ``lr``, divided by 5 at 80 % of
     ``steps``; ``progress(step, loss)`` every 250 steps and at the last. ``state``: a file the training's state
-    (weights, optimiser, schedule, random generators) is written to every ``every`` steps and at the end; when it
+    (weights, optimiser, schedule, random generator) is written to every ``every`` steps and at the end; when it
     exists, training continues from it with an uninterrupted run's draws and schedule (a state of another training,
     by its shapes, steps, seed, batch or rate, is refused: ModelError naming the file)."""
     rng = np.random.default_rng(seed)
-    torch.manual_seed(seed)
+    seeded_init(net, seed)
     opt = torch.optim.Adam(net.parameters(), lr)
     sched = torch.optim.lr_scheduler.MultiStepLR(opt, [int(steps * 0.8)], 0.2)
     recipe = {"good": list(good.shape), "defects": list(defects.shape), "masks": list(masks.shape), "steps": steps,
@@ -333,8 +349,7 @@ def _save_state(path: Path, recipe: dict, step: int, net: ResidualNet, opt: torc
     """Write a member's training state after ``step`` steps, atomically (a kill mid-write keeps the last one)."""
     tmp = path.with_name(path.name + ".tmp")
     torch.save({"recipe": recipe, "step": step, "net": net.state_dict(), "opt": opt.state_dict(),
-                "sched_epoch": sched.last_epoch, "rng": rng.bit_generator.state,
-                "torch_rng": torch.get_rng_state()}, tmp)
+                "sched_epoch": sched.last_epoch, "rng": rng.bit_generator.state}, tmp)
     tmp.replace(path)
 
 
@@ -354,6 +369,5 @@ def _resume(path: Path, recipe: dict, net: ResidualNet, opt: torch.optim.Optimiz
     net.load_state_dict(st["net"])
     opt.load_state_dict(st["opt"])
     sched.last_epoch = st["sched_epoch"]
-    rng.bit_generator.state = st["rng"]
-    torch.set_rng_state(st["torch_rng"])
+    rng.bit_generator.state = st["rng"]  # training's only generator (older states also hold torch's: not used)
     return int(st["step"])
