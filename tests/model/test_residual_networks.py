@@ -155,8 +155,7 @@ def test_an_interrupted_member_resumes_from_its_state_to_the_weights_of_an_unint
     masks = np.zeros((3, H, W), bool)
     masks[:, 10:14, 20:26] = True
 
-    def member() -> residual.ResidualNet:
-        torch.manual_seed(5)
+    def member() -> residual.ResidualNet:  # its start is train_member's (seeded_init), whatever it was built with
         return residual.ResidualNet(6)
 
     whole = member()
