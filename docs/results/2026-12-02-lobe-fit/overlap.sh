@@ -2,7 +2,7 @@
 # Plan 69's tail with no idle core (stop 90): run.sh's fit and look run on one thread, so the rule's renders start
 # beside them instead of after. Same commands as all.sh's; only their timing differs. Resumable: after a stop, run
 # this alone (it restarts run.sh when it is not running and L63 has no threshold yet, and takes the committed L63/
-# when there is one: L63/L63.* thresholded, or L63/L.* to be thresholded first).
+# when there is one).
 #   half 0 of the rule's renders once the threshold set is rendered (run.sh's val.done), beside the fit and the look;
 #   half 1 once L63 has its threshold (run.sh done); then rule.sh (renders already done: the evaluations, decide.py).
 set -euo pipefail
@@ -13,12 +13,6 @@ running() { pgrep -f "lobe-fit/run.sh" > /dev/null; }
 if [ ! -f $R/L63.done ] && [ -f $S/L63/L63.json ]; then  # L63 committed by an earlier stop (stop 91's amendment)
   .venv/bin/python -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
     $S/L63/L63 $R/L63
-  touch $R/L63.done
-elif [ ! -f $R/L63.done ] && [ -f $S/L63/L.json ]; then  # only L committed (its threshold not reached in time)
-  .venv/bin/python -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
-    $S/L63/L $R/L63
-  [ -f $R/val.done ] || ($S/render.sh val && touch $R/val.done)
-  PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/station threshold --model $R/L63 --data data/line-pv-val > $R/L63.log 2>&1
   touch $R/L63.done
 fi
 if ! running && [ ! -f $R/L63.done ]; then
