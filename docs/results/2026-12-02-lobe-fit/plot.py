@@ -28,7 +28,7 @@ left.set_title(f"Seed 1190 ({d['S']['A']['good']} good parts)", fontsize=9)
 left.legend(fontsize=7)
 types = d["S"]["caught_by_type"]
 x = np.arange(len(types))
-for k, (who, label) in enumerate(files):
+for k, (_, label) in enumerate(files):
     right.bar(x + (k - 0.5) * 0.38, [100 * v[k] for v in types.values()], 0.38, label=label)
 right.set_xticks(x, [f"{t}\n({v[2]})" for t, v in types.items()], fontsize=8)
 right.set_ylabel("defective parts caught (%)")
