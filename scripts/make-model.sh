@@ -2,7 +2,8 @@
 # The shipped model, from nothing to model/weights/default, in one command: `make model` (or this script).
 # Every step resumes: rerun it after an interruption and finished work is kept (renders per sample, training per
 # checkpoint, the look networks every 250 steps). Sizes and steps are environment variables; the defaults are the
-# shipped recipe on 2 CPU cores (timings in model/weights/README.md). SHIP=0 stops before model/weights/ is replaced.
+# shipped recipe on 2 CPU cores. Each command's wall time goes to RUNS/timings.tsv, summed per command at the end
+# over every run (a resumed recipe's total). SHIP=0 stops before model/weights/ is replaced.
 #
 #   1. render the training set: line-polar preset + line variation + bright-field panel, its radiance drawn per
 #      part (sim/presets/panel-vary.toml), the plastic's finish drawn wider (sim/presets/finish-vary.toml), each
@@ -70,13 +71,28 @@ EDGES=(--edge-mm 0,0.4)  # training and calibration only (rule 67): each part's 
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
+mkdir -p "$RUNS"
+TIMINGS="$RUNS/timings.tsv"  # one line per command: wall seconds, command, its output, when it ended (a rerun adds)
+record() {  # record T0 COMMAND OUTPUT: the wall seconds since T0 (bash's $SECONDS) as one line of TIMINGS
+    printf '%s\t%s\t%s\t%s\n' "$((SECONDS - $1))" "$2" "$3" "$(date -Is)" >> "$TIMINGS"
+}
+station() {  # station ARGS...: the command, timed under what it wrote (its --out, else its --model)
+    local t0=$SECONDS out=- i j
+    "$BIN/station" "$@"
+    for ((i = 1; i < $#; i++)); do
+        j=$((i + 1))
+        case ${!i} in --out) out=${!j} ;; --model) [ "$out" = - ] && out=${!j} ;; esac
+    done
+    record "$t0" "$1" "$out"
+}
 render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
-    local out=$1; shift
+    local out=$1 t0=$SECONDS; shift
     local pids=()
     for ((k = 0; k < JOBS; k++)); do
         "$BIN/station" render --out "$out" "${PRESET[@]}" --shard "$k/$JOBS" "$@" & pids+=($!)
     done
     for p in "${pids[@]}"; do wait "$p"; done
+    record "$t0" render "$out"
 }
 
 render "$DATA" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
@@ -88,18 +104,18 @@ if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
         --defects 0.6 --heldout --visibility
 fi
 
-"$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
+station train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
     --eval-every 100 --out "$RUNS/base"
-"$BIN/station" train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
+station train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
     --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
-"$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
+station train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
     --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
 variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exists (resumable)
-    [ -f "$2.json" ] || "$BIN/station" variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
+    [ -f "$2.json" ] || station variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
         "${@:3}"
 }
 look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/NAME unless it exists (resumable)
-    [ -f "$RUNS/$1.json" ] || "$BIN/station" residual --model "$RUNS/band-variation" --data "$DATA" \
+    [ -f "$RUNS/$1.json" ] || station residual --model "$RUNS/band-variation" --data "$DATA" \
         --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/$1" \
         "${@:2}"
 }
@@ -109,15 +125,15 @@ if [ "$DECISION" = variation ]; then  # step 6b: the look joins a model its vari
     look band-look
     SHIPPED=band-look
 fi
-"$BIN/station" threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
+station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 HELD=()
 for t in $HOLDOUT_TYPES; do  # step 7
     if [ "$DECISION" = variation ]; then  # the look network without the type, thresholded as the shipped model
         look "holdout-$t" --holdout-type "$t"
-        "$BIN/station" threshold --model "$RUNS/holdout-$t" --data "$VAL"
+        station threshold --model "$RUNS/holdout-$t" --data "$VAL"
         HELD+=("holdout-$t")
     else  # from the base's last step: keep-best there saw every type in validation
-        "$BIN/station" train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
+        station train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
             --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
             --out "$RUNS/holdout-$t"
         variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation" --decision combined  # the networks count
@@ -125,23 +141,26 @@ for t in $HOLDOUT_TYPES; do  # step 7
     fi
 done
 
-"$BIN/station" threshold --model "$RUNS/base/last" --data "$DATA"
+station threshold --model "$RUNS/base/last" --data "$DATA"
 for m in base/last mixed/best band/best band-variation ${SHIPPED/band-variation/} "${HELD[@]}"
 do
     name=${m%/last}; name=${name%/best}; name=${name//\//-}
-    "$BIN/station" eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-$name"
+    station eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-$name"
 done
-"$BIN/station" compare "$RUNS"/eval-* --out "$RUNS/compare"
+station compare "$RUNS"/eval-* --out "$RUNS/compare"
 
 if [ "$SHIP" = 1 ]; then
     "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
         "$RUNS/$SHIPPED" model/weights/default
-    "$BIN/station" eval --model model/weights/default --data "$HELDOUT" --val-data "$VAL" \
+    station eval --model model/weights/default --data "$HELDOUT" --val-data "$VAL" \
         --out model/weights/default-eval
     cp "$RUNS"/compare/compare.* model/weights/default-eval/
 fi
 if [ "$NEW_KINDS_COUNT" -gt 0 ]; then  # step 9: the shipped model (the copy in model/weights when shipped)
     if [ "$SHIP" = 1 ]; then WHICH=(model/weights/default model/weights/default-eval-new-kinds)
     else WHICH=("$RUNS/$SHIPPED" "$RUNS/eval-new-kinds-$SHIPPED"); fi
-    "$BIN/station" eval --model "${WHICH[0]}" --data "$NEW_KINDS" --val-data "$VAL" --no-synthetic --out "${WHICH[1]}"
+    station eval --model "${WHICH[0]}" --data "$NEW_KINDS" --val-data "$VAL" --no-synthetic --out "${WHICH[1]}"
 fi
+echo "make model: wall time per command, summed over every run into $RUNS (one line each in $TIMINGS):"
+awk -F'\t' '{s[$2] += $1; t += $1} END {for (c in s) printf "  %-10s %7.2f h\n", c, s[c] / 3600
+    printf "  %-10s %7.2f h\n", "all", t / 3600}' "$TIMINGS"

@@ -182,3 +182,31 @@ def test_make_model_judges_the_shipped_model_on_kinds_nobody_rendered(tmp_path: 
     skipped = dry_run(tmp_path / "skip", NEW_KINDS_COUNT="0")
     assert not [a for a in skipped if "data/new-kinds-heldout" in a]
 
+
+
+def test_make_model_times_each_command_and_prints_the_sum(tmp_path: Path) -> None:
+    """Every command's wall seconds go to RUNS/timings.tsv (seconds, command, its output, when it ended) and the
+    last lines sum them per command: how long the recipe took on this machine, across resumed runs too."""
+    calls = dry_run(tmp_path, NEW_KINDS_COUNT="0")
+    rows = [line.split("\t") for line in (tmp_path / "runs" / "timings.tsv").read_text().splitlines()]
+    others = [c for c in calls if c[0] != "render"]  # a render is two shards (JOBS=2), timed as one step
+    assert len(rows) == len(others) + 4 and [r[1] for r in rows[4:]] == [c[0] for c in others]
+    assert [r[1] for r in rows[:4]] == ["render"] * 4 and all(r[0].isdigit() for r in rows)
+    outputs = {(r[1], r[2]) for r in rows}
+    assert ("render", "data/line-ef-train") in outputs and ("residual", str(tmp_path / "runs/band-look")) in outputs
+    assert ("threshold", str(tmp_path / "runs/band-look")) in outputs  # no --out: its --model
+
+
+def test_a_failing_step_stops_make_model_even_where_its_command_is_skipped_when_done(tmp_path: Path) -> None:
+    """The variation fit runs as `[ -f done ] || station variation ...` through the timing function: a failed
+    fit stops the script (no timing line, no look network trained on nothing)."""
+    calls = tmp_path / "calls"
+    stub = tmp_path / "bin"
+    stub.mkdir()
+    (stub / "station").write_text(f'#!/bin/sh\necho "$*" >> {calls}\n[ "$1" != variation ]\n')
+    (stub / "station").chmod(0o755)
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0"}
+    done = subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, capture_output=True)
+    assert done.returncode != 0
+    assert calls.read_text().splitlines()[-1].startswith("variation")  # nothing ran after the failed fit
+    assert "\tvariation\t" not in (tmp_path / "runs" / "timings.tsv").read_text()
