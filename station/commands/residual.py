@@ -17,7 +17,8 @@ from station.commands.arguments import add_max_good_flagged, seed
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("residual", help="add residual networks (trained on the variation model's residuals) to a "
-                                        "detector with a variation model; they decide")
+                                        "detector with a variation model: a second look beside it "
+                                        "(--second-look, the shipped recipe) or the decision")
     p.add_argument("--model", required=True, help="checkpoint with a variation model, path without suffix")
     p.add_argument("--data", required=True, help="the training set: good and rendered defective parts in its train "
                                                  "split (station render --defects-in-train)")
