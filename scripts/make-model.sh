@@ -29,7 +29,8 @@
 #      finishes and edges, the operating point is the line's)
 #   7. held-out types: the shipped model without one type's rendered defects. With DECISION=variation (the shipped
 #      recipe) the look network is the only part that learns from defects, so it is trained again without the type,
-#      as in 6b, and thresholded as in 6c (station residual --holdout-type; the variation model never sees a defect).
+#      as in 6b, JOBS types at once (each look trains on one thread), and thresholded as in 6c (station residual
+#      --holdout-type; the variation model never sees a defect).
 #      With another DECISION the networks decide: they are trained without the type (from the base's last step) and
 #      their variation model counts them (decision combined)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
@@ -127,9 +128,16 @@ if [ "$DECISION" = variation ]; then  # step 6b: the look joins a model its vari
 fi
 station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 HELD=()
-for t in $HOLDOUT_TYPES; do  # step 7
-    if [ "$DECISION" = variation ]; then  # the look network without the type, thresholded as the shipped model
-        look "holdout-$t" --holdout-type "$t"
+if [ "$DECISION" = variation ]; then  # step 7: the look network without each type, JOBS at once (one thread each)
+    pids=()
+    for t in $HOLDOUT_TYPES; do
+        if [ "${#pids[@]}" -ge "$JOBS" ]; then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi
+        look "holdout-$t" --holdout-type "$t" & pids+=($!)
+    done
+    for p in "${pids[@]}"; do wait "$p"; done
+fi
+for t in $HOLDOUT_TYPES; do
+    if [ "$DECISION" = variation ]; then  # thresholded as the shipped model
         station threshold --model "$RUNS/holdout-$t" --data "$VAL"
         HELD+=("holdout-$t")
     else  # from the base's last step: keep-best there saw every type in validation
