@@ -29,8 +29,8 @@
 #      finishes and edges, the operating point is the line's)
 #   7. held-out types: the shipped model without one type's rendered defects. With DECISION=variation (the shipped
 #      recipe) the look network is the only part that learns from defects, so it is trained again without the type,
-#      as in 6b, JOBS types at once (each look trains on one thread), and thresholded as in 6c (station residual
-#      --holdout-type; the variation model never sees a defect).
+#      as in 6b and beside it, JOBS looks at once (each trains on one thread), and thresholded as in 6c (station
+#      residual --holdout-type; the variation model never sees a defect).
 #      With another DECISION the networks decide: they are trained without the type (from the base's last step) and
 #      their variation model counts them (decision combined)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
@@ -122,20 +122,18 @@ look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/N
 }
 variation "$RUNS/band/best" "$RUNS/band-variation" --decision "$DECISION"
 SHIPPED=band-variation
-if [ "$DECISION" = variation ]; then  # step 6b: the look joins a model its variation model decides
-    look band-look
-    SHIPPED=band-look
-fi
-station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 HELD=()
-if [ "$DECISION" = variation ]; then  # step 7: the look network without each type, JOBS at once (one thread each)
+if [ "$DECISION" = variation ]; then  # steps 6b and 7: the look and the looks without each type, JOBS at once
+    SHIPPED=band-look
     pids=()
-    for t in $HOLDOUT_TYPES; do
+    for t in - $HOLDOUT_TYPES; do  # one thread each: two on 2 cores take the wall time of one
         if [ "${#pids[@]}" -ge "$JOBS" ]; then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi
-        look "holdout-$t" --holdout-type "$t" & pids+=($!)
+        if [ "$t" = - ]; then look band-look & else look "holdout-$t" --holdout-type "$t" & fi
+        pids+=($!)
     done
     for p in "${pids[@]}"; do wait "$p"; done
 fi
+station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 for t in $HOLDOUT_TYPES; do
     if [ "$DECISION" = variation ]; then  # thresholded as the shipped model
         station threshold --model "$RUNS/holdout-$t" --data "$VAL"
