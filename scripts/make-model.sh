@@ -15,6 +15,7 @@
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
+#      (3-5 train with nothing beside them, on TRAIN_THREADS threads: every core)
 #   6. variation: the registered variation model added (fitted on good train parts, calibrated on CALIBRATION;
 #      with station variation's defaults: contrast divided out, 8 clusters, blurred copies, each place judged by the
 #      curvature of its residual over 3 px, a second look's gate for the look network); the shipped model decides on
@@ -70,6 +71,7 @@ VARY=(--config sim/presets/panel-vary.toml)  # training and validation only (rul
 FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only (rules 62-63)
 EDGES=(--edge-mm 0,0.4)  # training and calibration only (rule 67): each part's chamfer drawn 0-0.4 mm
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
+TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores
 MODEL=(--priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
 mkdir -p "$RUNS"
@@ -85,6 +87,9 @@ station() {  # station ARGS...: the command, timed under what it wrote (its --ou
         case ${!i} in --out) out=${!j} ;; --model) [ "$out" = - ] && out=${!j} ;; esac
     done
     record "$t0" "$1" "$out"
+}
+train() {  # train ARGS...: station train on TRAIN_THREADS threads (nothing runs beside the networks' training)
+    OMP_NUM_THREADS=$TRAIN_THREADS station train "$@"
 }
 render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
     local out=$1 t0=$SECONDS; shift
@@ -105,11 +110,11 @@ if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
         --defects 0.6 --heldout --visibility
 fi
 
-station train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
+train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
     --eval-every 100 --out "$RUNS/base"
-station train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
+train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
     --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
-station train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
+train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
     --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
 variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exists (resumable)
     [ -f "$2.json" ] || station variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
@@ -139,7 +144,7 @@ for t in $HOLDOUT_TYPES; do
         station threshold --model "$RUNS/holdout-$t" --data "$VAL"
         HELD+=("holdout-$t")
     else  # from the base's last step: keep-best there saw every type in validation
-        station train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
+        train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
             --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
             --out "$RUNS/holdout-$t"
         variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation" --decision combined  # the networks count

@@ -263,3 +263,19 @@ def test_a_failed_held_out_look_stops_make_model(tmp_path: Path) -> None:
     assert rc != 0 and "end scratch" in lines
     after = lines[lines.index("end scratch"):]
     assert "eval" not in after and "threshold" not in after
+
+
+def test_make_model_trains_the_networks_on_every_core_and_the_rest_on_one_thread(tmp_path: Path) -> None:
+    """The networks train with nothing beside them: TRAIN_THREADS (JOBS, 2) threads, 1.6x one thread's speed
+    (docs/results/2026-12-03-recipe-time.md); every other command runs on one thread beside another process."""
+    calls = tmp_path / "calls"
+    stub = tmp_path / "bin"
+    stub.mkdir()
+    (stub / "station").write_text(f'#!/bin/sh\necho "$1 $OMP_NUM_THREADS" >> {calls}\n')
+    (stub / "station").chmod(0o755)
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", "NEW_KINDS_COUNT": "0"}
+    env.pop("OMP_NUM_THREADS", None)
+    subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
+    threads = [line.split() for line in calls.read_text().splitlines()]
+    assert [t for c, t in threads if c == "train"] == ["2", "2", "2"]
+    assert {t for c, t in threads if c != "train"} == {"1"} and len(threads) > 20

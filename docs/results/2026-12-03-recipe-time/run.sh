@@ -53,3 +53,9 @@ pair() {
     for p in "${pids[@]}"; do wait "$p"; done
 }
 timed holdout-pair pair
+# the band network's training (make model's step 5 command, from scratch, 40 steps), one thread against two, alone
+for th in 1 2; do
+    [ -f "$R/thr$th/last.json" ] || timed "train-threads-$th" env OMP_NUM_THREADS="$th" "$BIN/station" train \
+        --data "$DATA" --priors intensity,dolp,aolp --preset fast --fusion fused --batch-size 8 --seed 0 \
+        --device cpu --roi band --size 96 --steps 40 --eval-every 40 --rendered-fraction 0.25 --out "$R/thr$th"
+done
