@@ -14,17 +14,27 @@ from sim.defects import DEFECT_TYPES, NEW_KINDS
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def dry_run(tmp_path: Path, **env_vars: str) -> list[list[str]]:
-    """make-model.sh run with a `station` that only records its arguments (and ``env_vars`` set): each call's
-    arguments, in order."""
+def stub_run(tmp_path: Path, station: str, **env_vars: str) -> tuple[int, list[str]]:
+    """make-model.sh run with `station` the bash script ``station`` (it appends what it records to "$CALLS"), SHIP=0
+    and ``env_vars`` set (an empty value unsets the variable): its return code and the lines recorded, in order."""
     calls = tmp_path / "calls"
     stub = tmp_path / "bin"
     stub.mkdir()
-    (stub / "station").write_text(f'#!/bin/sh\necho "$*" >> {calls}\n')
+    (stub / "station").write_text("#!/bin/bash\n" + station)
     (stub / "station").chmod(0o755)
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", **env_vars}
-    subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
-    return [line.split() for line in calls.read_text().splitlines()]
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", "CALLS": str(calls),
+           **env_vars}
+    env = {k: v for k, v in env.items() if v}
+    done = subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, capture_output=True)
+    return done.returncode, calls.read_text().splitlines() if calls.exists() else []
+
+
+def dry_run(tmp_path: Path, **env_vars: str) -> list[list[str]]:
+    """make-model.sh run with a `station` that only records its arguments (and ``env_vars`` set): each call's
+    arguments, in order."""
+    rc, lines = stub_run(tmp_path, 'echo "$*" >> "$CALLS"\n', **env_vars)
+    assert rc == 0
+    return [line.split() for line in lines]
 
 
 def out_name(args: list[str], tmp_path: Path) -> str:
@@ -201,15 +211,9 @@ def test_make_model_times_each_command_and_prints_the_sum(tmp_path: Path) -> Non
 def test_a_failing_step_stops_make_model_even_where_its_command_is_skipped_when_done(tmp_path: Path) -> None:
     """The variation fit runs as `[ -f done ] || station variation ...` through the timing function: a failed
     fit stops the script (no timing line, no look network trained on nothing)."""
-    calls = tmp_path / "calls"
-    stub = tmp_path / "bin"
-    stub.mkdir()
-    (stub / "station").write_text(f'#!/bin/sh\necho "$*" >> {calls}\n[ "$1" != variation ]\n')
-    (stub / "station").chmod(0o755)
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0"}
-    done = subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, capture_output=True)
-    assert done.returncode != 0
-    assert calls.read_text().splitlines()[-1].startswith("variation")  # nothing ran after the failed fit
+    rc, lines = stub_run(tmp_path, 'echo "$*" >> "$CALLS"\n[ "$1" != variation ]\n')
+    assert rc != 0
+    assert lines[-1].startswith("variation")  # nothing ran after the failed fit
     assert "\tvariation\t" not in (tmp_path / "runs" / "timings.tsv").read_text()
 
 
@@ -217,23 +221,14 @@ def timed_looks(tmp_path: Path, fail: str = "", **env_vars: str) -> tuple[int, l
     """make-model.sh with a `station` whose look networks take half a second (and the one without type ``fail``
     fails): its return code and the lines "start T", "end T" (T the type left out, "-" for the shipped look) and
     the other commands, in the order they happened."""
-    calls = tmp_path / "calls"
-    stub = tmp_path / "bin"
-    stub.mkdir()
-    (stub / "station").write_text(f"""#!/bin/bash
-t=$(echo "$*" | sed -n 's/.*--holdout-type \\([a-z_]*\\).*/\\1/p')
+    return stub_run(tmp_path, """t=$(echo "$*" | sed -n 's/.*--holdout-type \\([a-z_]*\\).*/\\1/p')
 if [ "$1" = residual ]; then
-    t=${{t:--}}
-    echo "start $t" >> {calls}; sleep 0.5; echo "end $t" >> {calls}; [ "$t" != "{fail}" ]
+    t=${t:--}
+    echo "start $t" >> "$CALLS"; sleep 0.5; echo "end $t" >> "$CALLS"; [ "$t" != "$FAIL" ]
 else
-    echo "$1" >> {calls}
+    echo "$1" >> "$CALLS"
 fi
-""")
-    (stub / "station").chmod(0o755)
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", "NEW_KINDS_COUNT": "0",
-           **env_vars}
-    done = subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, capture_output=True)
-    return done.returncode, calls.read_text().splitlines()
+""", FAIL=fail, NEW_KINDS_COUNT="0", **env_vars)
 
 
 def test_make_model_trains_the_look_networks_two_at_a_time(tmp_path: Path) -> None:
@@ -268,14 +263,9 @@ def test_a_failed_held_out_look_stops_make_model(tmp_path: Path) -> None:
 def test_make_model_trains_the_networks_on_every_core_and_the_rest_on_one_thread(tmp_path: Path) -> None:
     """The networks train with nothing beside them: TRAIN_THREADS (JOBS, 2) threads, 1.6x one thread's speed
     (docs/results/2026-12-03-recipe-time.md); every other command runs on one thread beside another process."""
-    calls = tmp_path / "calls"
-    stub = tmp_path / "bin"
-    stub.mkdir()
-    (stub / "station").write_text(f'#!/bin/sh\necho "$1 $OMP_NUM_THREADS" >> {calls}\n')
-    (stub / "station").chmod(0o755)
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", "NEW_KINDS_COUNT": "0"}
-    env.pop("OMP_NUM_THREADS", None)
-    subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, check=True, capture_output=True)
-    threads = [line.split() for line in calls.read_text().splitlines()]
+    rc, lines = stub_run(tmp_path, 'echo "$1 $OMP_NUM_THREADS" >> "$CALLS"\n', NEW_KINDS_COUNT="0",
+                         OMP_NUM_THREADS="")
+    assert rc == 0
+    threads = [line.split() for line in lines]
     assert [t for c, t in threads if c == "train"] == ["2", "2", "2"]
     assert {t for c, t in threads if c != "train"} == {"1"} and len(threads) > 20
