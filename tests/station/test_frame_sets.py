@@ -137,18 +137,19 @@ class PulsedSetCamera(PulsedCamera):
         super().__init__()
         self.config = CameraConfig(trigger="line0", frames_per_part=2)
 
-    def pulse_set(self, label, missed=(), lost=(), late_s=0.0, stall_s=0.0):
-        """``lost``: pulses whose frame is made (its id spent) but never reaches the host; ``late_s``: the sequencer
-        pulses that long after the part's TRIG; ``stall_s``: no other thread of this process runs for that long
-        from the first pulse on, before its frame has arrived (``stall_interpreter``). The sequencer's pulses keep
-        their times whatever this process does."""
-        time.sleep(late_s)
+    def pulse_set(self, label, trig_ns, missed=(), lost=(), late_s=0.0, stall_s=0.0):
+        """The part's pulses, timed from its TRIG (``trig_ns``, ``time.monotonic_ns``) as a sequencer times them,
+        whenever this thread runs; returns when both are past. ``lost``: pulses whose frame is made (its id spent) but
+        never reaches the host; ``late_s``: the sequencer pulses that long after the part's TRIG; ``stall_s``: no
+        other thread of this process runs for that long from the call on, before the frames have arrived
+        (``stall_interpreter``)."""
+        start_ns = trig_ns + int(1e9 * late_s)
         for k in range(2):
             if k not in missed:
                 self.pulse(label, level=BRIGHT if label and k == 0 else DARK, arrives=k not in lost,
-                           after_s=k * self.SET_GAP_S)
+                           after_s=k * self.SET_GAP_S, at_ns=start_ns)
         stall_interpreter(stall_s)
-        time.sleep(max(0.0, 2 * self.SET_GAP_S - stall_s))
+        time.sleep(max(0.0, (start_ns - time.monotonic_ns()) / 1e9 + 2 * self.SET_GAP_S))
 
 
 def stall_interpreter(seconds):
@@ -168,10 +169,11 @@ def stall_interpreter(seconds):
 
 def run_line_sets(tmp_path, labels, spacing_s, grab_timeout_ms, odd=None):
     """Parts P0, P1, ... announced ``spacing_s`` apart, each lit twice by the sequencer (``pulse_set``; ``odd``:
-    {part index: its ``pulse_set`` keywords}); a 300 ms cycle, ``max_frame_delay_ms`` 100: a set's second frame
-    comes 15 ms after its TRIG, the next part's first at least 130 ms after it, so a loaded machine's late wake-ups
-    (which only delay pulses) have 85 ms before a part's own frame reads as too late. Rows by part id, and the
-    link."""
+    {part index: its ``pulse_set`` keywords, or ``pause_before_s``: the TRIG reaches the host that late,
+    ``pause_after_s``: the PLC's thread is held that long after it}); a 300 ms cycle, ``max_frame_delay_ms`` 100: a
+    set's second frame comes 15 ms after its TRIG, the next part's first at least 130 ms after it. The pulses are
+    timed from the TRIG, not from when this thread runs next: a loaded machine's late wake-up delays a whole part, TRIG
+    and pulses together, never its pulses alone. Rows by part id, and the link."""
     link = ScriptedLink(0)
     camera = PulsedSetCamera()
     log = InspectionLog(tmp_path / "log.sqlite")
@@ -182,8 +184,12 @@ def run_line_sets(tmp_path, labels, spacing_s, grab_timeout_ms, odd=None):
     def plc():
         for i, label in enumerate(labels):
             time.sleep(spacing_s)
+            kw = dict((odd or {}).get(i, {}))
+            trig_ns = time.monotonic_ns()  # the PLC's TRIG leaves, and the sequencer starts the part's pulses
+            time.sleep(kw.pop("pause_before_s", 0.0))  # the TRIG reaches the host late
             link.announce(f"P{i}")
-            camera.pulse_set(label, **(odd or {}).get(i, {}))
+            time.sleep(kw.pop("pause_after_s", 0.0))  # this thread held after the TRIG
+            camera.pulse_set(label, trig_ns, **kw)
 
     feeder = threading.Thread(target=plc)
     feeder.start()
@@ -228,6 +234,22 @@ def test_a_pause_of_the_station_process_as_a_set_arrives_does_not_make_its_part_
     assert reasons(rows) == {
         f"P{i}": ("reject", "score 0.8182 > threshold 0.5000") if label else ("pass", None)
         for i, label in enumerate(labels)}
+
+
+@pytest.mark.parametrize("when", ["before", "after"])
+def test_a_trig_late_to_the_host_or_a_pause_after_it_leaves_every_part_on_its_own_frames(tmp_path, when):
+    """The PLC's thread is held 90 ms at P2's TRIG. "before": the TRIG reaches the host 90 ms after the sequencer lit
+    the part (a serial reader held up), so its frames come before it, within ``max_frame_delay_ms``: still its own.
+    "after": the host's TRIG is on time and the pulses are the sequencer's, which no pause of this process moves.
+    (The clean-clone suite once rejected one part of a run as "missed its trigger pulse" and judged the next on its
+    frames: the test sequencer's pulses were timed from when its Python thread ran, so a loaded machine's pause of
+    over 75 ms between a TRIG and its pulses made them a later part's.)"""
+    labels = [0, 1, 0, 1, 0, 0]
+    rows, _ = run_line_sets(tmp_path, labels, 0.1, 200, odd={2: {f"pause_{when}_s": 0.09}})
+    assert reasons(rows) == {
+        f"P{i}": ("reject", "score 0.8182 > threshold 0.5000") if label else ("pass", None)
+        for i, label in enumerate(labels)}
+    assert all(r["ground_truth_label"] == labels[int(p[1:])] for p, r in rows.items())
 
 
 def test_a_set_frame_lost_in_transport_rejects_its_part_and_the_next_set_is_its_own(tmp_path):

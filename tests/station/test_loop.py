@@ -729,11 +729,14 @@ class PulsedCamera(ScriptedCamera):
         self.frames = []  # (host completion, monotonic ns; frame), in completion order
         self.ready = threading.Condition()
 
-    def pulse(self, label, transfer_s=0.0, level=None, arrives=True, after_s=0.0):
+    def pulse(self, label, transfer_s=0.0, level=None, arrives=True, after_s=0.0, at_ns=None):
         """The frame's camera timestamp is its exposure's end; the host has it ``transfer_s`` later. ``level``: its
         brightness (default: bright for a defective part); ``arrives`` False: made (its id spent), never delivered;
-        ``after_s``: the pulse comes that long from now (a sequencer's timing, whatever this process does)."""
-        now_ns, wall_ns = time.monotonic_ns(), time.time_ns()
+        ``after_s``: the pulse comes that long after ``at_ns`` (``time.monotonic_ns``; default now): a sequencer's
+        timing, kept whatever this process does, as a hiccup of the calling thread after ``at_ns`` moves no pulse."""
+        mono_ns, wall_ns = time.monotonic_ns(), time.time_ns()
+        now_ns = mono_ns if at_ns is None else at_ns
+        wall_ns -= mono_ns - now_ns
         exposed_ns = now_ns + int(1e9 * (after_s + self.delay_s))
         arrival_ns = int(1e9 * (after_s + self.delay_s + transfer_s))
         with self.ready:
@@ -770,9 +773,10 @@ def run_line(tmp_path, labels, missed, spacing_s, slow=None, **kw):
     def plc():
         for i, label in enumerate(labels):
             time.sleep(spacing_s)
+            trig_ns = time.monotonic_ns()  # the PLC's TRIG and the camera's pulse leave together
             link.announce(f"P{i}")
             if i not in missed:
-                camera.pulse(label, (slow or {}).get(i, 0.0))
+                camera.pulse(label, (slow or {}).get(i, 0.0), at_ns=trig_ns)
 
     feeder = threading.Thread(target=plc)
     feeder.start()
