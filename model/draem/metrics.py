@@ -162,16 +162,20 @@ class ThresholdChoice:
 
 def choose_threshold(labels: np.ndarray, scores: np.ndarray,
                      max_good_flagged: float = GOOD_REJECTED_RATE, confidence: float | None = None) -> ThresholdChoice:
-    """The station's decision threshold from validation image scores.
+    """The station's decision threshold from validation image scores: the budget's bound.
 
-    Never flags more than ``max_good_flagged`` of the good validation parts (a line cannot live with a weak
-    model's F1-max threshold that rejects most good parts, nor with the minimum score when validation has no
-    anomalies, the trap of anomalib issue 2433). With anomalies in validation: the F1-max threshold, raised to that
-    bound when it flags more. With ``confidence`` (a promise, not a count): at most as many good parts above it as
-    keep the share of *new* good parts rejected at or under ``max_good_flagged`` with that confidence
-    (``rate_bounds.upper_bound``); ValueError when even none above it cannot (fewer good parts than
-    ``rate_bounds.parts_needed``). Raises ValueError on empty validation, no good parts, or non-finite scores, and
-    ModelError when the threshold would be one no part can exceed (``usable_threshold``)."""
+    The lowest threshold that flags at most ``max_good_flagged`` of the good validation parts: a line is judged by the
+    defects it catches at its budget of good parts rejected, so the threshold spends the budget whatever the
+    validation's defects are. Not the F1-max point: F1 weighs a missed defect against a rejected good part by the
+    validation set's own share of defects (rendered sets have 40-60 %, a line far fewer), so it can lie below the
+    bound (a weak model's F1-max rejects most good parts) or above it, missing defects the budget would catch (rule
+    69's candidate, docs/results/2026-12-02-lobe-fit.md; before stop 96 the rule was F1-max raised to the bound).
+    Never the minimum score when validation has no anomalies (the trap of anomalib issue 2433). With ``confidence``
+    (a promise, not a count): at most as many good parts above it as keep the share of *new* good parts rejected at
+    or under ``max_good_flagged`` with that confidence (``rate_bounds.upper_bound``); ValueError when even none above
+    it cannot (fewer good parts than ``rate_bounds.parts_needed``). Raises ValueError on empty validation, no good
+    parts, or non-finite scores, and ModelError when the threshold would be one no part can exceed
+    (``usable_threshold``)."""
     y = np.asarray(labels).reshape(-1).astype(bool)
     s = np.asarray(scores, dtype=np.float64).reshape(-1)
     if s.size == 0 or y.size != s.size:
@@ -189,15 +193,8 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray,
         bound = (f"at most {max_good_flagged:.2%} of new good parts flagged at {confidence:.0%} confidence "
                  f"({allowed} of {good.size} above)")
     # smallest t with #(good > t) <= allowed: the (allowed+1)-th largest good score
-    t_cap = float(good[good.size - allowed - 1])
-    if y.any():
-        _, t_ge = f1_max(y, s)
-        t = float(np.nextafter(t_ge, -np.inf))  # flagged at score >= t_ge is rejected at score > t
-        rule = "f1_max on validation with anomalies"
-        if t < t_cap:
-            t, rule = t_cap, f"f1_max on validation raised to {bound}"
-    else:
-        t, rule = t_cap, f"no anomalies in validation: {bound}"
+    t = float(good[good.size - allowed - 1])
+    rule = f"budget on validation: {bound}" if y.any() else f"no anomalies in validation: {bound}"
     usable_threshold(t, "choose_threshold")
     flagged = float((s[~y] > t).mean()) if (~y).any() else math.nan
     detected = float((s[y] > t).mean()) if y.any() else math.nan

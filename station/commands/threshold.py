@@ -2,8 +2,8 @@
 
 ``station train`` sets the threshold of ``best`` (the keep-best checkpoint). This sets it for any checkpoint, e.g.
 ``last`` (the final step, which the published DRAEM keeps), with the same rule (``model.draem.metrics
-.choose_threshold``: F1-max on the split's parts, raised so that at most ``--max-good-flagged`` of the good ones
-are flagged; with good parts only, that bound alone) and writes it into the checkpoint's sidecar. On another set
+.choose_threshold``: the lowest threshold that flags at most ``--max-good-flagged`` of the split's good parts,
+the line's budget) and writes it into the checkpoint's sidecar. On another set
 than the training set (frames captured at the line, ``station import``) the sidecar records which set and split
 set the threshold (``train.threshold_set``); several sets pool their parts (more good parts: a steadier threshold
 and a narrower promise, ``model.draem.rate_bounds``). Frames the station would not judge (no part in view for the

@@ -65,7 +65,7 @@ def test_weak_models_f1_threshold_is_raised_to_the_false_reject_bound():
     s = rng.random(200)  # a chance-level scorer: F1-max flags most parts
     assert (s[y == 0] >= M.f1_max(y, s)[1]).mean() > 0.5
     ch = M.choose_threshold(y, s, max_good_flagged=0.05)
-    assert ch.flagged_good_fraction <= 0.05 and "raised" in ch.rule
+    assert ch.flagged_good_fraction <= 0.05 and "5.00%" in ch.rule
 
 
 def test_the_default_rule_rejects_at_most_the_targets_one_percent_of_good_parts():
@@ -78,40 +78,16 @@ def test_the_default_rule_rejects_at_most_the_targets_one_percent_of_good_parts(
     assert int((s[y == 0] > ch.threshold).sum()) == 4 and "1.00%" in ch.rule
 
 
-def test_threshold_on_all_good_validation_never_flags_every_part():
-    s = np.linspace(0.0, 1.0, 200)
-    ch = M.choose_threshold(np.zeros(200), s, max_good_flagged=0.01)
-    assert ch.flagged_good_fraction <= 0.01
-    assert ch.threshold > s.min()
-    assert "no anomalies" in ch.rule
-    tiny = M.choose_threshold(np.zeros(3), np.array([0.2, 0.2, 0.2]))
-    assert tiny.flagged_good_fraction == 0.0  # a constant scorer must not reject every good part
-    with pytest.raises(ValueError, match="NaN"):
-        M.choose_threshold(np.zeros(2), np.array([0.1, np.nan]))
-
-
-@pytest.mark.parametrize("top", [1.0, 0.99999958])
-def test_no_threshold_is_chosen_that_no_part_can_exceed(top):
-    """Good parts scoring 1 (a model whose calibration collapsed, e.g. adapted on a frozen camera's identical
-    frames) used to give threshold 1.0: every part passed."""
-    from model.draem.adapt import false_reject_threshold
-    from model.draem.errors import ModelError
-
-    good = np.array([0.3] * 5 + [top] * 20)
-    with pytest.raises(ModelError, match="cannot reject"):
-        M.choose_threshold(np.zeros(25, int), good)
-    with pytest.raises(ModelError, match="cannot reject"):
-        M.choose_threshold(np.r_[np.zeros(25, int), 1], np.r_[good, 1.0])
-    with pytest.raises(ModelError, match="cannot reject"):
-        false_reject_threshold(np.r_[np.full(11, 0.2), top], 0.05)
-
-
-def test_rank_auroc_is_auroc_with_ties_and_nan_for_one_class():
-    from model.draem.metrics import auroc, rank_auroc
-
-    rng = np.random.default_rng(1)
-    for _ in range(5):
-        y = rng.integers(0, 2, 120)
-        s = np.round(rng.normal(0, 1, 120) + y, 1)  # many ties
-        assert rank_auroc(y, s) == pytest.approx(auroc(y, s), abs=1e-12)
-    assert np.isnan(rank_auroc(np.zeros(5, int), np.arange(5.0)))
+def test_a_strong_models_threshold_is_the_budgets_bound_not_its_stricter_f1_point():
+    """A line is judged by the defects it catches at its budget of good parts rejected. Here the F1-max point lies
+    above every good part (it weighs one missed defect against four rejected good parts), so it rejects none where
+    the budget allows four, and misses the defect scored among the good parts' top four that the bound catches.
+    The threshold is the bound, wherever F1-max lies (stop 96: rule 69's candidate had been set at its stricter F1
+    point, docs/results/2026-12-02-lobe-fit.md)."""
+    good = np.arange(400) / 800  # 0 ... 0.49875: the 1 % bound lets the top four (0.495 and up) be rejected
+    bad = np.r_[np.full(100, 0.9), 0.494]  # one defect just under the good parts' top four, the rest far above
+    y, s = np.r_[np.zeros(400), np.ones(101)].astype(int), np.r_[good, bad]
+    t_f1 = M.f1_max(y, s)[1]
+    assert (good >= t_f1).sum() == 0 and (bad >= t_f1).sum() == 100  # the F1 point: no good part, one defect missed
+    ch = M.choose_threshold(y, s)
+    assert int((good > ch.threshold).sum()) == 4 and ch.detected_fraction == 1.0
