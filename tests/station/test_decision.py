@@ -31,18 +31,22 @@ def test_within_budget_and_few_invalid_pixels_still_passes():
     assert decide(0.1, 0.5, elapsed_ms=99.0, cycle_time_ms=100.0, invalid_fraction=0.001).decision == "pass"
 
 
-def test_a_threshold_chosen_on_validation_rejects_the_defective_part_that_set_it():
-    """choose_threshold counted a part as flagged at score >= t, the station rejects at score > t: the defective
-    validation part whose score became the threshold was counted as caught and passed at the station."""
+def test_a_threshold_chosen_on_validation_passes_the_good_part_that_set_it_and_rejects_every_part_above():
+    """The threshold is a good validation part's own score (the budget's bound) and the station rejects at
+    score > t: that good part passes, as choose_threshold counted it, and every part above it is rejected. (When the
+    rule was F1-max, which counts score >= t, its threshold was a defective part's score, and the station passed
+    that part: choose_threshold now hands the station strict thresholds only.)"""
     import numpy as np
 
     from model.draem.metrics import choose_threshold
 
-    labels, scores = np.array([0, 0, 0, 0, 1]), np.array([0.1, 0.2, 0.3, 0.35, 0.6])
-    choice = choose_threshold(labels, scores, max_good_flagged=0.25)
-    assert choice.detected_fraction == 1.0
-    assert decide(0.6, choice.threshold).decision == "reject"
-    assert decide(0.35, choice.threshold).decision == "pass" and choice.flagged_good_fraction == 0.0
+    labels, scores = np.array([0, 0, 0, 0, 1]), np.array([0.1, 0.2, 0.3, 0.35, 0.36])
+    choice = choose_threshold(labels, scores, max_good_flagged=0.0)
+    assert choice.threshold == 0.35 and choice.detected_fraction == 1.0 and choice.flagged_good_fraction == 0.0
+    assert decide(0.36, choice.threshold).decision == "reject"
+    assert decide(0.35, choice.threshold).decision == "pass"
+    choice = choose_threshold(labels, scores, max_good_flagged=0.25)  # one of four good parts may be rejected
+    assert choice.threshold == 0.3 and decide(0.35, choice.threshold).decision == "reject"
 
 
 def test_verdicts_are_their_strings_on_the_wire_and_in_json():

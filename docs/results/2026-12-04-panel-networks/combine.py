@@ -1,13 +1,15 @@
 """Screen: the shipped decision (E63's score) and the panel line's band network, each as a robust z on the good
 parts of the same validation set (median, 1.4826 MAD, as the variation model's combined rule), the larger decides.
-Caught at k good parts rejected (in-sample: thresholds on the same parts), per type, and AUROC."""
+Caught at k good parts rejected (in-sample: thresholds on the same parts), per type, and AUROC.
+
+    python combine.py E63-FOLDER BAND-FOLDER    (each holding a station eval's scores.csv of the same parts)
+"""
 import csv
 import sys
 
 import numpy as np
 
-sys.path.insert(0, "/work/main")
-from model.draem.metrics import rank_auroc  # noqa: E402
+from model.draem.metrics import rank_auroc
 
 
 def read(folder):
