@@ -78,6 +78,45 @@ def test_the_default_rule_rejects_at_most_the_targets_one_percent_of_good_parts(
     assert int((s[y == 0] > ch.threshold).sum()) == 4 and "1.00%" in ch.rule
 
 
+def test_threshold_on_all_good_validation_never_flags_every_part():
+    s = np.linspace(0.0, 1.0, 200)
+    ch = M.choose_threshold(np.zeros(200), s, max_good_flagged=0.01)
+    assert ch.flagged_good_fraction <= 0.01
+    assert ch.threshold > s.min()
+    assert "no anomalies" in ch.rule
+    tiny = M.choose_threshold(np.zeros(3), np.array([0.2, 0.2, 0.2]))
+    assert tiny.flagged_good_fraction == 0.0  # a constant scorer must not reject every good part
+    with pytest.raises(ValueError, match="NaN"):
+        M.choose_threshold(np.zeros(2), np.array([0.1, np.nan]))
+
+
+@pytest.mark.parametrize("top", [1.0, 0.99999958])
+def test_no_threshold_is_chosen_that_no_part_can_exceed(top):
+    """Good parts scoring 1 (a model whose calibration collapsed, e.g. adapted on a frozen camera's identical
+    frames) used to give threshold 1.0: every part passed."""
+    from model.draem.adapt import false_reject_threshold
+    from model.draem.errors import ModelError
+
+    good = np.array([0.3] * 5 + [top] * 20)
+    with pytest.raises(ModelError, match="cannot reject"):
+        M.choose_threshold(np.zeros(25, int), good)
+    with pytest.raises(ModelError, match="cannot reject"):
+        M.choose_threshold(np.r_[np.zeros(25, int), 1], np.r_[good, 1.0])
+    with pytest.raises(ModelError, match="cannot reject"):
+        false_reject_threshold(np.r_[np.full(11, 0.2), top], 0.05)
+
+
+def test_rank_auroc_is_auroc_with_ties_and_nan_for_one_class():
+    from model.draem.metrics import auroc, rank_auroc
+
+    rng = np.random.default_rng(1)
+    for _ in range(5):
+        y = rng.integers(0, 2, 120)
+        s = np.round(rng.normal(0, 1, 120) + y, 1)  # many ties
+        assert rank_auroc(y, s) == pytest.approx(auroc(y, s), abs=1e-12)
+    assert np.isnan(rank_auroc(np.zeros(5, int), np.arange(5.0)))
+
+
 def test_a_strong_models_threshold_is_the_budgets_bound_not_its_stricter_f1_point():
     """A line is judged by the defects it catches at its budget of good parts rejected. Here the F1-max point lies
     above every good part (it weighs one missed defect against four rejected good parts), so it rejects none where
