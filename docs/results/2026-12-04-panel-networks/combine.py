@@ -36,8 +36,7 @@ c = np.maximum(z(e, y), z(n, y))
 for name, s in (("E63", e), ("band net", n), ("combined", c)):
     parts = [f"AUROC {rank_auroc(y, s):.3f}"]
     for k in (1, 3, 5, 18):
-        cf, t = caught(y, s, k)
-        parts.append(f"k={k}: {100 * cf:.1f}")
+        parts.append(f"k={k}: {100 * caught(y, s, k)[0]:.1f}")
     t = caught(y, s, 3)[1]
     per = " ".join(f"{ty}:{100 * (s[kind == ty] > t).mean():.0f}" for ty in sorted(set(kind[y == 1])))
     print(f"{name:9s} {', '.join(parts)} | at k=3 {per}")
