@@ -17,7 +17,7 @@ What depends on the line, in this model:
   - optionally the weights: a brief fine-tune on the good parts with DRAEM's synthetic anomalies
     (``AdaptConfig.fine_tune_steps``; off by default).
 
-Threshold rule (``false_reject_threshold``): reject at most ``false_reject`` of good parts. Held-out scores come
+Threshold rule (``adapted_threshold``): reject at most ``false_reject`` of good parts. Held-out scores come
 from cross-fitting when only the normalisation is refitted (``folds`` folds: each part is scored by a normaliser
 fitted on the other folds, so every good part is held out once and N parts give N held-out scores); with
 fine-tuning a fixed share (``holdout_fraction``) is held out of both the normaliser and the fine-tune. The
@@ -45,7 +45,7 @@ from .config import GOOD_REJECTED_RATE
 from .detector import Detector
 from .errors import ModelError
 from .loss import draem_loss
-from .metrics import usable_threshold
+from .metrics import allowed_rejects, usable_threshold
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
 from .residual import NO_LOOK
@@ -151,13 +151,13 @@ class AdaptResult:
                 "decision_changed": self.decision_changed, "advice": self.advice}
 
 
-def false_reject_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoice:
+def adapted_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoice:
     """The threshold that rejects at most ``false_reject`` of good parts with these held-out ``scores`` (module
     docstring): max of the empirical bound and the logit-normal tail quantile."""
     s = np.sort(np.asarray(scores, dtype=np.float64).reshape(-1))
     if s.size == 0 or not np.all(np.isfinite(s)):
-        raise ModelError("false_reject_threshold needs finite held-out scores")
-    allowed = math.floor(false_reject * s.size)
+        raise ModelError("adapted_threshold needs finite held-out scores")
+    allowed = allowed_rejects(false_reject, s.size)
     empirical = float(np.nextafter(s[s.size - allowed - 1], np.inf))
     z = np.log(np.clip(s, 1e-6, 1 - 1e-6)) - np.log1p(-np.clip(s, 1e-6, 1 - 1e-6))
     q = float(z.mean() + NormalDist().inv_cdf(1 - false_reject) * z.std(ddof=1)) if s.size > 1 else float(z[0])
@@ -328,7 +328,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         heldout, shift = _heldout_scores(final, [(final, x[held])], cfg.keep_networks)
         scheme = f"{what} and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
         steps = cfg.fine_tune_steps
-    choice = false_reject_threshold(heldout, cfg.false_reject)
+    choice = adapted_threshold(heldout, cfg.false_reject)
     fr = float((heldout > choice.threshold).mean())  # rejected as the station rejects: score > threshold
     log.info("adapted on %d good parts (%s): threshold %.4g, %.1f %% of held-out good parts rejected", n, scheme,
              choice.threshold, 100 * fr)

@@ -186,7 +186,7 @@ def choose_threshold(labels: np.ndarray, scores: np.ndarray,
         raise ValueError("choose_threshold: validation has no good parts; cannot bound false rejects")
     good = np.sort(s[~y])
     if confidence is None:
-        allowed = math.floor(max_good_flagged * good.size)  # good parts we may flag
+        allowed = allowed_rejects(max_good_flagged, good.size)  # good parts we may flag
         bound = f"at most {max_good_flagged:.2%} of good parts flagged"
     else:
         allowed = allowed_above(good.size, max_good_flagged, confidence)
@@ -230,8 +230,16 @@ def false_reject_threshold(good_scores: np.ndarray, false_reject: float) -> floa
         raise ValueError("no good parts: a false-reject rate cannot be set")
     if not np.all(np.isfinite(good)):
         raise ValueError("good-part scores contain NaN or Inf")
-    allowed = math.floor(false_reject * good.size + 1e-9)  # 1e-9: 0.29 * 100 is 28.999... in floating point
+    allowed = allowed_rejects(false_reject, good.size)
     return float(good[good.size - allowed - 1])
+
+
+def allowed_rejects(rate: float, n_good: int) -> int:
+    """How many of ``n_good`` good parts a budget of ``rate`` (a share in [0, 1)) lets be rejected: floor(rate x n),
+    counted so that a whole number comes out whole (0.29 x 100 is 28.999... in floating point: 29, not 28). The one
+    place every threshold rule counts its budget (``false_reject_threshold``, ``choose_threshold``,
+    ``adapt.adapted_threshold``)."""
+    return math.floor(rate * n_good + 1e-9)
 
 
 def caught_at_false_reject(labels: np.ndarray, scores: np.ndarray, false_reject: float,

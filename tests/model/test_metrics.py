@@ -94,7 +94,7 @@ def test_threshold_on_all_good_validation_never_flags_every_part():
 def test_no_threshold_is_chosen_that_no_part_can_exceed(top):
     """Good parts scoring 1 (a model whose calibration collapsed, e.g. adapted on a frozen camera's identical
     frames) used to give threshold 1.0: every part passed."""
-    from model.draem.adapt import false_reject_threshold
+    from model.draem.adapt import adapted_threshold
     from model.draem.errors import ModelError
 
     good = np.array([0.3] * 5 + [top] * 20)
@@ -103,7 +103,7 @@ def test_no_threshold_is_chosen_that_no_part_can_exceed(top):
     with pytest.raises(ModelError, match="cannot reject"):
         M.choose_threshold(np.r_[np.zeros(25, int), 1], np.r_[good, 1.0])
     with pytest.raises(ModelError, match="cannot reject"):
-        false_reject_threshold(np.r_[np.full(11, 0.2), top], 0.05)
+        adapted_threshold(np.r_[np.full(11, 0.2), top], 0.05)
 
 
 def test_rank_auroc_is_auroc_with_ties_and_nan_for_one_class():
@@ -130,3 +130,17 @@ def test_a_strong_models_threshold_is_the_budgets_bound_not_its_stricter_f1_poin
     assert (good >= t_f1).sum() == 0 and (bad >= t_f1).sum() == 100  # the F1 point: no good part, one defect missed
     ch = M.choose_threshold(y, s)
     assert int((good > ch.threshold).sum()) == 4 and ch.detected_fraction == 1.0
+
+
+def test_every_threshold_rule_spends_a_budget_whose_count_is_a_whole_number_in_full():
+    """0.29 x 100 is 28.999... in floating point: each rule that turns a budget into a count of good parts allowed
+    above the threshold counts 29 there, not 28 (``metrics.allowed_rejects``, the one place that counts)."""
+    from model.draem.adapt import adapted_threshold
+
+    good = np.linspace(0.01, 0.5, 100)
+    assert M.allowed_rejects(0.29, 100) == 29 and M.allowed_rejects(0.01, 370) == 3
+    assert int((good > M.choose_threshold(np.zeros(100), good, max_good_flagged=0.29).threshold).sum()) == 29
+    assert int((good > M.false_reject_threshold(good, 0.29)).sum()) == 29
+    held = np.r_[np.full(70, 0.05), 0.55, np.linspace(0.6, 0.7, 29)]  # adapt's logit-normal tail lies under 0.55
+    choice = adapted_threshold(held, 0.29)
+    assert "empirical quantile" in choice.rule and int((held > choice.threshold).sum()) == 29

@@ -12,7 +12,7 @@ import pytest
 import torch
 from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
 
-from model.draem.adapt import AdaptConfig, adapt, false_reject_threshold
+from model.draem.adapt import AdaptConfig, adapt, adapted_threshold
 from model.draem.checkpoint import load_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.errors import ModelError
@@ -82,14 +82,14 @@ def test_adapt_refuses_too_few_parts_and_writing_over_its_model(line, tmp_path: 
     assert "same checkpoint" in capsys.readouterr().err
 
 
-def test_false_reject_threshold_extrapolates_beyond_the_largest_of_few_scores() -> None:
+def test_adapted_threshold_extrapolates_beyond_the_largest_of_few_scores() -> None:
     rng = np.random.default_rng(0)
     s = 1 / (1 + np.exp(-rng.normal(-1.0, 0.3, 50)))
-    t = false_reject_threshold(s, 0.01)
+    t = adapted_threshold(s, 0.01)
     assert t.threshold >= s.max() and "50 held-out" in t.rule
     many = 1 / (1 + np.exp(-rng.normal(-1.0, 0.3, 100_000)))
     assert 0.003 < float((many >= t.threshold).mean()) < 0.03  # about the 1 % asked for on the population
-    t20 = false_reject_threshold(s, 0.2)
+    t20 = adapted_threshold(s, 0.2)
     assert float((s >= t20.threshold).mean()) <= 0.2
 
 
