@@ -924,9 +924,16 @@ class VariationModel(nn.Module):
             raise ModelError("calibrating the variation model needs good validation parts (at least 2)")
         self.calibration.copy_(torch.tensor([*loc_spread(network_scores), *loc_spread(variation_scores)]))
 
+    def coefficient_entries(self) -> int:
+        """How many numbers an appearance coefficient sums over: the part region's pixels times the channels (at
+        least 1). A coefficient's spread grows with its square root: ``check`` bounds ``cluster_spread`` divided by
+        it (the shipped file 0.94, a fit of intensity and AoLP alone about 10)."""
+        return max(int(self.region.sum()), 1) * int(self.components.shape[1])
+
     def check(self) -> None:
-        """ModelError unless every buffer is finite, every scale and spread in (0, ``MAX_SPREAD``] and the part
-        region at least ``MIN_REGION`` of the frame: a NaN, an empty region or a huge spread would pass every part."""
+        """ModelError unless every buffer is finite, every scale and spread in (0, ``MAX_SPREAD``] (the clusters'
+        spread per pixel's share, ``coefficient_entries``) and the part region at least ``MIN_REGION`` of the frame:
+        a NaN, an empty region or a huge spread would pass every part."""
         for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *LATER_BUFFERS):
             value = self.get_buffer(name)
             if name == "second_look.calibration":
@@ -934,7 +941,9 @@ class VariationModel(nn.Module):
             if not bool(torch.isfinite(value.float()).all()):
                 raise ModelError(f"variation model: {name} has NaN or Inf values")
         spreads = {"channel_scale": self.channel_scale, "scale": self.scale, "window_spread": self.window_spread,
-                   "calibration": self.calibration[1::2], "cluster_spread": self.cluster_spread,
+                   "calibration": self.calibration[1::2],
+                   # a coefficient sums over every judged pixel and channel: bounded per pixel's share
+                   "cluster_spread": self.cluster_spread / math.sqrt(self.coefficient_entries()),
                    "cluster_scale": self.cluster_scale.float(),
                    "second_look.calibration": self.second_look.calibration[2::2]}
         for name, value in spreads.items():

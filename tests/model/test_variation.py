@@ -632,3 +632,19 @@ def test_the_appearance_components_span_an_svds_and_a_part_set_without_variance_
     same = np.repeat(u[:1], 10, axis=0)
     _, none = VariationModel._appearance(same, 2)
     assert np.isfinite(none).all() and not none.any()
+
+
+def test_a_cluster_spread_is_bounded_per_pixel_not_per_part() -> None:
+    """The clusters' spread is in the units of the parts' component coefficients, sums over every judged pixel and
+    channel: it grows with the square root of the part's pixels. A fit of intensity and AoLP alone on the shipped
+    line (2026-12-04, the priors ablation) reached 1770 over 9978 px, about 10 per pixel, and was refused as a bad
+    file by a bound of 1000 on the sum; the bound is 1000 per pixel's share (``MAX_SPREAD``)."""
+    vm = fitted()
+    entries = int(vm.region.sum()) * vm.components.shape[1]
+    vm.cluster_spread[...] = 20.0 * entries**0.5
+    assert float(vm.cluster_spread.max()) > 1000.0
+    vm.check()
+    for bad in (0.0, 1001.0 * entries**0.5):
+        vm.cluster_spread[...] = bad
+        with pytest.raises(ModelError, match="cluster_spread"):
+            vm.check()
