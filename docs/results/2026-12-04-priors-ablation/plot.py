@@ -41,12 +41,13 @@ def main() -> None:
     left.set_xticks(range(len(kinds)), [k.replace("_", " ") for k in kinds])
     left.set_ylim(0.5, 1.0)
     left.set_ylabel("image AUROC (seeds 1191 + 1192)")
-    left.legend(loc="lower left", fontsize=8)
     right.set_xticks(range(2), ["2 good rejected\nper set (~1.2 %)", "8 per set (~5 %)"])
     right.set_ylim(0, 100)
     right.set_ylabel("defective parts caught, %")
     fig.suptitle("The paper's priors ablation on the shipped recipe (variation model + look network)")
-    fig.tight_layout()
+    handles, labels = left.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", ncol=3, bbox_to_anchor=(0.5, 0.93), fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.86))
     fig.savefig(HERE.parent / "2026-12-04-priors-ablation.png", dpi=110)
 
 
