@@ -45,7 +45,7 @@ from .config import GOOD_REJECTED_RATE
 from .detector import Detector
 from .errors import ModelError
 from .loss import draem_loss
-from .metrics import allowed_rejects, usable_threshold
+from .metrics import false_reject_threshold, usable_threshold
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
 from .residual import NO_LOOK
@@ -157,8 +157,7 @@ def adapted_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoic
     s = np.sort(np.asarray(scores, dtype=np.float64).reshape(-1))
     if s.size == 0 or not np.all(np.isfinite(s)):
         raise ModelError("adapted_threshold needs finite held-out scores")
-    allowed = allowed_rejects(false_reject, s.size)
-    empirical = float(np.nextafter(s[s.size - allowed - 1], np.inf))
+    empirical = float(np.nextafter(false_reject_threshold(s, false_reject), np.inf))
     z = np.log(np.clip(s, 1e-6, 1 - 1e-6)) - np.log1p(-np.clip(s, 1e-6, 1 - 1e-6))
     q = float(z.mean() + NormalDist().inv_cdf(1 - false_reject) * z.std(ddof=1)) if s.size > 1 else float(z[0])
     tail = float(1.0 / (1.0 + math.exp(-q)))

@@ -237,8 +237,8 @@ def false_reject_threshold(good_scores: np.ndarray, false_reject: float) -> floa
 def allowed_rejects(rate: float, n_good: int) -> int:
     """How many of ``n_good`` good parts a budget of ``rate`` (a share in [0, 1)) lets be rejected: floor(rate x n),
     counted so that a whole number comes out whole (0.29 x 100 is 28.999... in floating point: 29, not 28). The one
-    place every threshold rule counts its budget (``false_reject_threshold``, ``choose_threshold``,
-    ``adapt.adapted_threshold``)."""
+    place every threshold rule counts its budget (``false_reject_threshold``, which ``adapt.adapted_threshold``
+    calls, and ``choose_threshold``)."""
     return math.floor(rate * n_good + 1e-9)
 
 
