@@ -7,9 +7,11 @@
 # look network, 25 min, beside one of them: docs/results/2026-11-30-two-camera-station.md).
 #
 #   1. render the side camera's sets, twins of make-model.sh's (same seeds and parts, seen from the side): training
-#      (seed 101, its train split only, the panel and the finish drawn), calibration (seed 303, the same draws) and
-#      validation (seed 303, the panel drawn, the finish as built); and, for step 6, the line camera's validation set
-#      (make-model.sh's VAL), the side validation set's twin
+#      (seed 101, its train split only, the panel, the finish and the edges drawn), calibration (seed 303, the same
+#      draws) and validation (seed 303, the panel drawn, the finish and edges as built); and, for step 6, the line
+#      camera's validation set (make-model.sh's VAL), the side validation set's twin. Each part's chamfer is drawn
+#      0-0.4 mm as make-model.sh draws it (rule 67; the side camera sees the front edges face on:
+#      docs/results/2026-12-04-side-edges.md)
 #   2. source: the shipped file as it was before its second look (git 0f17840^: the DRAEM networks and a variation
 #      model), whose variation model is fitted again on the side camera's parts (the networks do not decide)
 #   3. variation: fitted on the side training set's good parts, calibrated on the calibration set (station variation
@@ -37,6 +39,7 @@ VAL_COUNT=${VAL_COUNT:-600}
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
 VARY=(--config sim/presets/panel-vary.toml)
 FINISH=(--config sim/presets/finish-vary.toml)
+EDGES=(--edge-mm 0,0.4)  # training and calibration only, as make-model.sh's (rule 67)
 SIDE=(--config sim/presets/side-view.toml)  # last: the second camera and its flat dome
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 mkdir -p "$RUNS"
@@ -51,12 +54,14 @@ render() {  # render OUT ARGS...: two shards in parallel, each resumable
 # 1. the train split only (sample k % 10 >= 3): the shards k of 20 with k % 10 >= 3, half in each process
 for half in 0 1; do
     (for j in 3 4 5 6 7 8 9; do
-        "$BIN/station" render --out "$SIDE_TRAIN" "${PRESET[@]}" "${VARY[@]}" "${FINISH[@]}" "${SIDE[@]}" \
-            --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train --shard $((j + 10 * half))/20
+        "$BIN/station" render --out "$SIDE_TRAIN" "${PRESET[@]}" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" \
+            "${SIDE[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train \
+            --shard $((j + 10 * half))/20
     done) & pids[half]=$!
 done
 wait "${pids[0]}"; wait "${pids[1]}"
-render "$SIDE_CAL" "${VARY[@]}" "${FINISH[@]}" "${SIDE[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
+render "$SIDE_CAL" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" "${SIDE[@]}" --count "$VAL_COUNT" --seed 303 \
+    --defects 0.4 --validation
 
 # 2. the source file, from git history
 if [ ! -f "$RUNS/source/default.json" ]; then

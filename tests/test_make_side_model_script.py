@@ -1,6 +1,7 @@
 """`make side-model` (scripts/make-side-model.sh): dry-run with a `station` and a `python` that only record their
-arguments, it renders the side camera's twins of make-model.sh's sets, fits from the pre-look shipped file, thresholds
-with the side camera's presence rule and splits the two thresholds on the validation twins."""
+arguments, it renders the side camera's twins of make-model.sh's sets (edges drawn where it draws them), fits from
+the pre-look shipped file, thresholds with the side camera's presence rule and splits the two thresholds on the
+validation twins."""
 
 from __future__ import annotations
 
@@ -36,6 +37,9 @@ def test_make_side_model_renders_twins_and_splits_on_them(tmp_path: Path) -> Non
         assert (configs(a)[-1] == SIDE) == (out(a) != "data/line-pv-val")
         seed = a[a.index("--seed") + 1]
         assert seed == ("101" if out(a) == "data/sw-train" else "303")  # make-model.sh's seeds: twins of its sets
+    for a in renders:  # each part's chamfer drawn 0-0.4 mm where make-model.sh draws it (rule 67): training and
+        drawn = a[a.index("--edge-mm") + 1] if "--edge-mm" in a else None  # calibration; validation as built
+        assert drawn == ("0,0.4" if out(a) in ("data/sw-train", "data/sw-pf-val") else None)
     train_shards = sorted(int(a[a.index("--shard") + 1].split("/")[0]) for a in renders if out(a) == "data/sw-train")
     assert train_shards == [3, 4, 5, 6, 7, 8, 9, 13, 14, 15, 16, 17, 18, 19]  # the train split only
     assert len(list((runs / "source-git").glob("default.*"))) == 2  # the source file, from git (default 0f17840^)
