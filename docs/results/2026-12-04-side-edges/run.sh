@@ -45,3 +45,5 @@ done
 cp $R/eval-line-1192-e3/eval.md $D/eval/eval-line-1192-e3.md
 cp runs/make-side-model/split.json $D/split.json
 sha256sum runs/make-side-model/side.pt > $D/side.sha256
+for s in 1192 1192-e3; do cp $R/two-cameras-$s/two-cameras.json $D/two-cameras-$s.json; done  # for plot.py
+.venv/bin/python $D/plot.py
