@@ -30,3 +30,4 @@ cp $R/two-cameras-1192-r3/two-cameras.md $D/two-cameras-1192-r3.md
 cp $R/two-cameras-1192-r3/two-cameras.json $D/two-cameras-1192-r3.json
 cp $R/eval-side-1192-r3/eval.md $D/eval/eval-side-1192-r3.md
 cp $R/eval-line-1192-r3/eval.md $D/eval/eval-line-1192-r3.md
+.venv/bin/python $D/plot.py

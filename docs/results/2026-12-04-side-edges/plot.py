@@ -1,6 +1,6 @@
-"""side-edges.png: the two-camera station with make side-model's edge-range file on seed 1192, as built and with every
-edge chamfered 0.3 mm: defective parts caught and good parts rejected by each rule of `station compare --split`
-(two-cameras-1192.json, two-cameras-1192-e3.json beside this file).
+"""side-edges.png: the two-camera station with make side-model's edge-range file on seed 1192, as built, with every
+edge chamfered 0.3 mm, and rounded 0.3 mm (the addendum): defective parts caught and good parts rejected by each rule
+of `station compare --split` (two-cameras-1192.json, -e3.json and -r3.json beside this file).
 
 Usage: python plot.py (writes side-edges.png beside it)."""
 import json
@@ -12,11 +12,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 HERE = Path(__file__).parent
-SETS = {"as built": "two-cameras-1192.json", "chamfered 0.3 mm": "two-cameras-1192-e3.json"}
+SETS = {"as built": "two-cameras-1192.json", "chamfered\n0.3 mm": "two-cameras-1192-e3.json",
+        "rounded 0.3 mm\n(no chips)": "two-cameras-1192-r3.json"}
 RULES = ("line camera alone", "side camera alone", "both, split")
 
 reports = {name: json.loads((HERE / f).read_text())["rules"] for name, f in SETS.items()}
-fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+fig, axes = plt.subplots(1, 2, figsize=(12, 3.8))
 for ax, (num, den, title) in zip(axes, (("caught", "defective", "defective parts caught"),
                                         ("good_rejected", "good", "good parts rejected")), strict=True):
     for k, rule in enumerate(RULES):
