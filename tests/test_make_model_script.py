@@ -82,9 +82,13 @@ def test_station_train_defaults_are_the_networks_make_model_trains() -> None:
 
     from station.cli import build_parser
 
-    line = re.search(r"^MODEL=\((.*)\)$", (ROOT / "scripts" / "make-model.sh").read_text(), re.M)
-    assert line is not None
+    script = (ROOT / "scripts" / "make-model.sh").read_text()
+    line = re.search(r"^MODEL=\((.*)\)$", script, re.M)
+    priors = re.search(r"^PRIORS=\$\{PRIORS:-(.*)\}$", script, re.M)
+    assert line is not None and priors is not None
     recipe = dict(zip(line.group(1).split()[::2], line.group(1).split()[1::2], strict=True))
+    assert recipe["--priors"] == '"$PRIORS"'
+    recipe["--priors"] = priors.group(1)
     args = build_parser().parse_args(["train", "--data", "d"])
     assert args.priors == recipe["--priors"] and args.fusion == recipe["--fusion"] and args.preset == recipe["--preset"]
     assert args.batch_size == int(recipe["--batch-size"]) and args.seed == int(recipe["--seed"])
@@ -269,3 +273,13 @@ def test_make_model_trains_the_networks_on_every_core_and_the_rest_on_one_thread
     threads = [line.split() for line in lines]
     assert [t for c, t in threads if c == "train"] == ["2", "2", "2"]
     assert {t for c, t in threads if c != "train"} == {"1"} and len(threads) > 20
+
+
+def test_make_model_priors_reach_every_network(tmp_path: Path) -> None:
+    """PRIORS=intensity (docs/results/2026-12-04-intensity-robust.md): every network make model trains reads the
+    priors asked for, and by default the shipped file's three."""
+    for env, want in (({}, "intensity,dolp,aolp"), ({"PRIORS": "intensity"}, "intensity")):
+        runs = tmp_path / (want.replace(",", "-"))
+        runs.mkdir()
+        trained = [a for a in dry_run(runs, **env) if a[0] == "train"]
+        assert trained and {a[a.index("--priors") + 1] for a in trained} == {want}
