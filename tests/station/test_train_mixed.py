@@ -188,3 +188,15 @@ def test_a_validation_set_gives_keep_best_its_val_split_and_a_set_without_one_sa
     assert summary["val_parts"] == 12 and summary["val_defective"] == 4 and summary["val_kind"] == "rendered"
     rec = json.loads((tmp_path / "t" / "best.json").read_text())["train"]["val_data"]
     assert rec == {"data": str(val), "manifest_sha256": manifest_sha256(val)}  # which parts selected it
+
+
+def test_a_val_split_without_a_good_part_is_refused_in_one_line(tmp_path: Path, capsys) -> None:
+    """Keep-best falls back to synthetic anomalies on the val split's good parts when it lacks rendered defects or
+    good parts; a val split of defective parts only has none to put them on (a small set drawn with --defects: make
+    model's smoke run of 40 parts crashed in torch here). It is refused in one line naming the set."""
+    from sim.dataset import split_of
+
+    data = make_line_set(tmp_path / "ds", n=30, defective=lambda i: split_of(i) == "val" or i % 3 == 1)
+    assert main(["train", "--data", str(data), *BASE, "--out", str(tmp_path / "t")]) == 2
+    said = [line for line in capsys.readouterr().err.splitlines() if "no good part" in line]  # after the loading bars
+    assert len(said) == 1 and str(data) in said[0] and "--val-data" in said[0]
