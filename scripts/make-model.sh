@@ -55,7 +55,7 @@ NEW_KINDS_COUNT=${NEW_KINDS_COUNT:-400}
 NEW_KINDS_SEED=${NEW_KINDS_SEED:-1179}
 VAL_COUNT=${VAL_COUNT:-600}
 BASE_STEPS=${BASE_STEPS:-1000}
-BASE_STOP=${BASE_STOP:-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
+BASE_STOP=${BASE_STOP-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
 MIXED_STEPS=${MIXED_STEPS:-400}
 BAND_STEPS=${BAND_STEPS:-1200}
 BAND=(--roi band --size 96)

@@ -283,3 +283,22 @@ def test_make_model_priors_reach_every_network(tmp_path: Path) -> None:
         runs.mkdir()
         trained = [a for a in dry_run(runs, **env) if a[0] == "train"]
         assert trained and {a[a.index("--priors") + 1] for a in trained} == {want}
+
+
+def test_an_empty_base_stop_runs_the_base_schedule_whole(tmp_path: Path) -> None:
+    """BASE_STOP= (empty) runs the base network's whole schedule, as the script says; unset, it stops at step 500.
+    An empty value fell back to 500, so a short smoke run (BASE_STEPS=4) was refused."""
+    calls = tmp_path / "calls"
+    stub = tmp_path / "bin"
+    stub.mkdir()
+    (stub / "station").write_text('#!/bin/bash\necho "$*" >> "$CALLS"\n')
+    (stub / "station").chmod(0o755)
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", "CALLS": str(calls),
+           "BASE_STOP": ""}
+    done = subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, capture_output=True)
+    assert done.returncode == 0
+    base = [line.split() for line in calls.read_text().splitlines() if "base" in line and line.startswith("train")]
+    assert base and "--stop-at-step" not in base[0]
+    (tmp_path / "unset").mkdir()
+    unset = [a for a in dry_run(tmp_path / "unset", BASE_STOP="") if a[0] == "train"]  # dry_run unsets empties
+    assert unset[0][unset[0].index("--stop-at-step") + 1] == "500"
