@@ -14,9 +14,10 @@ from sim.defects import DEFECT_TYPES, NEW_KINDS
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def stub_run(tmp_path: Path, station: str, **env_vars: str) -> tuple[int, list[str]]:
+def stub_run(tmp_path: Path, station: str, empty: tuple[str, ...] = (), **env_vars: str) -> tuple[int, list[str]]:
     """make-model.sh run with `station` the bash script ``station`` (it appends what it records to "$CALLS"), SHIP=0
-    and ``env_vars`` set (an empty value unsets the variable): its return code and the lines recorded, in order."""
+    and ``env_vars`` set (an empty value unsets the variable; the names in ``empty`` are set, to ""): its return code
+    and the lines recorded, in order."""
     calls = tmp_path / "calls"
     stub = tmp_path / "bin"
     stub.mkdir()
@@ -24,15 +25,15 @@ def stub_run(tmp_path: Path, station: str, **env_vars: str) -> tuple[int, list[s
     (stub / "station").chmod(0o755)
     env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", "CALLS": str(calls),
            **env_vars}
-    env = {k: v for k, v in env.items() if v}
+    env = {k: v for k, v in env.items() if v} | dict.fromkeys(empty, "")
     done = subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, capture_output=True)
     return done.returncode, calls.read_text().splitlines() if calls.exists() else []
 
 
-def dry_run(tmp_path: Path, **env_vars: str) -> list[list[str]]:
-    """make-model.sh run with a `station` that only records its arguments (and ``env_vars`` set): each call's
-    arguments, in order."""
-    rc, lines = stub_run(tmp_path, 'echo "$*" >> "$CALLS"\n', **env_vars)
+def dry_run(tmp_path: Path, empty: tuple[str, ...] = (), **env_vars: str) -> list[list[str]]:
+    """make-model.sh run with a `station` that only records its arguments (and ``env_vars`` and ``empty`` set as
+    stub_run sets them): each call's arguments, in order."""
+    rc, lines = stub_run(tmp_path, 'echo "$*" >> "$CALLS"\n', empty, **env_vars)
     assert rc == 0
     return [line.split() for line in lines]
 
@@ -288,17 +289,9 @@ def test_make_model_priors_reach_every_network(tmp_path: Path) -> None:
 def test_an_empty_base_stop_runs_the_base_schedule_whole(tmp_path: Path) -> None:
     """BASE_STOP= (empty) runs the base network's whole schedule, as the script says; unset, it stops at step 500.
     An empty value fell back to 500, so a short smoke run (BASE_STEPS=4) was refused."""
-    calls = tmp_path / "calls"
-    stub = tmp_path / "bin"
-    stub.mkdir()
-    (stub / "station").write_text('#!/bin/bash\necho "$*" >> "$CALLS"\n')
-    (stub / "station").chmod(0o755)
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(tmp_path / "runs"), "SHIP": "0", "CALLS": str(calls),
-           "BASE_STOP": ""}
-    done = subprocess.run(["bash", str(ROOT / "scripts" / "make-model.sh")], env=env, capture_output=True)
-    assert done.returncode == 0
-    base = [line.split() for line in calls.read_text().splitlines() if "base" in line and line.startswith("train")]
-    assert base and "--stop-at-step" not in base[0]
-    (tmp_path / "unset").mkdir()
-    unset = [a for a in dry_run(tmp_path / "unset", BASE_STOP="") if a[0] == "train"]  # dry_run unsets empties
+    for case in ("empty", "unset"):
+        (tmp_path / case).mkdir()
+    whole = [a for a in dry_run(tmp_path / "empty", empty=("BASE_STOP",)) if a[0] == "train" and "base" in " ".join(a)]
+    assert whole and "--stop-at-step" not in whole[0]
+    unset = [a for a in dry_run(tmp_path / "unset", BASE_STOP="") if a[0] == "train"]  # an empty keyword unsets it
     assert unset[0][unset[0].index("--stop-at-step") + 1] == "500"
