@@ -210,10 +210,11 @@ def run(args: argparse.Namespace) -> int:
              len(tr.index), len(va.index), int(va.label.sum()), size[1], size[0],
              (normal_prior or {}).get("source", "not used"))
     rendered = EvalData(va.priors, va.object_mask, va.defect_mask, va.label, "rendered", va.mask_known)
-    has_both = 0 < int(va.label.sum()) < len(va.index)
-    if int(va.label.sum()) == len(va.index):  # keep-best's synthetic anomalies need good parts to sit on
-        raise UserError(f"{val_root}: its val split has no good part ({len(va.index)} defective): keep-best "
+    defective = int(va.label.sum())
+    if defective == len(va.index):  # keep-best's synthetic anomalies need good parts to sit on
+        raise UserError(f"{val_root}: its val split has no good part ({defective} defective): keep-best "
                         "needs good parts; render more parts, or give --val-data a validation set")
+    has_both = defective > 0
     val = rendered if has_both else synthetic_eval_data(
         TensorData(va.priors[va.label == 0], va.object_mask[va.label == 0]), priors, seed=args.seed + 1)
     if not has_both:
