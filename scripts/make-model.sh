@@ -12,6 +12,10 @@
 #      built, panel constant), and with another seed two validation sets of the same parts (every sample val; 600
 #      parts, ~370 good): one with the panel, the finish and the edges drawn as in training (calibration:
 #      CALIBRATION), one with the panel drawn and the finish and edges as built (thresholds and selection: VAL)
+#   3-5. the DRAEM networks. With DECISION=variation (the shipped recipe) they decide nothing and the station skips
+#      them, so only a shell is trained: the band network, SHELL_STEPS steps from nothing, which carries the priors,
+#      the band across the view and the input size (96 x 192) that steps 6-9 read (as the priors ablation's models;
+#      docs/results/2026-12-04-intensity-ship.md). With another DECISION the networks decide and are trained whole:
 #   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
@@ -58,6 +62,7 @@ BASE_STEPS=${BASE_STEPS:-1000}
 BASE_STOP=${BASE_STOP-500}  # the shipped base stopped its 1000-step schedule here (time); empty = run it all
 MIXED_STEPS=${MIXED_STEPS:-400}
 BAND_STEPS=${BAND_STEPS:-1200}
+SHELL_STEPS=${SHELL_STEPS:-30}  # the band network's steps when it does not decide (DECISION=variation)
 BAND=(--roi band --size 96)
 HOLDOUT_STEPS=${HOLDOUT_STEPS:-150}
 HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}
@@ -113,12 +118,19 @@ if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
         --defects 0.6 --heldout --visibility
 fi
 
-train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
-    --eval-every 100 --out "$RUNS/base"
-train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
-    --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
-train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
-    --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
+if [ "$DECISION" = variation ]; then  # steps 3-5: a shell (the networks do not decide)
+    train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$SHELL_STEPS" --eval-every "$SHELL_STEPS" \
+        --out "$RUNS/band"
+    NETS=() BAND_NET=band/last
+else
+    train --data "$DATA" "${MODEL[@]}" --steps "$BASE_STEPS" ${BASE_STOP:+--stop-at-step "$BASE_STOP"} \
+        --eval-every 100 --out "$RUNS/base"
+    train --data "$DATA" "${MODEL[@]}" --steps "$MIXED_STEPS" --eval-every 100 \
+        --rendered-fraction 0.25 --init "$RUNS/base/last" --out "$RUNS/mixed"
+    train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$BAND_STEPS" --eval-every 200 \
+        --rendered-fraction 0.25 --init "$RUNS/mixed/best" --out "$RUNS/band"
+    NETS=(base/last mixed/best band/best) BAND_NET=band/best
+fi
 variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exists (resumable)
     [ -f "$2.json" ] || station variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
         "${@:3}"
@@ -128,7 +140,7 @@ look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/N
         --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/$1" \
         "${@:2}"
 }
-variation "$RUNS/band/best" "$RUNS/band-variation" --decision "$DECISION"
+variation "$RUNS/$BAND_NET" "$RUNS/band-variation" --decision "$DECISION"
 SHIPPED=band-variation
 HELD=()
 if [ "$DECISION" = variation ]; then  # steps 6b and 7: the look and the looks without each type, JOBS at once
@@ -155,8 +167,8 @@ for t in $HOLDOUT_TYPES; do
     fi
 done
 
-station threshold --model "$RUNS/base/last" --data "$DATA"
-for m in base/last mixed/best band/best band-variation ${SHIPPED/band-variation/} "${HELD[@]}"
+[ "${#NETS[@]}" = 0 ] || station threshold --model "$RUNS/base/last" --data "$DATA"
+for m in "${NETS[@]}" band-variation ${SHIPPED/band-variation/} "${HELD[@]}"
 do
     name=${m%/last}; name=${name%/best}; name=${name//\//-}
     station eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-$name"

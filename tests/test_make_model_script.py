@@ -272,8 +272,34 @@ def test_make_model_trains_the_networks_on_every_core_and_the_rest_on_one_thread
                          OMP_NUM_THREADS="")
     assert rc == 0
     threads = [line.split() for line in lines]
-    assert [t for c, t in threads if c == "train"] == ["2", "2", "2"]
+    assert [t for c, t in threads if c == "train"] == ["2"]  # the shell (the test below)
     assert {t for c, t in threads if c != "train"} == {"1"} and len(threads) > 20
+    (tmp_path / "combined").mkdir()
+    rc, lines = stub_run(tmp_path / "combined", 'echo "$1 $OMP_NUM_THREADS" >> "$CALLS"\n', NEW_KINDS_COUNT="0",
+                         OMP_NUM_THREADS="", DECISION="combined")
+    assert rc == 0 and [t for c, t in (line.split() for line in lines) if c == "train"] == ["2"] * 8
+
+
+def test_make_model_trains_only_a_shell_of_the_networks_that_do_not_decide(tmp_path: Path) -> None:
+    """With the shipped decision (the variation model and its look) the DRAEM networks decide nothing, so make model
+    trains one band network of SHELL_STEPS steps from nothing (it carries the priors, the band and the input size),
+    fits the variation model on it and neither thresholds nor evaluates it; with the networks deciding, the base,
+    mixed and band networks are trained whole and each is evaluated."""
+    calls = dry_run(tmp_path, NEW_KINDS_COUNT="0")
+    trained = [a for a in calls if a[0] == "train"]
+    assert len(trained) == 1 and out_name(trained[0], tmp_path) == "band" and "--init" not in trained[0]
+    assert trained[0][trained[0].index("--steps") + 1] == "30" and "--roi" in trained[0]
+    fit = next(a for a in calls if a[0] == "variation")
+    assert fit[fit.index("--model") + 1] == str(tmp_path / "runs/band/last")
+    judged = {out_name(a, tmp_path) for a in calls if a[0] in ("eval", "threshold")}
+    assert not judged & {"base/last", "eval-base", "eval-mixed", "eval-band"}
+    assert {"eval-band-variation", "eval-band-look"} <= judged
+    (tmp_path / "combined").mkdir()
+    calls = dry_run(tmp_path / "combined", NEW_KINDS_COUNT="0", DECISION="combined")
+    assert [out_name(a, tmp_path / "combined") for a in calls if a[0] == "train"][:3] == ["base", "mixed", "band"]
+    fit = next(a for a in calls if a[0] == "variation")
+    assert fit[fit.index("--model") + 1] == str(tmp_path / "combined/runs/band/best")
+    assert {"eval-base", "eval-mixed", "eval-band"} <= {out_name(a, tmp_path / "combined") for a in calls}
 
 
 def test_make_model_priors_reach_every_network(tmp_path: Path) -> None:
@@ -288,10 +314,13 @@ def test_make_model_priors_reach_every_network(tmp_path: Path) -> None:
 
 def test_an_empty_base_stop_runs_the_base_schedule_whole(tmp_path: Path) -> None:
     """BASE_STOP= (empty) runs the base network's whole schedule, as the script says; unset, it stops at step 500.
-    An empty value fell back to 500, so a short smoke run (BASE_STEPS=4) was refused."""
+    An empty value fell back to 500, so a short smoke run (BASE_STEPS=4) was refused. (The base is trained when the
+    networks decide.)"""
     for case in ("empty", "unset"):
         (tmp_path / case).mkdir()
-    whole = [a for a in dry_run(tmp_path / "empty", empty=("BASE_STOP",)) if a[0] == "train" and "base" in " ".join(a)]
+    whole = [a for a in dry_run(tmp_path / "empty", empty=("BASE_STOP",), DECISION="combined")
+             if a[0] == "train" and "base" in " ".join(a)]
     assert whole and "--stop-at-step" not in whole[0]
-    unset = [a for a in dry_run(tmp_path / "unset", BASE_STOP="") if a[0] == "train"]  # an empty keyword unsets it
+    unset = [a for a in dry_run(tmp_path / "unset", BASE_STOP="", DECISION="combined")  # "" unsets it
+             if a[0] == "train"]
     assert unset[0][unset[0].index("--stop-at-step") + 1] == "500"
