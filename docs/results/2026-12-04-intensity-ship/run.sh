@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# stop 100: the shipped file made again on intensity alone by `make model`, against E63 on fresh seeds 1194 (held
+# out, the line as built) and 1195 (kinds nobody rendered); plan.md. Run from anywhere; resumable (make model resumes
+# each step, an evaluation already written is kept). SHIP=1: the new file is copied over model/weights/default, E63
+# is kept first in the run folder (git checkout model/weights puts it back).
+set -euo pipefail
+cd "$(dirname "$0")/../../.."
+BIN=.venv/bin
+RUNS=runs/make-model-r
+VAL=data/line-pv-val
+mkdir -p "$RUNS"
+export OMP_NUM_THREADS=1
+[ -f "$RUNS/e63.json" ] || "$BIN/python" -c \
+    "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
+    model/weights/default "$RUNS/e63"
+judge() {  # judge MODEL SET OUT [ARGS]: station eval unless OUT is written
+    [ -f "$3/eval.json" ] || "$BIN/station" eval --model "$1" --data "$2" --val-data "$VAL" --out "$3" "${@:4}"
+}
+PRIORS=intensity HELDOUT=data/line-panel-heldout-1194 HELDOUT_SEED=1194 NEW_KINDS=data/new-kinds-heldout-1195 \
+    NEW_KINDS_SEED=1195 RUNS=$RUNS SHIP=1 scripts/make-model.sh
+judge "$RUNS/e63" data/line-panel-heldout-1194 "$RUNS/eval-e63-1194" --no-synthetic
+judge "$RUNS/e63" data/new-kinds-heldout-1195 "$RUNS/eval-e63-new-kinds-1195" --no-synthetic
+for look in built ggx rough; do  # reported: the rule's sets (../2026-12-04-intensity-robust/run.sh renders them)
+    if [ -d "data/ir-$look-1193" ]; then
+        judge "$RUNS/band-look" "data/ir-$look-1193" "$RUNS/eval-S-$look-1193" --no-synthetic
+    fi
+done
+"$BIN/station" compare "$RUNS/eval-e63-1194" "$RUNS/eval-band-look" --paired --out "$RUNS/paired-1194"
