@@ -26,3 +26,6 @@ for look in built ggx rough; do  # reported: the rule's sets (../2026-12-04-inte
     fi
 done
 "$BIN/station" compare "$RUNS/eval-e63-1194" "$RUNS/eval-band-look" --paired --out "$RUNS/paired-1194"
+# bar 4: both files in one run of the station's pipeline, on 150 frames of the held-out set
+[ -f "$RUNS/bench/pipeline.json" ] || env -u OMP_NUM_THREADS "$BIN/station" bench pipeline --data data/line-panel-heldout-1194 \
+    --models "$RUNS/e63,model/weights/default" --methods bilinear --precisions fp32 --parts 150 --out "$RUNS/bench"
