@@ -20,12 +20,14 @@ PRIORS=intensity HELDOUT=data/line-panel-heldout-1194 HELDOUT_SEED=1194 NEW_KIND
     NEW_KINDS_SEED=1195 RUNS=$RUNS SHIP=1 scripts/make-model.sh
 judge "$RUNS/e63" data/line-panel-heldout-1194 "$RUNS/eval-e63-1194" --no-synthetic
 judge "$RUNS/e63" data/new-kinds-heldout-1195 "$RUNS/eval-e63-new-kinds-1195" --no-synthetic
-for look in built ggx rough; do  # reported: the rule's sets (../2026-12-04-intensity-robust/run.sh renders them)
-    if [ -d "data/ir-$look-1193" ]; then
-        judge "$RUNS/band-look" "data/ir-$look-1193" "$RUNS/eval-S-$look-1193" --no-synthetic
-    fi
-done
+# reported: is S the rule's fit R in what decides (runs/ir/R-look, ../2026-12-04-intensity-robust/run.sh)? The plan
+# had S scored on seed 1193's three renderings; its deciding tensors and threshold equal R's, so R's reports there are S's
+if [ -f runs/ir/R-look.pt ]; then
+    PYTHONPATH=. "$BIN/python" docs/results/2026-12-04-intensity-ship/same_as_r.py runs/ir/R-look "$RUNS/band-look" \
+        > docs/results/2026-12-04-intensity-ship/same-as-r.txt
+fi
 "$BIN/station" compare "$RUNS/eval-e63-1194" "$RUNS/eval-band-look" --paired --out "$RUNS/paired-1194"
 # bar 4: both files in one run of the station's pipeline, on 150 frames of the held-out set
-[ -f "$RUNS/bench/pipeline.json" ] || env -u OMP_NUM_THREADS "$BIN/station" bench pipeline --data data/line-panel-heldout-1194 \
-    --models "$RUNS/e63,model/weights/default" --methods bilinear --precisions fp32 --parts 150 --out "$RUNS/bench"
+[ -f "$RUNS/bench/pipeline.json" ] || env -u OMP_NUM_THREADS "$BIN/station" bench pipeline \
+    --data data/line-panel-heldout-1194 --models "$RUNS/e63,model/weights/default" --methods bilinear \
+    --precisions fp32 --parts 150 --out "$RUNS/bench"
