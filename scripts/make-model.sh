@@ -77,8 +77,8 @@ FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only 
 EDGES=(--edge-mm 0,0.4)  # training and calibration only (rule 67): each part's chamfer drawn 0-0.4 mm
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores
-# the priors every network and the variation model read; PRIORS=intensity fits on intensity alone, which held a
-# GGX lobe and a duller plastic on seed 1193 (docs/results/2026-12-04-intensity-robust.md)
+# the priors every network and the variation model read. PRIORS=intensity makes the shipped file (intensity alone,
+# since 2026-12-04: docs/results/2026-12-04-intensity-ship.md); the default is the file before's three
 PRIORS=${PRIORS:-intensity,dolp,aolp}
 MODEL=(--priors "$PRIORS" --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
