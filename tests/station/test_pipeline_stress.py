@@ -22,7 +22,7 @@ from station.model_detector import DraemDetector
 H, W = 48, 64
 SHIPPED = Path(__file__).parents[2] / "model" / "weights" / "default"
 BF16_SCORE_BOUND = 0.02
-"""Largest |score(bf16) - score(fp32)| accepted for the shipped networks on the hostile frames below (measured 0.0033
+"""Largest |score(bf16) - score(fp32)| accepted for trained networks on the hostile frames below (measured 0.0033
 with scores spread over 0.42..0.52, 2026-11-24; the previous model's 0.0009 over 0.10..0.38)."""
 
 
@@ -79,14 +79,29 @@ def test_hostile_frames_give_finite_scores_in_range(inspectors: dict[str, Inspec
     assert 0.0 <= result.priors["dolp"].min() and result.priors["dolp"].max() <= 1.0
 
 
-def shipped_networks(tmp: Path) -> Path:
-    """The shipped model's networks without its variation member (which is numpy fp32 whatever the precision and
-    puts every hostile frame near 1) and the residual network that reads it, saved as a checkpoint: what bf16
-    changes."""
+TRAINED_NETWORKS = "9cf5dec"
+"""A commit whose shipped file (E63, 2026-12-02 to 2026-12-04) had trained DRAEM networks. The shipped file since
+reads intensity alone and its networks, which do not decide, are a 30-step shell whose scores barely move with the
+input (0.472..0.487 on the frames below), so bf16 is measured on these."""
+
+
+def trained_networks(tmp: Path) -> Path:
+    """E63's networks without its variation member (which is numpy fp32 whatever the precision and puts every hostile
+    frame near 1) and the residual network that reads it, saved as a checkpoint: what bf16 changes. Read from git
+    history (a clone without that commit skips, saying so)."""
+    import subprocess
+
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.detector import Detector
 
-    ck = load_checkpoint(SHIPPED)
+    root = Path(__file__).parents[2]
+    for ext in ("pt", "json"):
+        done = subprocess.run(["git", "-C", str(root), "show", f"{TRAINED_NETWORKS}:model/weights/default.{ext}"],
+                              capture_output=True)
+        if done.returncode:
+            pytest.skip(f"git history without {TRAINED_NETWORKS} (a shallow clone): no trained networks to measure")
+        (tmp / f"default.{ext}").write_bytes(done.stdout)
+    ck = load_checkpoint(tmp / "default")
     nets = Detector(ck.detector.config.with_(variation=False, decision="combined", residual_members=0),
                     ck.detector.normalizer)
     nets.load_state_dict({k: v for k, v in ck.detector.state_dict().items()
@@ -96,8 +111,9 @@ def shipped_networks(tmp: Path) -> Path:
 
 
 def test_bf16_decides_like_fp32_within_the_bound(tmp_path: Path) -> None:
-    """On the shipped (trained) networks: a random-weight model's scores do not depend on the input at all."""
-    nets = shipped_networks(tmp_path)
+    """On trained networks (E63's): a random-weight model's scores do not depend on the input at all, nor do the
+    shipped shell's much."""
+    nets = trained_networks(tmp_path)
     fp32 = Inspector(DraemDetector(nets, "cpu", "fp32"), IMX250MZR)
     bf16 = Inspector(DraemDetector(nets, "cpu", "bf16"), IMX250MZR)
     scores, diffs = [], []
