@@ -16,7 +16,7 @@
 #      them, so only a shell is trained: the band network, SHELL_STEPS steps from nothing, which carries the priors,
 #      the band across the view and the input size (96 x 192) that steps 6-9 read (as the priors ablation's models;
 #      docs/results/2026-12-04-intensity-ship.md). With another DECISION the networks decide and are trained whole:
-#   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused intensity + DoLP + AoLP
+#   3. base: good parts + DRAEM's synthetic anomalies (the paper's recipe), fused over PRIORS
 #   4. mixed: the base fine-tuned with rendered defects in every batch (a quarter of it), synthetic ones kept
 #   5. band: the mixed model fine-tuned on the band across the view at 96 x 192 (1.5x the centre square's detail)
 #      (3-5 train with nothing beside them, on TRAIN_THREADS threads: every core)
@@ -77,9 +77,9 @@ FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only 
 EDGES=(--edge-mm 0,0.4)  # training and calibration only (rule 67): each part's chamfer drawn 0-0.4 mm
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores
-# the priors every network and the variation model read. PRIORS=intensity makes the shipped file (intensity alone,
-# since 2026-12-04: docs/results/2026-12-04-intensity-ship.md); the default is the file before's three
-PRIORS=${PRIORS:-intensity,dolp,aolp}
+# the priors every network and the variation model read: the shipped file's intensity alone (since 2026-12-04:
+# docs/results/2026-12-04-intensity-ship.md); PRIORS=intensity,dolp,aolp makes the file before's kind
+PRIORS=${PRIORS:-intensity}
 MODEL=(--priors "$PRIORS" --preset fast --fusion fused --batch-size 8 --seed 0 --device cpu)
 
 mkdir -p "$RUNS"

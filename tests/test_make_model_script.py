@@ -304,8 +304,8 @@ def test_make_model_trains_only_a_shell_of_the_networks_that_do_not_decide(tmp_p
 
 def test_make_model_priors_reach_every_network(tmp_path: Path) -> None:
     """PRIORS=intensity (docs/results/2026-12-04-intensity-robust.md): every network make model trains reads the
-    priors asked for (intensity alone: the shipped file's), and by default the three of the file before."""
-    for env, want in (({}, "intensity,dolp,aolp"), ({"PRIORS": "intensity"}, "intensity")):
+    priors asked for, and by default the shipped file's intensity alone."""
+    for env, want in (({}, "intensity"), ({"PRIORS": "intensity,dolp,aolp"}, "intensity,dolp,aolp")):
         runs = tmp_path / (want.replace(",", "-"))
         runs.mkdir()
         trained = [a for a in dry_run(runs, **env) if a[0] == "train"]

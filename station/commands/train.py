@@ -45,9 +45,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--val-data", default=None, metavar="DATA",
                    help="set whose val split keep-best and the threshold read (default: --data's; a validation set "
                         "from `station render --validation`, for a training set rendered without a val split)")
-    p.add_argument("--priors", default="intensity,dolp,aolp",
-                   help="comma-separated, of intensity,dolp,aolp,normal (the default is make model's; the shipped "
-                        "model reads intensity alone; the paper's adds normal)")
+    p.add_argument("--priors", default="intensity",
+                   help="comma-separated, of intensity,dolp,aolp,normal (the default is the shipped model's; "
+                        "polarization: intensity,dolp,aolp; the paper's adds normal)")
     p.add_argument("--preset", default="fast",
                    help="network preset: paper (128/64 @ 256), fast (32/16 @ 128), lean (16/16 @ 128), tiny")
     p.add_argument("--fusion", default="fused", choices=("ensemble", "fused"),

@@ -91,8 +91,8 @@ def test_hostile_priors_stay_finite_under_every_shift() -> None:
 def test_bench_shift_reports_every_shift_and_its_unchanged_row_is_station_evals(tmp_path: Path, capsys) -> None:
     data = make_line_set(tmp_path / "ds", n=60, defective=lambda i: i % 3 == 1)
     held = make_line_set(tmp_path / "held", n=24, seed=5, defective=lambda i: i % 2 == 1, heldout=True)
-    base = ["--preset", "tiny", "--size", "32", "--steps", "2", "--batch-size", "4", "--eval-every", "2",
-            "--device", "cpu", "--roi", "band"]
+    base = ["--priors", "intensity,dolp,aolp", "--preset", "tiny", "--size", "32", "--steps", "2", "--batch-size", "4",
+            "--eval-every", "2", "--device", "cpu", "--roi", "band"]
     assert main(["train", "--data", str(data), *base, "--out", str(tmp_path / "t")]) == 0
     assert main(["variation", "--model", str(tmp_path / "t" / "last"), "--data", str(data),
                  "--out", str(tmp_path / "v")]) == 0
