@@ -1,0 +1,43 @@
+"""The study's figure: good parts rejected and defective parts caught per rendering, S against E63 (read.json).
+
+    PYTHONPATH=. .venv/bin/python docs/results/2026-12-04-ship-otherwise/plot.py
+"""
+import json
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+HERE = Path(__file__).parent
+NAMES = {"built": "as built", "chamfer03": "chamfer\n0.3 mm", "round03": "round\n0.3 mm", "motion2": "moving\n2 px",
+         "motion4": "moving\n4 px", "pedestal256": "pedestal\n256", "camera": "sensor\npatterns",
+         "hot30": "30 hot\npixels"}
+
+
+def main() -> None:
+    r = json.loads((HERE / "read.json").read_text())
+    names = [k for k in NAMES if k in r]
+    x = np.arange(len(names))
+    fig, ax = plt.subplots(2, 1, figsize=(9, 5.6), sharex=True)
+    for i, m in enumerate(("S", "E63")):
+        label = "S: shipped, intensity alone" if m == "S" else "E63: the file before (intensity, DoLP, AoLP)"
+        ax[0].bar(x + (i - 0.5) * 0.38, [100 * r[k][m]["good_rejected"] / r[k]["good"] for k in names], 0.38,
+                  label=label)
+        ax[1].bar(x + (i - 0.5) * 0.38, [100 * r[k][m]["caught"] for k in names], 0.38, label=label)
+    ax[0].set_ylabel("good parts rejected (%)")
+    ax[1].set_ylabel("defective parts caught (%)")
+    ax[1].set_xticks(x, [NAMES[k] for k in names], fontsize=8)
+    ax[0].axhline(3, color="grey", lw=0.8, ls="--")
+    ax[1].set_ylim(40, 100)
+    ax[0].legend(fontsize=8)
+    fig.suptitle(f"fresh seed 1196, each file at its stored threshold ({r['built']['good']} good parts as built)",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(HERE.parent / "2026-12-04-ship-otherwise.png", dpi=110)
+
+
+if __name__ == "__main__":
+    main()
