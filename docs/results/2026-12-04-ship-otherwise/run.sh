@@ -50,6 +50,17 @@ judge() {  # judge FILE-NAME FILE SET: station eval unless written
     [ -f "$out/eval.md" ] || "$S" eval --model "$2" --data "data/so-$3-1196" --val-data data/line-pv-val \
         --no-synthetic --no-plots --out "$out" > "$R/eval-$1-$3.log" 2>&1
 }
+if [ "$STEP" = remedy ] || [ "$STEP" = all ]; then  # after the reads: the pedestal set, its black level stated
+    if [ ! -f "$R/so-pedestal256bl-1196.done" ]; then
+        rm -rf data/so-pedestal256bl-1196 && mkdir -p data/so-pedestal256bl-1196
+        ln -s "$PWD/data/so-pedestal256-1196/samples" data/so-pedestal256bl-1196/samples
+        "$BIN/python" -c "import json, sys; m = json.load(open(sys.argv[1])); m['black_level'] = 256; \
+json.dump(m, open(sys.argv[2], 'w'), indent=1)" data/so-pedestal256-1196/manifest.json \
+            data/so-pedestal256bl-1196/manifest.json
+        touch "$R/so-pedestal256bl-1196.done"
+    fi
+    judge S model/weights/default pedestal256bl
+fi
 if [ "$STEP" = eval ] || [ "$STEP" = all ]; then
     for set in built chamfer03 round03 motion2 motion4 pedestal256 camera hot30; do
         judge S model/weights/default $set & a=$!
@@ -58,5 +69,13 @@ if [ "$STEP" = eval ] || [ "$STEP" = all ]; then
     done
     "$BIN/python" "$HERE/read.py" > "$HERE/read.txt"
     "$BIN/python" "$HERE/plot.py"
+fi
+if [ "$STEP" = shift ] || [ "$STEP" = all ]; then  # after the reads: station bench shift, both files, as built
+    for m in S:model/weights/default E63:$E63; do
+        out="$HERE/shift-${m%%:*}"
+        [ -f "$out/shift.json" ] || env -u OMP_NUM_THREADS "$S" bench shift --model "${m#*:}" \
+            --data data/so-built-1196 --val-data data/line-pv-val --out "$out" > "$R/shift-${m%%:*}.log" 2>&1 &
+    done
+    wait
 fi
 echo "done $(date +%T)"
