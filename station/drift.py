@@ -20,7 +20,9 @@ not warn at every noise flicker."""
 
 ADVICE = {
     ("median_level", "low"): "frames darker than trained: raise [camera] exposure_us (or gain_db), check the light",
-    ("median_level", "high"): "frames brighter than trained: lower [camera] exposure_us (or gain_db)",
+    ("median_level", "high"): ("frames brighter than trained: lower [camera] exposure_us (or gain_db); if exposure "
+                               "and gain are as trained, the camera adds a black level the station is not told: "
+                               "measure it (station defect-pixels) and set [camera] black_level"),
     ("high_level", "low"): "highlights darker than trained: raise exposure_us, check the light",
     ("high_level", "high"): "highlights brighter than trained: lower exposure_us (or gain_db)",
     ("clipped_fraction", "high"): "more clipped pixels than trained: lower exposure_us or gain_db",

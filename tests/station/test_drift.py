@@ -13,10 +13,10 @@ from model.priors.testing import detailed_stokes
 from station.drift import DriftMonitor, trained_range
 
 
-def _frame(gain: float, rng: np.random.Generator, bits: int = 8) -> tuple[np.ndarray, object]:
+def _frame(gain: float, rng: np.random.Generator, bits: int = 8, pedestal: float = 0.0) -> tuple[np.ndarray, object]:
     s0, s1, s2 = detailed_stokes(64, 96)
     full = 2**bits - 1
-    ideal = stokes_to_mosaic(s0, s1, s2) * 0.8 * gain + rng.normal(0, 0.01, (64, 96))
+    ideal = stokes_to_mosaic(s0, s1, s2) * 0.8 * gain + pedestal + rng.normal(0, 0.01, (64, 96))
     raw = np.clip(np.round(ideal * full), 0, full).astype(np.uint8 if bits == 8 else np.uint16)
     return raw, compute_priors(raw, priors=("intensity", "dolp"), bit_depth=bits)
 
@@ -53,6 +53,21 @@ def test_drift_warning_on_a_brightness_step_then_back() -> None:
     back = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(1.0, rng) for _ in range(30))]
     assert [t for t in back if t] == ["frames back in the trained range over the last 20 frames"]
     assert mon.warning is None
+
+
+def test_an_unstated_black_level_is_named_in_the_warning() -> None:
+    """A pedestal the station is not told reads as light: the frames look brighter than trained, and the advice
+    must not stop at lowering the exposure (docs/results/2026-12-04-ship-otherwise.md: 256 codes in 12 bits cost
+    the shipped file 5.4 points of defective parts caught, unnoticed by its good parts)."""
+    rng = np.random.default_rng(2)
+    trained = StatisticsRange.from_frames([frame_statistics(p, raw=r) for r, p in
+                                           (_frame(g, rng) for g in rng.uniform(0.95, 1.05, 40))])
+    mon = DriftMonitor(trained, window=20, min_frames=10)
+    texts = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(1.0, rng, pedestal=256 / 4095)
+                                                                  for _ in range(20))]
+    warned = [t for t in texts if t]
+    assert len(warned) == 1 and "frames brighter than trained" in warned[0]
+    assert "[camera] black_level" in warned[0] and "station defect-pixels" in warned[0]
 
 
 def test_drift_monitor_needs_a_window() -> None:
