@@ -14,7 +14,8 @@ import numpy as np
 
 from model.priors.frame_stats import STAT_NAMES, FrameStatistics, StatisticsRange
 
-TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction": 0.002, "dolp_level": 0.01}
+TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction": 0.002, "dolp_level": 0.01,
+                   "dark_level": 0.005}
 """Smallest tolerance per statistic (full-scale units or shares): a model trained on near-identical frames must
 not warn at every noise flicker."""
 
@@ -29,6 +30,11 @@ ADVICE = {
     ("clipped_fraction", "low"): "fewer clipped pixels than trained",
     ("dolp_level", "low"): "polarization lower than trained: light, belt or lens changed; re-adapt (station adapt)",
     ("dolp_level", "high"): "polarization higher than trained: light, belt or lens changed; re-adapt (station adapt)",
+    ("dark_level", "high"): ("darkest pixels brighter than trained: the camera adds a black level the station is not "
+                             "told (measure it: station defect-pixels; set [camera] black_level), or stray light "
+                             "fills the shadows"),
+    ("dark_level", "low"): ("darkest pixels darker than trained: [camera] black_level set above the camera's, or the "
+                            "light dimmed"),
 }
 
 

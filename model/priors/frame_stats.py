@@ -13,6 +13,10 @@ no object mask is needed, so a station can compute them on every frame):
     clipped_fraction  share of mosaic pixels at full scale (``Priors.n_saturated``; whole frame when only the
                       count is known), else of intensity pixels >= ``CLIP_LEVEL``
     dolp_level        median degree of linear polarization: changes with light, belt and lens, not with exposure
+    dark_level        0.5th percentile of the intensity: the frame's darkest pixels (shadows, a dark belt). A camera's
+                      black level the station is not told adds to every code, so it lifts this floor by the
+                      pedestal's share of full scale, where an exposure change only scales it (a 256-code pedestal
+                      in 12 bits: 0.03 -> 0.09; docs/results/2026-12-04-ship-otherwise.md)
 """
 
 from __future__ import annotations
@@ -25,7 +29,9 @@ import numpy as np
 CLIP_LEVEL = 0.99
 """Intensity at or above which a pixel counts as clipped when the mosaic's saturation count is not known."""
 
-STAT_NAMES = ("median_level", "high_level", "clipped_fraction", "dolp_level")
+STAT_NAMES = ("median_level", "high_level", "clipped_fraction", "dolp_level", "dark_level")
+DARK_PERCENTILE = 0.5
+"""Percentile of the intensity ``dark_level`` reads: low enough for the shadows, high enough not to be one pixel."""
 
 
 @dataclass(frozen=True)
@@ -36,6 +42,8 @@ class FrameStatistics:
     high_level: float
     clipped_fraction: float
     dolp_level: float
+    dark_level: float | None = None
+    """None where not measured; a range over such frames leaves it out (``StatisticsRange.from_frames``)."""
 
     def as_dict(self) -> dict[str, float]:
         return asdict(self)
@@ -73,7 +81,7 @@ def frame_statistics(priors: Mapping[str, np.ndarray], box: tuple[int, int, int,
     inten = np.asarray(priors["intensity"], dtype=np.float32)
     top, left, h, w = box if box is not None else centre_square(*inten.shape)
     region = inten[top:top + h, left:left + w]
-    median, high = (float(v) for v in np.percentile(region, (50, 95)))
+    dark, median, high = (float(v) for v in np.percentile(region, (DARK_PERCENTILE, 50, 95)))
     n_sat = getattr(priors, "n_saturated", None)
     if raw is not None:
         full = 2 ** (bit_depth or raw.dtype.itemsize * 8) - 1
@@ -84,7 +92,7 @@ def frame_statistics(priors: Mapping[str, np.ndarray], box: tuple[int, int, int,
     else:
         clipped = float(np.count_nonzero(region >= CLIP_LEVEL)) / max(region.size, 1)
     dolp = float(np.median(np.asarray(priors["dolp"])[top:top + h, left:left + w])) if "dolp" in priors else 0.0
-    return FrameStatistics(median, high, min(clipped, 1.0), dolp)
+    return FrameStatistics(median, high, min(clipped, 1.0), dolp, dark)
 
 
 @dataclass(frozen=True)
@@ -110,7 +118,7 @@ class StatisticsRange:
         if not rows:
             raise ValueError("a statistics range needs at least one frame")
         out: dict[str, dict[str, float]] = {k: {} for k in cls.KEYS}
-        for name in STAT_NAMES:
+        for name in (n for n in STAT_NAMES if all(r[n] is not None for r in rows)):
             values = np.percentile(np.array([r[name] for r in rows], dtype=np.float64), cls.PERCENTILES)
             for key, v in zip(cls.KEYS, values, strict=True):
                 out[key][name] = float(v)

@@ -55,10 +55,19 @@ def test_drift_warning_on_a_brightness_step_then_back() -> None:
     assert mon.warning is None
 
 
+def test_a_pedestal_lifts_the_dark_level_an_exposure_scales_it() -> None:
+    rng = np.random.default_rng(3)
+    base, lit, ped = (frame_statistics(p, raw=r) for r, p in (_frame(1.0, rng), _frame(1.3, rng),
+                                                               _frame(1.0, rng, pedestal=256 / 4095)))
+    assert 0.0 < base.dark_level < base.median_level
+    assert lit.dark_level == pytest.approx(1.3 * base.dark_level, rel=0.15)
+    assert ped.dark_level - base.dark_level == pytest.approx(256 / 4095, abs=0.01)
+
+
 def test_an_unstated_black_level_is_named_in_the_warning() -> None:
-    """A pedestal the station is not told reads as light: the frames look brighter than trained, and the advice
-    must not stop at lowering the exposure (docs/results/2026-12-04-ship-otherwise.md: 256 codes in 12 bits cost
-    the shipped file 5.4 points of defective parts caught, unnoticed by its good parts)."""
+    """A pedestal the station is not told reads as light (docs/results/2026-12-04-ship-otherwise.md: 256 codes in 12
+    bits cost the shipped file 5.4 points of defective parts caught, unnoticed by its good parts): the darkest pixels
+    leave the trained range and the advice names the black level, not only a lower exposure."""
     rng = np.random.default_rng(2)
     trained = StatisticsRange.from_frames([frame_statistics(p, raw=r) for r, p in
                                            (_frame(g, rng) for g in rng.uniform(0.95, 1.05, 40))])
@@ -66,8 +75,21 @@ def test_an_unstated_black_level_is_named_in_the_warning() -> None:
     texts = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(1.0, rng, pedestal=256 / 4095)
                                                                   for _ in range(20))]
     warned = [t for t in texts if t]
-    assert len(warned) == 1 and "frames brighter than trained" in warned[0]
+    assert len(warned) == 1 and "dark_level" in warned[0] and "darkest pixels brighter than trained" in warned[0]
     assert "[camera] black_level" in warned[0] and "station defect-pixels" in warned[0]
+    assert "frames brighter than trained" in warned[0] and "black level" in warned[0].split("frames brighter")[1]
+
+
+def test_a_range_recorded_before_the_dark_level_still_checks_the_others() -> None:
+    rng = np.random.default_rng(4)
+    d = StatisticsRange.from_frames([frame_statistics(p, raw=r) for r, p in (_frame(1.0, rng) for _ in range(20))])
+    old = StatisticsRange.from_dict({k: {n: v for n, v in getattr(d, k).items() if n != "dark_level"}
+                                     for k in StatisticsRange.KEYS})
+    mon = DriftMonitor(old, window=10, min_frames=5)
+    texts = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(0.6, rng) for _ in range(10))]
+    warned = [t for t in texts if t]
+    assert len(warned) == 1 and "median_level" in warned[0] and "dark_level" not in warned[0]
+    assert "dark_level" not in old.describe()
 
 
 def test_drift_monitor_needs_a_window() -> None:
@@ -76,3 +98,14 @@ def test_drift_monitor_needs_a_window() -> None:
         DriftMonitor(r, window=5, min_frames=6)
     with pytest.raises(ValueError):
         StatisticsRange.from_frames([])
+
+
+def test_the_shipped_file_records_the_darkest_pixels() -> None:
+    """The shipped file's trained range has the dark level (recorded after the fit, from the same 375 frames:
+    docs/results/2026-12-04-ship-otherwise/record_dark_level.py), so a station on it warns of a pedestal."""
+    import json
+    from pathlib import Path
+
+    meta = json.loads((Path(__file__).parents[2] / "model/weights/default.json").read_text())
+    r = trained_range(meta)
+    assert r is not None and 0.0 < r.q1["dark_level"] < r.q3["dark_level"] < 256 / 4095
