@@ -79,6 +79,25 @@ def bars(out: dict) -> None:
               f"bar 2 (caught vs own as built {own:.1%} and E63) {'holds' if bar2 else 'FAILS'}")
 
 
+def stated() -> dict | None:
+    """After the reads (not in the plan): S on the pedestal set with its black level stated in the set's manifest,
+    as `[camera] black_level` states it to the station, against S on the set as built (the same parts)."""
+    if not (HERE / "eval" / "S-pedestal256bl" / "scores.csv").exists():
+        return None
+    built, bl = load("S", "built"), load("S", "pedestal256bl")
+    assert (built["index"] == bl["index"]).all()
+    y = built["label"]
+    res = {}
+    for name, d in (("built", built), ("pedestal256bl", bl)):
+        rej = d["score"] > d["threshold"]
+        res[name] = {"good_rejected": int(rej[y == 0].sum()), "caught": float(rej[y == 1].mean()),
+                     "auroc": auroc(y, d["score"])}
+    print(f"S, black level 256 stated: {res['pedestal256bl']['good_rejected']} of {int((y == 0).sum())} good parts "
+          f"rejected, {res['pedestal256bl']['caught']:.1%} caught, image AUROC {res['pedestal256bl']['auroc']:.3f} "
+          f"(as built: {res['built']['good_rejected']}, {res['built']['caught']:.1%}, {res['built']['auroc']:.3f})")
+    return res
+
+
 def main() -> None:
     out: dict = {}
     print("| rendering | good | S: good rejected | E63: good rejected | only S / only E63 (p) | S: caught | "
@@ -105,6 +124,8 @@ def main() -> None:
     print("\ncells: caught at the file's threshold (image AUROC against the rendering's good parts)\n")
     if "built" in out:
         bars(out)
+    if (res := stated()) is not None:
+        out["pedestal256_stated"] = res
     (HERE / "read.json").write_text(json.dumps(out, indent=1))
 
 
