@@ -45,11 +45,12 @@ class FrameStatistics:
     dark_level: float | None = None
     """None where not measured; a range over such frames leaves it out (``StatisticsRange.from_frames``)."""
 
-    def as_dict(self) -> dict[str, float]:
+    def as_dict(self) -> dict[str, float | None]:
         return asdict(self)
 
     def describe(self) -> str:
-        return (f"level median {self.median_level:.3f} p95 {self.high_level:.3f}, clipped "
+        dark = f" p0.5 {self.dark_level:.3f}" if self.dark_level is not None else ""
+        return (f"level median {self.median_level:.3f} p95 {self.high_level:.3f}{dark}, clipped "
                 f"{100 * self.clipped_fraction:.2f} %, DoLP median {self.dolp_level:.3f}")
 
 
