@@ -18,7 +18,8 @@ HERE = Path(__file__).parent
 SETS = {"built": "as built", "chamfer03": "edges chamfered 0.3 mm", "round03": "edges rounded 0.3 mm (no chips)",
         "motion2": "moving 2 px in the exposure", "motion4": "moving 4 px in the exposure",
         "pedestal256": "black level 256 codes, unstated", "camera": "polarizer, gain spread and pedestal 64",
-        "hot30": "30 pixels stuck at full scale, unmapped"}
+        "hot30": "30 pixels stuck at full scale, unmapped", "blurff": "a lens blur of 0.7 px (addendum)",
+        "allff": "that blur, vignetting and three sensor imperfections (addendum)"}
 MODELS = ("S", "E63")
 TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
 

@@ -61,6 +61,19 @@ json.dump(m, open(sys.argv[2], 'w'), indent=1)" data/so-pedestal256-1196/manifes
     fi
     judge S model/weights/default pedestal256bl
 fi
+if [ "$STEP" = lens ] || [ "$STEP" = all ]; then  # the addendum: re-exposed through the lens as plan 68 did
+    for kind in blur all; do
+        if [ ! -f "$R/so-${kind}ff-1196.done" ]; then
+            rm -rf "data/so-${kind}ff-1196"
+            "$BIN/python" docs/results/2026-11-29-fireflies/reexpose.py data/so-built-1196 "data/so-${kind}ff-1196" \
+                $kind > "$R/reexpose-$kind.log" 2>&1
+            touch "$R/so-${kind}ff-1196.done"
+        fi
+        judge S model/weights/default ${kind}ff & a=$!
+        judge E63 $E63 ${kind}ff
+        wait $a
+    done
+fi
 if [ "$STEP" = eval ] || [ "$STEP" = all ]; then
     for set in built chamfer03 round03 motion2 motion4 pedestal256 camera hot30; do
         judge S model/weights/default $set & a=$!
