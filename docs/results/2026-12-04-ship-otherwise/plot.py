@@ -14,7 +14,7 @@ import numpy as np
 HERE = Path(__file__).parent
 NAMES = {"built": "as built", "chamfer03": "chamfer\n0.3 mm", "round03": "round\n0.3 mm", "motion2": "moving\n2 px",
          "motion4": "moving\n4 px", "pedestal256": "pedestal\n256", "camera": "sensor\npatterns",
-         "hot30": "30 hot\npixels"}
+         "hot30": "30 hot\npixels", "blurff": "lens blur\n0.7 px", "allff": "blur and\nimperfections"}
 
 
 def main() -> None:
