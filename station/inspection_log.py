@@ -37,13 +37,13 @@ WAL_CHECKPOINT_PAGES = 64
 """Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
 WAL_SIZE_LIMIT_BYTES = 256 * 1024
 """... and truncate it back to this size afterwards: a small disk holds rows, not a stale WAL."""
+LOGGED_STATISTICS = ("median_level", "high_level", "clipped_fraction", "dolp_level")
+"""The frame statistics (``model.priors.frame_stats``) a row keeps; the others reach the log through ``drift``."""
 ADDED_IN_VERSION = {2: ("ground_truth_present",),
-                    3: ("median_level", "high_level", "clipped_fraction", "dolp_level", "drift"),
+                    3: (*LOGGED_STATISTICS, "drift"),
                     4: ("highlight_fraction", "noise_level"),
                     5: ("second_score", "second_threshold", "second_model_id", "second_frame_id")}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
-LOGGED_STATISTICS = ("median_level", "high_level", "clipped_fraction", "dolp_level")
-"""The frame statistics (``model.priors.frame_stats``) a row keeps; the others reach the log through ``drift``."""
 READABLE_VERSIONS = (1, 2, 3, 4, 5)
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""

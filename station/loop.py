@@ -610,8 +610,8 @@ class Station:
             decision_ms=timings.get("decision"), io_ms=None, total_ms=1e3 * (t_decided - part.t_trigger),
             io_delivered=False if tell_plc else None, ground_truth_label=truth,
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path,
-            **{k: v for k, v in (inspection.frame_stats.as_dict() if inspection is not None and inspection.frame_stats
-                                 else {}).items() if k in LOGGED_STATISTICS},
+            **({k: getattr(inspection.frame_stats, k) for k in LOGGED_STATISTICS}
+               if inspection is not None and inspection.frame_stats else {}),
             drift=self.drift.warning if self.drift is not None else None,
             **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks},
             second_score=second.score if second is not None else None, second_threshold=self.second_threshold,
