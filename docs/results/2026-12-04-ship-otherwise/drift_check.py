@@ -11,6 +11,7 @@ import numpy as np
 
 from model.priors.api import compute_priors
 from model.priors.frame_stats import frame_statistics
+from model.priors.sensor_correction import SensorCorrection
 from station.drift import DriftMonitor, trained_range
 
 FRAMES = 120
@@ -22,10 +23,9 @@ def main() -> None:
     for name in ("so-built-1196", "so-pedestal256-1196", "so-pedestal256bl-1196", "so-camera-1196"):
         root = Path("data") / name
         level = json.loads((root / "manifest.json").read_text()).get("black_level", 0)
-        mon, stats, said = DriftMonitor(trained), [], []
+        mon, stats, said, correct = DriftMonitor(trained), [], [], SensorCorrection.of(level)
         for i, f in enumerate(sorted(root.glob("samples/*/raw.png"))[:FRAMES]):
-            raw = cv2.imread(str(f), cv2.IMREAD_UNCHANGED).astype(np.int32)
-            raw = np.clip(raw - level, 0, None).astype(np.uint16)  # as the station removes a stated black level
+            raw = correct(cv2.imread(str(f), cv2.IMREAD_UNCHANGED), 12)  # the station's removal of a stated level
             st = frame_statistics(compute_priors(raw, priors=("intensity", "dolp"), bit_depth=12), raw=raw,
                                   bit_depth=12)
             stats.append(st.median_level)
