@@ -109,3 +109,23 @@ def test_the_shipped_file_records_the_darkest_pixels() -> None:
     meta = json.loads((Path(__file__).parents[2] / "model/weights/default.json").read_text())
     r = trained_range(meta)
     assert r is not None and 0.0 < r.q1["dark_level"] < r.q3["dark_level"] < 256 / 4095
+
+
+def test_edge_level_falls_with_a_lens_blur_and_ignores_exposure():
+    """A frame of sharp edges read through a Gaussian blur of 1 px loses most of its 1-pixel steps (erf(0.5 / sqrt 2)
+    = 0.38 of an edge's height), whatever the exposure; noise alone sets a floor under it."""
+    import cv2
+
+    from model.priors.frame_stats import edge_level
+
+    rng = np.random.default_rng(0)
+    yy, xx = np.mgrid[0:240, 0:240]
+    sharp = np.where(((xx // 17) + (yy // 23)) % 2 == 0, 0.2, 0.6).astype(np.float32)  # a checkerboard of edges
+    noise = rng.normal(0, 0.004, sharp.shape).astype(np.float32)
+    blurred = cv2.GaussianBlur(sharp, (0, 0), 1.0)
+    e_sharp, e_blur = edge_level(sharp + noise), edge_level(blurred + noise)
+    assert 0.5 < e_sharp < 0.8  # a 0.4 step over a 0.6 highlight level
+    assert e_blur < 0.6 * e_sharp
+    assert edge_level(2 * (sharp + noise)) == pytest.approx(e_sharp, rel=1e-5)
+    assert edge_level(np.zeros((64, 64), np.float32)) == 0.0
+    assert edge_level(0.3 + noise) < 0.1 * e_sharp
