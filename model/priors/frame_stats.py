@@ -100,17 +100,18 @@ def frame_statistics(priors: Mapping[str, np.ndarray], box: tuple[int, int, int,
     return FrameStatistics(median, high, min(clipped, 1.0), dolp, dark)
 
 
-def edge_level(intensity: np.ndarray, box: tuple[int, int, int, int] | None = None, stride: int = EDGE_STRIDE,
-               high: float | None = None) -> float:
-    """How sharp the frame is: the ``EDGE_PERCENTILE`` of the intensity's 1-pixel steps, divided by ``high`` (the
-    region's 95th intensity percentile when not given), so an exposure change does not move it. ``intensity``: the
-    unpolarized intensity at the mosaic's resolution (full-scale units, finite); ``box``: (top, left, height, width),
-    default the centre square. A step is the larger of the right and the lower neighbour's difference, taken at anchor
-    pixels every ``stride`` px (a full-resolution frame is needed, read at a ninth of its pixels).
+def edge_level(intensity: np.ndarray, box: tuple[int, int, int, int] | None = None, stride: int = EDGE_STRIDE
+               ) -> float:
+    """How sharp the frame is: the ``EDGE_PERCENTILE`` of the intensity's 1-pixel steps over the 95th percentile of
+    the intensity at the same anchors (the region's highlight level), so an exposure change does not move it.
+    ``intensity``: the unpolarized intensity at the mosaic's resolution (full-scale units, finite); ``box``: (top,
+    left, height, width), default the centre square. A step is the larger of the right and the lower neighbour's
+    difference, taken at anchor pixels every ``stride`` px: a full-resolution frame is needed, read at a ninth of its
+    pixels, and the value does not depend on how the other statistics were sampled.
 
     A lens blur of sigma s (px) lowers a sharp edge's 1-pixel step to about erf(0.5 / (sqrt(2) s)) of the edge's
     height (0.38 at 1 px, 0.26 at 1.5 px), and a moving part lowers it along its motion; an exposure change scales the
-    steps and ``high`` alike. 0 for a frame with no light (``high`` <= 0)."""
+    steps and the highlight level alike. 0 for a frame with no light."""
     inten = np.asarray(intensity, dtype=np.float32)
     top, left, h, w = box if box is not None else centre_square(*inten.shape)
     if h < 2 or w < 2:
@@ -119,8 +120,7 @@ def edge_level(intensity: np.ndarray, box: tuple[int, int, int, int] | None = No
     right = inten[top:top + h - 1:stride, left + 1:left + w:stride]
     down = inten[top + 1:top + h:stride, left:left + w - 1:stride]
     steps = np.maximum(np.abs(right - here), np.abs(down - here))
-    if high is None:
-        high = float(np.percentile(inten[top:top + h, left:left + w], 95))
+    high = float(np.percentile(here, 95))
     return float(np.percentile(steps, EDGE_PERCENTILE)) / high if high > 0 else 0.0
 
 
