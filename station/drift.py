@@ -15,7 +15,7 @@ import numpy as np
 from model.priors.frame_stats import STAT_NAMES, FrameStatistics, StatisticsRange
 
 TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction": 0.002, "dolp_level": 0.01,
-                   "dark_level": 0.005}
+                   "dark_level": 0.005, "edge_level": 0.005}
 """Smallest tolerance per statistic (full-scale units or shares): a model trained on near-identical frames must
 not warn at every noise flicker."""
 
@@ -35,6 +35,11 @@ ADVICE = {
                              "fills the shadows"),
     ("dark_level", "low"): ("darkest pixels darker than trained: [camera] black_level set above the camera's, or the "
                             "light dimmed"),
+    ("edge_level", "low"): ("frames softer than trained: check the lens's focus and that the lens is clean (dust, a "
+                            "film, condensation); a part moving during the exposure softens them too: shorten "
+                            "[camera] exposure_us"),
+    ("edge_level", "high"): ("frames sharper or noisier than trained: more gain_db or less light adds noise; a lens "
+                             "focused since the model's frames were taken: re-adapt (station adapt)"),
 }
 
 

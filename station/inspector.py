@@ -153,9 +153,8 @@ class Inspector:
             result.invalid_fraction = max(n.n_nonfinite + n.n_out_of_range for n in norms) / frame.raw.size
             result.n_saturated = max(n.n_saturated for n in norms)
             if self.statistics:
-                k = self.STATS_STRIDE
-                result.frame_stats = frame_statistics({n: result.priors[n][::k, ::k] for n in ("intensity", "dolp")},
-                                                      raw=raws[0][::k, ::k], bit_depth=bits)
+                result.frame_stats = frame_statistics({n: result.priors[n] for n in ("intensity", "dolp")},
+                                                      raw=raws[0], bit_depth=bits, stride=self.STATS_STRIDE)
             t_priors = time.perf_counter()
             result.timings_ms["priors"] = 1e3 * (t_priors - t_demosaic)
             self._name_slow_priors(frame, 1e3 * (t_priors - t))

@@ -17,6 +17,9 @@ no object mask is needed, so a station can compute them on every frame):
                       black level the station is not told adds to every code, so it lifts this floor by the
                       pedestal's share of full scale, where an exposure change only scales it (a 256-code pedestal
                       in 12 bits: 0.03 -> 0.09; docs/results/2026-12-04-ship-otherwise.md)
+    edge_level        the intensity's 99th-percentile 1-pixel step over ``high_level``: how sharp the frame is. A lens
+                      out of focus or a moving part lowers it; an exposure change does not move it (``edge_level``;
+                      docs/results/2026-12-04-focus.md)
 """
 
 from __future__ import annotations
@@ -29,13 +32,17 @@ import numpy as np
 CLIP_LEVEL = 0.99
 """Intensity at or above which a pixel counts as clipped when the mosaic's saturation count is not known."""
 
-STAT_NAMES = ("median_level", "high_level", "clipped_fraction", "dolp_level", "dark_level")
+STAT_NAMES = ("median_level", "high_level", "clipped_fraction", "dolp_level", "dark_level", "edge_level")
 DARK_PERCENTILE = 0.5
 """Percentile of the intensity ``dark_level`` reads: low enough for the shadows, high enough not to be one pixel."""
 EDGE_PERCENTILE = 99.0
 """Percentile of the 1-pixel steps ``edge_level`` reads: the part's edges and the panel's stripes, not the noise."""
 EDGE_STRIDE = 3
-"""Anchor spacing (px) of ``edge_level``'s steps: a ninth of the pixels, the same wherever it is computed."""
+"""Anchor spacing of ``edge_level``'s steps, in steps: a ninth of the pixels, the same wherever it is computed."""
+EDGE_SCALE = 480
+"""Side (px) of the centre square at which ``edge_level``'s step is 1 px: the 640 x 480 renders'. On a larger frame
+of the same scene the step spans side / 480 px (4 px on the IMX250MZR's 2048 rows), so a frame's sharpness is read at
+the scene scale the model was trained at, not at the sensor's pixel pitch."""
 
 
 @dataclass(frozen=True)
@@ -48,14 +55,17 @@ class FrameStatistics:
     dolp_level: float
     dark_level: float | None = None
     """None where not measured; a range over such frames leaves it out (``StatisticsRange.from_frames``)."""
+    edge_level: float | None = None
+    """As ``dark_level``: None where not measured."""
 
     def as_dict(self) -> dict[str, float | None]:
         return asdict(self)
 
     def describe(self) -> str:
         dark = f" p0.5 {self.dark_level:.3f}" if self.dark_level is not None else ""
+        edge = f", edges {self.edge_level:.3f}" if self.edge_level is not None else ""
         return (f"level median {self.median_level:.3f} p95 {self.high_level:.3f}{dark}, clipped "
-                f"{100 * self.clipped_fraction:.2f} %, DoLP median {self.dolp_level:.3f}")
+                f"{100 * self.clipped_fraction:.2f} %, DoLP median {self.dolp_level:.3f}{edge}")
 
 
 def centre_square(height: int, width: int, frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
@@ -77,48 +87,54 @@ def centre_square(height: int, width: int, frame_aspect: float = 0.0) -> tuple[i
 
 
 def frame_statistics(priors: Mapping[str, np.ndarray], box: tuple[int, int, int, int] | None = None,
-                     raw: np.ndarray | None = None, bit_depth: int | None = None) -> FrameStatistics:
+                     raw: np.ndarray | None = None, bit_depth: int | None = None, stride: int = 1) -> FrameStatistics:
     """Statistics of one frame's priors (``model.priors.compute_priors`` output with "intensity" and "dolp", at
     the mosaic's resolution) over ``box`` (top, left, height, width; default the centre square).
 
+    ``stride``: the levels read every ``stride``-th pixel of every ``stride``-th row of the box (the station reads a
+    ninth: ``station.inspector.Inspector.STATS_STRIDE``); ``edge_level`` always reads its own anchors
+    (``EDGE_STRIDE``), so it comes out the same at any ``stride``.
     Clipped share, best source first: the ``raw`` mosaic's codes at full scale (``bit_depth``, default the dtype's)
     in the box; a ``Priors`` result's saturation count over the whole frame; intensity >= ``CLIP_LEVEL``."""
     inten = np.asarray(priors["intensity"], dtype=np.float32)
-    top, left, h, w = box if box is not None else centre_square(*inten.shape)
-    region = inten[top:top + h, left:left + w]
+    top, left, h, w = box = box if box is not None else centre_square(*inten.shape)
+    region = inten[top:top + h:stride, left:left + w:stride]
     dark, median, high = (float(v) for v in np.percentile(region, (DARK_PERCENTILE, 50, 95)))
     n_sat = getattr(priors, "n_saturated", None)
     if raw is not None:
         full = 2 ** (bit_depth or raw.dtype.itemsize * 8) - 1
-        patch = raw[top:top + h, left:left + w]
+        patch = raw[top:top + h:stride, left:left + w:stride]
         clipped = float(np.count_nonzero(patch >= full)) / max(patch.size, 1)
     elif n_sat is not None:
         clipped = float(n_sat) / inten.size  # mosaic and full-resolution priors have the same pixel count
     else:
         clipped = float(np.count_nonzero(region >= CLIP_LEVEL)) / max(region.size, 1)
-    dolp = float(np.median(np.asarray(priors["dolp"])[top:top + h, left:left + w])) if "dolp" in priors else 0.0
-    return FrameStatistics(median, high, min(clipped, 1.0), dolp, dark)
+    dolp = (float(np.median(np.asarray(priors["dolp"])[top:top + h:stride, left:left + w:stride]))
+            if "dolp" in priors else 0.0)
+    return FrameStatistics(median, high, min(clipped, 1.0), dolp, dark, edge_level(inten, box))
 
 
-def edge_level(intensity: np.ndarray, box: tuple[int, int, int, int] | None = None, stride: int = EDGE_STRIDE
-               ) -> float:
-    """How sharp the frame is: the ``EDGE_PERCENTILE`` of the intensity's 1-pixel steps over the 95th percentile of
-    the intensity at the same anchors (the region's highlight level), so an exposure change does not move it.
+def edge_level(intensity: np.ndarray, box: tuple[int, int, int, int] | None = None) -> float:
+    """How sharp the frame is: the ``EDGE_PERCENTILE`` of the intensity's steps over the 95th percentile of the
+    intensity at the same anchors (the region's highlight level), so an exposure change does not move it.
     ``intensity``: the unpolarized intensity at the mosaic's resolution (full-scale units, finite); ``box``: (top,
-    left, height, width), default the centre square. A step is the larger of the right and the lower neighbour's
-    difference, taken at anchor pixels every ``stride`` px: a full-resolution frame is needed, read at a ninth of its
-    pixels, and the value does not depend on how the other statistics were sampled.
+    left, height, width), default the centre square. A step is the larger of the differences to the right and the
+    lower neighbour ``d`` = max(1, round(side / ``EDGE_SCALE``)) px away (1 px on the renders), taken at anchors every
+    ``EDGE_STRIDE`` steps: about 25,000 anchors on any frame, so the value does not depend on how the other
+    statistics were sampled and costs the same on a large sensor.
 
-    A lens blur of sigma s (px) lowers a sharp edge's 1-pixel step to about erf(0.5 / (sqrt(2) s)) of the edge's
-    height (0.38 at 1 px, 0.26 at 1.5 px), and a moving part lowers it along its motion; an exposure change scales the
-    steps and the highlight level alike. 0 for a frame with no light."""
+    A lens blur of sigma s (steps) lowers a sharp edge's step to about erf(0.5 / (sqrt(2) s)) of the edge's height
+    (0.38 at 1, 0.26 at 1.5), and a moving part lowers it along its motion; an exposure change scales the steps and
+    the highlight level alike. 0 for a frame with no light."""
     inten = np.asarray(intensity, dtype=np.float32)
     top, left, h, w = box if box is not None else centre_square(*inten.shape)
-    if h < 2 or w < 2:
+    d = max(1, round(min(h, w) / EDGE_SCALE))
+    if h <= d or w <= d:
         return 0.0
-    here = inten[top:top + h - 1:stride, left:left + w - 1:stride]
-    right = inten[top:top + h - 1:stride, left + 1:left + w:stride]
-    down = inten[top + 1:top + h:stride, left:left + w - 1:stride]
+    k = EDGE_STRIDE * d
+    here = inten[top:top + h - d:k, left:left + w - d:k]
+    right = inten[top:top + h - d:k, left + d:left + w:k]
+    down = inten[top + d:top + h:k, left:left + w - d:k]
     steps = np.maximum(np.abs(right - here), np.abs(down - here))
     high = float(np.percentile(here, 95))
     return float(np.percentile(steps, EDGE_PERCENTILE)) / high if high > 0 else 0.0

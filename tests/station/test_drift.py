@@ -3,6 +3,7 @@ and is reported once, with the camera setting to turn; back in range is reported
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
 import pytest
 
@@ -13,8 +14,11 @@ from model.priors.testing import detailed_stokes
 from station.drift import DriftMonitor, trained_range
 
 
-def _frame(gain: float, rng: np.random.Generator, bits: int = 8, pedestal: float = 0.0) -> tuple[np.ndarray, object]:
+def _frame(gain: float, rng: np.random.Generator, bits: int = 8, pedestal: float = 0.0, blur_px: float = 0.0
+           ) -> tuple[np.ndarray, object]:
     s0, s1, s2 = detailed_stokes(64, 96)
+    if blur_px:  # a lens out of focus: the light blurred before the polarizers
+        s0, s1, s2 = (cv2.GaussianBlur(np.asarray(s, np.float32), (0, 0), blur_px) for s in (s0, s1, s2))
     full = 2**bits - 1
     ideal = stokes_to_mosaic(s0, s1, s2) * 0.8 * gain + pedestal + rng.normal(0, 0.01, (64, 96))
     raw = np.clip(np.round(ideal * full), 0, full).astype(np.uint8 if bits == 8 else np.uint16)
@@ -100,7 +104,7 @@ def test_drift_monitor_needs_a_window() -> None:
         StatisticsRange.from_frames([])
 
 
-def test_the_shipped_file_records_the_darkest_pixels() -> None:
+def test_the_shipped_file_records_the_darkest_pixels_and_the_edges() -> None:
     """The shipped file's trained range has the dark level (recorded after the fit, from the same 375 frames:
     docs/results/2026-12-04-ship-otherwise/record_dark_level.py), so a station on it warns of a pedestal."""
     import json
@@ -109,13 +113,15 @@ def test_the_shipped_file_records_the_darkest_pixels() -> None:
     meta = json.loads((Path(__file__).parents[2] / "model/weights/default.json").read_text())
     r = trained_range(meta)
     assert r is not None and 0.0 < r.q1["dark_level"] < r.q3["dark_level"] < 256 / 4095
+    # and the edges, recorded the same way: the monitor's bounds lie between seed 1196's frames through a 1 px lens
+    # blur (window median 0.168) and the softest sharp set measured (chamfered 0.3 mm, 0.202): focus-check.txt
+    low, high = DriftMonitor(r).bounds("edge_level")
+    assert 0.168 < low < 0.202 and high > 0.219
 
 
 def test_edge_level_falls_with_a_lens_blur_and_ignores_exposure():
     """A frame of sharp edges read through a Gaussian blur of 1 px loses most of its 1-pixel steps (erf(0.5 / sqrt 2)
     = 0.38 of an edge's height), whatever the exposure; noise alone sets a floor under it."""
-    import cv2
-
     from model.priors.frame_stats import edge_level
 
     rng = np.random.default_rng(0)
@@ -129,3 +135,45 @@ def test_edge_level_falls_with_a_lens_blur_and_ignores_exposure():
     assert edge_level(2 * (sharp + noise)) == pytest.approx(e_sharp, rel=1e-5)
     assert edge_level(np.zeros((64, 64), np.float32)) == 0.0
     assert edge_level(0.3 + noise) < 0.1 * e_sharp
+
+
+def test_the_station_reads_edge_level_as_training_does() -> None:
+    """The station reads the levels at a ninth of the pixels (``Inspector.STATS_STRIDE``), training at all of them;
+    edge_level reads its own anchors, so the two agree exactly and a range recorded in training holds live."""
+    rng = np.random.default_rng(5)
+    raw, pri = _frame(1.0, rng)
+    full, ninth = frame_statistics(pri, raw=raw), frame_statistics(pri, raw=raw, stride=3)
+    assert ninth.edge_level == full.edge_level > 0
+    assert ninth.median_level == pytest.approx(full.median_level, rel=0.05)
+
+
+def test_a_soft_lens_is_named_in_the_warning() -> None:
+    """A lens out of focus leaves every level where it was and softens the edges (docs/results/2026-12-04-focus.md):
+    edge_level leaves the trained range and the advice names the focus."""
+    rng = np.random.default_rng(6)
+    trained = StatisticsRange.from_frames([frame_statistics(p, raw=r) for r, p in
+                                           (_frame(g, rng) for g in rng.uniform(0.95, 1.05, 40))])
+    mon = DriftMonitor(trained, window=20, min_frames=10)
+    assert [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(1.0, rng) for _ in range(20))] == [None] * 20
+    texts = [mon.update(frame_statistics(p, raw=r)) for r, p in (_frame(1.0, rng, blur_px=1.5) for _ in range(20))]
+    warned = [t for t in texts if t]  # on this small synthetic frame the blur later moves other levels too
+    assert warned and texts.index(warned[0]) < 12
+    assert "edge_level" in warned[0] and "frames softer than trained" in warned[0] and "focus" in warned[0]
+    assert "median_level" not in "".join(warned)  # an exposure is not what changed
+
+
+def test_edge_level_reads_the_scene_scale_not_the_pixel_pitch() -> None:
+    """The same scene through the same lens on a sensor four times as fine (the IMX250MZR's 2048 rows against the
+    renders' 480) reads about the same edge_level: the lens's blur spans four times the pixels there, and the steps
+    span side / 480 px, so a sharp native frame does not look soft against a range recorded on renders."""
+    from model.priors.frame_stats import edge_level
+
+    rng = np.random.default_rng(7)
+    v, u = (np.mgrid[0:1920, 0:1920] + 0.5) / 4  # the fine sensor's pixel centres in render px
+    a, b = u * np.cos(0.35) + v * np.sin(0.35), v * np.cos(0.35) - u * np.sin(0.35)  # edges at every phase
+    fine = np.where((np.floor(a / 17) + np.floor(b / 23)) % 2 == 0, 0.2, 0.6).astype(np.float32)
+    scene = cv2.resize(fine, (480, 480), interpolation=cv2.INTER_AREA)  # the renders' box pixel filter
+    for lens in (0.3, 1.0):  # the lens's blur, render px
+        small = cv2.GaussianBlur(scene, (0, 0), lens) + rng.normal(0, 0.004, scene.shape).astype(np.float32)
+        large = cv2.GaussianBlur(fine, (0, 0), 4 * lens) + rng.normal(0, 0.004, fine.shape).astype(np.float32)
+        assert edge_level(large) == pytest.approx(edge_level(small), rel=0.1)
