@@ -17,9 +17,10 @@ no object mask is needed, so a station can compute them on every frame):
                       black level the station is not told adds to every code, so it lifts this floor by the
                       pedestal's share of full scale, where an exposure change only scales it (a 256-code pedestal
                       in 12 bits: 0.03 -> 0.09; docs/results/2026-12-04-ship-otherwise.md)
-    edge_level        the intensity's 99th-percentile 1-pixel step over ``high_level``: how sharp the frame is. A lens
-                      out of focus or a moving part lowers it; an exposure change does not move it (``edge_level``;
-                      docs/results/2026-12-04-focus.md)
+    edge_level        how sharp the frame is: the 99th percentile of the intensity's steps between neighbours (1 px
+                      apart on the 640 x 480 renders, side / 480 px on a larger frame) over the highlight level. A
+                      lens out of focus or a moving part lowers it; an exposure change does not move it
+                      (``edge_level``; docs/results/2026-12-04-focus.md)
 """
 
 from __future__ import annotations
