@@ -19,27 +19,32 @@ TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction":
 """Smallest tolerance per statistic (full-scale units or shares): a model trained on near-identical frames must
 not warn at every noise flicker."""
 
+TONE = "; or the camera applies a gamma or look-up table: set its Gamma 1 and LUTEnable off"
+"""Said with every level's advice: a camera's tone curve moves the levels unevenly, as a black level, an exposure or
+noise would (docs/results/2026-12-04-gamma.md: a gamma of 0.8 read as a black level and cost 5 points of defects)."""
+
 ADVICE = {
-    ("median_level", "low"): "frames darker than trained: raise [camera] exposure_us (or gain_db), check the light",
+    ("median_level", "low"): ("frames darker than trained: raise [camera] exposure_us (or gain_db), check the light"
+                              + TONE),
     ("median_level", "high"): ("frames brighter than trained: lower [camera] exposure_us (or gain_db); if exposure "
                                "and gain are as trained, the camera adds a black level the station is not told: "
-                               "measure it (station defect-pixels) and set [camera] black_level"),
-    ("high_level", "low"): "highlights darker than trained: raise exposure_us, check the light",
-    ("high_level", "high"): "highlights brighter than trained: lower exposure_us (or gain_db)",
+                               "measure it (station defect-pixels) and set [camera] black_level" + TONE),
+    ("high_level", "low"): "highlights darker than trained: raise exposure_us, check the light" + TONE,
+    ("high_level", "high"): "highlights brighter than trained: lower exposure_us (or gain_db)" + TONE,
     ("clipped_fraction", "high"): "more clipped pixels than trained: lower exposure_us or gain_db",
     ("clipped_fraction", "low"): "fewer clipped pixels than trained",
     ("dolp_level", "low"): "polarization lower than trained: light, belt or lens changed; re-adapt (station adapt)",
     ("dolp_level", "high"): "polarization higher than trained: light, belt or lens changed; re-adapt (station adapt)",
     ("dark_level", "high"): ("darkest pixels brighter than trained: the camera adds a black level the station is not "
                              "told (measure it: station defect-pixels; set [camera] black_level), or stray light "
-                             "fills the shadows"),
+                             "fills the shadows" + TONE),
     ("dark_level", "low"): ("darkest pixels darker than trained: [camera] black_level set above the camera's, or the "
-                            "light dimmed"),
+                            "light dimmed" + TONE),
     ("edge_level", "low"): ("frames softer than trained: check the lens's focus and that the lens is clean (dust, a "
                             "film, condensation); a part moving during the exposure softens them too: shorten "
                             "[camera] exposure_us"),
     ("edge_level", "high"): ("frames sharper or noisier than trained: more gain_db or less light adds noise; a lens "
-                             "focused since the model's frames were taken: re-adapt (station adapt)"),
+                             "focused since the model's frames were taken: re-adapt (station adapt)" + TONE),
 }
 
 
