@@ -59,7 +59,8 @@ class DriftMonitor:
     with the trained frames' quartiles widened by ``margin`` times the interquartile range (at least
     ``TOLERANCE_FLOOR``): the median of 20 frames like the trained ones leaves their quartiles in about 3 % of
     windows, and leaves them widened by half the interquartile range far more rarely. ``update`` returns a warning
-    text when the window leaves the range (once per excursion) and a note when it is back; ``warning`` is the
+    text when the window leaves the range and when another statistic leaves it during the same excursion (a statistic
+    that comes back and leaves again is not said twice), and a note when every statistic is back; ``warning`` is the
     current state's text (None in range)."""
 
     def __init__(self, trained: StatisticsRange, window: int = 50, min_frames: int = 10, margin: float = 0.5):
@@ -70,7 +71,7 @@ class DriftMonitor:
         self.min_frames = min_frames
         self.margin = margin
         self.warning: str | None = None
-        self._last: list[tuple[str, str]] = []
+        self._said: set[tuple[str, str]] = set()
 
     def bounds(self, name: str) -> tuple[float, float]:
         lo, hi = self.trained.q1[name], self.trained.q3[name]
@@ -98,10 +99,12 @@ class DriftMonitor:
             text = "; ".join(f"{name} {med:.3f} outside trained {self.trained.q1[name]:.3f}.."
                              f"{self.trained.q3[name]:.3f} ({ADVICE[(name, side)]})" for name, side, med in out)
             text = f"drift over the last {len(self.window)} frames: {text}"
-            new = self.warning is None or [o[:2] for o in out] != self._last
-            self.warning, self._last = text, [o[:2] for o in out]
+            new = [o[:2] for o in out if o[:2] not in self._said]  # a statistic newly out in this excursion
+            self.warning = text
+            self._said |= set(new)
             return text if new else None
         if self.warning is not None:
-            self.warning, self._last = None, []
+            self.warning = None
+            self._said.clear()
             return f"frames back in the trained range over the last {len(self.window)} frames"
         return None

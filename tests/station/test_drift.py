@@ -197,3 +197,23 @@ def test_a_cameras_gamma_is_named_in_the_warning(gamma: float) -> None:
     warned = [t for t in texts if t]
     assert warned and texts.index(warned[0]) < 12
     assert all("gamma" in t and "Gamma 1" in t and "LUTEnable off" in t for t in warned)
+
+
+def test_a_statistic_hovering_at_its_bound_does_not_repeat_the_warning() -> None:
+    """One excursion, one warning: a second statistic that goes in and out of range while the first stays out keeps the
+    row's warning text current but does not log the warning again (through a gamma of 1.25 the highlights hovered at
+    their bound and the same warning was logged four times in 14 frames: docs/results/2026-12-04-gamma.md). A statistic
+    newly out is still said."""
+    trained = StatisticsRange.from_frames([FrameStatistics(0.3, 0.6, 0.0, 0.1, 0.02, 0.2 + 0.001 * i)
+                                           for i in range(-10, 11)])
+    mon = DriftMonitor(trained, window=1, min_frames=1)
+    soft = FrameStatistics(0.3, 0.6, 0.0, 0.1, 0.02, 0.1)  # edges out of range
+    soft_dark = FrameStatistics(0.3, 0.3, 0.0, 0.1, 0.02, 0.1)  # edges and highlights out
+    texts = [mon.update(s) for s in (soft, soft_dark, soft, soft_dark, soft)]
+    assert texts[0] is not None and "edge_level" in texts[0] and "high_level" not in texts[0]
+    assert texts[1] is not None and "high_level" in texts[1]  # newly out: said
+    assert texts[2:] == [None, None, None]  # in and out again: not repeated
+    assert mon.warning is not None and "high_level" not in mon.warning  # the row's text follows the state
+    back = mon.update(FrameStatistics(0.3, 0.6, 0.0, 0.1, 0.02, 0.2))
+    assert back == "frames back in the trained range over the last 1 frames"
+    assert mon.update(soft) is not None  # a new excursion is said again
