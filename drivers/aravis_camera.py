@@ -53,6 +53,9 @@ NEUTRAL_FEATURES: tuple[tuple[str, int | bool], ...] = (
 """GenICam features set to these values where a camera has them (besides binning 1x1): each would change which
 polarizer angle a pixel of the mosaic holds."""
 
+GAMMA_TOLERANCE = 1e-3
+"""A ``Gamma`` within this of 1 is linear (cameras store it as a float or in thousandths)."""
+
 GVCP_PORT = 3956
 _OPEN: weakref.WeakSet[AravisCamera] = weakref.WeakSet()
 
@@ -343,6 +346,7 @@ class AravisCamera(CameraBase):
             if cam.is_feature_available(feature):
                 setter = cam.set_boolean if isinstance(value, bool) else cam.set_integer
                 step(feature, value, setter, feature, value)
+        self._make_linear()
         sensor_w, sensor_h = cam.get_sensor_size()
         _, _, w, h = sensor_region(cfg, sensor_w, sensor_h)
         step("region", (cfg.offset_x, cfg.offset_y, w, h), cam.set_region, cfg.offset_x, cfg.offset_y, w, h)
@@ -379,6 +383,55 @@ class AravisCamera(CameraBase):
             else:
                 step("packet_size", "auto", cam.gv_auto_packet_size)
             log.info("camera %s: GigE Vision packet size %d B", self.name, cam.gv_get_packet_size())
+
+    def _make_linear(self) -> None:
+        """Turn the camera's tone curve off: the model reads linear codes, and a look-up table or a gamma another
+        tool left on bends them (a gamma of 0.8 cost the shipped file 5 points; docs/results/2026-12-04-gamma.md).
+        ``LUTEnable`` off; ``GammaEnable`` off where the camera has it, else (or if it stays on) ``Gamma`` 1. Each
+        change is logged and read back; a curve that stays on is a ``CameraConfigError`` naming the feature.
+        Features a camera lacks are skipped (a camera with none is taken as linear)."""
+        _, GLib, _ = _aravis()
+        cam = self._camera
+        has = cam.is_feature_available
+
+        def set_off(feature: str) -> bool:
+            """True when ``feature`` was on and is now off (False: stays on, or the write was refused)."""
+            log.warning("camera %s: %s was on (another tool left it); turning it off: the model reads linear "
+                        "codes", self.name, feature)
+            try:
+                cam.set_boolean(feature, False)
+            except GLib.Error as exc:
+                log.warning("camera %s: %s = off refused: %s", self.name, feature, exc.message)
+                return False
+            return not cam.get_boolean(feature)
+
+        def gamma() -> float:
+            return float(cam.get_float("Gamma")) if has("Gamma") else 1.0
+
+        def refuse(what: str, fix: str) -> None:
+            raise CameraConfigError(f"camera {self.name}: {what}: the model reads linear codes; {fix} (in the "
+                                    "camera's user set or with its vendor's tool)")
+
+        try:
+            if has("LUTEnable") and cam.get_boolean("LUTEnable") and not set_off("LUTEnable"):
+                refuse("LUTEnable stays on", "set LUTEnable off")
+            if abs(gamma() - 1.0) <= GAMMA_TOLERANCE:
+                return
+            enable = has("GammaEnable")
+            if enable and (not cam.get_boolean("GammaEnable") or set_off("GammaEnable")):
+                return
+            log.warning("camera %s: Gamma was %g (another tool left it); setting 1: the model reads linear codes",
+                        self.name, gamma())
+            try:
+                cam.set_float("Gamma", 1.0)
+            except GLib.Error as exc:
+                log.warning("camera %s: Gamma = 1 refused: %s", self.name, exc.message)
+            if abs(gamma() - 1.0) > GAMMA_TOLERANCE:
+                refuse(("GammaEnable stays on and " if enable else "") + f"Gamma stays {gamma():g}",
+                       "set GammaEnable off or Gamma 1" if enable else "set Gamma 1")
+        except GLib.Error as exc:
+            raise CameraConfigError(f"camera {self.name}: cannot read its tone features (LUTEnable, GammaEnable, "
+                                    f"Gamma): {exc.message}") from None
 
     def _bounded(self, value: float, bounds: Any, key: str) -> None:
         lo, hi = bounds

@@ -22,6 +22,10 @@ What the device offers (its GenICam XML is Aravis's fake-camera XML with the Pix
                   dome_segments`` and a software trigger, triggers each. A trigger the device never sees shifts
                   every later set by a frame (a real line's light sequencer, reset by the PLC per part, does not):
                   the station then rejects those parts, whose frames disagree.
+    tone          Gamma (float), GammaEnable and LUTEnable, the features a real camera bends its codes with; linear
+                  and writable unless ``tone`` (a ``ServedTone``) says how another tool left them. While on, the
+                  served codes are full (code / full)^Gamma, then, with LUTEnable, full (code / full)^0.5 (the
+                  served look-up table is fixed). A rehearsal of the driver's tone check (``AravisCamera``).
     ignored       ExposureTime and Gain (the frames are rendered), binning.
     frame ids     16-bit GigE Vision block ids, wrapping 65535 -> 1; timestamps in nanoseconds since
                   1970 (host clock at microsecond resolution), carried in the GVSP leader.
@@ -78,6 +82,9 @@ FORMAT_BY_BIT_DEPTH = {8: "Mono8", 10: "Mono10", 12: "Mono12", 14: "Mono14", 16:
 _REG_WIDTH, _REG_HEIGHT, _REG_PIXEL_FORMAT = 0x100, 0x104, 0x128
 _REG_SENSOR_WIDTH, _REG_SENSOR_HEIGHT = 0x11C, 0x118
 _GVBS_CURRENT_IP, _GVBS_MANUFACTURER, _GVBS_MODEL, _GVBS_INFO = 0x24, 0x48, 0x68, 0xA8
+_REG_GAMMA, _REG_GAMMA_ENABLE, _REG_LUT_ENABLE = 0x400, 0x404, 0x408  # free in the fake camera's memory
+LUT_GAMMA = 0.5
+"""The exponent of the served camera's fixed look-up table."""
 _SERIAL_MAX = 15  # bootstrap SerialNumber is 16 bytes with the terminating NUL
 _IFF_LOOPBACK = 0x8
 _SIOCGIFFLAGS, _SIOCGIFADDR = 0x8913, 0x8915
@@ -206,6 +213,31 @@ class ServedFrame:
     present: bool = True
 
 
+@dataclass(frozen=True)
+class ServedTone:
+    """The served camera's tone features as another tool (a vendor viewer, a saved user set) left them.
+
+    gamma         the ``Gamma`` feature; served codes are full (code / full)^gamma while it applies.
+    gamma_enable  the ``GammaEnable`` feature; None: the camera has none and its Gamma always applies.
+    lut_enable    the ``LUTEnable`` feature: codes then pass the fixed table full (code / full)^``LUT_GAMMA``.
+    locked        the names of those features that are read-only (a camera that cannot be set linear).
+    """
+
+    gamma: float = 1.0
+    gamma_enable: bool | None = False
+    lut_enable: bool = False
+    locked: tuple[str, ...] = ()
+
+
+def toned(codes: np.ndarray, full_scale: int, gamma: float) -> np.ndarray:
+    """A camera's tone curve on integer codes: round(full_scale (codes / full_scale)^gamma), same dtype; gamma 1
+    returns the codes unchanged."""
+    if gamma == 1.0:
+        return codes
+    x = codes.astype(np.float64) / full_scale
+    return np.clip(np.rint(full_scale * x ** gamma), 0, full_scale).astype(codes.dtype)
+
+
 def read_truth(path: str | Path) -> dict[int, ServedFrame]:
     """A ``truth_path`` file -> {device timestamp_ns: ServedFrame}, to score a run on the served camera."""
     out: dict[int, ServedFrame] = {}
@@ -217,16 +249,47 @@ def read_truth(path: str | Path) -> dict[int, ServedFrame]:
     return out
 
 
-def _genicam_xml(base: str, pixel_format: str, code: int) -> str:
+def _tone_xml(tone: ServedTone) -> str:
+    """GenICam nodes for ``Gamma`` (a 4-byte float register), ``LUTEnable`` and ``GammaEnable`` (1 on, 0 off; none
+    when ``tone.gamma_enable`` is None). A feature named in ``tone.locked`` reads its register through a swiss
+    knife, which has no write path: Aravis 0.8 does not enforce a register's AccessMode by default."""
+
+    def feature(kind: str, name: str, reg_kind: str, address: int, body: str) -> str:
+        register = (f'<{reg_kind} Name="{name}Register" NameSpace="Custom"><Address>{address:#x}</Address>'
+                    "<Length>4</Length><AccessMode>RW</AccessMode><pPort>Device</pPort>"
+                    + ("<Sign>Unsigned</Sign>" if reg_kind == "IntReg" else "")
+                    + f"<Endianess>BigEndian</Endianess></{reg_kind}>")
+        source = f"{name}Register"
+        if name in tone.locked:
+            knife = "IntSwissKnife" if reg_kind == "IntReg" else "SwissKnife"
+            register += (f'\n<{knife} Name="{name}Locked" NameSpace="Custom"><pVariable Name="R">{name}Register'
+                         f"</pVariable><Formula>R</Formula></{knife}>")
+            source = f"{name}Locked"
+        return f'<{kind} Name="{name}" NameSpace="Standard"><pValue>{source}</pValue>{body}</{kind}>\n{register}\n'
+
+    on_off = "<OnValue>1</OnValue><OffValue>0</OffValue>"
+    xml = (feature("Float", "Gamma", "FloatReg", _REG_GAMMA, "<Min>0.25</Min><Max>4.0</Max>")
+           + feature("Boolean", "LUTEnable", "IntReg", _REG_LUT_ENABLE, on_off))
+    if tone.gamma_enable is not None:
+        xml += feature("Boolean", "GammaEnable", "IntReg", _REG_GAMMA_ENABLE, on_off)
+    return xml
+
+
+def _genicam_xml(base: str, pixel_format: str, code: int, tone: ServedTone | None = None) -> str:
     """Aravis's fake-camera XML with the PixelFormat enumeration reduced to ``pixel_format``: a client asking for
-    another format gets the device's "not offered" answer instead of frames that are not the dataset's."""
+    another format gets the device's "not offered" answer instead of frames that are not the dataset's; with
+    ``tone``, the tone features added (``_tone_xml``)."""
     enum = re.search(r'<Enumeration Name="PixelFormat".*?</Enumeration>', base, re.S)
     if enum is None or "<EnumEntry" not in enum.group(0):
         raise CameraError("GigE Vision server: Aravis's fake camera XML has no PixelFormat enumeration")
     entry = f'<EnumEntry Name="{pixel_format}" NameSpace="Standard"><Value>{code}</Value></EnumEntry>'
     entries = re.sub(r"\s*<EnumEntry.*?</EnumEntry>", "", enum.group(0), flags=re.S)
     reduced = entries.replace("<pValue>", entry + "\n\t\t<pValue>", 1)
-    return base[:enum.start()] + reduced + base[enum.end():]
+    xml = base[:enum.start()] + reduced + base[enum.end():]
+    if tone is not None:
+        end = xml.rindex("</RegisterDescription>")
+        xml = xml[:end] + _tone_xml(tone) + xml[end:]
+    return xml
 
 
 class GvCameraServer:
@@ -238,12 +301,14 @@ class GvCameraServer:
     truth_path       JSON Lines file that receives one ``ServedFrame`` per frame (appended; line-buffered).
     trigger_poll_hz  how often the device looks for a software trigger (latency <= 1 / trigger_poll_hz).
     keep_recent      how many ``ServedFrame`` records ``recent`` holds.
+    tone             the tone features' state at start (``ServedTone``; default linear and writable).
     """
 
     def __init__(self, dataset: str, *, interface: str = "lo", defect_rate: float = 0.2, seed: int = 0,
                  split: str | None = None, cache_mb: float = 512.0, serial: str = "POLARSIM1",
                  truth_path: str | Path | None = None, allow_network: bool = False,
-                 trigger_poll_hz: float = 200.0, keep_recent: int = 100_000, empty_rate: float = 0.0) -> None:
+                 trigger_poll_hz: float = 200.0, keep_recent: int = 100_000, empty_rate: float = 0.0,
+                 tone: ServedTone = ServedTone()) -> None:
         if not serial or len(serial) > _SERIAL_MAX or not serial.isascii():
             raise CameraConfigError(f"GigE Vision server: serial {serial!r}: 1-{_SERIAL_MAX} ASCII characters")
         if trigger_poll_hz <= 0:
@@ -253,6 +318,9 @@ class GvCameraServer:
         self.serial = serial
         self.truth_path = Path(truth_path) if truth_path else None
         self.trigger_poll_hz = trigger_poll_hz
+        if not 0.25 <= tone.gamma <= 4.0:
+            raise CameraConfigError(f"GigE Vision server: tone gamma {tone.gamma}: must be within [0.25, 4]")
+        self.tone = tone
         # The virtual camera only draws parts here: the GigE device paces the frames, so no pacing of its own.
         self._camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1e9),
                                      VirtualCameraConfig(dataset, defect_rate, split, seed, cache_mb, empty_rate))
@@ -264,6 +332,7 @@ class GvCameraServer:
         self.pixel_format = ""
         self._code = 0
         self._gv: int | None = None  # ArvGvFakeCamera *
+        self._fake: int | None = None  # its ArvFakeCamera *, valid while the device lives
         self._callback = _FillPattern(self._fill)  # kept alive as long as the device may call it
         self._truth: IO[str] | None = None
         self._lock = threading.Lock()
@@ -316,7 +385,7 @@ class GvCameraServer:
             base = ctypes.string_at(lib.arv_fake_camera_get_genicam_xml(probe, None)).decode()
         finally:
             lib.g_object_unref(probe)
-        xml = _genicam_xml(base, self.pixel_format, self._code)
+        xml = _genicam_xml(base, self.pixel_format, self._code, self.tone)
         fd, xml_path = tempfile.mkstemp(prefix="polar-gv-", suffix=".xml")
         try:
             with os.fdopen(fd, "w") as f:
@@ -328,9 +397,12 @@ class GvCameraServer:
             os.unlink(xml_path)
         if not self._gv or not lib.arv_gv_fake_camera_is_running(self._gv):
             raise CameraError(f"GigE Vision server: Aravis cannot serve on interface {self.interface!r}")
-        fake = lib.arv_gv_fake_camera_get_fake_camera(self._gv)
+        fake = self._fake = lib.arv_gv_fake_camera_get_fake_camera(self._gv)
         for reg, value in ((_REG_SENSOR_WIDTH, self.width), (_REG_SENSOR_HEIGHT, self.height),
-                           (_REG_WIDTH, self.width), (_REG_HEIGHT, self.height), (_REG_PIXEL_FORMAT, self._code)):
+                           (_REG_WIDTH, self.width), (_REG_HEIGHT, self.height), (_REG_PIXEL_FORMAT, self._code),
+                           (_REG_GAMMA, struct.unpack(">I", struct.pack(">f", self.tone.gamma))[0]),
+                           (_REG_GAMMA_ENABLE, int(self.tone.gamma_enable is not False)),
+                           (_REG_LUT_ENABLE, int(self.tone.lut_enable))):
             lib.arv_fake_camera_write_register(fake, reg, value)
         for addr, size, text in ((_GVBS_MANUFACTURER, 32, "Polar-Ano"), (_GVBS_MODEL, 32, "VirtualPolarCamera"),
                                  (_GVBS_INFO, 48, Path(self._camera.sim.dataset).name)):
@@ -357,6 +429,7 @@ class GvCameraServer:
             lib = _lib()
             lib.arv_fake_camera_set_fill_pattern(lib.arv_gv_fake_camera_get_fake_camera(gv), _FillPattern(), None)
             lib.g_object_unref(gv)  # joins the device thread, closes its sockets
+            self._fake = None
         self._camera.close()
         with self._lock:
             if self._truth is not None:
@@ -398,6 +471,7 @@ class GvCameraServer:
             padded = np.zeros((h, w), frame.raw.dtype)
             padded[:region.shape[0], :region.shape[1]] = region
             region = padded
+        region = self._toned(region)
         region = np.ascontiguousarray(region, dtype=region.dtype.newbyteorder("<"))  # GigE Vision: little-endian
         ctypes.memmove(lib.arv_buffer_get_data(buffer, None), region.ctypes.data, region.nbytes)
         gt = frame.ground_truth
@@ -412,6 +486,22 @@ class GvCameraServer:
             self.n_defective += rec.label
             if self._truth is not None:
                 self._truth.write(json.dumps(asdict(rec)) + "\n")
+
+    def _toned(self, region: np.ndarray) -> np.ndarray:
+        """``region``'s codes through the tone features as the client left them (registers read per frame)."""
+        lib, fake = _lib(), self._fake
+
+        def register(address: int) -> int:
+            value = ctypes.c_uint32()
+            lib.arv_fake_camera_read_register(fake, address, ctypes.byref(value))
+            return value.value
+
+        full = 2 ** self._camera.bit_depth - 1
+        if register(_REG_GAMMA_ENABLE):  # 1 as well when the camera has no GammaEnable
+            region = toned(region, full, struct.unpack(">f", struct.pack(">I", register(_REG_GAMMA)))[0])
+        if register(_REG_LUT_ENABLE):
+            region = toned(region, full, LUT_GAMMA)
+        return region
 
     def _warn_once(self, key: str, msg: str, *args: object, exc_info: bool = False) -> None:
         if key not in self._warned:

@@ -19,7 +19,8 @@ TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction":
 """Smallest tolerance per statistic (full-scale units or shares): a model trained on near-identical frames must
 not warn at every noise flicker."""
 
-TONE = "; or the camera applies a gamma or look-up table: set its Gamma 1 and LUTEnable off"
+TONE = ("; or the camera applies a gamma or look-up table the station could not turn off (an Aravis camera is "
+        "set Gamma 1, GammaEnable and LUTEnable off where it has them): look for its vendor's own tone feature")
 """Said with every level's advice: a camera's tone curve moves the levels unevenly, as a black level, an exposure or
 noise would (docs/results/2026-12-04-gamma.md: a gamma of 0.8 read as a black level and cost 5 points of defects)."""
 

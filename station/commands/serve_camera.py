@@ -6,6 +6,9 @@ virtual camera's draw: defective with probability ``--defect-rate``) over real G
 Ground truth does not travel over GigE Vision: ``--truth FILE`` records one JSON line per frame (device frame id
 and timestamp -> sample index, label), joinable to the inspection log's ``camera_timestamp_ns``.
 
+A rehearsal of a camera another tool left non-linear: ``--gamma G`` serves it with GammaEnable on at Gamma G,
+``--lut`` with its look-up table on, ``--lock-tone`` with those features read-only (the station then refuses it).
+
 Loopback only (the network rule) unless ``--allow-network``. Stops at Ctrl-C, SIGTERM or after ``--seconds``.
 """
 
@@ -35,19 +38,26 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--serial", default="POLARSIM1", help="device serial number (default POLARSIM1)")
     p.add_argument("--truth", default=None, metavar="FILE",
                    help="append each served frame's ground truth to this JSON Lines file")
+    p.add_argument("--gamma", type=float, default=None, metavar="G",
+                   help="serve with GammaEnable on at Gamma G (0.25-4; default: off, linear)")
+    p.add_argument("--lut", action="store_true", help="serve with LUTEnable on (a fixed curve, code^0.5)")
+    p.add_argument("--lock-tone", action="store_true", help="make Gamma, GammaEnable and LUTEnable read-only")
     p.add_argument("--seconds", type=float, default=None, metavar="N", help="stop after N seconds (default: never)")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from drivers.gv_server import GvCameraServer
+    from drivers.gv_server import GvCameraServer, ServedTone
     from station.errors import UserError
 
     if args.seconds is not None and args.seconds <= 0:
         raise UserError(f"--seconds must be > 0, got {args.seconds}")
     server = GvCameraServer(args.dataset, interface=args.interface, defect_rate=args.defect_rate, seed=args.seed,
                             serial=args.serial, truth_path=args.truth, allow_network=args.allow_network,
-                            empty_rate=args.empty_rate)
+                            empty_rate=args.empty_rate,
+                            tone=ServedTone(gamma=1.0 if args.gamma is None else args.gamma,
+                                            gamma_enable=args.gamma is not None, lut_enable=args.lut,
+                                            locked=("Gamma", "GammaEnable", "LUTEnable") if args.lock_tone else ()))
     stop = threading.Event()
     previous = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
     for s in previous:

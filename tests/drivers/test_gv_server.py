@@ -10,10 +10,11 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from drivers.errors import CameraConfigError
-from drivers.gv_server import _genicam_xml, is_loopback_interface
+from drivers.gv_server import ServedTone, _genicam_xml, is_loopback_interface, toned
 from drivers.netns import netns_command, netns_unavailable_reason
 from station.cli import main
 
@@ -65,3 +66,27 @@ def test_serve_camera_refuses_a_network_interface(tmp_path: Path, capsys: pytest
     assert main(["serve-camera", "--dataset", str(tmp_path), "--interface", "192.168.10.20"]) == 2
     err = capsys.readouterr().err
     assert "station serve-camera: error:" in err and "not a loopback interface" in err and "--allow-network" in err
+
+
+def test_a_served_tone_curve_keeps_black_and_full_scale_and_bends_between() -> None:
+    codes = np.array([0, 64, 512, 4095], np.uint16)
+    assert toned(codes, 4095, 1.0) is codes
+    bent = toned(codes, 4095, 0.8)
+    assert bent.dtype == np.uint16 and bent[0] == 0 and bent[-1] == 4095
+    assert list(bent[1:3]) == [round(4095 * (64 / 4095) ** 0.8), round(4095 * (512 / 4095) ** 0.8)]
+
+
+def test_genicam_xml_offers_the_tone_features_and_locks_those_named() -> None:
+    base = ('<Enumeration Name="PixelFormat"><EnumEntry Name="Mono8"><Value>1</Value></EnumEntry>'
+            "<pValue>P</pValue></Enumeration></RegisterDescription>")
+    free = _genicam_xml(base, "Mono8", 1, ServedTone())
+    assert all(f'Name="{f}" NameSpace="Standard"' in free for f in ("Gamma", "GammaEnable", "LUTEnable"))
+    assert "SwissKnife" not in free and free.endswith("</RegisterDescription>")
+    locked = _genicam_xml(base, "Mono8", 1, ServedTone(gamma_enable=None, locked=("Gamma",)))
+    assert "<pValue>GammaLocked</pValue>" in locked and "<pValue>LUTEnableRegister</pValue>" in locked
+    assert 'Name="GammaEnable"' not in locked
+
+
+def test_serve_camera_refuses_a_gamma_out_of_range(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["serve-camera", "--dataset", str(tmp_path), "--gamma", "5"]) == 2
+    assert "tone gamma 5.0: must be within [0.25, 4]" in capsys.readouterr().err

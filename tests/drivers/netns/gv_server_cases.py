@@ -27,7 +27,7 @@ import pytest
 from drivers.aravis_camera import AravisCamera, list_cameras
 from drivers.camera import CameraConfig
 from drivers.errors import CameraConfigError, CameraError, CameraTimeout
-from drivers.gv_server import GVCP_PORT, GvCameraServer, read_truth
+from drivers.gv_server import GVCP_PORT, LUT_GAMMA, GvCameraServer, ServedTone, read_truth, toned
 from drivers.netns import in_private_netns
 from sim.dataset import DatasetSpec, Sample, init_dataset, open_dataset, split_of, write_sample
 from sim.sensor import SensorConfig
@@ -105,6 +105,65 @@ def test_frames_are_the_datasets_mosaics_byte_for_byte(server: GvCameraServer, d
         assert rec.defect_type == ("dent" if rec.label else None)
     assert {truth[f.timestamp_ns].label for f in frames} == {0, 1}  # defect_rate 0.5 draws both kinds
     assert (stats.completed, stats.failed, stats.dropped) == (24, 0, 0)
+
+
+def grab_raws(server: GvCameraServer, cam: AravisCamera, n: int) -> list[tuple[int, np.ndarray]]:
+    """``n`` frames from a started ``cam`` -> [(sample index, raw)]."""
+    cam.start()
+    frames = [cam.grab() for _ in range(n)]
+    cam.stop()
+    truth = {r.timestamp_ns: r for r in server.recent}
+    return [(truth[f.timestamp_ns].sample_index, f.raw) for f in frames]
+
+
+def test_the_served_camera_bends_its_codes_while_its_tone_features_are_on(ds8: Path) -> None:
+    """The rehearsal below is only worth something if the served camera applies what its features say."""
+    raws = mosaics(ds8)
+    with GvCameraServer(str(ds8)) as server, AravisCamera(cfg()) as cam:
+        assert [round(cam._camera.get_float("Gamma"), 6), cam._camera.get_boolean("GammaEnable"),
+                cam._camera.get_boolean("LUTEnable")] == [1.0, False, False]
+        cam._camera.set_float("Gamma", 0.8)
+        cam._camera.set_boolean("GammaEnable", True)
+        for i, raw in grab_raws(server, cam, 4):
+            assert raw.tobytes() == toned(raws[i], 255, 0.8).tobytes() != raws[i].tobytes()
+        cam._camera.set_boolean("LUTEnable", True)
+        for i, raw in grab_raws(server, cam, 4):
+            assert raw.tobytes() == toned(toned(raws[i], 255, 0.8), 255, LUT_GAMMA).tobytes()
+
+
+@pytest.mark.parametrize("tone", [ServedTone(gamma=0.8, gamma_enable=True, lut_enable=True),
+                                  ServedTone(gamma=1.25, gamma_enable=None),
+                                  ServedTone(gamma=0.8, gamma_enable=True, locked=("GammaEnable",))],
+                         ids=["enable", "gamma-only", "enable-locked"])
+def test_a_camera_left_with_a_tone_curve_is_set_linear_at_open(ds8: Path, tone: ServedTone) -> None:
+    """Another tool left a gamma or a look-up table on: the codes were bent, and the shipped file, trained on
+    linear codes, lost 5 points at gamma 0.8 (docs/results/2026-12-04-gamma.md). The driver turns GammaEnable
+    off; where the camera has none, or it cannot be turned off, it sets Gamma 1."""
+    raws = mosaics(ds8)
+    with GvCameraServer(str(ds8), tone=tone) as server, AravisCamera(cfg()) as cam:
+        assert not cam._camera.get_boolean("LUTEnable")
+        for i, raw in grab_raws(server, cam, 6):
+            assert raw.tobytes() == raws[i].tobytes()
+
+
+ALL_TONE = ("Gamma", "GammaEnable", "LUTEnable")
+
+
+@pytest.mark.parametrize("tone", [ServedTone(gamma=0.8, gamma_enable=True, locked=ALL_TONE),
+                                  ServedTone(gamma=0.8, gamma_enable=None, locked=ALL_TONE),
+                                  ServedTone(lut_enable=True, locked=ALL_TONE)],
+                         ids=["GammaEnable", "Gamma", "LUTEnable"])
+def test_a_camera_that_stays_non_linear_is_refused_naming_the_feature(ds8: Path, tone: ServedTone,
+                                                                      request: pytest.FixtureRequest) -> None:
+    feature = request.node.callspec.id
+    with GvCameraServer(str(ds8), tone=tone), pytest.raises(CameraConfigError, match=rf"camera .*: {feature}\b"):
+        AravisCamera(cfg()).open()
+
+
+def test_a_linear_camera_whose_tone_features_are_read_only_opens(ds8: Path) -> None:
+    """Nothing to change: a camera that is linear with its tone features locked is fine."""
+    with GvCameraServer(str(ds8), tone=ServedTone(locked=ALL_TONE)), AravisCamera(cfg()) as cam:
+        assert cam._camera is not None
 
 
 def test_empty_views_are_served_and_recorded_as_no_part(tmp_path: Path) -> None:
