@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# plan.md: the side camera with intensity alone (SI) against the side file as it stands (SA). Run from anywhere;
+# resumable (renders per sample, make side-model per step, a finished report is kept). STEP=make|read|all (default).
+set -euo pipefail
+HERE=$(cd "$(dirname "$0")" && pwd)
+cd "$HERE/../../.."
+BIN=.venv/bin
+R=runs/side-intensity
+mkdir -p "$R" "$HERE/eval"
+export OMP_NUM_THREADS=1
+STEP=${STEP:-all}
+if [ "$STEP" = make ] || [ "$STEP" = all ]; then
+    # SI: make side-model with the shipped intensity-only file as its source; the side twins of seed 1193's renders
+    SOURCE=HEAD RUNS=$R OUT=$R/side make side-model > "$R/make-side-model.log" 2>&1 & fit=$!
+    V=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml
+       --count 400 --seed 1193 --defects 0.3 --heldout)
+    SIDE=(--config sim/presets/side-view.toml)  # last, as every side twin
+    GGX='{"plastic": {"type": "pplastic", "finish": "smooth", "distribution": "ggx"}}'
+    "$BIN/station" render --out data/sw-ggx-1193 "${V[@]}" --materials "$GGX" "${SIDE[@]}" > "$R/render-ggx.log" 2>&1 &
+    a=$!
+    "$BIN/station" render --out data/sw-rough-1193 "${V[@]}" --config docs/results/2026-11-28-other-means/rough.toml \
+        "${SIDE[@]}" > "$R/render-rough.log" 2>&1 & b=$!
+    wait $fit; wait $a; wait $b
+fi
+judge() {  # judge CAMERA FILE SET TAG VAL [ARGS]: one report into eval/TAG
+    local out="$HERE/eval/$4"
+    [ -f "$out/scores.csv" ] && return
+    "$BIN/station" eval --model "$2" --data "data/$3" --val-data "data/$5" --no-synthetic --no-plots --out "$out" \
+        "${@:6}" > "$R/eval-$4.log" 2>&1
+}
+if [ "$STEP" = read ] || [ "$STEP" = all ]; then
+    TWO=docs/results/2026-12-04-two-cameras-intensity
+    cp "$R/split.json" "$HERE/split-SI.json"
+    cp "$TWO/split.json" "$HERE/split-SA.json"
+    for seed in 1196 1197; do  # as built: S and SA read by the two-cameras study, copied
+        for tag in line side; do
+            mkdir -p "$HERE/eval/$tag-$seed"
+            cp "$TWO/eval/$tag-$seed/"{scores.csv,eval.json,eval.md} "$HERE/eval/$tag-$seed/"
+        done
+        rm -rf "$HERE/eval/SA-$seed"; mv "$HERE/eval/side-$seed" "$HERE/eval/SA-$seed"
+        judge side "$R/side" "sw-heldout-$seed" "SI-$seed" sw-pv-val --presence-rule row_contrast
+    done
+    for set in ggx rough; do
+        judge line model/weights/default "ir-$set-1193" "line-$set" line-pv-val &
+        judge side runs/make-side-model/side "sw-$set-1193" "SA-$set" sw-pv-val --presence-rule row_contrast
+        wait
+        judge side "$R/side" "sw-$set-1193" "SI-$set" sw-pv-val --presence-rule row_contrast
+    done
+    for tag in 1196 1197 ggx rough; do
+        for f in SA SI; do
+            "$BIN/station" compare "$HERE/eval/line-$tag" "$HERE/eval/$f-$tag" --split "$HERE/split-$f.json" \
+                --out "$R/pair-$f-$tag" > "$R/compare-$f-$tag.log" 2>&1
+            for x in md json; do cp "$R/pair-$f-$tag/two-cameras.$x" "$HERE/pair-$f-$tag.$x"; done
+        done
+    done
+fi
