@@ -10,8 +10,16 @@ mkdir -p "$R" "$HERE/eval"
 export OMP_NUM_THREADS=1
 STEP=${STEP:-all}
 if [ "$STEP" = make ] || [ "$STEP" = all ]; then
-    # SI: make side-model with the shipped intensity-only file as its source; the side twins of seed 1193's renders
-    SOURCE=HEAD RUNS=$R OUT=$R/side make side-model > "$R/make-side-model.log" 2>&1 & fit=$!
+    # SI: make side-model with the shipped intensity-only file's networks as its source: its band network before the
+    # variation model and look were added (runs/make-model-r/band/last, from the make-model run whose band-look is the
+    # shipped file, weights 88e03190); station variation --refit refuses a file with residual networks. Then the side
+    # twins of seed 1193's renders.
+    if [ ! -f "$R/source/default.json" ]; then
+        mkdir -p "$R/source"
+        "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
+            runs/make-model-r/band/last "$R/source/default"
+    fi
+    RUNS=$R OUT=$R/side make side-model > "$R/make-side-model.log" 2>&1 & fit=$!
     V=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml
        --count 400 --seed 1193 --defects 0.3 --heldout)
     SIDE=(--config sim/presets/side-view.toml)  # last, as every side twin
