@@ -166,6 +166,37 @@ def test_a_linear_camera_whose_tone_features_are_read_only_opens(ds8: Path) -> N
         assert cam._camera is not None
 
 
+def test_a_camera_that_comes_back_with_a_tone_curve_is_set_linear_again(ds8: Path) -> None:
+    """A camera power-cycled mid-run loads its start-up user set, which may carry a gamma: the reconnect applies the
+    configuration again, tone check included, so the frames after it are as linear as before."""
+    raws = mosaics(ds8)
+    server = GvCameraServer(str(ds8)).start()
+    cam = AravisCamera(cfg(reconnect=True, reconnect_attempts=6, reconnect_backoff_s=0.3))
+    try:
+        with cam:
+            cam.start()
+            cam.grab()
+            server.close()
+            server = GvCameraServer(str(ds8), tone=ServedTone(gamma=0.8, gamma_enable=True, lut_enable=True)).start()
+            after = []
+            for _ in range(200):
+                try:
+                    frame = cam.grab(timeout_ms=300)
+                except CameraTimeout:
+                    continue
+                if cam.statistics().reconnects:
+                    after.append(frame)
+                if len(after) == 4:
+                    break
+            assert cam.statistics().reconnects == 1 and len(after) == 4
+            assert not cam._camera.get_boolean("GammaEnable") and not cam._camera.get_boolean("LUTEnable")
+            truth = {r.timestamp_ns: r for r in server.recent}
+            for f in after:
+                assert f.raw.tobytes() == raws[truth[f.timestamp_ns].sample_index].tobytes()
+    finally:
+        server.close()
+
+
 def test_empty_views_are_served_and_recorded_as_no_part(tmp_path: Path) -> None:
     ds = make_dataset(tmp_path / "ds", n=8, empty=EMPTY)
     with (GvCameraServer(str(ds), defect_rate=0.5, empty_rate=0.5, truth_path=tmp_path / "truth.jsonl"),
