@@ -389,8 +389,10 @@ class AravisCamera(CameraBase):
         tool left on bends them (a gamma of 0.8 cost the shipped file 5 points; docs/results/2026-12-04-gamma.md).
         ``LUTEnable`` off; ``GammaEnable`` off where the camera has it, else (or if it stays on) ``Gamma`` 1. Each
         change is logged and read back; a curve that stays on is a ``CameraConfigError`` naming the feature.
-        Features a camera lacks are skipped (a camera with none is taken as linear)."""
-        _, GLib, _ = _aravis()
+        Features a camera lacks are skipped (a camera with none is taken as linear); a ``Gamma`` that is not a float
+        (an enumeration of curves on some cameras) cannot be read as linear or not: a warning, and the drift
+        monitor's level warnings are left to catch a curve."""
+        Aravis, GLib, _ = _aravis()
         cam = self._camera
         has = cam.is_feature_available
 
@@ -415,10 +417,17 @@ class AravisCamera(CameraBase):
         try:
             if has("LUTEnable") and cam.get_boolean("LUTEnable") and not set_off("LUTEnable"):
                 refuse("LUTEnable stays on", "set LUTEnable off")
-            if abs(gamma() - 1.0) <= GAMMA_TOLERANCE:
+            node = cam.get_device().get_feature("Gamma") if has("Gamma") else None
+            readable = node is None or isinstance(node, Aravis.GcFloat)
+            if readable and abs(gamma() - 1.0) <= GAMMA_TOLERANCE:
                 return
             enable = has("GammaEnable")
             if enable and (not cam.get_boolean("GammaEnable") or set_off("GammaEnable")):
+                return
+            if not readable:
+                log.warning("camera %s: its Gamma is not a number (%s): the station cannot tell whether the camera "
+                            "runs linear; set it linear by hand (the drift monitor warns of a tone curve)", self.name,
+                            type(node).__name__)
                 return
             log.warning("camera %s: Gamma was %g (another tool left it); setting 1: the model reads linear codes",
                         self.name, gamma())

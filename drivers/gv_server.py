@@ -82,7 +82,7 @@ FORMAT_BY_BIT_DEPTH = {8: "Mono8", 10: "Mono10", 12: "Mono12", 14: "Mono14", 16:
 _REG_WIDTH, _REG_HEIGHT, _REG_PIXEL_FORMAT = 0x100, 0x104, 0x128
 _REG_SENSOR_WIDTH, _REG_SENSOR_HEIGHT = 0x11C, 0x118
 _GVBS_CURRENT_IP, _GVBS_MANUFACTURER, _GVBS_MODEL, _GVBS_INFO = 0x24, 0x48, 0x68, 0xA8
-_REG_GAMMA, _REG_GAMMA_ENABLE, _REG_LUT_ENABLE = 0x400, 0x404, 0x408  # free in the fake camera's memory
+_REG_GAMMA, _REG_GAMMA_ENABLE, _REG_LUT_ENABLE, _REG_GAMMA_INTEGER = 0x400, 0x404, 0x408, 0x40C  # free registers
 LUT_GAMMA = 0.5
 """The exponent of the served camera's fixed look-up table."""
 _SERIAL_MAX = 15  # bootstrap SerialNumber is 16 bytes with the terminating NUL
@@ -221,12 +221,15 @@ class ServedTone:
     gamma_enable  the ``GammaEnable`` feature; None: the camera has none and its Gamma always applies.
     lut_enable    the ``LUTEnable`` feature: codes then pass the fixed table full (code / full)^``LUT_GAMMA``.
     locked        the names of those features that are read-only (a camera that cannot be set linear).
+    gamma_integer ``Gamma`` served as an integer feature of its own register, which bends nothing (a camera whose
+                  gamma is not a float: the driver cannot read it as linear or not).
     """
 
     gamma: float = 1.0
     gamma_enable: bool | None = False
     lut_enable: bool = False
     locked: tuple[str, ...] = ()
+    gamma_integer: bool = False
 
 
 def toned(codes: np.ndarray, full_scale: int, gamma: float) -> np.ndarray:
@@ -268,8 +271,9 @@ def _tone_xml(tone: ServedTone) -> str:
         return f'<{kind} Name="{name}" NameSpace="Standard"><pValue>{source}</pValue>{body}</{kind}>\n{register}\n'
 
     on_off = "<OnValue>1</OnValue><OffValue>0</OffValue>"
-    xml = (feature("Float", "Gamma", "FloatReg", _REG_GAMMA, "<Min>0.25</Min><Max>4.0</Max>")
-           + feature("Boolean", "LUTEnable", "IntReg", _REG_LUT_ENABLE, on_off))
+    xml = (feature("Integer", "Gamma", "IntReg", _REG_GAMMA_INTEGER, "") if tone.gamma_integer
+           else feature("Float", "Gamma", "FloatReg", _REG_GAMMA, "<Min>0.25</Min><Max>4.0</Max>"))
+    xml += feature("Boolean", "LUTEnable", "IntReg", _REG_LUT_ENABLE, on_off)
     if tone.gamma_enable is not None:
         xml += feature("Boolean", "GammaEnable", "IntReg", _REG_GAMMA_ENABLE, on_off)
     return xml

@@ -166,6 +166,14 @@ def test_a_linear_camera_whose_tone_features_are_read_only_opens(ds8: Path) -> N
         assert cam._camera is not None
 
 
+def test_a_gamma_that_is_not_a_float_is_a_warning_not_a_refusal(ds8: Path, caplog: pytest.LogCaptureFixture) -> None:
+    """Some cameras offer their gamma as an enumeration of curves: the driver cannot tell linear from not, so it says
+    so and opens (refusing would leave such a camera unusable; the drift monitor still warns of a curve)."""
+    with GvCameraServer(str(ds8), tone=ServedTone(gamma_enable=None, gamma_integer=True)), AravisCamera(cfg()) as cam:
+        assert cam._camera is not None
+    assert any("Gamma is not a number" in r.getMessage() for r in caplog.records)
+
+
 def test_a_camera_that_comes_back_with_a_tone_curve_is_set_linear_again(ds8: Path) -> None:
     """A camera power-cycled mid-run loads its start-up user set, which may carry a gamma: the reconnect applies the
     configuration again, tone check included, so the frames after it are as linear as before."""
