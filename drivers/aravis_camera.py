@@ -54,7 +54,7 @@ NEUTRAL_FEATURES: tuple[tuple[str, int | bool], ...] = (
 polarizer angle a pixel of the mosaic holds."""
 
 GAMMA_TOLERANCE = 1e-3
-"""A ``Gamma`` within this of 1 is linear (cameras store it as a float or in thousandths)."""
+"""A ``Gamma`` within this of 1 is linear (what a camera reads back may differ from 1 in its last digits)."""
 
 GVCP_PORT = 3956
 _OPEN: weakref.WeakSet[AravisCamera] = weakref.WeakSet()
