@@ -62,3 +62,6 @@ if [ "$STEP" = read ] || [ "$STEP" = all ]; then
         done
     done
 fi
+if [ "$STEP" = read ] || [ "$STEP" = all ]; then
+    (cd "$HERE" && PYTHONPATH=../../.. ../../../.venv/bin/python read.py > read.txt)
+fi
