@@ -38,7 +38,6 @@ judge() {  # judge CAMERA FILE SET TAG VAL [ARGS]: one report into eval/TAG
 }
 if [ "$STEP" = read ] || [ "$STEP" = all ]; then
     TWO=docs/results/2026-12-04-two-cameras-intensity
-    cp "$R/split.json" "$HERE/split-SI.json"
     cp "$TWO/split.json" "$HERE/split-SA.json"
     for seed in 1196 1197; do  # as built: S and SA read by the two-cameras study, copied
         for tag in line side; do
@@ -46,14 +45,20 @@ if [ "$STEP" = read ] || [ "$STEP" = all ]; then
             cp "$TWO/eval/$tag-$seed/"{scores.csv,eval.json,eval.md} "$HERE/eval/$tag-$seed/"
         done
         rm -rf "$HERE/eval/SA-$seed"; mv "$HERE/eval/side-$seed" "$HERE/eval/SA-$seed"
-        judge side "$R/side" "sw-heldout-$seed" "SI-$seed" sw-pv-val --presence-rule row_contrast
     done
-    for set in ggx rough; do
+    for set in ggx rough; do  # S and SA on seed 1193 rendered otherwise, while SI is made (STEP=read beside make)
         judge line model/weights/default "ir-$set-1193" "line-$set" line-pv-val &
         judge side runs/make-side-model/side "sw-$set-1193" "SA-$set" sw-pv-val --presence-rule row_contrast
         wait
-        judge side "$R/side" "sw-$set-1193" "SI-$set" sw-pv-val --presence-rule row_contrast
     done
+    while [ ! -f "$R/split.json" ]; do sleep 30; done  # make side-model's last step
+    cp "$R/split.json" "$HERE/split-SI.json"
+    judge side "$R/side" sw-heldout-1196 SI-1196 sw-pv-val --presence-rule row_contrast &
+    judge side "$R/side" sw-heldout-1197 SI-1197 sw-pv-val --presence-rule row_contrast
+    wait
+    judge side "$R/side" sw-ggx-1193 SI-ggx sw-pv-val --presence-rule row_contrast &
+    judge side "$R/side" sw-rough-1193 SI-rough sw-pv-val --presence-rule row_contrast
+    wait
     for tag in 1196 1197 ggx rough; do
         for f in SA SI; do
             "$BIN/station" compare "$HERE/eval/line-$tag" "$HERE/eval/$f-$tag" --split "$HERE/split-$f.json" \
