@@ -12,8 +12,11 @@
 #      camera's validation set (make-model.sh's VAL), the side validation set's twin. Each part's chamfer is drawn
 #      0-0.4 mm as make-model.sh draws it (rule 67; the side camera sees the front edges face on:
 #      docs/results/2026-12-04-side-edges.md)
-#   2. source: the shipped file as it was before its second look (git 0f17840^: the DRAEM networks and a variation
-#      model), whose variation model is fitted again on the side camera's parts (the networks do not decide)
+#   2. source: the shipped line file's networks and normalisation (SOURCE, default model/weights/default: intensity
+#      alone), its variation model and look dropped (model.draem.with_variation.networks_only); the networks do not
+#      decide. Since 2026-12-05 (docs/results/2026-12-05-side-intensity.md: as good as built, more robust rendered
+#      otherwise, and faster). The side file before read DoLP and AoLP too: its source was git 0f17840^'s
+#      model/weights/default (git show it to a file and pass that as SOURCE to make it again)
 #   3. variation: fitted on the side training set's good parts, calibrated on the calibration set (station variation
 #      --refit)
 #   4. look: one residual network beside it at each one's 1 % threshold (station residual --second-look); 3-4 run on
@@ -32,7 +35,7 @@ SIDE_CAL=${SIDE_CAL:-data/sw-pf-val}
 SIDE_VAL=${SIDE_VAL:-data/sw-pv-val}
 LINE_VAL=${LINE_VAL:-data/line-pv-val}
 LINE_MODEL=${LINE_MODEL:-model/weights/default}
-SOURCE=${SOURCE:-0f17840^}
+SOURCE=${SOURCE:-model/weights/default}  # a checkpoint, path without suffix
 LOOK_STEPS=${LOOK_STEPS:-3000}
 TRAIN_COUNT=${TRAIN_COUNT:-900}
 VAL_COUNT=${VAL_COUNT:-600}
@@ -63,12 +66,11 @@ wait "${pids[0]}"; wait "${pids[1]}"
 render "$SIDE_CAL" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" "${SIDE[@]}" --count "$VAL_COUNT" --seed 303 \
     --defects 0.4 --validation
 
-# 2. the source file, from git history
+# 2. the source: the line file's networks and normalisation
 if [ ! -f "$RUNS/source/default.json" ]; then
-    mkdir -p "$RUNS/source-git"
-    for ext in pt json; do git show "$SOURCE:model/weights/default.$ext" > "$RUNS/source-git/default.$ext"; done
-    "$BIN/python" -c "import sys; from model.draem.checkpoint import copy_checkpoint; copy_checkpoint(*sys.argv[1:])" \
-        "$RUNS/source-git/default" "$RUNS/source/default"
+    "$BIN/python" -c "import sys; from model.draem.checkpoint import load_checkpoint, save_checkpoint; \
+from model.draem.with_variation import networks_only; \
+save_checkpoint(sys.argv[2], networks_only(load_checkpoint(sys.argv[1]).detector))" "$SOURCE" "$RUNS/source/default"
 fi
 
 # 3-4. the variation model and its look network (one core), beside the side validation set's render (the other)

@@ -1,6 +1,6 @@
 """`make side-model` (scripts/make-side-model.sh): dry-run with a `station` and a `python` that only record their
 arguments, it renders the side camera's twins of make-model.sh's sets (edges drawn where it draws them), fits from
-the pre-look shipped file, thresholds with the side camera's presence rule and splits the two thresholds on the
+the shipped line file's networks, thresholds with the side camera's presence rule and splits the two thresholds on the
 validation twins."""
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ def test_make_side_model_renders_twins_and_splits_on_them(tmp_path: Path) -> Non
         (stub / name).write_text(f'#!/bin/sh\necho "{name} $*" >> {calls}\n')
         (stub / name).chmod(0o755)
     runs = tmp_path / "runs"
-    env = {**os.environ, "BIN": str(stub), "RUNS": str(runs), "SOURCE": "HEAD"}  # HEAD: also in a shallow clone
+    env = {**os.environ, "BIN": str(stub), "RUNS": str(runs)}
     subprocess.run(["bash", str(ROOT / "scripts" / "make-side-model.sh")], env=env, check=True, capture_output=True)
     lines = [line.split() for line in calls.read_text().splitlines()]
     renders = [a for a in lines if a[:2] == ["station", "render"]]
@@ -42,7 +42,8 @@ def test_make_side_model_renders_twins_and_splits_on_them(tmp_path: Path) -> Non
         assert drawn == ("0,0.4" if out(a) in ("data/sw-train", "data/sw-pf-val") else None)
     train_shards = sorted(int(a[a.index("--shard") + 1].split("/")[0]) for a in renders if out(a) == "data/sw-train")
     assert train_shards == [3, 4, 5, 6, 7, 8, 9, 13, 14, 15, 16, 17, 18, 19]  # the train split only
-    assert len(list((runs / "source-git").glob("default.*"))) == 2  # the source file, from git (default 0f17840^)
+    source = next(a for a in lines if a[0] == "python")  # the shipped line file's networks, look and fit dropped
+    assert "networks_only" in " ".join(source) and source[-2:] == ["model/weights/default", f"{runs}/source/default"]
     steps = [a[1] for a in lines if a[0] == "station" and a[1] != "render"]
     assert steps == ["variation", "residual", "threshold", "split"]
     variation, residual, threshold, split = (next(a for a in lines if a[1] == s) for s in steps)

@@ -112,8 +112,17 @@ def without_variation(detector: Detector) -> Detector:
     if detector.residual is not None or detector.config.residual_members:
         raise ModelError("the detector has residual networks, which read its variation model: refit from the "
                          "checkpoint without them")
-    out = Detector(detector.config.with_(variation=False, decision="combined"), detector.normalizer)
-    out.load_state_dict({k: v for k, v in detector.state_dict().items() if not k.startswith("variation.")})
+    return networks_only(detector)
+
+
+def networks_only(detector: Detector) -> Detector:
+    """A copy of ``detector`` with its networks and normalisation only (decision "combined"): its variation model
+    and the residual networks that read it dropped. The source of a variation model fitted on another camera's
+    parts (``scripts/make-side-model.sh``: the side camera's file from the shipped line file)."""
+    out = Detector(detector.config.with_(variation=False, residual_members=0, decision="combined"),
+                   detector.normalizer)
+    out.load_state_dict({k: v for k, v in detector.state_dict().items()
+                         if not k.startswith(("variation.", "residual."))})
     return out.eval()
 
 

@@ -18,7 +18,7 @@ from model.draem.detector import Detector
 from model.draem.errors import ModelError
 from model.draem.metrics import false_reject_threshold
 from model.draem.residual import ResidualDetector
-from model.draem.with_variation import add_residual, add_variation
+from model.draem.with_variation import add_residual, add_variation, networks_only, without_variation
 
 
 def looked_detector() -> Detector:
@@ -129,3 +129,21 @@ def test_adapting_recalibrates_the_look_on_the_lines_parts_or_drops_it_with_the_
     adapted, _ = adapt(det, few, torch.ones(len(few), *few.shape[2:], dtype=torch.bool), progress=False)
     assert adapted.variation is not None and adapted.variation.second_look.references == 0
     assert adapted.residual is not None and not adapted.residual.looks
+
+
+def test_networks_only_drops_the_variation_model_and_its_look_and_keeps_the_networks(
+        with_look: tuple[Detector, Detector, Path], tmp_path: Path) -> None:
+    """The side camera's file starts from the shipped line file's networks (make-side-model.sh): a refit of a file
+    with a look is refused (the look reads the fit being replaced), so the source drops both."""
+    _, looked, _ = with_look
+    with pytest.raises(ModelError, match="residual networks"):
+        without_variation(looked)
+    bare = networks_only(looked)
+    cfg = bare.config
+    assert (cfg.variation, cfg.residual_members, cfg.decision, bare.residual) == (False, 0, "combined", None)
+    kept = bare.state_dict()
+    assert kept and not any(k.startswith(("variation.", "residual.")) for k in kept)
+    assert all(torch.equal(v, looked.state_dict()[k]) for k, v in kept.items())
+    assert bare.normalizer.mean == looked.normalizer.mean
+    save_checkpoint(tmp_path / "bare", bare)
+    assert load_checkpoint(tmp_path / "bare").detector.config == cfg
