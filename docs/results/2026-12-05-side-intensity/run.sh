@@ -63,7 +63,9 @@ if [ "$STEP" = read ] || [ "$STEP" = all ]; then
         for f in SA SI; do
             "$BIN/station" compare "$HERE/eval/line-$tag" "$HERE/eval/$f-$tag" --split "$HERE/split-$f.json" \
                 --out "$R/pair-$f-$tag" > "$R/compare-$f-$tag.log" 2>&1
-            for x in md json; do cp "$R/pair-$f-$tag/two-cameras.$x" "$HERE/pair-$f-$tag.$x"; done
+            for x in md json; do  # paths from the repository's root, as the reports are read
+                sed "s|$PWD/||g" "$R/pair-$f-$tag/two-cameras.$x" > "$HERE/pair-$f-$tag.$x"
+            done
         done
     done
 fi
