@@ -1,5 +1,5 @@
 """The figure: each pair's share of defective parts caught and of good parts rejected, SA against SI, as built and
-rendered otherwise (read.json).
+rendered otherwise, and the addenda's sets (read.json).
 
     cd docs/results/2026-12-05-side-intensity && ../../../.venv/bin/python plot.py
 """
@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 HERE = Path(__file__).parent
 read = json.loads((HERE / "read.json").read_text())
 groups = list(read)
-fig, axes = plt.subplots(1, 2, figsize=(9, 3.6))
+fig, axes = plt.subplots(2, 1, figsize=(9, 6.4))
 for ax, (key, total, label) in zip(axes, (("caught", "defective", "defective parts caught (%)"),
                                           ("good_rejected", "good", "good parts rejected (%)")), strict=True):
     for j, side in enumerate(("SA", "SI")):
@@ -22,7 +22,7 @@ for ax, (key, total, label) in zip(axes, (("caught", "defective", "defective par
         bars = ax.bar([k + (j - 0.5) * 0.38 for k in range(len(groups))], values, 0.38,
                       label={"SA": "side file with DoLP and AoLP (SA)", "SI": "side file, intensity alone (SI)"}[side])
         ax.bar_label(bars, [f"{read[g][side][key]} of {read[g][side][total]}" for g in groups], fontsize=7)
-    ax.set_xticks(range(len(groups)), [g.replace(" (", "\n(") for g in groups], fontsize=8)
+    ax.set_xticks(range(len(groups)), [g.replace(" (", "\n(").replace("; ", "\n") for g in groups], fontsize=8)
     ax.set(ylabel=label)
 axes[0].set_ylim(0, 100)
 axes[1].set_ylim(0, 3)

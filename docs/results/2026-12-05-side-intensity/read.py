@@ -1,7 +1,8 @@
 """plan.md's readings 1-2: each side file alone and each pair at its split, per set, pooled as built (seeds 1196 and
 1197) and rendered otherwise (seed 1193 with a GGX lobe and with a duller plastic), and SI's pair minus SA's pair per
-part (paired SE). The pairs' decisions are the station's (``station compare --split``'s rule, read through the same
-functions); a frame a camera would not judge rejects the part.
+part (paired SE); and the same for its addenda (seed 1196's broken edges; seed 1195's kinds nobody rendered). The
+pairs' decisions are the station's (``station compare --split``'s rule, read through the same functions); a frame a
+camera would not judge rejects the part.
 
     cd docs/results/2026-12-05-side-intensity && PYTHONPATH=../../.. ../../../.venv/bin/python read.py > read.txt
 """
@@ -14,7 +15,9 @@ from model.draem.camera_split import SplitThresholds, split_rejects
 from station.eval_compare import read_faces, read_report, read_scores
 
 HERE = Path(__file__).parent
-GROUPS = {"as built (1196 + 1197)": ("1196", "1197"), "rendered otherwise (GGX + duller, 1193)": ("ggx", "rough")}
+GROUPS = {"as built (1196 + 1197)": ("1196", "1197"), "rendered otherwise (GGX + duller, 1193)": ("ggx", "rough"),
+          "broken edges (1196 chamfered + rounded; addendum)": ("e3", "r3"),
+          "kinds nobody rendered (1195; addendum 2)": ("nk",)}
 
 
 def decisions(tag: str, side: str) -> dict[str, np.ndarray]:

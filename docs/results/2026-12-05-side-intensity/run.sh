@@ -69,6 +69,8 @@ if [ "$STEP" = read ] || [ "$STEP" = all ]; then
         done
     done
 fi
-if [ "$STEP" = read ] || [ "$STEP" = all ]; then
+if [ "$STEP" = read ] || [ "$STEP" = all ]; then  # the addenda's sets too (plan.md), then the reading
+    "$HERE/addendum.sh"
+    "$HERE/addendum2.sh"
     (cd "$HERE" && PYTHONPATH=../../.. ../../../.venv/bin/python read.py > read.txt)
 fi
