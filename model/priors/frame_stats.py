@@ -99,19 +99,19 @@ def frame_statistics(priors: Mapping[str, np.ndarray], box: tuple[int, int, int,
     in the box; a ``Priors`` result's saturation count over the whole frame; intensity >= ``CLIP_LEVEL``."""
     inten = np.asarray(priors["intensity"], dtype=np.float32)
     top, left, h, w = box = box if box is not None else centre_square(*inten.shape)
-    region = inten[top:top + h:stride, left:left + w:stride]
+    sampled = (slice(top, top + h, stride), slice(left, left + w, stride))  # the box, every stride-th pixel
+    region = inten[sampled]
     dark, median, high = (float(v) for v in np.percentile(region, (DARK_PERCENTILE, 50, 95)))
     n_sat = getattr(priors, "n_saturated", None)
     if raw is not None:
         full = 2 ** (bit_depth or raw.dtype.itemsize * 8) - 1
-        patch = raw[top:top + h:stride, left:left + w:stride]
+        patch = raw[sampled]
         clipped = float(np.count_nonzero(patch >= full)) / max(patch.size, 1)
     elif n_sat is not None:
         clipped = float(n_sat) / inten.size  # mosaic and full-resolution priors have the same pixel count
     else:
         clipped = float(np.count_nonzero(region >= CLIP_LEVEL)) / max(region.size, 1)
-    dolp = (float(np.median(np.asarray(priors["dolp"])[top:top + h:stride, left:left + w:stride]))
-            if "dolp" in priors else 0.0)
+    dolp = float(np.median(np.asarray(priors["dolp"])[sampled])) if "dolp" in priors else 0.0
     return FrameStatistics(median, high, min(clipped, 1.0), dolp, dark, edge_level(inten, box))
 
 
