@@ -85,6 +85,8 @@ _GVBS_CURRENT_IP, _GVBS_MANUFACTURER, _GVBS_MODEL, _GVBS_INFO = 0x24, 0x48, 0x68
 _REG_GAMMA, _REG_GAMMA_ENABLE, _REG_LUT_ENABLE, _REG_GAMMA_INTEGER = 0x400, 0x404, 0x408, 0x40C  # free registers
 LUT_GAMMA = 0.5
 """The exponent of the served camera's fixed look-up table."""
+GAMMA_RANGE = (0.25, 4.0)
+"""The served ``Gamma`` feature's bounds (its GenICam Min and Max, and ``ServedTone.gamma``'s)."""
 _SERIAL_MAX = 15  # bootstrap SerialNumber is 16 bytes with the terminating NUL
 _IFF_LOOPBACK = 0x8
 _SIOCGIFFLAGS, _SIOCGIFADDR = 0x8913, 0x8915
@@ -271,8 +273,9 @@ def _tone_xml(tone: ServedTone) -> str:
         return f'<{kind} Name="{name}" NameSpace="Standard"><pValue>{source}</pValue>{body}</{kind}>\n{register}\n'
 
     on_off = "<OnValue>1</OnValue><OffValue>0</OffValue>"
+    bounds = f"<Min>{GAMMA_RANGE[0]}</Min><Max>{GAMMA_RANGE[1]}</Max>"
     xml = (feature("Integer", "Gamma", "IntReg", _REG_GAMMA_INTEGER, "") if tone.gamma_integer
-           else feature("Float", "Gamma", "FloatReg", _REG_GAMMA, "<Min>0.25</Min><Max>4.0</Max>"))
+           else feature("Float", "Gamma", "FloatReg", _REG_GAMMA, bounds))
     xml += feature("Boolean", "LUTEnable", "IntReg", _REG_LUT_ENABLE, on_off)
     if tone.gamma_enable is not None:
         xml += feature("Boolean", "GammaEnable", "IntReg", _REG_GAMMA_ENABLE, on_off)
@@ -322,8 +325,9 @@ class GvCameraServer:
         self.serial = serial
         self.truth_path = Path(truth_path) if truth_path else None
         self.trigger_poll_hz = trigger_poll_hz
-        if not 0.25 <= tone.gamma <= 4.0:
-            raise CameraConfigError(f"GigE Vision server: tone gamma {tone.gamma}: must be within [0.25, 4]")
+        if not GAMMA_RANGE[0] <= tone.gamma <= GAMMA_RANGE[1]:
+            raise CameraConfigError(f"GigE Vision server: tone gamma {tone.gamma}: must be within "
+                                    f"[{GAMMA_RANGE[0]:g}, {GAMMA_RANGE[1]:g}]")
         self.tone = tone
         # The virtual camera only draws parts here: the GigE device paces the frames, so no pacing of its own.
         self._camera = VirtualCamera(CameraConfig(trigger="free_run", frame_rate_hz=1e9),
