@@ -7,6 +7,7 @@ import cv2
 import numpy as np
 import pytest
 
+from drivers.gv_server import toned
 from model.priors import compute_priors
 from model.priors.frame_stats import FrameStatistics, StatisticsRange, frame_statistics
 from model.priors.mosaic import stokes_to_mosaic
@@ -188,11 +189,10 @@ def test_a_cameras_gamma_is_named_in_the_warning(gamma: float) -> None:
     trained = StatisticsRange.from_frames([frame_statistics(p, raw=r) for r, p in
                                            (_frame(g, rng) for g in rng.uniform(0.95, 1.05, 40))])
     mon = DriftMonitor(trained, window=20, min_frames=10)
-    lut = np.rint(255 * (np.arange(256) / 255) ** gamma).astype(np.uint8)
     texts = []
     for _ in range(20):
         raw, _ = _frame(1.0, rng)
-        raw = lut[raw]
+        raw = toned(raw, 255, gamma)  # the served camera's tone curve
         texts.append(mon.update(frame_statistics(compute_priors(raw, priors=("intensity", "dolp")), raw=raw)))
     warned = [t for t in texts if t]
     assert warned and texts.index(warned[0]) < 12
