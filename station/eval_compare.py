@@ -11,10 +11,14 @@ training", e.g. ``sim.defects.NEW_KINDS``). Each report's rows say which of thos
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from station.errors import UserError
+
+if TYPE_CHECKING:
+    import numpy as np
 
 STATUSES = ("synthetic only", "never in training", "held out", "trained on")
 """``in_training`` values, in the order the comparison shows them."""
@@ -156,19 +160,31 @@ def paired(folders: list[str], out: str | Path, resamples: int = 1000) -> tuple[
     return rows, table
 
 
-def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: str | Path) -> tuple[dict, str]:
-    """A two-camera station (``[second_camera]``) on held-out parts: ``first`` and ``second`` are ``station eval``
-    reports of the two cameras' models on twin held-out sets (the same parts), ``split`` the ``station split`` report
-    whose chosen thresholds were set on validation. Rules: each camera alone at its report's threshold (its model's
-    own), and both at the split's thresholds, as the station decides. Per rule: good parts rejected and defective
-    parts caught, overall and per type, and the gain in parts caught over the first camera alone with its paired
-    standard error. A frame a camera would not judge (``eval.json``'s ``unjudged``) is rejected by every rule that
-    reads that camera, as a triggered station rejects it. A part is defective when either report labels it so (a
-    label says what that camera sees), its type from whichever does. Writes ``two-cameras.json`` and ``.md``."""
+@dataclass(frozen=True)
+class PairDecisions:
+    """Per part of two ``station eval`` reports on twin sets, in dataset index order (``pair_decisions``)."""
+
+    index: list[int]
+    defective: np.ndarray
+    """(N,) bool: either report labels the part defective (a label says what that camera sees)."""
+    types: np.ndarray
+    """(N,) str: its defect type, from whichever report has one ("" for a good part)."""
+    faces: np.ndarray
+    """(N,) str: the face the defect lies on, from whichever report knows it ("" unknown)."""
+    rules: dict[str, np.ndarray]
+    """Rule name -> (N,) bool rejected: the first camera alone, the second alone, both at the split (in that order)."""
+    unjudged: tuple[np.ndarray, np.ndarray]
+    """(N,) bool per camera: frames its report did not judge (``eval.json``'s ``unjudged``)."""
+
+
+def pair_decisions(first: str | Path, second: str | Path, split: str | Path) -> PairDecisions:
+    """The two-camera rules' decisions per part (``two_cameras``): each camera alone at its report's threshold, then
+    both at the ``station split`` report's thresholds; a frame a camera would not judge rejects the part under every
+    rule that reads that camera. UserError when the reports are not on the same parts or ``split`` is not a split
+    report."""
     import numpy as np
 
     from model.draem.camera_split import SplitThresholds, split_rejects
-    from sim.defects import FACES
 
     a, b = read_scores(first), read_scores(second)
     idx = sorted(set(a) & set(b))
@@ -191,6 +207,25 @@ def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: s
     rules = {f"first camera alone (its threshold {alone[0]:.4f})": (sa > alone[0]) | left[0],
              f"second camera alone (its threshold {alone[1]:.4f})": (sb > alone[1]) | left[1],
              f"both, split ({pair.first:.4f}, {pair.second:.4f})": split_rejects(sa, sb, pair) | left[0] | left[1]}
+    return PairDecisions(idx, y, types, faces, rules, (left[0], left[1]))
+
+
+def two_cameras(first: str | Path, second: str | Path, split: str | Path, out: str | Path) -> tuple[dict, str]:
+    """A two-camera station (``[second_camera]``) on held-out parts: ``first`` and ``second`` are ``station eval``
+    reports of the two cameras' models on twin held-out sets (the same parts), ``split`` the ``station split`` report
+    whose chosen thresholds were set on validation. Rules: each camera alone at its report's threshold (its model's
+    own), and both at the split's thresholds, as the station decides. Per rule: good parts rejected and defective
+    parts caught, overall and per type, and the gain in parts caught over the first camera alone with its paired
+    standard error. A frame a camera would not judge (``eval.json``'s ``unjudged``) is rejected by every rule that
+    reads that camera, as a triggered station rejects it. A part is defective when either report labels it so (a
+    label says what that camera sees), its type from whichever does. Writes ``two-cameras.json`` and ``.md``."""
+    import numpy as np
+
+    from sim.defects import FACES
+
+    decided = pair_decisions(first, second, split)
+    idx, y, types, faces, rules = decided.index, decided.defective, decided.types, decided.faces, decided.rules
+    left = decided.unjudged
     base = next(iter(rules.values()))
     on = [f for f in FACES if (y & (faces == f)).any()]  # faces known (station eval on rendered sets since 2026-12-01)
     rows = []

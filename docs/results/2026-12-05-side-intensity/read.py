@@ -1,8 +1,8 @@
 """plan.md's readings 1-2: each side file alone and each pair at its split, per set, pooled as built (seeds 1196 and
 1197) and rendered otherwise (seed 1193 with a GGX lobe and with a duller plastic), and SI's pair minus SA's pair per
 part (paired SE); and the same for its addenda (seed 1196's broken edges; seed 1195's kinds nobody rendered). The
-pairs' decisions are the station's (``station compare --split``'s rule, read through the same functions); a frame a
-camera would not judge rejects the part.
+decisions are ``station compare --split``'s (``station.eval_compare.pair_decisions``); a frame a camera would not judge
+rejects the part.
 
     cd docs/results/2026-12-05-side-intensity && PYTHONPATH=../../.. ../../../.venv/bin/python read.py > read.txt
 """
@@ -11,8 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from model.draem.camera_split import SplitThresholds, split_rejects
-from station.eval_compare import read_faces, read_report, read_scores
+from station.eval_compare import pair_decisions
 
 HERE = Path(__file__).parent
 GROUPS = {"as built (1196 + 1197)": ("1196", "1197"), "rendered otherwise (GGX + duller, 1193)": ("ggx", "rough"),
@@ -22,20 +21,9 @@ GROUPS = {"as built (1196 + 1197)": ("1196", "1197"), "rendered otherwise (GGX +
 
 def decisions(tag: str, side: str) -> dict[str, np.ndarray]:
     """Per part of set ``tag``: defective, front face, the side file alone, the pair at the side file's split."""
-    line_dir, side_dir = HERE / "eval" / f"line-{tag}", HERE / "eval" / f"{side}-{tag}"
-    a, b = read_scores(line_dir), read_scores(side_dir)
-    idx = sorted(a)
-    assert idx == sorted(b)
-    y = np.array([bool(a[i][0] or b[i][0]) for i in idx])
-    fa, fb = read_faces(line_dir), read_faces(side_dir)
-    front = np.array([(fa.get(i) or fb.get(i)) == "front" for i in idx])
-    sa, sb = (np.array([s[i][2] for i in idx]) for s in (a, b))
-    left = [np.array([str(i) in read_report(d).get("unjudged", {}) for i in idx]) for d in (line_dir, side_dir)]
-    chosen = json.loads((HERE / f"split-{side}.json").read_text())
-    pair = SplitThresholds(**chosen["splits"][chosen["chosen"]])
-    alone = float(read_report(side_dir)["threshold"])
-    return {"y": y, "front": front, "alone": (sb > alone) | left[1],
-            "pair": split_rejects(sa, sb, pair) | left[0] | left[1]}
+    d = pair_decisions(HERE / "eval" / f"line-{tag}", HERE / "eval" / f"{side}-{tag}", HERE / f"split-{side}.json")
+    _, alone, pair = d.rules.values()
+    return {"y": d.defective, "front": d.faces == "front", "alone": alone, "pair": pair}
 
 
 out = {}
