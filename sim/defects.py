@@ -19,6 +19,12 @@ rendered before them draws the same), for measuring what a model does on a kind 
                 is concave (gas trapped under a moulded skin)
   debris        a matte particle resting on a face (radius, grey level): a sphere of ``diffuse`` material (dust, a
                 flake of something else); it adds material and changes nothing of the part
+Moulding kinds, likewise drawn only when named (``MOULDING_KINDS``): what an injection-moulded part goes wrong with,
+for a second look at kinds nobody rendered (docs/results/2026-12-05-moulding-kinds.md):
+  sink          a sink mark: the dent's profile, broad and shallow (radius, depth), where a thick section shrank
+  short_shot    a stud not filled to its top (filled share of its height): the stud shorter, its top lower
+  warp          the whole part bowed along its length (sag: + the middle up, - the ends up), studs and plug with
+                it; the part rests on the belt as bowed; the whole body is the defect
 Each type is one function (``_dent``, ``_scratch``, ...; the table ``_DEFECTS``) that ``apply_defect`` dispatches to.
 Deformations are functions of position applied to all body vertices, so the duplicated vertices along sharp
 edges move together and the surface never cracks.
@@ -39,6 +45,8 @@ DEFECT_TYPES = ("dent", "scratch", "stain", "chip", "missing_stud")
 """The kinds a set draws by default (``DefectConfig.types``) and that models are trained and evaluated on."""
 NEW_KINDS = ("blister", "debris")
 """Kinds drawn only when a set names them: for evaluating a model on kinds nobody trained or chose anything on."""
+MOULDING_KINDS = ("sink", "short_shot", "warp")
+"""Moulding defects, drawn only when a set names them (``sim/presets/moulding-kinds.toml``), as ``NEW_KINDS``."""
 DEFECT_PART = "defect"
 
 
@@ -51,14 +59,16 @@ def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
     - scratch: ``area_mm2``, length x width: the rough stripe that scatters a mirrored light away;
     - stain: ``radius_mm``;
     - chip: ``size_mm``, the cut's depth along the edge's bisector;
-    - blister: ``slope_deg``, as a dent's (its profile is a dent's, raised);
-    - debris: ``radius_mm``, the particle's."""
+    - blister, sink: ``slope_deg``, as a dent's (their profile is a dent's, raised or shallow);
+    - debris: ``radius_mm``, the particle's;
+    - short_shot: ``short_mm``, how far the stud's top lies below a full stud's;
+    - warp: ``sag_mm``, the bow's size (either sign)."""
     if not defect:
         return None
     kind = defect.get("type")
     try:
-        if kind in ("dent", "blister"):
-            rise = defect["depth_mm"] if kind == "dent" else defect["height_mm"]
+        if kind in ("dent", "blister", "sink"):
+            rise = defect["height_mm"] if kind == "blister" else defect["depth_mm"]
             return "slope_deg", float(np.degrees(np.arctan(np.pi / 2 * rise / defect["radius_mm"])))
         if kind == "scratch":
             return "area_mm2", float(defect["length_mm"] * defect["width_mm"])
@@ -66,6 +76,10 @@ def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
             return "radius_mm", float(defect["radius_mm"])
         if kind == "chip":
             return "size_mm", float(defect["size_mm"])
+        if kind == "short_shot":
+            return "short_mm", float(defect["short_mm"])
+        if kind == "warp":
+            return "sag_mm", abs(float(defect["sag_mm"]))
     except (KeyError, TypeError, ZeroDivisionError):
         return None
     return None
@@ -84,11 +98,12 @@ others unknown."""
 
 def defect_face(defect: dict[str, Any] | None) -> str | None:
     """The face of the part a rendered defect lies on (``FACES``), from ``params.json``'s ``defect`` record: by the
-    recorded surface normal (within 25 deg of a face's), a missing stud on the top; None for a good part or a
-    record without the fields (an older scratch or stain off the top face: ``LEGACY_TOP_MM``)."""
+    recorded surface normal (within 25 deg of a face's), a missing or short stud on the top, a warp on the top (the
+    face that shows a bow most: it tilts the top face's mirror image); None for a good part or a record without the
+    fields (an older scratch or stain off the top face: ``LEGACY_TOP_MM``)."""
     if not defect:
         return None
-    if defect.get("type") == "missing_stud":
+    if defect.get("type") in ("missing_stud", "short_shot", "warp"):
         return "top"
     try:
         n = defect.get("normal")
@@ -133,21 +148,30 @@ class DefectConfig:
     debris_radius_mm: tuple[float, float] = (0.15, 0.5)
     debris_grey: tuple[float, float] = (0.05, 0.9)
     """The particle's diffuse reflectance (grey): soot to light dust."""
+    sink_radius_mm: tuple[float, float] = (2.5, 5.0)
+    sink_depth_mm: tuple[float, float] = (0.02, 0.1)
+    """A sink mark: broader and shallower than a dent (steepest tilt 0.4-3.6 deg against a dent's 3-38)."""
+    short_shot_fill: tuple[float, float] = (0.3, 0.8)
+    """The share of a short stud's height that filled (1.7 mm stud: its top 0.3-1.2 mm low)."""
+    warp_sag_mm: tuple[float, float] = (0.1, 0.5)
+    """The bow over the body's length (31.8 mm: 0.3-1.6 %, beyond the 0.1-0.3 % a moulded part is usually held
+    to), up or down with equal odds; its end faces tilt up to 4 * sag / length (0.7-3.6 deg)."""
     facing_camera: bool = True
     """Place defects on faces that face the camera (they can still be occluded)."""
 
     def __post_init__(self) -> None:
-        bad = [t for t in self.types if t not in DEFECT_TYPES + NEW_KINDS]
+        kinds = DEFECT_TYPES + NEW_KINDS + MOULDING_KINDS
+        bad = [t for t in self.types if t not in kinds]
         if bad or not self.types:
-            raise SimError(f"defects.types: unknown {bad or list(self.types)}; choose from "
-                           f"{', '.join(DEFECT_TYPES + NEW_KINDS)}")
+            raise SimError(f"defects.types: unknown {bad or list(self.types)}; choose from {', '.join(kinds)}")
         for f in fields(self):
             v = getattr(self, f.name)
             if isinstance(v, tuple) and f.name != "types":
                 if len(v) != 2 or not all(np.isfinite(x) for x in v) or v[0] > v[1] or v[0] < 0:
                     raise SimError(f"defects.{f.name}: need a range (lo, hi) with 0 <= lo <= hi, got {v}")
         for key in ("dent_radius_mm", "scratch_length_mm", "scratch_width_mm", "stain_radius_mm", "chip_size_mm",
-                    "scratch_alpha", "stain_alpha", "blister_radius_mm", "debris_radius_mm"):
+                    "scratch_alpha", "stain_alpha", "blister_radius_mm", "debris_radius_mm", "sink_radius_mm",
+                    "short_shot_fill", "warp_sag_mm"):
             if getattr(self, key)[0] <= 0:
                 raise SimError(f"defects.{key}: must be > 0, got {getattr(self, key)}")
 
@@ -163,7 +187,7 @@ class DefectConfig:
         return asdict(self)
 
     def usable_types(self, model: ObjectModel) -> tuple[str, ...]:
-        return tuple(t for t in self.types if t != "missing_stud" or "studs" in model.features)
+        return tuple(t for t in self.types if t not in ("missing_stud", "short_shot") or "studs" in model.features)
 
 
 @dataclass(frozen=True)
@@ -272,19 +296,11 @@ def _missing_stud(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj
     """One stud removed (preferably one the camera sees from above), with its footprint on the body's top."""
     model, body = b.model, b.part
     studs = model.part("studs")
-    top = studs.vertices[:, 2].max()
-    centres = []
-    for k in range(int(studs.tags.max()) + 1):
-        sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
-        centres.append([sv[:, 0].mean(), sv[:, 1].mean(), top])
-    centres = np.asarray(centres)
-    ok = (cam_obj - centres)[:, 2] > 0 if cfg.facing_camera else np.ones(len(centres), bool)
-    choices = np.flatnonzero(ok) if ok.any() else np.arange(len(centres))
-    k = int(rng.choice(choices))
+    k, _, centre, _ = _top_stud(model, rng, cfg, cam_obj)
     sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
-    radius = float(np.max(np.linalg.norm(sv[:, :2] - centres[k, :2], axis=1)))
+    radius = float(np.max(np.linalg.norm(sv[:, :2] - centre[:2], axis=1)))
     body_top = float(b.v[:, 2].max())
-    region = (np.linalg.norm(b.centroids[:, :2] - centres[k, :2], axis=1) < radius) & (b.fn[:, 2] > 0.9) & (
+    region = (np.linalg.norm(b.centroids[:, :2] - centre[:2], axis=1) < radius) & (b.fn[:, 2] > 0.9) & (
         b.centroids[:, 2] > body_top - 1e-6)
     kept = _subpart(studs, studs.tags != k, studs.name, studs.material)
     removed = _subpart(studs, studs.tags == k, DEFECT_PART, body.material)
@@ -294,8 +310,73 @@ def _missing_stud(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj
     good = Part(DEFECT_PART, np.concatenate([removed.vertices, footprint.vertices]),
                 np.concatenate([removed.faces, footprint.faces + len(removed.vertices)]),
                 np.concatenate([removed.normals, footprint.normals]), body.material)
-    info = {**b.info, "stud": k, "centre_m": centres[k].tolist(), "radius_mm": radius * 1000}
+    info = {**b.info, "stud": k, "centre_m": centre.tolist(), "radius_mm": radius * 1000}
     return DefectResult(model.with_parts([*parts, footprint]), good, body.name, b.material, info)
+
+
+def _top_stud(model: ObjectModel, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray
+              ) -> tuple[int, np.ndarray, np.ndarray, float]:
+    """A stud the camera sees from above (any when none is): (its number, its faces' selection in ``studs``, its
+    centre on the body's top (m), the studs' top height (m))."""
+    studs = model.part("studs")
+    top = studs.vertices[:, 2].max()  # float32, as the centres' other coordinates (the pinned draws)
+    centres = []
+    for k in range(int(studs.tags.max()) + 1):
+        sv = studs.vertices[np.unique(studs.faces[studs.tags == k])]
+        centres.append([sv[:, 0].mean(), sv[:, 1].mean(), top])
+    centres = np.asarray(centres)
+    ok = (cam_obj - centres)[:, 2] > 0 if cfg.facing_camera else np.ones(len(centres), bool)
+    k = int(rng.choice(np.flatnonzero(ok) if ok.any() else np.arange(len(centres))))
+    return k, studs.tags == k, centres[k], float(top)
+
+
+def _short_shot(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """One stud filled short: its height scaled to the drawn share (the body's top stays), the full stud as the good
+    region."""
+    model = b.model
+    studs = model.part("studs")
+    k, sel, centre, top = _top_stud(model, rng, cfg, cam_obj)
+    fill = float(rng.uniform(*cfg.short_shot_fill))
+    base = float(b.v[:, 2].max())
+    stud = _subpart(studs, sel, DEFECT_PART, b.part.material)
+    v = stud.vertices.astype(np.float64)
+    v[:, 2] = base + (v[:, 2] - base) * fill
+    # a height scaled along z keeps a cylinder's normals (its side's have no z, its top's only z)
+    short = Part(DEFECT_PART, v.astype(np.float32), stud.faces, stud.normals, b.part.material)
+    kept = _subpart(studs, ~sel, studs.name, studs.material)
+    parts = [kept if p.name == studs.name else p for p in model.parts]
+    info = {**b.info, "stud": k, "centre_m": centre.tolist(), "fill": fill,
+            "short_mm": (top - base) * (1 - fill) * 1000}
+    return DefectResult(model.with_parts([*parts, short]), stud, b.part.name, b.material, info)
+
+
+def _warp(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """The whole part bowed along x: every vertex of every part raised by ``sag (1 - u^2)`` at u = 2 x / the body's
+    length (carried on straight past the body's ends: the plug tilts with its end), less the bow's lowest point so
+    the part rests on the belt. The bowed body is the defect part, the flat one its good region."""
+    model = b.model
+    x0, x1 = float(b.v[:, 0].min()), float(b.v[:, 0].max())
+    sag = _mm(rng, cfg.warp_sag_mm) * (1.0 if rng.random() < 0.5 else -1.0)
+
+    def bowed(p: Part) -> tuple[np.ndarray, np.ndarray]:
+        """The part's vertices raised by the bow and its normals turned with it (z += f(x) maps a normal n to
+        (n_x - f'(x) n_z, n_y, n_z), normalised)."""
+        v, n = p.vertices.astype(np.float64), p.normals.astype(np.float64)
+        u = (2 * v[:, 0] - (x0 + x1)) / (x1 - x0)
+        inside = np.abs(u) <= 1
+        dz = sag * np.where(inside, 1 - u**2, -2 * (np.abs(u) - 1)) - min(sag, 0.0)
+        slope = sag * np.where(inside, -2 * u, -2 * np.sign(u)) * 2 / (x1 - x0)
+        n = np.c_[n[:, 0] - slope * n[:, 2], n[:, 1:]]
+        return np.c_[v[:, :2], v[:, 2] + dz], n / np.linalg.norm(n, axis=1, keepdims=True)
+
+    parts = []
+    for p in model.parts:
+        v, n = bowed(p)
+        name = DEFECT_PART if p.name == b.part.name else p.name
+        parts.append(Part(name, v.astype(np.float32), p.faces, n.astype(np.float32), p.material, p.tags))
+    good = _subpart(b.part, np.ones(len(b.part.faces), bool), DEFECT_PART, b.part.material)
+    info = {**b.info, "sag_mm": sag * 1000, "length_mm": (x1 - x0) * 1000}
+    return DefectResult(model.with_parts(parts), good, b.part.name, b.material, info)
 
 
 def _chip(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
@@ -356,6 +437,11 @@ def _bump(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nda
 def _dent(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
     """A smooth cosine-profile depression pushed in along the face normal."""
     return _bump(b, rng, cfg, cam_obj, cfg.dent_radius_mm, cfg.dent_depth_mm, -1.0, "depth_mm")
+
+
+def _sink(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A sink mark: a dent's cosine profile, broad and shallow."""
+    return _bump(b, rng, cfg, cam_obj, cfg.sink_radius_mm, cfg.sink_depth_mm, -1.0, "depth_mm")
 
 
 def _blister(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
@@ -425,5 +511,6 @@ def _stain(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nd
 
 _DEFECTS: dict[str, Callable[[_Body, np.random.Generator, DefectConfig, np.ndarray], DefectResult]] = {
     "dent": _dent, "scratch": _scratch, "stain": _stain, "chip": _chip, "missing_stud": _missing_stud,
-    "blister": _blister, "debris": _debris}
-"""Defect type -> the function that puts it on a body (one per name of ``DEFECT_TYPES`` and ``NEW_KINDS``)."""
+    "blister": _blister, "debris": _debris, "sink": _sink, "short_shot": _short_shot, "warp": _warp}
+"""Defect type -> the function that puts it on a body (one per name of ``DEFECT_TYPES``, ``NEW_KINDS`` and
+``MOULDING_KINDS``)."""

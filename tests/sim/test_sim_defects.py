@@ -5,7 +5,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sim.defects import _DEFECTS, DEFECT_TYPES, FACES, NEW_KINDS, DefectConfig, apply_defect, defect_face
+from sim.defects import (
+    _DEFECTS,
+    DEFECT_TYPES,
+    FACES,
+    MOULDING_KINDS,
+    NEW_KINDS,
+    DefectConfig,
+    apply_defect,
+    defect_face,
+    defect_size,
+)
 from sim.errors import SimError
 from sim.meshes import usb_brick
 
@@ -75,7 +85,8 @@ def test_the_new_kinds_are_not_in_the_default_draw() -> None:
     # every set rendered before them draws the same five kinds
     assert DefectConfig().types == DEFECT_TYPES == ("dent", "scratch", "stain", "chip", "missing_stud")
     assert set(NEW_KINDS) == {"blister", "debris"} and not set(NEW_KINDS) & set(DEFECT_TYPES)
-    assert set(_DEFECTS) == set(DEFECT_TYPES) | set(NEW_KINDS)
+    assert set(MOULDING_KINDS) == {"sink", "short_shot", "warp"} and not set(MOULDING_KINDS) & set(DEFECT_TYPES)
+    assert set(_DEFECTS) == set(DEFECT_TYPES) | set(NEW_KINDS) | set(MOULDING_KINDS)
     with pytest.raises(SimError, match="unknown"):
         DefectConfig(types=("bubble",))
 
@@ -113,3 +124,51 @@ def test_debris_is_a_matte_particle_resting_on_a_face() -> None:
     assert defect_face({"type": "debris", **r.info}) == "front"
     # seeded
     assert _draw("debris")[1].info == r.info and _draw("debris", 8)[1].info != r.info
+
+
+def test_a_sink_mark_is_a_broad_shallow_dent() -> None:
+    _, r = _draw("sink")
+    assert r.good_region is not None
+    # each vertex of the region moved in along the face's normal, the deepest by the depth
+    moved = r.model.part("defect").vertices.astype(np.float64) - r.good_region.vertices
+    h = moved @ np.asarray(r.info["normal"]) * 1000
+    assert 2.5 <= r.info["radius_mm"] <= 5.0 and 0.02 <= r.info["depth_mm"] <= 0.1
+    assert 0.8 * r.info["depth_mm"] < -h.min() <= r.info["depth_mm"] + 1e-6 and h.max() < 1e-6
+    name, slope = defect_size({"type": "sink", **r.info})
+    assert name == "slope_deg" and 0.3 < slope < 3.7
+
+
+def test_a_short_shot_is_a_stud_not_filled_to_its_top() -> None:
+    model, r = _draw("short_shot")
+    full, short = model.part("studs"), r.model.part("defect")
+    base = float(model.part("body").vertices[:, 2].max())
+    top = float(full.vertices[:, 2].max())
+    # the short stud rises the filled share of a full one, from the body's top; the other seven are whole
+    np.testing.assert_allclose(short.vertices[:, 2].max() - base, r.info["fill"] * (top - base), rtol=1e-4)
+    assert 0.3 <= r.info["fill"] <= 0.8 and r.model.part("studs").faces.shape[0] == full.faces.shape[0] * 7 // 8
+    np.testing.assert_allclose(r.info["short_mm"], (1 - r.info["fill"]) * 1.7, rtol=1e-3)
+    # the good region is the full stud, where it stood
+    assert r.good_region is not None and float(r.good_region.vertices[:, 2].max()) == top
+    assert defect_face({"type": "short_shot", **r.info}) == "top"
+    assert defect_size({"type": "short_shot", **r.info}) == ("short_mm", r.info["short_mm"])
+
+
+@pytest.mark.parametrize("seed", [7, 8])
+def test_a_warp_bows_the_whole_part_which_still_rests_on_the_belt(seed: int) -> None:
+    model, r = _draw("warp", seed)
+    sag = r.info["sag_mm"] / 1000
+    body, bowed = model.part("body"), r.model.part("defect")
+    assert 0.1 <= abs(r.info["sag_mm"]) <= 0.5 and bowed.faces.shape == body.faces.shape
+    lift = bowed.vertices[:, 2].astype(np.float64) - body.vertices[:, 2]
+    middle, ends = np.abs(body.vertices[:, 0]) < 1e-4, np.abs(body.vertices[:, 0]) > 0.0158
+    # bowed up (sag > 0) the middle rises by the sag, the ends stay; bowed down the ends rise by it
+    np.testing.assert_allclose(lift[middle].mean() - lift[ends].mean(), sag, atol=2e-6)
+    assert abs(lift.min()) < 1e-6 and bowed.vertices[:, 2].min() == pytest.approx(0.0, abs=1e-6)
+    # studs and plug move with it; the shading normals turn with the surface (top face's normal tilts at the ends)
+    assert not np.allclose(r.model.part("studs").vertices, model.part("studs").vertices)
+    up = (body.normals[:, 2] > 0.99) & ends
+    tilt = np.degrees(np.arccos(np.clip(bowed.normals[up, 2], -1, 1)))
+    np.testing.assert_allclose(tilt, np.degrees(np.arctan(4 * abs(sag) / 0.0318)), rtol=1e-3)
+    assert r.good_region is not None and r.good_region.faces.shape == body.faces.shape
+    assert defect_face({"type": "warp", **r.info}) == "top"
+    assert defect_size({"type": "warp", **r.info}) == ("sag_mm", abs(r.info["sag_mm"]))
