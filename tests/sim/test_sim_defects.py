@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -172,3 +174,9 @@ def test_a_warp_bows_the_whole_part_which_still_rests_on_the_belt(seed: int) -> 
     assert r.good_region is not None and r.good_region.faces.shape == body.faces.shape
     assert defect_face({"type": "warp", **r.info}) == "top"
     assert defect_size({"type": "warp", **r.info}) == ("sag_mm", abs(r.info["sag_mm"]))
+
+
+def test_a_part_without_studs_draws_no_short_shot() -> None:
+    plain = dataclasses.replace(usb_brick(), features=())
+    assert DefectConfig(types=("short_shot", "sink")).usable_types(plain) == ("sink",)
+    assert DefectConfig(types=("short_shot", "sink")).usable_types(usb_brick()) == ("short_shot", "sink")
