@@ -493,6 +493,54 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
             f"AUROC {ev.metrics.get('image_auroc', float('nan')):.3f}")
 
 
+def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
+    """Checkpoint ``model`` (with its variation model) plus the shape check (``model.draem.shape_check``): its sag's
+    median and spread from ``data``'s good train parts, its threshold from ``val_data``'s good val parts; written to
+    ``out`` with ``model``'s threshold, its sidecar's ``train.shape`` recording the check; one line saying what it
+    found. UserError when the model has no variation model or its part shows no straight bottom edge."""
+    import copy
+    import sys
+
+    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+    from model.draem.errors import ModelError
+    from model.draem.with_variation import add_shape_check
+    from model.normals.estimator import copy_beside
+    from station.datasets import manifest_sha256
+
+    ck = load_checkpoint(model)
+    if ck.detector.variation is None:
+        raise UserError(f"{model}: the shape check reads the variation model's registration: add it first "
+                        f"(station variation)")
+    tr = model_split(ck, model, data, "train", good_only=True)
+    va = model_split(ck, model, val_data, "val", good_only=True)
+    print(f"{data}: {len(tr.priors)} good train parts; {val_data}: {len(va.priors)} good val parts", file=sys.stderr,
+          flush=True)
+    det = copy.deepcopy(ck.detector)
+    try:
+        found = add_shape_check(det, tr.priors, va.priors)
+    except ModelError as exc:
+        raise UserError(f"{model}: {exc}") from None
+    if not found:
+        raise UserError(f"{model}: the variation model's part region shows no straight bottom edge along the part: "
+                        f"no shape check")
+    shape = det.variation.shape
+    first, end = (int(v) for v in shape.edge[:2])
+    centre, spread, threshold, window = (float(v) for v in shape.calibration)
+    record = {"data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(tr.priors),
+              "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
+              "calibration_parts": len(va.priors), "edge_columns": [first, end], "sag_median_px": centre,
+              "sag_spread_px": spread, "threshold_z": threshold, "window_at_threshold": window,
+              "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}
+    meta = ck.meta
+    save_checkpoint(out, det, ck.threshold, meta.get("threshold_rule", ""), meta.get("data_manifest_sha256"),
+                    meta.get("metrics"), {**meta.get("train", {}), "shape": record})
+    copy_beside(model, out, meta.get("train", {}).get("normal_prior"))
+    return (f"{out}: shape check on the bottom edge over input columns {first}-{end - 1}: good parts' sag "
+            f"{centre:.3f} +- {spread:.3f} px; a part is flagged beyond {threshold:.1f} robust SD "
+            f"({threshold * spread:.2f} px off), where the largest of {len(va.priors)} good val parts lies; "
+            f"threshold {ck.threshold} kept")
+
+
 def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], second_model: str,
                             second_data: str | Sequence[str], rate: float = GOOD_REJECTED_RATE, split: str = "val",
                             first_presence: str = PRESENCE_RULES[0],

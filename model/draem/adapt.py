@@ -335,6 +335,9 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
             and not final.variation.second_look.references):
         log.warning("the adapted variation model has no second look (model.draem.second_look): it needs at least "
                     "%d good parts in each fold's fit", MIN_REFERENCES)
+    if detector.variation is not None and detector.variation.shape.fitted:  # a refit's check is its own
+        log.warning("the adapted variation model has no shape check (model.draem.shape_check): add it again with "
+                    "station shape on the line's good parts")
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
     changed = detector.config.decision != final.config.decision
     if changed:

@@ -117,6 +117,7 @@ from .config import Alignment
 from .errors import ModelError
 from .frame_checks import FRAME_CHECKS
 from .second_look import SecondLook
+from .shape_check import ShapeCheck
 from .shifts import Channels, blurred_copies
 
 LOG_FLOOR = 1e-3
@@ -210,14 +211,14 @@ MAX_HIDDEN = 0.5
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
                  "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged",
-                 "curvature_sigma", "second_look.tests", "judged_channels")
-"""Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their
-initial values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as
-a feature; ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's
-polarization read as it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no
-clusters; ``contrast_range`` ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look;
-``curvature_sigma`` 0: the box window; ``second_look.tests`` 1: a second look tests; ``judged_channels`` all 1:
-every feature judged), which score as those models did. Dotted names are a submodule's (``nn.Module.get_buffer``)."""
+                 "curvature_sigma", "second_look.tests", "judged_channels", "shape.edge", "shape.calibration")
+"""Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their initial
+values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as a feature;
+``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's polarization read as
+it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no clusters; ``contrast_range``
+``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look; ``curvature_sigma`` 0: the box window;
+``second_look.tests`` 1: a second look tests; ``judged_channels`` all 1: every feature judged; ``shape`` NaN: no
+shape check), which score as those models did. Dotted names are a submodule's (``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
 """``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
@@ -404,7 +405,8 @@ class VariationModel(nn.Module):
     parts the window finds suspicious (``model.draem.second_look``; no references: none). ``curvature_sigma``: the
     window statistic (module docstring: z map; 0: the box, else the curvature's sigma in input px; ``fit``), which a
     refit keeps. ``judged_channels`` (C,) 1.0 for a channel the window statistic is taken over, 0.0 for one that is
-    only read (intensity still registers the part; ``fit``'s ``judged_channels``), which a refit keeps. ``intensity``,
+    only read (intensity still registers the part; ``fit``'s ``judged_channels``), which a refit keeps. ``shape``: the
+    shape check, how far the part's bottom edge bends (``model.draem.shape_check``; NaN: none). ``intensity``,
     ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's cosine (its sine follows), None when
     the model does not read that prior."""
 
@@ -434,6 +436,7 @@ class VariationModel(nn.Module):
         self.register_buffer("judged_channels", torch.ones(channels))
         self._resize_clusters(0, 0)
         self.second_look = SecondLook()
+        self.shape = ShapeCheck()
 
     def _resize_clusters(self, clusters: int, pixels: int) -> None:
         """Empty cluster buffers for ``clusters`` clusters over ``pixels`` region pixels."""
@@ -719,6 +722,7 @@ class VariationModel(nn.Module):
         self._resize_clusters(0, 0)
         tests = self.second_look.tests.clone()  # the recipe's, which a refit keeps
         self.second_look = SecondLook()  # a new fit's references are its own (``with_variation.add_second_look``)
+        self.shape = ShapeCheck()  # and its edge (``with_variation.add_shape_check``)
         self.second_look.tests.copy_(tests)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
@@ -931,10 +935,13 @@ class VariationModel(nn.Module):
         return max(int(self.region.sum()), 1) * int(self.components.shape[1])
 
     def check(self) -> None:
-        """ModelError unless every buffer is finite, every scale and spread in (0, ``MAX_SPREAD``] (the clusters'
-        spread per pixel's share, ``coefficient_entries``) and the part region at least ``MIN_REGION`` of the frame:
-        a NaN, an empty region or a huge spread would pass every part."""
+        """ModelError unless every buffer is finite (the shape check's: all NaN or all finite, ``ShapeCheck.check``),
+        every scale and spread in (0, ``MAX_SPREAD``] (the clusters' spread per pixel's share,
+        ``coefficient_entries``) and the part region at least ``MIN_REGION`` of the frame: a NaN, an empty region or a
+        huge spread would pass every part."""
         for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *LATER_BUFFERS):
+            if name.startswith("shape."):
+                continue  # NaN is its off state (``ShapeCheck.check``, below)
             value = self.get_buffer(name)
             if name == "second_look.calibration":
                 value = value[1:]  # its gate is infinite until calibrated: no part is looked at again
@@ -958,6 +965,7 @@ class VariationModel(nn.Module):
         if not 0.0 <= sigma <= MAX_CURVATURE_SIGMA:  # NaN fails too
             raise ModelError(f"variation model: curvature_sigma is {sigma:g}, outside [0, {MAX_CURVATURE_SIGMA:g}] "
                              f"input px")
+        self.shape.check()
         look = self.second_look
         if look.references and look.chi.shape[1] != int(self.region.sum()):
             raise ModelError(f"variation model: second_look.chi covers {look.chi.shape[1]} pixels, the part region "
@@ -980,7 +988,9 @@ class VariationModel(nn.Module):
         maps, scores, highlights, noise, signed_all, judged_all = [], [], [], [], [], []
         part = self.region.numpy()
         for xi in x.float().cpu().numpy():
-            r, coef, judged, hidden = self._judged_residual(xi)
+            aligned = self._aligned(xi)
+            sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan  # before alignment
+            r, coef, judged, hidden = self._residual_of(*aligned)
             highlights.append(hidden)
             r = self.clustered(r, coef)
             w, level = self.window(r, judged)
@@ -996,6 +1006,7 @@ class VariationModel(nn.Module):
                 s = signed_all[-1] if signed else self.signed_z(r, judged, level)
                 t = self.second_look.test(maps[-1], (s.astype(np.float32) ** 2).sum(0), judged, part)
                 scores[-1] = self.second_look.score(scores[-1], t)
+            scores[-1] = max(scores[-1], self.shape.finding(sag))  # the larger: each at its own threshold
         m = torch.from_numpy(np.stack(maps)).to(x.device)
         return VariationOutput(m, torch.tensor(scores, dtype=torch.float32, device=x.device),
                                torch.tensor(highlights, dtype=torch.float32),
@@ -1007,8 +1018,13 @@ class VariationModel(nn.Module):
         """(C, H, W) physical priors of a frame -> its residual in units of ``scale`` (C, H, W) before clusters, its
         (COMPONENTS,) coefficients, the (H, W) bool pixels judged and the share of the part the highlight rule
         found (module docstring: register, highlights, appearance)."""
+        return self._residual_of(*self._aligned(xi))
+
+    def _residual_of(self, warped: np.ndarray, judged: np.ndarray, where: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """``_judged_residual`` from a frame's ``_aligned`` (its warped features, changed in place, judged pixels and
+        the pixels alignments fit over)."""
         mean, part = self.mean.numpy(), self.region.numpy()
-        warped, judged, where = self._aligned(xi)
         warped[:-1], k = self.align_contrast(warped[:-1], where)
         hidden = 1.0 - judged.sum() / max(part.sum(), 1)
         if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
@@ -1035,6 +1051,11 @@ class VariationModel(nn.Module):
         pixels of the region ``part`` not hidden by a highlight)."""
         warped = self.register(xi, self.features(xi))
         return warped, part & ~self.highlight(warped[-1])
+
+    def edge_sag(self, xi: np.ndarray) -> float:
+        """(C, H, W) physical priors of a frame -> the shape check's sag of its registered intensity (input px;
+        ``model.draem.shape_check``; NaN without an edge)."""
+        return self.shape.sag(self._aligned(xi)[0][self.intensity])
 
     def scored_region(self) -> np.ndarray:
         """(H, W) bool: the part region eroded by 1 px (the image border does not erode), where a map is scored: a

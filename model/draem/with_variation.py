@@ -14,6 +14,7 @@ import torch
 from .config import Alignment, channel_slices
 from .detector import Detector
 from .errors import ModelError
+from .metrics import false_reject_threshold
 from .residual import train_member
 from .second_look import MIN_REFERENCES
 from .variation import VariationModel, network_score
@@ -61,6 +62,29 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration
     out.variation.check()
     return out
+
+
+SHAPE_WINDOW_RATE = 0.01
+"""The shape check's finding is scaled to the window score at this share of good validation parts rejected."""
+
+
+@torch.no_grad()
+def add_shape_check(detector: Detector, good: torch.Tensor, val_good: torch.Tensor, batch: int = 16) -> bool:
+    """Give ``detector``'s variation model its shape check (``model.draem.shape_check``), in place: the edge from its
+    reference and region, the sag's median and spread from ``good`` (N, C, H, W) good training parts' physical priors,
+    its threshold from ``val_good``'s (good validation parts), with the window score at ``SHAPE_WINDOW_RATE`` of
+    them. False, and no check, when the region shows no straight bottom edge; ModelError as
+    ``ShapeCheck.calibrate``."""
+    var = detector.variation
+    if var is None:
+        raise ModelError("the shape check reads the variation model's registration: add the variation model first")
+    if not var.shape.find(var.reference.numpy(), var.region.numpy()):
+        return False
+    window = torch.cat([var.zmaps(val_good[i:i + batch]).scores for i in range(0, len(val_good), batch)])
+    sags = [np.array([var.edge_sag(xi) for xi in x.float().cpu().numpy()]) for x in (good, val_good)]
+    var.shape.calibrate(*sags, false_reject_threshold(window.numpy(), SHAPE_WINDOW_RATE))
+    var.check()
+    return True
 
 
 def judged_channels(priors: Sequence[str], judged_priors: Sequence[str] | None) -> list[int] | None:

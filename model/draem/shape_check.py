@@ -1,0 +1,192 @@
+"""The variation model's shape check: how far the part's bottom edge bends (rule 70,
+docs/results/2026-12-05-moulding-kinds.md).
+
+The window statistic judges each place against good parts at that place; a part bowed along its length changes
+every place a little and none much, and the registration's affine warp takes up part of what is left. A bow bends
+every edge that runs along the part into a parabola, which an affine warp cannot straighten. The check measures it:
+
+1. **Edge** (``find_edge``, at fit time): the bottom edge of the part region, column by column; the longest run of
+   columns whose bottom lies within ``EDGE_FIT_PX`` of a robust straight line through them (the body; a plug or a
+   rounded end lies off it), trimmed by ``TRIM`` at each end; then in the reference, the row of the strongest vertical
+   change within ``EDGE_BAND_PX`` above that line, and a robust straight line through those rows: the edge's line and
+   the sign of its change (bright above dark, or dark above bright). No run of ``MIN_RUN`` of the region's columns:
+   no edge, and the check is off.
+2. **Sag** (``edge_sag``, per part, on its registered intensity): per column of the edge, the row of the strongest
+   change of that sign within ``SEARCH_PX`` of the line, to a fraction of a pixel (a parabola through the peak and its
+   neighbours); over the columns mapped to [-1, 1] a parabola is fitted, and again without the columns off it by over
+   ``ROBUST_K`` robust spreads; the sag is its quadratic coefficient (input px: + when the edge's middle lies higher
+   in the frame than its ends, on fewer rows).
+3. **Finding** (``ShapeCheck.finding``): the sag as a robust z against the good training parts' (median, 1.4826
+   MAD), over the largest |z| of the good validation parts (its threshold, ``calibration``), times the window score at
+   the variation model's own 1 % point on those parts: a part whose sag lies beyond every good validation part's scores
+   above that point. ``VariationModel.zmaps`` takes the larger of it and the window's score, as the residual networks'
+   look does: each finding against its own threshold, one threshold on the file.
+
+Buffers (saved with the checkpoint, float64; NaN: not fitted, the check is off and the model scores as before it):
+``edge`` (5,) first column, end column (exclusive), the line's row at column 0 and its slope (rows per column), the
+sign of the change; ``calibration`` (4,) the good training parts' median sag, its robust spread (input px), the
+threshold (robust z) and the window score at the variation model's 1 % point."""
+
+from __future__ import annotations
+
+import math
+
+import cv2
+import numpy as np
+import torch
+from torch import nn
+
+from .errors import ModelError
+
+EDGE_FIT_PX = 2.0
+"""A column belongs to the straight bottom edge when its region bottom lies within this of the robust line (px)."""
+MIN_RUN = 0.4
+"""The straight run must span at least this share of the region's columns; fewer: no edge, no check."""
+TRIM = 0.1
+"""Share of the run left out at each end: a part's corners and chamfers bend the edge there."""
+EDGE_BAND_PX = 8
+"""In the reference, the edge is sought this far above the region's bottom line (and 2 px below it)."""
+SEARCH_PX = 3
+"""Per part, the edge is sought this far either side of the reference's edge line (input px)."""
+ROBUST_K = 3.0
+"""Columns off the first parabola by more than this many robust spreads are left out of the second."""
+NO_EDGE = (math.nan,) * 5
+NO_CALIBRATION = (math.nan,) * 4
+
+
+def vertical_change(image: np.ndarray) -> np.ndarray:
+    """(H, W) image -> (H - 1, W) float32: row r + 1 minus row r of the image smoothed by a Gaussian of sigma 1 px;
+    finite (NaN and Inf read as 0)."""
+    f = np.nan_to_num(np.asarray(image, np.float32), nan=0.0, posinf=0.0, neginf=0.0)
+    return np.diff(cv2.GaussianBlur(f, (0, 0), 1.0), axis=0)
+
+
+def robust_line(x: np.ndarray, y: np.ndarray, within: float) -> tuple[np.ndarray, np.ndarray]:
+    """A straight line through most of (x, y): the Theil-Sen line (the median of the pairwise slopes, the median
+    intercept), fitted again by least squares to the points within ``within`` of it: ((2,) slope and intercept as
+    ``np.polyfit``, (N,) bool the points within ``within`` of the result)."""
+    i, j = np.triu_indices(len(x), 1)
+    dx = x[j] - x[i]
+    slope = float(np.median((y[j] - y[i])[dx != 0] / dx[dx != 0]))
+    p = np.array([slope, float(np.median(y - slope * x))])
+    keep = np.abs(y - np.polyval(p, x)) <= within
+    if keep.sum() >= 2:
+        p = np.polyfit(x[keep], y[keep], 1)
+    return p, np.abs(y - np.polyval(p, x)) <= within
+
+
+def find_edge(reference: np.ndarray, region: np.ndarray) -> tuple[float, float, float, float, float] | None:
+    """(H, W) reference and (H, W) bool part region -> ``edge`` (first column, end column, row at column 0, slope,
+    sign) of the part's straight bottom edge (module docstring, step 1), or None when there is none."""
+    cols = np.flatnonzero(region.any(0))
+    if len(cols) < 10:
+        return None
+    bottom = np.array([np.flatnonzero(region[:, c]).max() for c in cols], dtype=np.float64)
+    p, keep = robust_line(cols.astype(np.float64), bottom, EDGE_FIT_PX)
+    runs = np.split(np.arange(len(cols)), np.flatnonzero(np.diff(keep.astype(int)) != 0) + 1)
+    run = max((r for r in runs if keep[r[0]]), key=len, default=np.array([], int))
+    if len(run) < MIN_RUN * len(cols):
+        return None
+    trim = round(TRIM * len(run))
+    first, end = int(cols[run[trim]]), int(cols[run[-1 - trim]]) + 1
+    change = vertical_change(reference)
+    c = np.arange(first, end)
+    rows = []
+    for col in c:
+        line = float(np.polyval(p, col))
+        lo, hi = max(int(line) - EDGE_BAND_PX, 0), min(int(line) + 3, change.shape[0])
+        rows.append(lo + int(np.argmax(np.abs(change[lo:hi, col]))))
+    rows = np.asarray(rows, np.float64)
+    q, _ = robust_line(c.astype(np.float64), rows, 1.5)
+    at = np.clip(np.rint(np.polyval(q, c)).astype(int), 0, change.shape[0] - 1)
+    sign = float(np.sign(np.sum(change[at, c])))
+    return (float(first), float(end), float(q[1]), float(q[0]), sign) if sign else None
+
+
+def edge_sag(intensity: np.ndarray, edge: tuple[float, ...]) -> float:
+    """(H, W) registered intensity of a part and ``edge`` -> the edge's sag in input px (module docstring, step 2);
+    NaN when too few columns show it."""
+    first, end, row0, slope, sign = edge
+    change = sign * vertical_change(intensity)
+    rows, used = [], []
+    for col in range(int(first), int(end)):
+        line = round(row0 + slope * col)
+        lo, hi = max(line - SEARCH_PX, 1), min(line + SEARCH_PX + 1, change.shape[0] - 1)
+        if hi <= lo:
+            continue
+        r = lo + int(np.argmax(change[lo:hi, col]))
+        a, b, d = change[r - 1, col], change[r, col], change[r + 1, col]
+        den = a - 2 * b + d
+        rows.append(r + (0.5 * (a - d) / den if den < 0 else 0.0))
+        used.append(col)
+    if len(rows) < 10:
+        return math.nan
+    u = np.interp(used, (first, end - 1), (-1.0, 1.0))
+    rows = np.asarray(rows)
+    p = np.polyfit(u, rows, 2)
+    off = np.abs(rows - np.polyval(p, u))
+    keep = off <= ROBUST_K * max(float(np.median(off)) / 0.6745, 1e-3)
+    if keep.sum() >= 10:
+        p = np.polyfit(u[keep], rows[keep], 2)
+    return float(p[0])
+
+
+class ShapeCheck(nn.Module):
+    """The shape check's edge and calibration (module docstring); off until ``fit``."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.register_buffer("edge", torch.tensor(NO_EDGE, dtype=torch.float64))
+        self.register_buffer("calibration", torch.tensor(NO_CALIBRATION, dtype=torch.float64))
+
+    @property
+    def fitted(self) -> bool:
+        """Whether the check is on: an edge and a calibration."""
+        return bool(torch.isfinite(self.edge).all() and torch.isfinite(self.calibration).all())
+
+    def find(self, reference: np.ndarray, region: np.ndarray) -> bool:
+        """Set ``edge`` from the variation model's reference and region (``find_edge``); clears the calibration.
+        Whether an edge was found."""
+        edge = find_edge(reference, region)
+        self.edge.copy_(torch.tensor(NO_EDGE if edge is None else edge, dtype=torch.float64))
+        self.calibration.copy_(torch.tensor(NO_CALIBRATION, dtype=torch.float64))
+        return edge is not None
+
+    def sag(self, intensity: np.ndarray) -> float:
+        """A part's registered intensity -> its edge's sag (input px; NaN without an edge or where none is seen)."""
+        edge = tuple(float(v) for v in self.edge)
+        return edge_sag(intensity, edge) if all(math.isfinite(v) for v in edge) else math.nan
+
+    def calibrate(self, train_sags: np.ndarray, val_sags: np.ndarray, window_at_threshold: float) -> None:
+        """Set ``calibration`` from the good training parts' and the good validation parts' sags (NaN ones left out)
+        and the window score at the variation model's 1 % point on those validation parts. ModelError with fewer
+        than 10 sags of either, or a spread of 0."""
+        train = np.asarray(train_sags, np.float64)
+        val = np.asarray(val_sags, np.float64)
+        train, val = train[np.isfinite(train)], val[np.isfinite(val)]
+        if len(train) < 10 or len(val) < 10:
+            raise ModelError(f"shape check: the edge is seen on {len(train)} good training and {len(val)} good "
+                             f"validation parts; it needs 10 of each")
+        centre = float(np.median(train))
+        spread = float(np.median(np.abs(train - centre))) * 1.4826
+        if not spread > 0 or not window_at_threshold > 0:
+            raise ModelError("shape check: the good parts' sags do not spread, or the window's threshold is not > 0")
+        threshold = float(np.abs(val - centre).max()) / spread
+        self.calibration.copy_(torch.tensor([centre, spread, max(threshold, 1.0), window_at_threshold],
+                                            dtype=torch.float64))
+
+    def finding(self, sag: float) -> float:
+        """A part's sag -> its finding in the window's score units (module docstring, step 3); 0.0 when the check is
+        off or the sag is NaN (the part is still judged by the window)."""
+        if not self.fitted or not math.isfinite(sag):
+            return 0.0
+        centre, spread, threshold, window = (float(v) for v in self.calibration)
+        return abs(sag - centre) / spread / threshold * window
+
+    def check(self) -> None:
+        """ModelError unless the buffers are all NaN (off) or all finite with the spread, threshold and window > 0."""
+        for name, t in (("edge", self.edge), ("calibration", self.calibration)):
+            if not (bool(torch.isnan(t).all()) or bool(torch.isfinite(t).all())):
+                raise ModelError(f"shape check: {name} is partly NaN or Inf")
+        if torch.isfinite(self.calibration).all() and not bool((self.calibration[1:] > 0).all()):
+            raise ModelError("shape check: its spread, threshold and window score must be > 0")

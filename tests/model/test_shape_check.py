@@ -1,0 +1,134 @@
+"""The variation model's shape check (``model.draem.shape_check``, rule 70): it finds the part's straight bottom edge,
+measures how far a part's edge bends, flags a bowed part the window passes, survives a checkpoint, is off in an old
+file, and no input makes it NaN."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+
+from model.draem.checkpoint import load_checkpoint, save_checkpoint
+from model.draem.config import ModelConfig
+from model.draem.detector import Detector
+from model.draem.errors import ModelError
+from model.draem.shape_check import ShapeCheck, edge_sag, find_edge
+from model.draem.with_variation import add_shape_check, add_variation
+from tests.model.test_variation import H, W, part, parts
+
+
+def edge_image(bow: float, plug: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """(H, W) intensity of a bright part over a dark belt whose bottom edge lies at row 24.5, its middle ``bow`` px
+    higher than its ends (a parabola; each pixel as bright as the share of it the part covers), with a plug at the
+    right whose bottom lies higher; and its region (pixels at least half covered)."""
+    y, x = np.mgrid[0:H, 0:W].astype(np.float32)
+    u = (x - 32.0) / 22.0
+    bottom = 24.5 - bow * (1 - u**2)
+    body = np.clip(bottom - y + 0.5, 0.0, 1.0) * ((y > 7) & (np.abs(x - 32) <= 22))
+    lug = ((y > 10) & (y < 18) & (x > 54) & (x < 62)).astype(np.float32) if plug else np.zeros_like(body)
+    cover = np.maximum(body, lug)
+    return (0.05 + 0.6 * cover).astype(np.float32), cover >= 0.5
+
+
+def test_the_straight_bottom_edge_is_found_and_a_bow_measured() -> None:
+    image, region = edge_image(0.0)
+    edge = find_edge(image, region)
+    assert edge is not None
+    first, end, row0, slope, sign = edge
+    # the body's columns 10-54 less a tenth at each end, the plug's higher bottom left out; the edge at row 24
+    assert 12 <= first <= 16 and 50 <= end <= 53 and abs(slope) < 0.01 and 23.5 <= row0 <= 25.5 and sign == -1.0
+    assert abs(edge_sag(image, edge)) < 0.05
+    for bow in (0.5, 1.0, 2.0):  # the middle higher: + sag, about the bow over the measured columns' span
+        sag = edge_sag(edge_image(bow)[0], edge)
+        u_end = (end - 1 - 32) / 22.0
+        assert sag == pytest.approx(bow * u_end**2, rel=0.25), bow
+    assert edge_sag(edge_image(-1.0)[0], edge) < -0.5  # the ends higher: - sag
+    blank = np.full((H, W), np.nan, np.float32)
+    assert math.isfinite(edge_sag(blank, edge)) or math.isnan(edge_sag(blank, edge))  # no error; never Inf
+    assert find_edge(image, np.zeros((H, W), bool)) is None  # no part: no edge
+
+
+def test_the_check_is_off_until_fitted_and_scores_nothing_then() -> None:
+    check = ShapeCheck()
+    assert not check.fitted and check.finding(5.0) == 0.0 and math.isnan(check.sag(np.zeros((H, W), np.float32)))
+    check.check()
+    check.calibration[0] = 1.0  # partly set: refused
+    with pytest.raises(ModelError, match="calibration"):
+        check.check()
+
+
+def test_the_threshold_is_the_largest_good_validation_part_and_the_finding_scales_to_the_window() -> None:
+    image, region = edge_image(0.0)
+    check = ShapeCheck()
+    assert check.find(image, region)
+    rng = np.random.default_rng(0)
+    train, val = rng.normal(0.0, 0.1, 200), rng.normal(0.0, 0.1, 100)
+    check.calibrate(train, np.r_[val, np.nan], window_at_threshold=7.0)  # a NaN sag is left out
+    centre, spread, threshold, window = (float(v) for v in check.calibration)
+    assert check.fitted and window == 7.0
+    assert threshold * spread == pytest.approx(np.abs(val - centre).max())
+    worst = centre + threshold * spread
+    assert check.finding(worst) == pytest.approx(7.0) and check.finding(centre + 2 * threshold * spread) == 14.0
+    assert check.finding(math.nan) == 0.0
+    with pytest.raises(ModelError, match="10 of each"):
+        ShapeCheck().calibrate(train[:5], val, 1.0)
+
+
+def bowed(n: int, seed: int, bow: float) -> torch.Tensor:
+    """``parts`` (no play) whose bottom edge bends ``bow`` px, middle up: near it each pixel blends part and belt by
+    the share of it the bent part covers."""
+    x = parts(n, seed, play=0.0)
+    belt = part(np.random.default_rng(seed), dy=-40.0)  # the belt alone: the part shifted out of view
+    yy, xx = np.mgrid[0:H, 0:W].astype(np.float32)
+    cover = np.clip(24.5 - bow * (1 - ((xx - 32.0) / 22.0) ** 2) - yy + 0.5, 0.0, 1.0)
+    near = torch.from_numpy(((yy > 18) & (yy < 27)).astype(np.float32))
+    c = torch.from_numpy(cover) * near + (1 - near)
+    return x * c + belt * (1 - c)
+
+
+@pytest.fixture(scope="module")
+def checked(tmp_path_factory: pytest.TempPathFactory) -> tuple[Detector, Detector, Path]:
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    det.eval()
+    good = parts(40, 0, play=0.0)
+    plain = add_variation(det, good, good[:, 0] > 0.15, parts(30, 3, play=0.0), decision="variation")
+    with_check = add_variation(det, good, good[:, 0] > 0.15, parts(30, 3, play=0.0), decision="variation")
+    assert add_shape_check(with_check, parts(40, 0, play=0.0), parts(30, 3, play=0.0))
+    path = tmp_path_factory.mktemp("shape") / "checked"
+    save_checkpoint(path, with_check, threshold=0.5, threshold_rule="test")
+    return plain, with_check, path
+
+
+def test_a_bowed_part_is_flagged_by_the_check_and_a_good_part_keeps_the_windows_score(checked) -> None:
+    plain, with_check, _ = checked
+    good, bent = parts(20, 7, play=0.0), bowed(20, 7, 1.0)
+    var = with_check.variation
+    assert plain.variation is not None and var is not None
+    window = float(var.shape.calibration[3])  # the window's score at its own 1 % point
+    for x in (good, bent):  # the score is the larger of the window's and the check's finding
+        findings = torch.tensor([var.shape.finding(var.edge_sag(xi)) for xi in x.numpy()], dtype=torch.float32)
+        assert torch.allclose(var.zmaps(x).scores, torch.maximum(plain.variation.zmaps(x).scores, findings))
+        if x is bent:
+            assert float(findings.min()) > window  # every bowed part beyond the good validation parts' sags
+        else:
+            assert float(findings.max()) <= 2 * window
+    assert torch.isfinite(var.zmaps(torch.full_like(good[:2], float("nan"))).scores).all()
+
+
+def test_the_check_survives_a_checkpoint_and_an_old_file_loads_without_it(checked, tmp_path: Path) -> None:
+    plain, with_check, path = checked
+    loaded = load_checkpoint(path).detector
+    assert loaded.variation is not None and loaded.variation.shape.fitted
+    bent = bowed(5, 9, 1.5)
+    assert torch.equal(loaded.variation.zmaps(bent).scores, with_check.variation.zmaps(bent).scores)
+    old = tmp_path / "old"
+    save_checkpoint(old, plain, threshold=0.5, threshold_rule="test")
+    state = torch.load(old.with_suffix(".pt"), weights_only=True)
+    for key in ("variation.shape.edge", "variation.shape.calibration"):
+        del state[key]
+    torch.save(state, old.with_suffix(".pt"))
+    assert not load_checkpoint(old, verify_hash=False).detector.variation.shape.fitted
