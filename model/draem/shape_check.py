@@ -188,9 +188,12 @@ class ShapeCheck(nn.Module):
         return z / threshold * window if z > threshold else 0.0
 
     def check(self) -> None:
-        """ModelError unless the buffers are all NaN (off) or all finite with the spread, threshold and window > 0."""
+        """ModelError unless both buffers are all NaN (off) or all finite with the spread, threshold and window > 0:
+        a file whose check was half switched off is refused, not judged without it."""
         for name, t in (("edge", self.edge), ("calibration", self.calibration)):
             if not (bool(torch.isnan(t).all()) or bool(torch.isfinite(t).all())):
                 raise ModelError(f"shape check: {name} is partly NaN or Inf")
+        if bool(torch.isnan(self.edge).all()) != bool(torch.isnan(self.calibration).all()):
+            raise ModelError("shape check: edge and calibration are not both set or both NaN")
         if torch.isfinite(self.calibration).all() and not bool((self.calibration[1:] > 0).all()):
             raise ModelError("shape check: its spread, threshold and window score must be > 0")

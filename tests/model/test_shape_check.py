@@ -58,6 +58,10 @@ def test_the_check_is_off_until_fitted_and_scores_nothing_then() -> None:
     check.calibration[0] = 1.0  # partly set: refused
     with pytest.raises(ModelError, match="calibration"):
         check.check()
+    image, region = edge_image(0.0)
+    check.find(image, region)  # an edge without a calibration: half switched off, refused
+    with pytest.raises(ModelError, match="both set or both NaN"):
+        check.check()
 
 
 def test_the_threshold_is_the_largest_good_validation_part_and_the_finding_scales_to_the_window() -> None:
