@@ -4,6 +4,7 @@ parts; adapted on good parts of that line it rejects far fewer, and its sidecar 
 from __future__ import annotations
 
 import json
+import logging
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -195,3 +196,19 @@ def test_adapt_leaves_out_frames_the_station_would_not_judge(line, tmp_path: Pat
     record = load_checkpoint(out).meta["train"]["adapted"]
     assert record["left_out"] == {str(i): "no part in view" for i in blank}
     assert record["n_good"] == len(train) - len(blank)
+
+
+def test_adapt_drops_the_shape_check_and_says_so(line, tmp_path: Path, capsys, caplog) -> None:
+    """The shape check's spread and threshold are the renders' (``station shape``): an adapted file is judged without
+    it, and the log says to add it again on the line's parts."""
+    model, base, shifted = line
+    with_var, shaped, out = tmp_path / "var", tmp_path / "shaped", tmp_path / "adapted"
+    assert main(["variation", "--model", str(model), "--data", str(base), "--out", str(with_var)]) == 0
+    assert main(["shape", "--model", str(with_var), "--data", str(base), "--val-data", str(shifted),
+                 "--out", str(shaped)]) == 0
+    with caplog.at_level(logging.WARNING):
+        assert main(["adapt", "--model", str(shaped), "--good", str(shifted), "--out", str(out),
+                     "--false-reject", "0.05"]) == 0
+    assert "no shape check" in caplog.text and "station shape" in caplog.text
+    assert load_checkpoint(shaped).detector.variation.shape.fitted
+    assert not load_checkpoint(out).detector.variation.shape.fitted
