@@ -29,6 +29,9 @@
 #      anomalies and of the rendered defective parts) asked about the parts above the second look's gate, beside it
 #      at each one's own 1 % threshold (station residual --second-look; rule 49, docs/results/2026-11-29-second-look.md;
 #      with the curvature window and no test of its own since rule 60, docs/results/2026-11-29-curvature.md)
+#   6b'. shape: the shape check (how far the part's bottom edge bends: a bowed part; rule 70,
+#      docs/results/2026-12-05-moulding-kinds.md) added to the shipped model and to each look without a type, its
+#      spread from the good train parts, its threshold from CALIBRATION's good parts (station shape)
 #   6c. threshold: the shipped model's threshold set again on VAL, the finish and edges as built (rules 63 and 67,
 #      docs/results/2026-11-29-finish-vary.md, docs/results/2026-12-02-edge-range.md: the fit knows a range of
 #      finishes and edges, the operating point is the line's)
@@ -135,6 +138,10 @@ variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exi
     [ -f "$2.json" ] || station variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
         "${@:3}"
 }
+shape() {  # shape NAME: the shape check added to RUNS/NAME in place, unless it has one (resumable)
+    grep -qs '"shape": {' "$RUNS/$1.json" && return 0  # its sidecar's train.shape
+    station shape --model "$RUNS/$1" --data "$DATA" --val-data "$CALIBRATION" --out "$RUNS/$1"
+}
 look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/NAME unless it exists (resumable)
     [ -f "$RUNS/$1.json" ] || station residual --model "$RUNS/band-variation" --data "$DATA" \
         --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/$1" \
@@ -152,6 +159,8 @@ if [ "$DECISION" = variation ]; then  # steps 6b and 7: the look and the looks w
         pids+=($!)
     done
     for p in "${pids[@]}"; do wait "$p"; done
+    shape band-look  # step 6b': in place, before the threshold counts what it rejects
+    for t in $HOLDOUT_TYPES; do shape "holdout-$t"; done
 fi
 station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 for t in $HOLDOUT_TYPES; do

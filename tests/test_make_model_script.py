@@ -63,6 +63,15 @@ def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
     assert {d for n, d in thresholded if n != "base/last"} == {"data/line-pv-val"}
     evals = [out_name(a, tmp_path) for a in calls if a[0] == "eval"]
     assert [f"eval-holdout-{t}" for t in types] == [e for e in evals if "holdout" in e]
+    # rule 70: the shape check added in place to the shipped model and to each look without a type, from the fit's
+    # train and calibration sets, before any of them is thresholded
+    shaped = [(out_name(a, tmp_path), a[a.index("--model") + 1], a[a.index("--data") + 1],
+               a[a.index("--val-data") + 1]) for a in calls if a[0] == "shape"]
+    assert [n for n, *_ in shaped] == ["band-look", *(f"holdout-{t}" for t in types)]
+    assert all(m == str(tmp_path / "runs" / n) and d == "data/line-ef-train" and v == "data/line-ef-val"
+               for n, m, d, v in shaped)
+    last_shape = max(i for i, a in enumerate(calls) if a[0] == "shape")
+    assert all(i > last_shape for i, a in enumerate(calls) if a[0] == "threshold" and "base/last" not in a[2])
 
 
 def test_make_model_with_networks_deciding_holds_types_out_of_the_networks(tmp_path: Path) -> None:
