@@ -34,6 +34,24 @@ def stats(z: np.ndarray) -> dict[str, np.ndarray]:
     return out
 
 
+def row_of(val: np.ndarray, warp: np.ndarray, shifted: dict[str, np.ndarray], t: float, vl: np.ndarray,
+           vt: np.ndarray, B: np.ndarray, wl: np.ndarray, name: str = "", width: int = 16) -> dict[str, float]:
+    """One window's (or combination's) row at threshold ``t``: VAL's scores ``val`` (labels ``vl``, types ``vt``, its
+    odd good parts ``B``), WARP's ``warp`` (labels ``wl``), B's under each shift; printed as NAME (``width`` wide)."""
+    keep = (vl == 1) | np.isin(np.arange(len(vl)), B)
+    row = {"five kinds caught": float((val[vl == 1] > t).mean()), "val B good rejected": float((val[B] > t).mean()),
+           "five kinds AUROC": auroc(vl[keep], val[keep])}
+    for d in sorted(set(vt) - {""}):
+        row[d] = float((val[vt == d] > t).mean())
+    row["warps caught"] = float((warp[wl == 1] > t).mean())
+    row["warp val good rejected"] = float((warp[wl == 0] > t).mean())
+    row["warps AUROC"] = auroc(wl, warp)
+    for n, s in shifted.items():
+        row[f"B good rejected, {n}"] = float((s > t).mean())
+    print(f"{name:{width}s}", json.dumps({k: round(x, 3) for k, x in row.items()}), flush=True)
+    return row
+
+
 def main() -> None:
     model, val, warp, out = sys.argv[1:]
     ck = load_checkpoint(model)
@@ -81,22 +99,8 @@ def main() -> None:
     print(f"{warp}: {len(wl)} parts", flush=True)
     ch = Channels.of(tuple(ck.detector.config.priors))
     shifted = {n: scores(*maps_of(shift(n, vx[B], ch))) for n in SHIFTS}
-    rows = {}
-    for c in COMBOS:
-        t = thresholds[c]
-        s, sw = combined(vs, c), combined(ws, c)
-        keep = (vl == 1) | np.isin(np.arange(len(vl)), B)
-        row = {"five kinds caught": float((s[vl == 1] > t).mean()), "val B good rejected": float((s[B] > t).mean()),
-               "five kinds AUROC": auroc(vl[keep], s[keep])}
-        for d in sorted(set(vt) - {""}):
-            row[d] = float((s[vt == d] > t).mean())
-        row["warps caught"] = float((sw[wl == 1] > t).mean())
-        row["warp val good rejected"] = float((sw[wl == 0] > t).mean())
-        row["warps AUROC"] = auroc(wl, sw)
-        for n in SHIFTS:
-            row[f"B good rejected, {n}"] = float((combined(shifted[n], c) > t).mean())
-        rows["+".join(c)] = row
-        print(f"{'+'.join(c):16s}", json.dumps({k: round(x, 3) for k, x in row.items()}), flush=True)
+    rows = {"+".join(c): row_of(combined(vs, c), combined(ws, c), {n: combined(m, c) for n, m in shifted.items()},
+                                thresholds[c], vl, vt, B, wl, "+".join(c), 16) for c in COMBOS}
     json.dump({"thresholds": {"+".join(c): t for c, t in thresholds.items()}, "norm": norm, "B": len(B),
                "warp parts": [int((wl == 1).sum()), int((wl == 0).sum())], "rows": rows}, open(out, "w"), indent=1)
 

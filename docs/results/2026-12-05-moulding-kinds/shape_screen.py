@@ -22,10 +22,9 @@ from pathlib import Path
 
 import cv2
 import numpy as np
-from broad_screen import SHIFTS, stats
+from broad_screen import SHIFTS, row_of, stats
 
 from model.draem.checkpoint import load_checkpoint
-from model.draem.metrics import auroc
 from model.draem.shifts import Channels, shift
 from model.draem.variation import NOISE_CAP, WINDOW_BLUR_PX, WINDOW_QUANTILE
 from station.evaluation import model_split
@@ -139,22 +138,9 @@ def main() -> None:
     ch = Channels.of(tuple(ck.detector.config.priors))
     measured = {n: measure(shift(n, vx[B], ch)) for n in SHIFTS}
     shifted = {n: scores(*m) for n, m in measured.items()}
-    rows = {}
-    for c in combos:
-        t = float(np.percentile(combined(vs, c)[B], 99))
-        s, sw = combined(vs, c), combined(ws, c)
-        keep = (vl == 1) | np.isin(np.arange(len(vl)), B)
-        row = {"five kinds caught": float((s[vl == 1] > t).mean()), "val B good rejected": float((s[B] > t).mean()),
-               "five kinds AUROC": auroc(vl[keep], s[keep])}
-        for d in sorted(set(vt) - {""}):
-            row[d] = float((s[vt == d] > t).mean())
-        row["warps caught"] = float((sw[wl == 1] > t).mean())
-        row["warp val good rejected"] = float((sw[wl == 0] > t).mean())
-        row["warps AUROC"] = auroc(wl, sw)
-        for n in SHIFTS:
-            row[f"B good rejected, {n}"] = float((combined(shifted[n], c) > t).mean())
-        rows["+".join(c)] = row
-        print(f"{'+'.join(c):10s}", json.dumps({k: round(x, 3) for k, x in row.items()}), flush=True)
+    rows = {"+".join(c): row_of(combined(vs, c), combined(ws, c), {n: combined(m, c) for n, m in shifted.items()},
+                                float(np.percentile(combined(vs, c)[B], 99)), vl, vt, B, wl, "+".join(c), 10)
+            for c in combos}
     off = np.abs(wsag - centre)
     print(f"sag on A's good parts: median {centre:.4f} input px, robust spread {mad:.4f}; seed 1199: median |sag - "
           f"median| {np.median(off[wl == 1]):.3f} on warped parts, {np.median(off[wl == 0]):.3f} on good ones")
