@@ -138,3 +138,13 @@ def test_the_check_survives_a_checkpoint_and_an_old_file_loads_without_it(checke
         del state[key]
     torch.save(state, old.with_suffix(".pt"))
     assert not load_checkpoint(old, verify_hash=False).detector.variation.shape.fitted
+
+
+def test_a_part_without_a_straight_bottom_edge_gets_no_check() -> None:
+    y, x = np.mgrid[0:H, 0:W].astype(np.float32)
+    diamond = np.abs(x - 32) / 28 + np.abs(y - 16) / 14 <= 1.0  # its bottom a V: no straight run of 40 %
+    image = (0.05 + 0.6 * diamond).astype(np.float32)
+    assert find_edge(image, diamond) is None
+    check = ShapeCheck()
+    assert not check.find(image, diamond) and not check.fitted
+    check.check()  # off, consistently
