@@ -498,7 +498,6 @@ def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
     median and spread from ``data``'s good train parts, its threshold from ``val_data``'s good val parts; written to
     ``out`` with ``model``'s threshold, its sidecar's ``train.shape`` recording the check; one line saying what it
     found. UserError when the model has no variation model or its part shows no straight bottom edge."""
-    import copy
     import sys
 
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
@@ -515,7 +514,7 @@ def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
     va = model_split(ck, model, val_data, "val", good_only=True)
     print(f"{data}: {len(tr.priors)} good train parts; {val_data}: {len(va.priors)} good val parts", file=sys.stderr,
           flush=True)
-    det = copy.deepcopy(ck.detector)
+    det = ck.detector  # loaded for this alone: given its check in place
     try:
         found = add_shape_check(det, tr.priors, va.priors)
     except ModelError as exc:
