@@ -348,11 +348,13 @@ def _export_parquet(rows: Iterator[dict[str, Any]], path: Path, names: list[str]
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    types = {"id": pa.int64(), "decision": pa.string(), "part_id": pa.string(), "model_id": pa.string(),
-             "reason": pa.string(), "image_path": pa.string(), "camera_frame_id": pa.int64(),
-             "camera_timestamp_ns": pa.int64(), "io_delivered": pa.bool_(), "ground_truth_label": pa.int64(),
-             "ground_truth_present": pa.bool_(), "drift": pa.string()}
-    schema = pa.schema([(c, types.get(c, pa.float64())) for c in names])
+    def arrow_type(column: str) -> pa.DataType:  # from the SQLite column's type (``_SQL_TYPES``): one place
+        if column in _BOOL_COLUMNS:
+            return pa.bool_()
+        sql = "INTEGER" if column == "id" else _SQL_TYPES.get(column, "REAL")
+        return {"TEXT": pa.string(), "INTEGER": pa.int64()}.get(sql.split()[0], pa.float64())
+
+    schema = pa.schema([(c, arrow_type(c)) for c in names])
     n = 0
     with pq.ParquetWriter(path, schema) as writer:
         batch: list[dict[str, Any]] = []

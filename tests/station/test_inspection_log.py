@@ -103,6 +103,35 @@ def test_export_round_trips_every_column(tmp_path, fmt):
     assert rows[3]["reason"] == "score above threshold" and rows[3]["part_id"] == "P3"
 
 
+FULL = InspectionRecord(
+    decision="reject", time_unix_s=1000.5, part_id="P9", camera_frame_id=9, camera_timestamp_ns=123456789,
+    score=0.7, threshold=0.5, model_id="m1", reason="score 0.7000 > threshold 0.5000", grab_ms=1.0, demosaic_ms=2.0,
+    priors_ms=3.0, model_ms=4.0, decision_ms=0.1, io_ms=5.0, total_ms=15.0, io_delivered=True, ground_truth_label=1,
+    ground_truth_present=True, image_path="img/9.png", median_level=0.4, high_level=0.8, clipped_fraction=0.01,
+    dolp_level=0.05, drift="brighter", highlight_fraction=0.02, noise_level=1.1, second_score=0.3,
+    second_threshold=0.6, second_model_id="side1", second_frame_id=11)
+"""A record with every column set (a two-camera station's row: its second model's id is text)."""
+
+
+@pytest.mark.parametrize("fmt", ["csv", "jsonl", "parquet"])
+def test_export_keeps_each_columns_value_and_type(tmp_path, fmt):
+    assert all(getattr(FULL, c) is not None for c in COLUMNS)  # a column added later must be set here too
+    out = tmp_path / f"export.{fmt}"
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append(FULL)
+        assert export_rows(log.rows(), out, fmt) == 1
+    if fmt == "csv":
+        row = next(csv.DictReader(out.open()))
+        assert {c: row[c] for c in COLUMNS} == {c: str(getattr(FULL, c)) for c in COLUMNS}
+        return
+    if fmt == "jsonl":
+        row = json.loads(out.read_text())
+    else:
+        import pyarrow.parquet as pq
+        row = pq.read_table(out).to_pylist()[0]
+    assert {c: row[c] for c in COLUMNS} == {c: getattr(FULL, c) for c in COLUMNS}
+
+
 def test_export_log_cli(tmp_path):
     db = tmp_path / "log.sqlite"
     with InspectionLog(db) as log:
