@@ -9,6 +9,7 @@ can both import it); the station imports it from here."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from drivers.line_io import Verdict
@@ -37,12 +38,14 @@ def late(elapsed_ms: float, cycle_time_ms: float, when: str = "") -> Decision:
 def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = None,
            cycle_time_ms: float | None = None, error: str | None = None,
            invalid_fraction: float = 0.0, max_invalid_fraction: float = MAX_INVALID_FRACTION,
-           empty: str | None = None) -> Decision:
+           empty: str | None = None, found: Sequence[str] = ()) -> Decision:
     """Decide one part. In order, each of these rejects with its reason: an ``error`` in an earlier stage;
     more than ``max_invalid_fraction`` of the input pixels invalid (NaN/Inf, out of range). Then ``empty`` (the
     presence check's reason, when it found no part) gives EMPTY with that reason. Then each of these rejects:
     a missing, non-finite or negative score (scores are probabilities) or a non-finite threshold; judgement later
-    than the cycle time budget; ``score > threshold``. Otherwise pass. A frame whose pixels are unusable is
+    than the cycle time budget; ``score > threshold``, its reason followed by ``found``: what the model's frame checks
+    found beyond their limits (``model.draem.frame_checks.beyond_limits``: a part bent, a frame unlike the model's
+    line), so the row says why a part with no hotspot scored high. Otherwise pass. A frame whose pixels are unusable is
     rejected rather than called empty: its emptiness is not known. (A NaN threshold would pass every part:
     ``score > NaN`` is False.)"""
     if error:
@@ -59,7 +62,7 @@ def decide(score: float | None, threshold: float, *, elapsed_ms: float | None = 
     if elapsed_ms is not None and cycle_time_ms is not None and elapsed_ms > cycle_time_ms:
         return late(elapsed_ms, cycle_time_ms)
     if score > threshold:
-        return Decision(Verdict.REJECT, f"score {score:.4f} > threshold {threshold:.4f}")
+        return Decision(Verdict.REJECT, "; ".join((f"score {score:.4f} > threshold {threshold:.4f}", *found)))
     return Decision(Verdict.PASS)
 
 

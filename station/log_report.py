@@ -20,6 +20,8 @@ NOISY_LINE_LEVEL = 1.5
 (``OWN_RENDERS_NOISE_LEVEL_MAX``)."""
 
 REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("part bent (shape check)", ("bottom edge bends",)),
+    ("frame unlike the model's line", ("unlike the model's line",)),
     ("score over threshold", ("> threshold",)),
     ("log not writable", ("not recorded:",)),
     ("PLC link", ("the PASS was not",)),
@@ -34,7 +36,8 @@ REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("queue full", ("processing queue full",)),
 )
 """Why a part was rejected or not inspected, read from its reason, first match wins (the reasons are worded in
-``station.loop``, ``station.decision`` and ``station.inspector``; a test keeps each cause's words in that code).
+``station.loop``, ``station.decision``, ``station.inspector`` and ``model.draem.frame_checks``; a test keeps each
+cause's words in that code; a score over threshold with a frame check beyond its limit counts as that check's cause).
 A reason matching none counts as "other"."""
 
 

@@ -42,7 +42,7 @@ from drivers.camera import Camera
 from drivers.errors import CameraError, CameraTimeout
 from drivers.frame import Frame, GroundTruth
 from drivers.line_io import Trigger
-from model.draem.frame_checks import FRAME_CHECKS
+from model.draem.frame_checks import FRAME_CHECKS, beyond_limits
 from station.config import frame_delay_limit_ms
 from station.decision import Decision, Verdict, decide, join, late
 from station.drift import DriftMonitor
@@ -508,7 +508,8 @@ class Station:
             t = time.perf_counter()
             decision = decide(inspection.score, self.threshold, elapsed_ms=1e3 * (t - part.t_trigger),
                               cycle_time_ms=self.cycle_time_ms, error=inspection.error,
-                              invalid_fraction=inspection.invalid_fraction, empty=inspection.empty_reason)
+                              invalid_fraction=inspection.invalid_fraction, empty=inspection.empty_reason,
+                              found=beyond_limits(inspection.checks))
             if inspection.second is not None:
                 decision = join(decision, self._second_decision(inspection.second), SECOND_NAME)
             if decision.decision == Verdict.EMPTY and self.link.triggered:  # an announced part not seen: rejected,
@@ -528,7 +529,8 @@ class Station:
         """The second camera's own decision on its threshold (its time is the part's, judged on the first's)."""
         assert self.second_threshold is not None
         return decide(second.score, self.second_threshold, error=second.error,
-                      invalid_fraction=second.invalid_fraction, empty=second.empty_reason)
+                      invalid_fraction=second.invalid_fraction, empty=second.empty_reason,
+                      found=beyond_limits(second.checks))
 
     def _no_answer(self, part: Part, answer: NoAnswer) -> None:
         """The model did not answer by the part's deadline, or is still on an earlier part: reject it now;

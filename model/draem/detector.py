@@ -12,10 +12,11 @@ from torch import nn
 
 from .config import ModelConfig, channel_slices
 from .errors import ModelError
+from .frame_checks import MAX_HIDDEN, NOISE_CAP
 from .networks import Draem, DraemEvalOutput, init_weights
 from .preprocess import Normalizer
 from .residual import UNJUDGEABLE_Z, ResidualDetector, ResidualOutput
-from .variation import MAX_HIDDEN, NOISE_CAP, VariationModel, VariationOutput, combine, squash
+from .variation import VariationModel, VariationOutput, combine, squash
 
 
 def image_scores(anomaly_map: torch.Tensor, object_mask: torch.Tensor | None, window_px: int) -> torch.Tensor:

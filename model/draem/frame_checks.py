@@ -1,13 +1,49 @@
-"""The variation model's frame checks by name, and what its own renders give: torch-free, so the station's log,
-report and viewer read them without loading the model.
+"""The variation model's frame checks by name, their limits, what its own renders give, and what a check beyond its
+limit says: torch-free, so the station's log, report and viewer read them without loading the model.
 
-A frame check describes the frame rather than a defect (``model.draem.variation``, module docstring: highlights,
-noise): ``highlight_fraction`` is the share of the part region hidden as a highlight (0-1), ``noise_level`` the frame's
-median z against a good part's (about 1 on the model's own line; the z map is divided by it where it is above 1)."""
+A frame check describes the frame or the part's shape rather than a local defect (``model.draem.variation``, module
+docstring: highlights, noise; ``model.draem.shape_check``): ``highlight_fraction`` is the share of the part region
+hidden as a highlight (0-1), ``noise_level`` the frame's median z against a good part's (about 1 on the model's own
+line; the z map is divided by it where it is above 1), ``edge_bend`` how far the part's bottom edge bends, as its
+robust z over the shape check's threshold (signed; NaN, and left out of a prediction's checks, without the check)."""
 
-FRAME_CHECKS = ("highlight_fraction", "noise_level")
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend")
 """``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
+
+MAX_HIDDEN = 0.5
+"""Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
+
+NOISE_CAP = 3.0
+"""Largest frame noise level read as the frame's own noise (module docstring: noise). Good parts of the fitted
+line reach 1.38 (370 validation parts, 500 held-out), an 8-spp line of the same parts 2.1, a brighter line 2.3;
+a frame above the cap is so unlike the fitted line's parts that it is judged unscaled, and rejects."""
+
+EDGE_BEND_LIMIT = 1.0
+"""``edge_bend`` beyond +-this: the part's bottom edge bends further than any good validation part's, and the shape
+check scores the part at least the variation model's own 1 % point (``model.draem.shape_check``, step 3)."""
 
 OWN_RENDERS_NOISE_LEVEL_MAX = 1.38
 """Highest ``noise_level`` of a good part of the shipped model's own validation and held-out renders (16 spp):
 a line whose median lies above it is noisier than the renders (module docstring of variation: noise)."""
+
+
+def beyond_limits(checks: Mapping[str, float]) -> list[str]:
+    """A part's frame checks (by ``FRAME_CHECKS`` name; missing or NaN ones say nothing) -> what each one beyond its
+    limit says, in words for a reject's reason (the station adds them after the score): a frame too noisy or too
+    highlighted to be judged as the model's line (it rejects), a part bent beyond every good part's."""
+    said = []
+    hidden, noise, bend = (checks.get(k, math.nan) for k in FRAME_CHECKS)
+    if hidden > MAX_HIDDEN:
+        said.append(f"highlights cover {100 * hidden:.0f} % of the part (over {100 * MAX_HIDDEN:.0f} %: judged "
+                    "with them, as a part unlike the model's line)")
+    if noise > NOISE_CAP:
+        said.append(f"the frame is {noise:.1f} times as noisy as the model's good parts (over {NOISE_CAP:g}: judged "
+                    "unscaled, as a part unlike the model's line)")
+    if abs(bend) > EDGE_BEND_LIMIT:
+        said.append(f"shape check: the bottom edge bends {abs(bend):.1f} times as far as any good part's")
+    return said

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import hashlib
 import logging
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,7 +45,8 @@ estimator, ``model.normals.estimator.MAP_NAMES``; a test keeps the two equal).""
 @dataclass(frozen=True)
 class Prediction:
     """One frame's answer: image ``score`` in [0, 1]; ``heatmap`` (H, W) float32 in [0, 1], frame-sized, zero outside
-    the region of interest; ``checks``: ``DetectorOutput.frame_checks`` of the frame (empty without them)."""
+    the region of interest; ``checks``: ``DetectorOutput.frame_checks`` of the frame, those it has (a NaN one, such
+    as ``edge_bend`` without a shape check, left out; empty without them)."""
 
     score: float
     heatmap: np.ndarray
@@ -158,7 +160,8 @@ class Predictor:
         amap = out.anomaly_map[0].float().cpu().numpy()
         heat = np.zeros(shape, np.float32)
         heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
-        return Prediction(float(out.score[0]), heat, {k: float(v[0]) for k, v in out.frame_checks.items()})
+        checks = {k: float(v[0]) for k, v in out.frame_checks.items()}
+        return Prediction(float(out.score[0]), heat, {k: v for k, v in checks.items() if math.isfinite(v)})
 
     @property
     def networks_decide(self) -> bool:

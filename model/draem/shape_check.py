@@ -40,6 +40,7 @@ import torch
 from torch import nn
 
 from .errors import ModelError
+from .frame_checks import EDGE_BEND_LIMIT
 
 EDGE_FIT_PX = 2.0
 """A column belongs to the straight bottom edge when its region bottom lies within this of the robust line (px)."""
@@ -178,14 +179,20 @@ class ShapeCheck(nn.Module):
         self.calibration.copy_(torch.tensor([centre, spread, max(threshold, 1.0), window_at_threshold],
                                             dtype=torch.float64))
 
+    def bend(self, sag: float) -> float:
+        """A part's sag -> how far its edge bends, as its robust z over the check's threshold (signed as the sag: + the
+        edge's middle higher in the frame than its ends); beyond +-1 (``model.draem.frame_checks.EDGE_BEND_LIMIT``)
+        it bends further than any good validation part's. NaN when the check is off or the sag is NaN."""
+        if not self.fitted or not math.isfinite(sag):
+            return math.nan
+        centre, spread, threshold, _ = (float(v) for v in self.calibration)
+        return (sag - centre) / spread / threshold
+
     def finding(self, sag: float) -> float:
         """A part's sag -> its finding in the window's score units (module docstring, step 3); 0.0 within the
         threshold, when the check is off or the sag is NaN (the part is still judged by the window)."""
-        if not self.fitted or not math.isfinite(sag):
-            return 0.0
-        centre, spread, threshold, window = (float(v) for v in self.calibration)
-        z = abs(sag - centre) / spread
-        return z / threshold * window if z > threshold else 0.0
+        bend = abs(self.bend(sag))
+        return bend * float(self.calibration[3]) if bend > EDGE_BEND_LIMIT else 0.0
 
     def check(self) -> None:
         """ModelError unless both buffers are all NaN (off) or all finite with the spread, threshold and window > 0:

@@ -115,7 +115,7 @@ from torch import nn
 from . import appearance_clusters
 from .config import Alignment
 from .errors import ModelError
-from .frame_checks import FRAME_CHECKS
+from .frame_checks import FRAME_CHECKS, MAX_HIDDEN, NOISE_CAP
 from .second_look import SecondLook
 from .shape_check import ShapeCheck
 from .shifts import Channels, blurred_copies
@@ -204,9 +204,6 @@ merely bright, and a line's exposure moves it."""
 HIGHLIGHT_GROW_PX = 5
 """Growth of the highlight mask, in input pixels (5 at 96 x 192 is 12 px of the 640 x 480 frame): the bright
 specular lobe around a clipped core."""
-
-MAX_HIDDEN = 0.5
-"""Largest share of the part region the highlight rule may hide; above it the rule hides nothing (fail closed)."""
 
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
@@ -354,11 +351,6 @@ def curvature(z: np.ndarray, sigma: float) -> np.ndarray:
 MEDIAN_ABS_NORMAL = 0.6745
 """Median of |n| for n standard normal: a good part's median z on the fitted line (``scale`` is 1.4826 MAD)."""
 
-NOISE_CAP = 3.0
-"""Largest frame noise level read as the frame's own noise (module docstring: noise). Good parts of the fitted
-line reach 1.38 (370 validation parts, 500 held-out), an 8-spp line of the same parts 2.1, a brighter line 2.3;
-a frame above the cap is so unlike the fitted line's parts that it is judged unscaled, and rejects."""
-
 SIGNED_CLIP = 20.0
 """``signed_z`` clips each channel's signed residual to +-this many ``scale`` units: beyond it a defect is a defect,
 and a frame far off the fitted line (a hostile input) cannot push a network reading it to overflow."""
@@ -371,7 +363,8 @@ class VariationOutput(NamedTuple):
     of the part the highlight rule found (above ``MAX_HIDDEN`` none of it was hidden); ``noise_level`` (N,) the
     frame's noise level (1 on the fitted line); ``signed`` (N, C, H, W) each channel's signed residual in units of
     ``scale`` after the noise level (``signed_z``; what the residual networks read, ``model.draem.residual``);
-    ``judged`` (N, H, W) bool, the pixels judged; both None unless ``zmaps`` was asked for them."""
+    ``judged`` (N, H, W) bool, the pixels judged; both None unless ``zmaps`` was asked for them; ``edge_bend`` (N,)
+    the shape check's bend of each part (``ShapeCheck.bend``; NaN without the check)."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -379,10 +372,12 @@ class VariationOutput(NamedTuple):
     noise_level: torch.Tensor
     signed: torch.Tensor | None = None
     judged: torch.Tensor | None = None
+    edge_bend: torch.Tensor | None = None
 
     def frame_checks(self) -> dict[str, torch.Tensor]:
-        """The fields that describe the frame rather than a defect (``FRAME_CHECKS``), by name."""
-        return {name: getattr(self, name) for name in FRAME_CHECKS}
+        """The fields that describe the frame or the part's shape rather than a local defect (``FRAME_CHECKS``), by
+        name (those given)."""
+        return {name: v for name in FRAME_CHECKS if (v := getattr(self, name)) is not None}
 
 
 class VariationModel(nn.Module):
@@ -985,7 +980,7 @@ class VariationModel(nn.Module):
         region = self.scored_region()
         if not region.any():
             region = self.region.numpy()
-        maps, scores, highlights, noise, signed_all, judged_all = [], [], [], [], [], []
+        maps, scores, highlights, noise, signed_all, judged_all, bends = [], [], [], [], [], [], []
         part = self.region.numpy()
         for xi in x.float().cpu().numpy():
             aligned = self._aligned(xi)
@@ -1007,12 +1002,14 @@ class VariationModel(nn.Module):
                 t = self.second_look.test(maps[-1], (s.astype(np.float32) ** 2).sum(0), judged, part)
                 scores[-1] = self.second_look.score(scores[-1], t)
             scores[-1] = max(scores[-1], self.shape.finding(sag))  # the larger: each at its own threshold
+            bends.append(self.shape.bend(sag))
         m = torch.from_numpy(np.stack(maps)).to(x.device)
         return VariationOutput(m, torch.tensor(scores, dtype=torch.float32, device=x.device),
                                torch.tensor(highlights, dtype=torch.float32),
                                torch.tensor(noise, dtype=torch.float32),
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
-                               torch.from_numpy(np.stack(judged_all)) if signed else None)
+                               torch.from_numpy(np.stack(judged_all)) if signed else None,
+                               torch.tensor(bends, dtype=torch.float32))
 
     def _judged_residual(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """(C, H, W) physical priors of a frame -> its residual in units of ``scale`` (C, H, W) before clusters, its

@@ -15,6 +15,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import ModelError
+from model.draem.frame_checks import EDGE_BEND_LIMIT, beyond_limits
 from model.draem.shape_check import ShapeCheck, edge_sag, find_edge
 from model.draem.with_variation import add_shape_check, add_variation
 from tests.model.test_variation import H, W, part, parts
@@ -123,6 +124,21 @@ def test_a_bowed_part_is_flagged_by_the_check_and_a_good_part_keeps_the_windows_
         else:
             assert float(findings.max()) == 0.0  # good parts keep the window's score
     assert torch.isfinite(var.zmaps(torch.full_like(good[:2], float("nan"))).scores).all()
+
+
+def test_each_parts_bend_is_a_frame_check_beyond_its_limit_exactly_where_the_check_finds_it(checked) -> None:
+    plain, with_check, _ = checked
+    x = torch.cat([parts(10, 7, play=0.0), bowed(10, 7, 1.0)])
+    out = with_check.variation.zmaps(x)
+    bend = out.frame_checks()["edge_bend"]
+    findings = torch.tensor([with_check.variation.shape.finding(s) for s in map(with_check.variation.edge_sag,
+                                                                               x.numpy())])
+    assert torch.equal(bend.abs() > EDGE_BEND_LIMIT, findings > 0)  # the same rule, one place
+    assert bool((bend[10:] > EDGE_BEND_LIMIT).all())  # signed as the sag: + the middle up, as these bow
+    assert torch.isnan(plain.variation.zmaps(x[:2]).edge_bend).all()  # no check: no bend
+    said = beyond_limits({"edge_bend": float(bend[15])})
+    assert len(said) == 1 and "bottom edge bends" in said[0]
+    assert beyond_limits({"edge_bend": float(bend[0]), "noise_level": 1.0, "highlight_fraction": 0.1}) == []
 
 
 def test_the_check_survives_a_checkpoint_and_an_old_file_loads_without_it(checked, tmp_path: Path) -> None:

@@ -27,6 +27,14 @@ def test_unjudgeable_parts_are_rejected_with_a_reason(kwargs, reason):
     assert d.decision == "reject" and reason in d.reason
 
 
+def test_what_the_models_checks_found_follows_a_rejects_score_and_nothing_else():
+    found = ["shape check: the bottom edge bends 1.6 times as far as any good part's"]
+    d = decide(0.51, 0.5, found=found)
+    assert d.decision == "reject" and d.reason == f"score 0.5100 > threshold 0.5000; {found[0]}"
+    assert decide(0.4, 0.5, found=found).reason is None  # a pass has no reason
+    assert decide(0.9, 0.5, error="camera error", found=found).reason == "not judged: camera error"
+
+
 def test_within_budget_and_few_invalid_pixels_still_passes():
     assert decide(0.1, 0.5, elapsed_ms=99.0, cycle_time_ms=100.0, invalid_fraction=0.001).decision == "pass"
 

@@ -109,7 +109,7 @@ FULL = InspectionRecord(
     priors_ms=3.0, model_ms=4.0, decision_ms=0.1, io_ms=5.0, total_ms=15.0, io_delivered=True, ground_truth_label=1,
     ground_truth_present=True, image_path="img/9.png", median_level=0.4, high_level=0.8, clipped_fraction=0.01,
     dolp_level=0.05, drift="brighter", highlight_fraction=0.02, noise_level=1.1, second_score=0.3,
-    second_threshold=0.6, second_model_id="side1", second_frame_id=11)
+    second_threshold=0.6, second_model_id="side1", second_frame_id=11, edge_bend=-1.5)
 """A record with every column set (a two-camera station's row: its second model's id is text)."""
 
 
@@ -386,7 +386,7 @@ def test_each_reject_cause_matches_a_wording_the_station_uses():
     """A reworded reason must not fall silently into "other": each cause's text is in the station's source."""
     from station.log_report import REJECT_CAUSES
 
-    source = "\n".join(p.read_text() for d in ("station", "drivers") for p in (ROOT / d).rglob("*.py")
+    source = "\n".join(p.read_text() for d in ("station", "drivers", "model") for p in (ROOT / d).rglob("*.py")
                        if p.name != "log_report.py")
     for cause, needles in REJECT_CAUSES:
         assert any(n in source for n in needles), f"no reason in the code reads like {cause!r}: {needles}"

@@ -216,6 +216,29 @@ def test_the_models_frame_checks_reach_each_row(tmp_path):
     log.close()
 
 
+class BendingDetector(BrightnessDetector):
+    """Reports an edge bend as the shape check does: beyond its limit on the defective parts (label 1)."""
+
+    def infer(self, priors):
+        out = super().infer(priors)
+        return Inference(out.score, checks={"edge_bend": 2.5 if out.score > self.threshold else 0.3})
+
+
+def test_a_part_the_shape_check_finds_bent_says_so_in_its_row_and_in_the_report(tmp_path):
+    """A bent part has no hotspot: its row named only a score, and the report counted it as any score."""
+    from station.log_report import summarize
+
+    station, log = make_station(tmp_path, ScriptedCamera([0, 1]), BendingDetector())
+    station.run(max_parts=2)
+    rows = list(log.rows())
+    assert [r["edge_bend"] for r in rows] == [0.3, 2.5]
+    assert rows[0]["reason"] is None
+    assert rows[1]["reason"].startswith("score ") and rows[1]["reason"].endswith(
+        "; shape check: the bottom edge bends 2.5 times as far as any good part's")
+    assert summarize(log.rows()).reject_causes == {"part bent (shape check)": 1}
+    log.close()
+
+
 def test_backpressure_drops_are_logged_as_not_inspected_and_rejected_at_the_plc(tmp_path):
     n = 40
     link = ScriptedLink(n)
