@@ -30,6 +30,7 @@ class AdaptSummary:
                 f"{r['frame_statistics']}"
                 + (f"\nleft out {len(r['left_out'])} frames the station would not judge: "
                    f"{describe_left_out(r['left_out'])}" if r.get("left_out") else "")
+                + (f"\n{r['shape']}" if r.get("shape") else "")
                 + (f"\nnote: {r['advice']}" if r.get("advice") else ""))
 
     def _networks(self) -> str:

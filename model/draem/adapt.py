@@ -9,7 +9,9 @@ What depends on the line, in this model:
     the reference it was trained with (its part region kept; with blurred copies of the parts when the model was
     fitted with them, ``VariationModel.blur_copies_sigma``); its second look, when it has one, on the line's own
     good parts as references (``model.draem.second_look``); then the second look's gate and both detectors'
-    calibration, from the held-out scores;
+    calibration, from the held-out scores; its shape check, when the model has one (``model.draem.shape_check``):
+    the edge from the refit's reference, the good parts' sag spread from all of them, its threshold the largest z
+    of a held-out part against the parts fitted without it, the window's 1 % point from the held-out parts;
   - whether the networks still judge: their held-out good parts' median image score, in robust standard
     deviations of their good validation parts (the trained calibration), after the refit; above
     ``DOMAIN_SHIFT_SD`` they are out of their domain on this line and the adapted model decides on the variation
@@ -50,8 +52,9 @@ from .networks import DraemTrainOutput
 from .preprocess import Normalizer
 from .residual import NO_LOOK
 from .second_look import MIN_REFERENCES
+from .shape_check import ShapeCheck
 from .variation import combined_score
-from .with_variation import look_scores, member_scores, residual_raw, second_look_scores
+from .with_variation import SHAPE_WINDOW_RATE, look_scores, member_scores, residual_raw, second_look_scores
 
 log = logging.getLogger(__name__)
 
@@ -134,6 +137,9 @@ class AdaptResult:
     """True when the domain check moved the decision from combined to the variation model alone."""
     advice: str | None = None
     """What the user should know about this adaptation (fewer good parts than ``RECOMMENDED_GOOD``), or None."""
+    shape: str | None = None
+    """The shape check of the adapted model (``_refit_shape``): what it measures, or why it has none; None when the
+    model had none to adapt."""
 
     def record(self) -> dict[str, Any]:
         """JSON-able summary for the model's sidecar."""
@@ -148,7 +154,7 @@ class AdaptResult:
                 "normalization_after": asdict(self.normalizer_after),
                 "fine_tune_steps": self.fine_tune_steps, "per_position": self.per_position,
                 "networks_shift_sd": self.networks_shift_sd, "decision": self.decision,
-                "decision_changed": self.decision_changed, "advice": self.advice}
+                "decision_changed": self.decision_changed, "advice": self.advice, "shape": self.shape}
 
 
 def adapted_threshold(scores: np.ndarray, false_reject: float) -> ThresholdChoice:
@@ -222,6 +228,34 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     if shift > DOMAIN_SHIFT_SD and not keep_networks:
         final.config = final.config.with_(decision="variation")
     return combined_score(net, var, final.variation.calibration, final.config.networks_decide).numpy(), shift
+
+
+def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, torch.Tensor]],
+                 splits: list[tuple[np.ndarray, np.ndarray]], batch_size: int = 16) -> str:
+    """The shape check of ``final`` (refit on the good parts ``x``) again, in place (module docstring): its edge from
+    the refit's reference, its calibration cross-fitted over ``splits`` (``ShapeCheck.calibrate_crossed``), the
+    window's 1 % point from ``parts`` (each fold's detector and its held parts). What it measures; when the refit
+    shows no straight bottom edge or too few parts show it, why it has none (a warning: the model is then judged
+    without it)."""
+    var = final.variation
+    assert var is not None
+    window = np.concatenate([d.variation.zmaps(xp[i:i + batch_size]).scores.numpy()
+                             for d, xp in parts if d.variation is not None
+                             for i in range(0, len(xp), batch_size)])  # before the check: its window alone
+    try:
+        if not var.shape.find(var.reference.numpy(), var.region.numpy()):
+            raise ModelError("the refit's reference shows no straight bottom edge")
+        sags = np.array([var.edge_sag(xi) for xi in x.float().cpu().numpy()])
+        var.shape.calibrate_crossed(sags, splits, false_reject_threshold(window, SHAPE_WINDOW_RATE))
+    except ModelError as exc:
+        var.shape = ShapeCheck()  # off: no edge, no calibration
+        why = f"no shape check: {exc} (a bent part is judged by the window alone)"
+        log.warning("the adapted variation model has %s", why)
+        return why
+    first, end = (int(v) for v in var.shape.edge[:2])
+    _, spread, threshold, _ = (float(v) for v in var.shape.calibration)
+    return (f"shape check refitted: the bottom edge over input columns {first}-{end - 1}, good parts' sag spread "
+            f"{spread:.3g} px, threshold z {threshold:.2f} (the largest held-out part's)")
 
 
 def _calibrate_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:
@@ -310,12 +344,12 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
     what = "normalisation" + (" and variation statistics" if detector.variation is not None else "")
     if cfg.fine_tune_steps == 0:
         folds = min(cfg.folds, n)
-        helds = [order[k::folds] for k in range(folds)]
-        parts = [(_refit(detector, x[torch.from_numpy(np.setdiff1d(order.numpy(), h.numpy()))], cfg), x[h])
-                 for h in helds]
+        splits = [(np.setdiff1d(order.numpy(), order[k::folds].numpy()), order[k::folds].numpy())
+                  for k in range(folds)]
+        parts = [(_refit(detector, x[torch.from_numpy(fit)], cfg), x[torch.from_numpy(held)]) for fit, held in splits]
         final = _refit(detector, x, cfg)
         heldout = np.empty(n)
-        heldout[torch.cat(helds).numpy()], shift = _heldout_scores(final, parts, cfg.keep_networks)
+        heldout[np.concatenate([held for _, held in splits])], shift = _heldout_scores(final, parts, cfg.keep_networks)
         scheme = f"cross-fitted {what}, {folds} folds"
         n_held, steps = n, 0
     else:
@@ -324,7 +358,9 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         tuned = _refit(detector, x[fit], cfg)
         final = fine_tune(tuned, x[fit], object_mask[fit], cfg.fine_tune_steps, cfg.fine_tune_lr, cfg.batch_size,
                           cfg.seed, cfg.anomaly, progress)
-        heldout, shift = _heldout_scores(final, [(final, x[held])], cfg.keep_networks)
+        parts = [(final, x[held])]
+        splits = [(fit.numpy(), held.numpy())]
+        heldout, shift = _heldout_scores(final, parts, cfg.keep_networks)
         scheme = f"{what} and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
         steps = cfg.fine_tune_steps
     choice = adapted_threshold(heldout, cfg.false_reject)
@@ -335,9 +371,9 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
             and not final.variation.second_look.references):
         log.warning("the adapted variation model has no second look (model.draem.second_look): it needs at least "
                     "%d good parts in each fold's fit", MIN_REFERENCES)
+    shape = None
     if detector.variation is not None and detector.variation.shape.fitted:  # a refit's check is its own
-        log.warning("the adapted variation model has no shape check (model.draem.shape_check): add it again with "
-                    "station shape on the line's good parts")
+        shape = _refit_shape(final, x, parts, splits)
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
     changed = detector.config.decision != final.config.decision
     if changed:
@@ -351,4 +387,4 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                   "below the model unadapted; adapt again on more good parts")
         log.warning(advice)
     return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position,
-                              shift, final.config.decision, changed, advice)
+                              shift, final.config.decision, changed, advice, shape)

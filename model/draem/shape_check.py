@@ -33,6 +33,7 @@ threshold (robust z) and the window score at the variation model's 1 % point."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import cv2
 import numpy as np
@@ -135,6 +136,33 @@ def edge_sag(intensity: np.ndarray, edge: tuple[float, ...]) -> float:
     return float(p[0])
 
 
+def finite_sags(sags: np.ndarray, which: str) -> np.ndarray:
+    """The finite ones of ``sags`` (a part whose edge was not seen has NaN); ModelError with fewer than 10, naming
+    ``which`` parts."""
+    s = np.asarray(sags, np.float64)
+    s = s[np.isfinite(s)]
+    if len(s) < 10:
+        raise ModelError(f"shape check: the edge is seen on {len(s)} {which} parts; it needs 10")
+    return s
+
+
+def centre_spread(sags: np.ndarray, which: str) -> tuple[float, float]:
+    """Median and robust spread (1.4826 MAD) of the finite ``sags`` (input px); ModelError with fewer than 10 or a
+    spread of 0 (``finite_sags``)."""
+    s = finite_sags(sags, which)
+    centre = float(np.median(s))
+    spread = float(np.median(np.abs(s - centre))) * 1.4826
+    if not spread > 0:
+        raise ModelError(f"shape check: the {which} parts' sags do not spread")
+    return centre, spread
+
+
+def held_z(sags: np.ndarray, centre: float, spread: float) -> float:
+    """The largest robust z of the finite ``sags`` of held (validation) parts against ``centre`` and ``spread``;
+    ModelError with fewer than 10 (``finite_sags``)."""
+    return float(np.abs(finite_sags(sags, "good validation") - centre).max()) / spread
+
+
 class ShapeCheck(nn.Module):
     """The shape check's edge and calibration (module docstring); off until ``fit``."""
 
@@ -165,17 +193,22 @@ class ShapeCheck(nn.Module):
         """Set ``calibration`` from the good training parts' and the good validation parts' sags (NaN ones left out)
         and the window score at the variation model's 1 % point on those validation parts. ModelError with fewer
         than 10 sags of either, or a spread of 0."""
-        train = np.asarray(train_sags, np.float64)
-        val = np.asarray(val_sags, np.float64)
-        train, val = train[np.isfinite(train)], val[np.isfinite(val)]
-        if len(train) < 10 or len(val) < 10:
-            raise ModelError(f"shape check: the edge is seen on {len(train)} good training and {len(val)} good "
-                             f"validation parts; it needs 10 of each")
-        centre = float(np.median(train))
-        spread = float(np.median(np.abs(train - centre))) * 1.4826
-        if not spread > 0 or not window_at_threshold > 0:
-            raise ModelError("shape check: the good parts' sags do not spread, or the window's threshold is not > 0")
-        threshold = float(np.abs(val - centre).max()) / spread
+        centre, spread = centre_spread(train_sags, "good training")
+        self._set(centre, spread, held_z(val_sags, centre, spread), window_at_threshold)
+
+    def calibrate_crossed(self, sags: np.ndarray, splits: Sequence[tuple[np.ndarray, np.ndarray]],
+                          window_at_threshold: float) -> None:
+        """Set ``calibration`` from one set of good parts' ``sags`` (N,) by cross-fitting (``station adapt``): each
+        split's held parts' z against the median and spread of its fitted parts' (``splits``: (fit, held) index
+        arrays), the threshold the largest held z; the median and spread of all of them; ``window_at_threshold``
+        the window's 1 % point on the held parts. ModelError as ``calibrate``, for each split."""
+        s = np.asarray(sags, np.float64)
+        z = [held_z(s[held], *centre_spread(s[fit], "fitted good")) for fit, held in splits]
+        self._set(*centre_spread(s, "good"), max(z), window_at_threshold)
+
+    def _set(self, centre: float, spread: float, threshold: float, window_at_threshold: float) -> None:
+        if not window_at_threshold > 0:
+            raise ModelError("shape check: the window's threshold is not > 0")
         self.calibration.copy_(torch.tensor([centre, spread, max(threshold, 1.0), window_at_threshold],
                                             dtype=torch.float64))
 

@@ -80,8 +80,29 @@ def test_the_threshold_is_the_largest_good_validation_part_and_the_finding_scale
     assert check.finding(centre + 1.01 * threshold * spread) == pytest.approx(7.07)
     assert check.finding(centre - 2 * threshold * spread) == pytest.approx(14.0)
     assert check.finding(math.nan) == 0.0
-    with pytest.raises(ModelError, match="10 of each"):
+    with pytest.raises(ModelError, match="seen on 5 good training parts; it needs 10"):
         ShapeCheck().calibrate(train[:5], val, 1.0)
+    with pytest.raises(ModelError, match="seen on 9 good validation parts"):
+        ShapeCheck().calibrate(train, val[:9], 1.0)
+
+
+def test_cross_fitted_calibration_holds_each_part_out_of_the_spread_it_is_judged_against() -> None:
+    """``station adapt`` has one set of good parts: each fold's z is against the other folds' median and spread."""
+    rng = np.random.default_rng(1)
+    sags = rng.normal(0.3, 0.1, 60)
+    sags[7] = 0.9  # one good part bent further than the rest
+    order = rng.permutation(60)
+    splits = [(np.setdiff1d(order, order[k::3]), order[k::3]) for k in range(3)]
+    check = ShapeCheck()
+    check.calibrate_crossed(np.r_[sags, np.nan], splits, window_at_threshold=5.0)
+    centre, spread, threshold, window = (float(v) for v in check.calibration)
+    assert centre == pytest.approx(np.median(sags)) and window == 5.0
+    assert spread == pytest.approx(1.4826 * np.median(np.abs(sags - centre)))  # all the parts' (the NaN left out)
+    fold = next(f for f, h in splits if 7 in h)  # the bent part's z: against the folds without it
+    c = np.median(sags[fold])
+    assert threshold == pytest.approx(abs(0.9 - c) / (1.4826 * np.median(np.abs(sags[fold] - c))))
+    with pytest.raises(ModelError, match="seen on 5 fitted good parts"):
+        ShapeCheck().calibrate_crossed(sags, [(np.arange(5), np.arange(5, 60))], 1.0)
 
 
 def bowed(n: int, seed: int, bow: float) -> torch.Tensor:

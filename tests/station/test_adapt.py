@@ -198,17 +198,28 @@ def test_adapt_leaves_out_frames_the_station_would_not_judge(line, tmp_path: Pat
     assert record["n_good"] == len(train) - len(blank)
 
 
-def test_adapt_drops_the_shape_check_and_says_so(line, tmp_path: Path, capsys, caplog) -> None:
-    """The shape check's spread and threshold are the renders' (``station shape``): an adapted file is judged without
-    it, and the log says to add it again on the line's parts."""
+def test_adapt_refits_the_shape_check_on_the_lines_parts_or_says_why_it_cannot(line, tmp_path: Path, capsys,
+                                                                               caplog) -> None:
+    """The shape check's spread and threshold were the renders' (``station shape``); adapting used to drop the check
+    (with a warning), so an adapted station let bent parts through. It is refitted on the line's good parts, cross-
+    fitted as the threshold is; with too few of them it is off, and the log and the summary say why."""
     model, base, shifted = line
-    with_var, shaped, out = tmp_path / "var", tmp_path / "shaped", tmp_path / "adapted"
+    with_var, shaped, out, few = (tmp_path / n for n in ("var", "shaped", "adapted", "few"))
     assert main(["variation", "--model", str(model), "--data", str(base), "--out", str(with_var)]) == 0
     assert main(["shape", "--model", str(with_var), "--data", str(base), "--val-data", str(shifted),
                  "--out", str(shaped)]) == 0
+    capsys.readouterr()
+    assert main(["adapt", "--model", str(shaped), "--good", str(shifted), "--out", str(out),
+                 "--false-reject", "0.05"]) == 0
+    assert "shape check refitted: the bottom edge over input columns" in capsys.readouterr().out
+    before, after = (load_checkpoint(p).detector.variation.shape for p in (shaped, out))
+    assert after.fitted and torch.equal(after.edge, before.edge)  # the reference is kept: the same edge
+    assert not torch.equal(after.calibration, before.calibration)  # the line's parts' spread and threshold
+    assert json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]["shape"].startswith(
+        "shape check refitted")
     with caplog.at_level(logging.WARNING):
-        assert main(["adapt", "--model", str(shaped), "--good", str(shifted), "--out", str(out),
+        assert main(["adapt", "--model", str(shaped), "--good", str(shifted), "--out", str(few), "--limit", "12",
                      "--false-reject", "0.05"]) == 0
-    assert "no shape check" in caplog.text and "station shape" in caplog.text
-    assert load_checkpoint(shaped).detector.variation.shape.fitted
-    assert not load_checkpoint(out).detector.variation.shape.fitted
+    assert "no shape check: shape check: the edge is seen on" in caplog.text
+    assert "no shape check" in capsys.readouterr().out
+    assert not load_checkpoint(few).detector.variation.shape.fitted
