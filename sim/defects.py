@@ -25,6 +25,8 @@ for a second look at kinds nobody rendered (docs/results/2026-12-05-moulding-kin
   short_shot    a stud not filled to its top (filled share of its height): the stud shorter, its top lower
   warp          the whole part bowed along its length (sag: + the middle up, - the ends up), studs and plug with
                 it; the part rests on the belt as bowed; the whole body is the defect
+  flash         a thin fin of the part's own plastic sticking straight out of a side face along part of its top or
+                bottom edge, where a mould's halves meet (thickness, width out of the face, length along the edge)
 Each type is one function (``_dent``, ``_scratch``, ...; the table ``_DEFECTS``) that ``apply_defect`` dispatches to.
 Deformations are functions of position applied to all body vertices, so the duplicated vertices along sharp
 edges move together and the surface never cracks.
@@ -39,13 +41,13 @@ from typing import Any
 import numpy as np
 
 from .errors import SimError
-from .meshes import ObjectModel, Part, face_normals, vertex_normals
+from .meshes import ObjectModel, Part, box_mesh, face_normals, vertex_normals
 
 DEFECT_TYPES = ("dent", "scratch", "stain", "chip", "missing_stud")
 """The kinds a set draws by default (``DefectConfig.types``) and that models are trained and evaluated on."""
 NEW_KINDS = ("blister", "debris")
 """Kinds drawn only when a set names them: for evaluating a model on kinds nobody trained or chose anything on."""
-MOULDING_KINDS = ("sink", "short_shot", "warp")
+MOULDING_KINDS = ("sink", "short_shot", "warp", "flash")
 """Moulding defects, drawn only when a set names them (``sim/presets/moulding-kinds.toml``), as ``NEW_KINDS``."""
 DEFECT_PART = "defect"
 
@@ -62,7 +64,8 @@ def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
     - blister, sink: ``slope_deg``, as a dent's (their profile is a dent's, raised or shallow);
     - debris: ``radius_mm``, the particle's;
     - short_shot: ``short_mm``, how far the stud's top lies below a full stud's;
-    - warp: ``sag_mm``, the bow's size (either sign)."""
+    - warp: ``sag_mm``, the bow's size (either sign);
+    - flash: ``area_mm2``, the fin's width out of the face x its length: what it adds to the part's outline."""
     if not defect:
         return None
     kind = defect.get("type")
@@ -70,7 +73,7 @@ def defect_size(defect: dict[str, Any] | None) -> tuple[str, float] | None:
         if kind in ("dent", "blister", "sink"):
             rise = defect["height_mm"] if kind == "blister" else defect["depth_mm"]
             return "slope_deg", float(np.degrees(np.arctan(np.pi / 2 * rise / defect["radius_mm"])))
-        if kind == "scratch":
+        if kind in ("scratch", "flash"):
             return "area_mm2", float(defect["length_mm"] * defect["width_mm"])
         if kind in ("stain", "debris"):
             return "radius_mm", float(defect["radius_mm"])
@@ -156,6 +159,10 @@ class DefectConfig:
     warp_sag_mm: tuple[float, float] = (0.1, 0.5)
     """The bow over the body's length (31.8 mm: 0.3-1.6 %, beyond the 0.1-0.3 % a moulded part is usually held
     to), up or down with equal odds; its end faces tilt up to 4 * sag / length (0.7-3.6 deg)."""
+    flash_thickness_mm: tuple[float, float] = (0.05, 0.2)
+    flash_width_mm: tuple[float, float] = (0.2, 1.0)
+    """How far a fin of flash sticks out of the side face (a parting line's flash is rejected from about 0.1 mm)."""
+    flash_length_mm: tuple[float, float] = (2.0, 10.0)
     facing_camera: bool = True
     """Place defects on faces that face the camera (they can still be occluded)."""
 
@@ -171,7 +178,8 @@ class DefectConfig:
                     raise SimError(f"defects.{f.name}: need a range (lo, hi) with 0 <= lo <= hi, got {v}")
         for key in ("dent_radius_mm", "scratch_length_mm", "scratch_width_mm", "stain_radius_mm", "chip_size_mm",
                     "scratch_alpha", "stain_alpha", "blister_radius_mm", "debris_radius_mm", "sink_radius_mm",
-                    "short_shot_fill", "warp_sag_mm"):
+                    "short_shot_fill", "warp_sag_mm", "flash_thickness_mm", "flash_width_mm",
+                    "flash_length_mm"):
             if getattr(self, key)[0] <= 0:
                 raise SimError(f"defects.{key}: must be > 0, got {getattr(self, key)}")
 
@@ -509,8 +517,44 @@ def _stain(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.nd
     return DefectResult(new_model, None, b.part.name, mat, info)
 
 
+def _flash(b: _Body, rng: np.random.Generator, cfg: DefectConfig, cam_obj: np.ndarray) -> DefectResult:
+    """A fin of the body's plastic along one of its four side faces' top or bottom edge (preferably a face the camera
+    sees), sticking straight out of it: a box ``width`` beyond the face (and 0.5 mm into the body, so a broken edge
+    leaves no gap), ``thickness`` high, its flat side 0.01 mm inside the top or bottom plane (no two faces at one
+    place), ``length`` along the edge (at most the edge's), placed uniformly along it."""
+    lo, hi = b.v.min(0), b.v.max(0)
+    sides = [(axis, sign) for axis in (0, 1) for sign in (-1.0, 1.0)]
+    if cfg.facing_camera:
+        seen = [(a, s) for a, s in sides if s * (cam_obj[a] - (hi[a] if s > 0 else lo[a])) > 0]
+        sides = seen or sides
+    axis, sign = sides[int(rng.integers(len(sides)))]
+    top = bool(rng.random() < 0.5)
+    thickness, width = _mm(rng, cfg.flash_thickness_mm), _mm(rng, cfg.flash_width_mm)
+    along = 1 - axis
+    length = min(_mm(rng, cfg.flash_length_mm), float(hi[along] - lo[along]))
+    start = float(rng.uniform(lo[along], hi[along] - length))
+    face = hi[axis] if sign > 0 else lo[axis]
+    inset, gap = 5e-4, 1e-5
+    box_lo, box_hi = np.empty(3), np.empty(3)
+    box_lo[along], box_hi[along] = start, start + length
+    box_lo[axis], box_hi[axis] = sorted((face - sign * inset, face + sign * width))
+    box_lo[2] = hi[2] - gap - thickness if top else lo[2] + gap
+    box_hi[2] = box_lo[2] + thickness
+    v, f = box_mesh(box_lo, box_hi, 5e-4)
+    fin = Part(DEFECT_PART, v.astype(np.float32), f.astype(np.int32), vertex_normals(v, f).astype(np.float32),
+               DEFECT_PART)
+    normal = np.zeros(3)
+    normal[axis] = sign
+    centre = (box_lo + box_hi) / 2
+    centre[axis] = face
+    info = {**b.info, "centre_m": centre.tolist(), "normal": normal.tolist(), "edge": "top" if top else "bottom",
+            "thickness_mm": thickness * 1000, "width_mm": width * 1000, "length_mm": length * 1000}
+    return DefectResult(b.model.with_parts([*b.model.parts, fin]), None, b.part.name, b.material, info)
+
+
 _DEFECTS: dict[str, Callable[[_Body, np.random.Generator, DefectConfig, np.ndarray], DefectResult]] = {
     "dent": _dent, "scratch": _scratch, "stain": _stain, "chip": _chip, "missing_stud": _missing_stud,
-    "blister": _blister, "debris": _debris, "sink": _sink, "short_shot": _short_shot, "warp": _warp}
+    "blister": _blister, "debris": _debris, "sink": _sink, "short_shot": _short_shot, "warp": _warp,
+    "flash": _flash}
 """Defect type -> the function that puts it on a body (one per name of ``DEFECT_TYPES``, ``NEW_KINDS`` and
 ``MOULDING_KINDS``)."""

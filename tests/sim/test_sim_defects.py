@@ -87,7 +87,8 @@ def test_the_new_kinds_are_not_in_the_default_draw() -> None:
     # every set rendered before them draws the same five kinds
     assert DefectConfig().types == DEFECT_TYPES == ("dent", "scratch", "stain", "chip", "missing_stud")
     assert set(NEW_KINDS) == {"blister", "debris"} and not set(NEW_KINDS) & set(DEFECT_TYPES)
-    assert set(MOULDING_KINDS) == {"sink", "short_shot", "warp"} and not set(MOULDING_KINDS) & set(DEFECT_TYPES)
+    assert set(MOULDING_KINDS) == {"sink", "short_shot", "warp", "flash"}
+    assert not set(MOULDING_KINDS) & set(DEFECT_TYPES)
     assert set(_DEFECTS) == set(DEFECT_TYPES) | set(NEW_KINDS) | set(MOULDING_KINDS)
     with pytest.raises(SimError, match="unknown"):
         DefectConfig(types=("bubble",))
@@ -174,6 +175,36 @@ def test_a_warp_bows_the_whole_part_which_still_rests_on_the_belt(seed: int) -> 
     assert r.good_region is not None and r.good_region.faces.shape == body.faces.shape
     assert defect_face({"type": "warp", **r.info}) == "top"
     assert defect_size({"type": "warp", **r.info}) == ("sag_mm", abs(r.info["sag_mm"]))
+
+
+@pytest.mark.parametrize("seed", [3, 7, 11, 19])
+def test_flash_is_a_thin_fin_out_of_a_side_face_at_its_top_or_bottom_edge(seed: int) -> None:
+    model, r = _draw("flash", seed)
+    body = model.part("body").vertices.astype(np.float64)
+    lo, hi = body.min(0), body.max(0)
+    fin = r.model.part("defect").vertices.astype(np.float64)
+    n = np.asarray(r.info["normal"])
+    axis = int(np.flatnonzero(n)[0])
+    face = hi[axis] if n[axis] > 0 else lo[axis]
+    out = (fin[:, axis] - face) * n[axis]  # how far the fin reaches out of its face: its width, and 0.5 mm in
+    mm = {"abs": 1e-4}  # the part's vertices are float32
+    assert out.max() * 1000 == pytest.approx(r.info["width_mm"], **mm) and out.min() * 1000 == pytest.approx(-0.5, **mm)
+    assert (np.ptp(fin[:, 2]) * 1000 == pytest.approx(r.info["thickness_mm"], **mm)
+            and np.ptp(fin[:, 1 - axis]) * 1000 == pytest.approx(r.info["length_mm"], **mm))
+    # within the top or the bottom plane (never on it: no two faces at one place), and along the face's edge
+    if r.info["edge"] == "top":
+        assert hi[2] - 2e-5 < fin[:, 2].max() < hi[2]
+    else:
+        assert lo[2] < fin[:, 2].min() < lo[2] + 2e-5
+    assert lo[1 - axis] - 1e-9 <= fin[:, 1 - axis].min() and fin[:, 1 - axis].max() <= hi[1 - axis] + 1e-9
+    assert 0.05 <= r.info["thickness_mm"] <= 0.2 and 0.2 <= r.info["width_mm"] <= 1.0
+    # the camera at (0.05, -0.08, 0.25) sees the -y and +x faces: the fin is on one of them
+    assert (axis, n[axis]) in ((1, -1.0), (0, 1.0)) and defect_face({"type": "flash", **r.info}) in ("front", "end")
+    # the part is unchanged (nothing disappeared) and the fin is its plastic
+    assert r.good_region is None and r.material == {"colour": [0.3, 0.4, 0.5], "alpha": 0.2}
+    assert defect_size({"type": "flash", **r.info}) == ("area_mm2", pytest.approx(r.info["width_mm"]
+                                                                                  * r.info["length_mm"]))
+    assert _draw("flash", seed)[1].info == r.info  # seeded
 
 
 def test_a_part_without_studs_draws_no_short_shot() -> None:
