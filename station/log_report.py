@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX
+from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX, SIGNED_CHECKS
 from station.decision import SECOND_NAME, Verdict
 from station.inspection_log import DECISIONS
 
@@ -76,7 +76,8 @@ class LogSummary:
     last_drift: str | None = None
     """The newest drift warning in the log."""
     frame_checks: dict[str, dict[str, float]] = field(default_factory=dict)
-    """Per model frame check (``FRAME_CHECKS``, schema version 4) over the parts that have it: median, p99, max."""
+    """Per model frame check (``FRAME_CHECKS``, schema version 4; ``edge_bend`` version 6) over the parts that have it:
+    median, p99, max; of a signed check (``SIGNED_CHECKS``: ``edge_bend``), of its size."""
     reject_causes: dict[str, int] = field(default_factory=dict)
     """Rejected and not-inspected parts per cause (``reject_cause``), most first: "score over threshold" is the
     model's judgement, every other cause a part the station could not judge."""
@@ -95,7 +96,7 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     for r in rows:
         for k in FRAME_CHECKS:
             if r.get(k) is not None:
-                checks[k].append(r[k])
+                checks[k].append(abs(r[k]) if k in SIGNED_CHECKS else r[k])
         counts[r["decision"]] += 1
         if r["decision"] in (Verdict.REJECT, Verdict.NOT_INSPECTED):
             causes[reject_cause(r["reason"])] += 1
@@ -155,7 +156,8 @@ def format_summary(s: LogSummary) -> str:
         lines.append(f"DRIFT: {s.drift_parts} part(s) judged while the frames were outside the model's trained "
                      f"range; last warning: {s.last_drift}")
     for k, v in s.frame_checks.items():
-        lines.append(f"{k}: median {v['median']:.3f}, p99 {v['p99']:.3f}, max {v['max']:.3f}")
+        name = f"|{k}|" if k in SIGNED_CHECKS else k
+        lines.append(f"{name}: median {v['median']:.3f}, p99 {v['p99']:.3f}, max {v['max']:.3f}")
     noise = s.frame_checks.get("noise_level", {}).get("median", 0.0)
     if noise >= NOISY_LINE_LEVEL:
         lines.append(f"NOISE: the frames' median noise level is {noise:.2f} times the model's good parts' (at most "

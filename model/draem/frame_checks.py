@@ -23,6 +23,9 @@ NOISE_CAP = 3.0
 line reach 1.38 (370 validation parts, 500 held-out), an 8-spp line of the same parts 2.1, a brighter line 2.3;
 a frame above the cap is so unlike the fitted line's parts that it is judged unscaled, and rejects."""
 
+SIGNED_CHECKS = ("edge_bend",)
+"""Frame checks whose sign gives a direction (the edge's middle up or down); a summary over parts takes their size."""
+
 EDGE_BEND_LIMIT = 1.0
 """``edge_bend`` beyond +-this: the part's bottom edge bends further than any good validation part's, and the shape
 check scores the part at least the variation model's own 1 % point (``model.draem.shape_check``, step 3)."""

@@ -187,6 +187,17 @@ def test_report_gives_the_models_frame_checks_and_warns_of_a_noisy_line(tmp_path
     assert "NOISE: the frames' median noise level is 2.00" in format_summary(noisy)
 
 
+def test_report_gives_the_size_of_the_edge_bend_which_bends_either_way(tmp_path):
+    """A part bent the other way has a negative bend: its max over parts read the least bent part, not the most."""
+    from station.log_report import format_summary, summarize
+
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append([rec(i, edge_bend=b) for i, b in enumerate((0.1, -0.2, 0.3, -6.5))])
+        s = summarize(log.rows())
+    assert s.frame_checks["edge_bend"]["max"] == pytest.approx(6.5)
+    assert "|edge_bend|: median 0.250" in format_summary(s)
+
+
 def test_the_log_has_a_column_for_every_frame_check_the_model_reports():
     from model.draem.frame_checks import FRAME_CHECKS
 
