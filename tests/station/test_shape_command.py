@@ -23,7 +23,7 @@ def test_the_shape_check_is_added_recorded_and_the_threshold_kept(tmp_path: Path
     assert main(["shape", "--model", str(var), "--data", str(data), "--val-data", str(data), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     errors = [line for line in err.splitlines() if "error:" in line]  # after the loading's progress
-    assert len(errors) == 1 and "it needs 10 of each" in errors[0]
+    assert len(errors) == 1 and "seen on 4 good validation parts; it needs 10" in errors[0]
     val = make_line_set(tmp_path / "val", n=16, seed=1, validation=True, defective=lambda i: False)
     assert main(["shape", "--model", str(var), "--data", str(data), "--val-data", str(val), "--out", str(out)]) == 0
     assert "shape check on the bottom edge over input columns" in capsys.readouterr().out
