@@ -54,7 +54,14 @@ from .residual import NO_LOOK
 from .second_look import MIN_REFERENCES
 from .shape_check import ShapeCheck
 from .variation import combined_score
-from .with_variation import SHAPE_WINDOW_RATE, look_scores, member_scores, residual_raw, second_look_scores
+from .with_variation import (
+    edge_sags,
+    look_scores,
+    member_scores,
+    residual_raw,
+    second_look_scores,
+    shape_window,
+)
 
 log = logging.getLogger(__name__)
 
@@ -239,14 +246,11 @@ def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, t
     without it)."""
     var = final.variation
     assert var is not None
-    window = np.concatenate([d.variation.zmaps(xp[i:i + batch_size]).scores.numpy()
-                             for d, xp in parts if d.variation is not None
-                             for i in range(0, len(xp), batch_size)])  # before the check: its window alone
+    window = shape_window([(d.variation, xp) for d, xp in parts if d.variation is not None], batch_size)
     try:
         if not var.shape.find(var.reference.numpy(), var.region.numpy()):
             raise ModelError("the refit's reference shows no straight bottom edge")
-        sags = np.array([var.edge_sag(xi) for xi in x.float().cpu().numpy()])
-        var.shape.calibrate_crossed(sags, splits, false_reject_threshold(window, SHAPE_WINDOW_RATE))
+        var.shape.calibrate_crossed(edge_sags(var, x), splits, window)
     except ModelError as exc:
         var.shape = ShapeCheck()  # off: no edge, no calibration
         why = f"no shape check: {exc} (a bent part is judged by the window alone)"

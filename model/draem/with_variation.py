@@ -69,6 +69,19 @@ SHAPE_WINDOW_RATE = 0.01
 
 
 @torch.no_grad()
+def shape_window(scored: Sequence[tuple[VariationModel, torch.Tensor]], batch: int = 16) -> float:
+    """The window score at ``SHAPE_WINDOW_RATE`` of good parts, each set of (N, C, H, W) priors in ``scored`` scored
+    by its variation model (``zmaps``, in batches; before a shape check scores: its own window)."""
+    window = [var.zmaps(x[i:i + batch]).scores.numpy() for var, x in scored for i in range(0, len(x), batch)]
+    return false_reject_threshold(np.concatenate(window), SHAPE_WINDOW_RATE)
+
+
+def edge_sags(var: VariationModel, x: torch.Tensor) -> np.ndarray:
+    """(N,) the shape check's sag of each of (N, C, H, W) priors (``VariationModel.edge_sag``; NaN where unseen)."""
+    return np.array([var.edge_sag(xi) for xi in x.float().cpu().numpy()])
+
+
+@torch.no_grad()
 def add_shape_check(detector: Detector, good: torch.Tensor, val_good: torch.Tensor, batch: int = 16) -> bool:
     """Give ``detector``'s variation model its shape check (``model.draem.shape_check``), in place: the edge from its
     reference and region, the sag's median and spread from ``good`` (N, C, H, W) good training parts' physical priors,
@@ -80,9 +93,7 @@ def add_shape_check(detector: Detector, good: torch.Tensor, val_good: torch.Tens
         raise ModelError("the shape check reads the variation model's registration: add the variation model first")
     if not var.shape.find(var.reference.numpy(), var.region.numpy()):
         return False
-    window = torch.cat([var.zmaps(val_good[i:i + batch]).scores for i in range(0, len(val_good), batch)])
-    sags = [np.array([var.edge_sag(xi) for xi in x.float().cpu().numpy()]) for x in (good, val_good)]
-    var.shape.calibrate(*sags, false_reject_threshold(window.numpy(), SHAPE_WINDOW_RATE))
+    var.shape.calibrate(edge_sags(var, good), edge_sags(var, val_good), shape_window([(var, val_good)], batch))
     var.check()
     return True
 
