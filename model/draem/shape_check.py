@@ -80,9 +80,10 @@ def robust_line(x: np.ndarray, y: np.ndarray, within: float) -> tuple[np.ndarray
     return p, np.abs(y - np.polyval(p, x)) <= within
 
 
-def find_edge(reference: np.ndarray, region: np.ndarray) -> tuple[float, float, float, float, float] | None:
-    """(H, W) reference and (H, W) bool part region -> ``edge`` (first column, end column, row at column 0, slope,
-    sign) of the part's straight bottom edge (module docstring, step 1), or None when there is none."""
+def straight_run(region: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """(H, W) bool part region -> the columns of the longest run whose region bottom lies within ``EDGE_FIT_PX`` of a
+    robust straight line through every column's bottom (the body; a plug or a rounded end lies off it), untrimmed,
+    and that line ((2,) as ``np.polyfit``); None when the run spans fewer than ``MIN_RUN`` of the region's columns."""
     cols = np.flatnonzero(region.any(0))
     if len(cols) < 10:
         return None
@@ -92,25 +93,43 @@ def find_edge(reference: np.ndarray, region: np.ndarray) -> tuple[float, float, 
     run = max((r for r in runs if keep[r[0]]), key=len, default=np.array([], int))
     if len(run) < MIN_RUN * len(cols):
         return None
-    trim = round(TRIM * len(run))
-    first, end = int(cols[run[trim]]), int(cols[run[-1 - trim]]) + 1
-    change = vertical_change(reference)
-    c = np.arange(first, end)
+    return cols[run], p
+
+
+def strongest_line(change: np.ndarray, cols: np.ndarray, guide: np.ndarray, above: int, below: int
+                   ) -> tuple[float, float, float] | None:
+    """(H - 1, W) ``vertical_change`` of a reference, columns and (len(cols),) guide rows -> the straight edge through
+    each column's strongest change (either sign) from ``above`` rows above the guide to ``below`` rows below it
+    (exclusive; negative: above): a robust line through those rows ((row at column 0, slope), points within 1.5 px)
+    and the sign of the change along it; None when the change sums to 0 there."""
     rows = []
-    for col in c:
-        line = float(np.polyval(p, col))
-        lo, hi = max(int(line) - EDGE_BAND_PX, 0), min(int(line) + 3, change.shape[0])
+    for col, line in zip(cols, guide, strict=True):
+        lo, hi = max(int(line) - above, 0), min(int(line) + below, change.shape[0])
         rows.append(lo + int(np.argmax(np.abs(change[lo:hi, col]))))
-    rows = np.asarray(rows, np.float64)
-    q, _ = robust_line(c.astype(np.float64), rows, 1.5)
-    at = np.clip(np.rint(np.polyval(q, c)).astype(int), 0, change.shape[0] - 1)
-    sign = float(np.sign(np.sum(change[at, c])))
-    return (float(first), float(end), float(q[1]), float(q[0]), sign) if sign else None
+    q, _ = robust_line(cols.astype(np.float64), np.asarray(rows, np.float64), 1.5)
+    at = np.clip(np.rint(np.polyval(q, cols)).astype(int), 0, change.shape[0] - 1)
+    sign = float(np.sign(np.sum(change[at, cols])))
+    return (float(q[1]), float(q[0]), sign) if sign else None
 
 
-def edge_sag(intensity: np.ndarray, edge: tuple[float, ...]) -> float:
-    """(H, W) registered intensity of a part and ``edge`` -> the edge's sag in input px (module docstring, step 2);
-    NaN when too few columns show it."""
+def find_edge(reference: np.ndarray, region: np.ndarray) -> tuple[float, float, float, float, float] | None:
+    """(H, W) reference and (H, W) bool part region -> ``edge`` (first column, end column, row at column 0, slope,
+    sign) of the part's straight bottom edge (module docstring, step 1), or None when there is none."""
+    found = straight_run(region)
+    if found is None:
+        return None
+    run, p = found
+    trim = round(TRIM * len(run))
+    first, end = int(run[trim]), int(run[-1 - trim]) + 1
+    c = np.arange(first, end)
+    line = strongest_line(vertical_change(reference), c, np.polyval(p, c), EDGE_BAND_PX, 3)
+    return None if line is None else (float(first), float(end), *line)
+
+
+def edge_rows(intensity: np.ndarray, edge: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """(H, W) registered intensity of a part and an ``edge`` (first column, end column, row at column 0, slope, sign)
+    -> the columns where it is sought and, per column, the row of the strongest change of its sign within
+    ``SEARCH_PX`` of its line, to a fraction of a pixel (a parabola through the peak and its neighbours); input px."""
     first, end, row0, slope, sign = edge
     change = sign * vertical_change(intensity)
     rows, used = [], []
@@ -124,16 +143,25 @@ def edge_sag(intensity: np.ndarray, edge: tuple[float, ...]) -> float:
         den = a - 2 * b + d
         rows.append(r + (0.5 * (a - d) / den if den < 0 else 0.0))
         used.append(col)
-    if len(rows) < 10:
-        return math.nan
-    u = np.interp(used, (first, end - 1), (-1.0, 1.0))
-    rows = np.asarray(rows)
+    return np.asarray(used, np.int64), np.asarray(rows, np.float64)
+
+
+def robust_parabola(u: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """A parabola through (u, rows) ((3,) as ``np.polyfit``), fitted again without the points off the first fit by
+    over ``ROBUST_K`` robust spreads (when 10 or more are left)."""
     p = np.polyfit(u, rows, 2)
     off = np.abs(rows - np.polyval(p, u))
     keep = off <= ROBUST_K * max(float(np.median(off)) / 0.6745, 1e-3)
-    if keep.sum() >= 10:
-        p = np.polyfit(u[keep], rows[keep], 2)
-    return float(p[0])
+    return np.polyfit(u[keep], rows[keep], 2) if keep.sum() >= 10 else p
+
+
+def edge_sag(intensity: np.ndarray, edge: tuple[float, ...]) -> float:
+    """(H, W) registered intensity of a part and ``edge`` -> the edge's sag in input px (module docstring, step 2);
+    NaN when too few columns show it."""
+    used, rows = edge_rows(intensity, edge)
+    if len(rows) < 10:
+        return math.nan
+    return float(robust_parabola(np.interp(used, (edge[0], edge[1] - 1), (-1.0, 1.0)), rows)[0])
 
 
 def finite_sags(sags: np.ndarray, which: str) -> np.ndarray:
