@@ -5,14 +5,16 @@ A frame check describes the frame or the part's shape rather than a local defect
 docstring: highlights, noise; ``model.draem.shape_check``): ``highlight_fraction`` is the share of the part region
 hidden as a highlight (0-1), ``noise_level`` the frame's median z against a good part's (about 1 on the model's own
 line; the z map is divided by it where it is above 1), ``edge_bend`` how far the part's bottom edge bends, as its
-robust z over the shape check's threshold (signed; NaN, and left out of a prediction's checks, without the check)."""
+robust z over the shape check's threshold (signed; NaN, and left out of a prediction's checks, without the check),
+``edge_step`` how far the part's outline steps along its long edges, as the outline check's largest run z over its
+threshold (``model.draem.outline_check``; NaN and left out without the check)."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
 
-FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend")
+FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend", "edge_step")
 """``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
 
 MAX_HIDDEN = 0.5
@@ -30,6 +32,11 @@ EDGE_BEND_LIMIT = 1.0
 """``edge_bend`` beyond +-this: the part's bottom edge bends further than any good validation part's, and the shape
 check scores the part at least the variation model's own 1 % point (``model.draem.shape_check``, step 3)."""
 
+EDGE_STEP_LIMIT = 1.0
+"""``edge_step`` above this: the part's outline steps further than any good calibration part's along an edge (flash,
+a chipped edge), and the outline check scores the part at least the variation model's own 1 % point
+(``model.draem.outline_check``, step 3)."""
+
 OWN_RENDERS_NOISE_LEVEL_MAX = 1.38
 """Highest ``noise_level`` of a good part of the shipped model's own validation and held-out renders (16 spp):
 a line whose median lies above it is noisier than the renders (module docstring of variation: noise)."""
@@ -38,9 +45,10 @@ a line whose median lies above it is noisier than the renders (module docstring 
 def beyond_limits(checks: Mapping[str, float]) -> list[str]:
     """A part's frame checks (by ``FRAME_CHECKS`` name; missing or NaN ones say nothing) -> what each one beyond its
     limit says, in words for a reject's reason (the station adds them after the score): a frame too noisy or too
-    highlighted to be judged as the model's line (it rejects), a part bent beyond every good part's."""
+    highlighted to be judged as the model's line (it rejects), a part bent beyond every good part's, an outline that
+    steps beyond every good part's."""
     said = []
-    hidden, noise, bend = (checks.get(k, math.nan) for k in FRAME_CHECKS)
+    hidden, noise, bend, step = (checks.get(k, math.nan) for k in FRAME_CHECKS)
     if hidden > MAX_HIDDEN:
         said.append(f"highlights cover {100 * hidden:.0f} % of the part (over {100 * MAX_HIDDEN:.0f} %: judged "
                     "with them, as a part unlike the model's line)")
@@ -49,4 +57,7 @@ def beyond_limits(checks: Mapping[str, float]) -> list[str]:
                     "unscaled, as a part unlike the model's line)")
     if abs(bend) > EDGE_BEND_LIMIT:
         said.append(f"shape check: the bottom edge bends {abs(bend):.1f} times as far as any good part's")
+    if step > EDGE_STEP_LIMIT:
+        said.append(f"outline check: an edge steps {step:.1f} times as far as any good part's (flash or a broken "
+                    "edge)")
     return said

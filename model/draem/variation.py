@@ -116,6 +116,7 @@ from . import appearance_clusters
 from .config import Alignment
 from .errors import ModelError
 from .frame_checks import FRAME_CHECKS, MAX_HIDDEN, NOISE_CAP
+from .outline_check import OutlineCheck
 from .second_look import SecondLook
 from .shape_check import ShapeCheck
 from .shifts import Channels, blurred_copies
@@ -208,14 +209,16 @@ specular lobe around a clipped core."""
 LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_sigma", "global_polarization",
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
                  "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged",
-                 "curvature_sigma", "second_look.tests", "judged_channels", "shape.edge", "shape.calibration")
+                 "curvature_sigma", "second_look.tests", "judged_channels", "shape.edge", "shape.calibration",
+                 "outline.edges", "outline.median", "outline.centre", "outline.spread", "outline.calibration")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their initial
 values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as a feature;
 ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's polarization read as
 it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no clusters; ``contrast_range``
 ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look; ``curvature_sigma`` 0: the box window;
 ``second_look.tests`` 1: a second look tests; ``judged_channels`` all 1: every feature judged; ``shape`` NaN: no
-shape check), which score as those models did. Dotted names are a submodule's (``nn.Module.get_buffer``)."""
+shape check; ``outline`` NaN: no outline check), which score as those models did. Dotted names are a submodule's
+(``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
 """``polarization_range`` (lowest and highest gain, lowest and highest turn) that leaves nothing alone: all of a
@@ -364,7 +367,8 @@ class VariationOutput(NamedTuple):
     frame's noise level (1 on the fitted line); ``signed`` (N, C, H, W) each channel's signed residual in units of
     ``scale`` after the noise level (``signed_z``; what the residual networks read, ``model.draem.residual``);
     ``judged`` (N, H, W) bool, the pixels judged; both None unless ``zmaps`` was asked for them; ``edge_bend`` (N,)
-    the shape check's bend of each part (``ShapeCheck.bend``; NaN without the check)."""
+    the shape check's bend of each part (``ShapeCheck.bend``; NaN without the check); ``edge_step`` (N,) the outline
+    check's step of each part (``OutlineCheck.step``; NaN without the check)."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -373,6 +377,7 @@ class VariationOutput(NamedTuple):
     signed: torch.Tensor | None = None
     judged: torch.Tensor | None = None
     edge_bend: torch.Tensor | None = None
+    edge_step: torch.Tensor | None = None
 
     def frame_checks(self) -> dict[str, torch.Tensor]:
         """The fields that describe the frame or the part's shape rather than a local defect (``FRAME_CHECKS``), by
@@ -401,7 +406,8 @@ class VariationModel(nn.Module):
     window statistic (module docstring: z map; 0: the box, else the curvature's sigma in input px; ``fit``), which a
     refit keeps. ``judged_channels`` (C,) 1.0 for a channel the window statistic is taken over, 0.0 for one that is
     only read (intensity still registers the part; ``fit``'s ``judged_channels``), which a refit keeps. ``shape``: the
-    shape check, how far the part's bottom edge bends (``model.draem.shape_check``; NaN: none). ``intensity``,
+    shape check, how far the part's bottom edge bends (``model.draem.shape_check``; NaN: none). ``outline``: the
+    outline check, a short step along the part's long edges (``model.draem.outline_check``; NaN: none). ``intensity``,
     ``dolp``, ``aolp``: the channel index of intensity, of DoLP and of AoLP's cosine (its sine follows), None when
     the model does not read that prior."""
 
@@ -432,6 +438,7 @@ class VariationModel(nn.Module):
         self._resize_clusters(0, 0)
         self.second_look = SecondLook()
         self.shape = ShapeCheck()
+        self.outline = OutlineCheck(w)
 
     def _resize_clusters(self, clusters: int, pixels: int) -> None:
         """Empty cluster buffers for ``clusters`` clusters over ``pixels`` region pixels."""
@@ -718,6 +725,7 @@ class VariationModel(nn.Module):
         tests = self.second_look.tests.clone()  # the recipe's, which a refit keeps
         self.second_look = SecondLook()  # a new fit's references are its own (``with_variation.add_second_look``)
         self.shape = ShapeCheck()  # and its edge (``with_variation.add_shape_check``)
+        self.outline = OutlineCheck(self.outline.median.shape[1])  # and its edges (``add_shape_check``)
         self.second_look.tests.copy_(tests)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
@@ -935,8 +943,8 @@ class VariationModel(nn.Module):
         ``coefficient_entries``) and the part region at least ``MIN_REGION`` of the frame: a NaN, an empty region or a
         huge spread would pass every part."""
         for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *LATER_BUFFERS):
-            if name.startswith("shape."):
-                continue  # NaN is its off state (``ShapeCheck.check``, below)
+            if name.startswith(("shape.", "outline.")):
+                continue  # NaN is their off state (``ShapeCheck.check``, ``OutlineCheck.check``, below)
             value = self.get_buffer(name)
             if name == "second_look.calibration":
                 value = value[1:]  # its gate is infinite until calibrated: no part is looked at again
@@ -961,6 +969,7 @@ class VariationModel(nn.Module):
             raise ModelError(f"variation model: curvature_sigma is {sigma:g}, outside [0, {MAX_CURVATURE_SIGMA:g}] "
                              f"input px")
         self.shape.check()
+        self.outline.check()
         look = self.second_look
         if look.references and look.chi.shape[1] != int(self.region.sum()):
             raise ModelError(f"variation model: second_look.chi covers {look.chi.shape[1]} pixels, the part region "
@@ -980,11 +989,12 @@ class VariationModel(nn.Module):
         region = self.scored_region()
         if not region.any():
             region = self.region.numpy()
-        maps, scores, highlights, noise, signed_all, judged_all, bends = [], [], [], [], [], [], []
+        maps, scores, highlights, noise, signed_all, judged_all, bends, steps = [], [], [], [], [], [], [], []
         part = self.region.numpy()
         for xi in x.float().cpu().numpy():
             aligned = self._aligned(xi)
             sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan  # before alignment
+            step = self.outline.step(aligned[0][self.intensity])
             r, coef, judged, hidden = self._residual_of(*aligned)
             highlights.append(hidden)
             r = self.clustered(r, coef)
@@ -1001,15 +1011,17 @@ class VariationModel(nn.Module):
                 s = signed_all[-1] if signed else self.signed_z(r, judged, level)
                 t = self.second_look.test(maps[-1], (s.astype(np.float32) ** 2).sum(0), judged, part)
                 scores[-1] = self.second_look.score(scores[-1], t)
-            scores[-1] = max(scores[-1], self.shape.finding(sag))  # the larger: each at its own threshold
+            # the largest: each at its own threshold
+            scores[-1] = max(scores[-1], self.shape.finding(sag), self.outline.finding(step))
             bends.append(self.shape.bend(sag))
+            steps.append(step)
         m = torch.from_numpy(np.stack(maps)).to(x.device)
         return VariationOutput(m, torch.tensor(scores, dtype=torch.float32, device=x.device),
                                torch.tensor(highlights, dtype=torch.float32),
                                torch.tensor(noise, dtype=torch.float32),
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
                                torch.from_numpy(np.stack(judged_all)) if signed else None,
-                               torch.tensor(bends, dtype=torch.float32))
+                               torch.tensor(bends, dtype=torch.float32), torch.tensor(steps, dtype=torch.float32))
 
     def _judged_residual(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """(C, H, W) physical priors of a frame -> its residual in units of ``scale`` (C, H, W) before clusters, its
@@ -1053,6 +1065,11 @@ class VariationModel(nn.Module):
         """(C, H, W) physical priors of a frame -> the shape check's sag of its registered intensity (input px;
         ``model.draem.shape_check``; NaN without an edge)."""
         return self.shape.sag(self._aligned(xi)[0][self.intensity])
+
+    def outline_deviations(self, xi: np.ndarray) -> np.ndarray:
+        """(C, H, W) physical priors of a frame -> the outline check's (2, W) deviations of its registered intensity
+        (input px; ``model.draem.outline_check``; all NaN without edges)."""
+        return self.outline.deviations(self._aligned(xi)[0][self.intensity])
 
     def scored_region(self) -> np.ndarray:
         """(H, W) bool: the part region eroded by 1 px (the image border does not erode), where a map is scored: a

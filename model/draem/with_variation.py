@@ -81,19 +81,30 @@ def edge_sags(var: VariationModel, x: torch.Tensor) -> np.ndarray:
     return np.array([var.edge_sag(xi) for xi in x.float().cpu().numpy()])
 
 
+def outline_deviations(var: VariationModel, x: torch.Tensor) -> np.ndarray:
+    """(N, 2, W) the outline check's deviations of each of (N, C, H, W) priors
+    (``VariationModel.outline_deviations``)."""
+    return np.stack([var.outline_deviations(xi) for xi in x.float().cpu().numpy()])
+
+
 @torch.no_grad()
 def add_shape_check(detector: Detector, good: torch.Tensor, val_good: torch.Tensor, batch: int = 16) -> bool:
-    """Give ``detector``'s variation model its shape check (``model.draem.shape_check``), in place: the edge from its
-    reference and region, the sag's median and spread from ``good`` (N, C, H, W) good training parts' physical priors,
-    its threshold from ``val_good``'s (good validation parts), with the window score at ``SHAPE_WINDOW_RATE`` of
-    them. False, and no check, when the region shows no straight bottom edge; ModelError as
-    ``ShapeCheck.calibrate``."""
+    """Give ``detector``'s variation model its shape check (``model.draem.shape_check``) and its outline check
+    (``model.draem.outline_check``), in place: the edges from its reference and region, the sag's median and spread
+    and the edges' per-column statistics from ``good`` (N, C, H, W) good training parts' physical priors, the
+    thresholds from ``val_good``'s (good validation parts), with the window score at ``SHAPE_WINDOW_RATE`` of them.
+    False, and neither check, when the region shows no straight bottom edge; the outline check alone is off when its
+    top edge shows no change. ModelError as ``ShapeCheck.calibrate`` and ``OutlineCheck.calibrate``."""
     var = detector.variation
     if var is None:
         raise ModelError("the shape check reads the variation model's registration: add the variation model first")
     if not var.shape.find(var.reference.numpy(), var.region.numpy()):
+        var.outline.clear()
         return False
-    var.shape.calibrate(edge_sags(var, good), edge_sags(var, val_good), shape_window([(var, val_good)], batch))
+    window = shape_window([(var, val_good)], batch)
+    var.shape.calibrate(edge_sags(var, good), edge_sags(var, val_good), window)
+    if var.outline.find(var.reference.numpy(), var.region.numpy()):
+        var.outline.calibrate(outline_deviations(var, good), outline_deviations(var, val_good), window)
     var.check()
     return True
 
