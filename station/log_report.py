@@ -21,6 +21,7 @@ NOISY_LINE_LEVEL = 1.5
 
 REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("part bent (shape check)", ("bottom edge bends",)),
+    ("edge steps (outline check)", ("an edge steps",)),
     ("frame unlike the model's line", ("unlike the model's line",)),
     ("score over threshold", ("> threshold",)),
     ("log not writable", ("not recorded:",)),

@@ -11,7 +11,8 @@ What depends on the line, in this model:
     good parts as references (``model.draem.second_look``); then the second look's gate and both detectors'
     calibration, from the held-out scores; its shape check, when the model has one (``model.draem.shape_check``):
     the edge from the refit's reference, the good parts' sag spread from all of them, its threshold the largest z
-    of a held-out part against the parts fitted without it, the window's 1 % point from the held-out parts;
+    of a held-out part against the parts fitted without it, the window's 1 % point from the held-out parts; and
+    its outline check (``model.draem.outline_check``) alike;
   - whether the networks still judge: their held-out good parts' median image score, in robust standard
     deviations of their good validation parts (the trained calibration), after the refit; above
     ``DOMAIN_SHIFT_SD`` they are out of their domain on this line and the adapted model decides on the variation
@@ -53,11 +54,12 @@ from .preprocess import Normalizer
 from .residual import NO_LOOK
 from .second_look import MIN_REFERENCES
 from .shape_check import ShapeCheck
-from .variation import combined_score
+from .variation import VariationModel, combined_score
 from .with_variation import (
     edge_sags,
     look_scores,
     member_scores,
+    outline_deviations,
     residual_raw,
     second_look_scores,
     shape_window,
@@ -238,12 +240,13 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
 
 
 def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, torch.Tensor]],
-                 splits: list[tuple[np.ndarray, np.ndarray]], batch_size: int = 16) -> str:
+                 splits: list[tuple[np.ndarray, np.ndarray]], batch_size: int = 16, outline: bool = False) -> str:
     """The shape check of ``final`` (refit on the good parts ``x``) again, in place (module docstring): its edge from
     the refit's reference, its calibration cross-fitted over ``splits`` (``ShapeCheck.calibrate_crossed``), the
     window's 1 % point from ``parts`` (each fold's detector and its held parts). What it measures; when the refit
     shows no straight bottom edge or too few parts show it, why it has none (a warning: the model is then judged
-    without it)."""
+    without it). ``outline``: the model had an outline check, which is refitted alike (``_refit_outline``), or
+    switched off with the shape check."""
     var = final.variation
     assert var is not None
     window = shape_window([(d.variation, xp) for d, xp in parts if d.variation is not None], batch_size)
@@ -253,13 +256,35 @@ def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, t
         var.shape.calibrate_crossed(edge_sags(var, x), splits, window)
     except ModelError as exc:
         var.shape = ShapeCheck()  # off: no edge, no calibration
+        var.outline.clear()  # fitted beside it (``with_variation.add_shape_check``): off with it
         why = f"no shape check: {exc} (a bent part is judged by the window alone)"
+        if outline:
+            why += "; no outline check with it (a step along an edge too)"
         log.warning("the adapted variation model has %s", why)
         return why
     first, end = (int(v) for v in var.shape.edge[:2])
     _, spread, threshold, _ = (float(v) for v in var.shape.calibration)
-    return (f"shape check refitted: the bottom edge over input columns {first}-{end - 1}, good parts' sag spread "
+    said = (f"shape check refitted: the bottom edge over input columns {first}-{end - 1}, good parts' sag spread "
             f"{spread:.3g} px, threshold z {threshold:.2f} (the largest held-out part's)")
+    return f"{said}; {_refit_outline(var, x, splits, window)}" if outline else said
+
+
+def _refit_outline(var: VariationModel, x: torch.Tensor, splits: list[tuple[np.ndarray, np.ndarray]],
+                   window: float) -> str:
+    """The outline check (``model.draem.outline_check``) of ``var`` again, in place, as ``_refit_shape`` refits the
+    shape check: its edges from the refit's reference and region, its statistics and thresholds cross-fitted over
+    ``splits`` of the good parts ``x``. What it measures, or why it has none (a warning)."""
+    try:
+        if not var.outline.find(var.reference.numpy(), var.region.numpy()):
+            raise ModelError("the refit's reference shows no two straight edges along the part")
+        var.outline.calibrate_crossed(outline_deviations(var, x), splits, window)
+    except ModelError as exc:
+        var.outline.clear()
+        why = f"no outline check: {exc} (a step along an edge is judged by the window alone)"
+        log.warning("the adapted variation model has %s", why)
+        return why
+    bottom, top, _ = (float(v) for v in var.outline.calibration)
+    return f"outline check refitted: thresholds z {bottom:.2f} (bottom edge) and {top:.2f} (top edge)"
 
 
 def _calibrate_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:
@@ -377,7 +402,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                     "%d good parts in each fold's fit", MIN_REFERENCES)
     shape = None
     if detector.variation is not None and detector.variation.shape.fitted:  # a refit's check is its own
-        shape = _refit_shape(final, x, parts, splits)
+        shape = _refit_shape(final, x, parts, splits, outline=detector.variation.outline.fitted)
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
     changed = detector.config.decision != final.config.decision
     if changed:

@@ -4,11 +4,14 @@ says so in a reason, and no input makes it Inf."""
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
 import pytest
+import torch
 
+from model.draem.adapt import _refit_outline
 from model.draem.errors import ModelError
 from model.draem.frame_checks import EDGE_STEP_LIMIT, beyond_limits
 from model.draem.outline_check import MARGIN_PX, OutlineCheck, find_edges
@@ -112,3 +115,31 @@ def test_cross_fitted_thresholds_hold_each_part_out_of_the_statistics_it_is_judg
     check.calibrate_crossed(d, splits, window_at_threshold=5.0)
     bottom, top, window = (float(v) for v in check.calibration)
     assert window == 5.0 and top > 2 * bottom  # the stepped part, held out, set the top edge's threshold
+
+
+class Registered:
+    """What ``station adapt``'s refit reads of a variation model: its reference, region and outline check, and each
+    frame's registered intensity (here the frame itself)."""
+
+    def __init__(self) -> None:
+        self.reference = torch.from_numpy(image(np.random.default_rng(6)))
+        self.region = torch.from_numpy(region())
+        self.outline = OutlineCheck(W)
+
+    def outline_deviations(self, xi: np.ndarray) -> np.ndarray:
+        return self.outline.deviations(xi[0])
+
+
+def test_adapt_refits_the_outline_check_on_the_lines_parts_or_switches_it_off_and_says_why(caplog) -> None:
+    rng = np.random.default_rng(7)
+    x = torch.from_numpy(np.stack([image(rng) for _ in range(30)])[:, None])
+    splits = [(np.setdiff1d(np.arange(30), np.arange(k, 30, 3)), np.arange(k, 30, 3)) for k in range(3)]
+    var = Registered()
+    said = _refit_outline(var, x, splits, window=4.0)
+    assert said.startswith("outline check refitted: thresholds z") and var.outline.fitted
+    assert float(var.outline.calibration[2]) == 4.0
+    few = Registered()
+    with caplog.at_level(logging.WARNING):
+        said = _refit_outline(few, x[:12], [(np.arange(6), np.arange(6, 12))], window=4.0)
+    assert said.startswith("no outline check: outline check: the edges are seen on 6 fitted good parts")
+    assert "no outline check" in caplog.text and not few.outline.fitted

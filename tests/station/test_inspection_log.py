@@ -109,7 +109,8 @@ FULL = InspectionRecord(
     priors_ms=3.0, model_ms=4.0, decision_ms=0.1, io_ms=5.0, total_ms=15.0, io_delivered=True, ground_truth_label=1,
     ground_truth_present=True, image_path="img/9.png", median_level=0.4, high_level=0.8, clipped_fraction=0.01,
     dolp_level=0.05, drift="brighter", highlight_fraction=0.02, noise_level=1.1, second_score=0.3,
-    second_threshold=0.6, second_model_id="side1", second_frame_id=11, edge_bend=-1.5)
+    second_threshold=0.6, second_model_id="side1", second_frame_id=11, edge_bend=-1.5,
+    edge_step=2.5)
 """A record with every column set (a two-camera station's row: its second model's id is text)."""
 
 

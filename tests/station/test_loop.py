@@ -239,6 +239,27 @@ def test_a_part_the_shape_check_finds_bent_says_so_in_its_row_and_in_the_report(
     log.close()
 
 
+class SteppingDetector(BrightnessDetector):
+    """Reports an edge step as the outline check does: beyond its limit on the defective parts (label 1)."""
+
+    def infer(self, priors):
+        out = super().infer(priors)
+        return Inference(out.score, checks={"edge_step": 3.2 if out.score > self.threshold else 0.4})
+
+
+def test_a_part_the_outline_check_finds_stepped_says_so_in_its_row_and_in_the_report(tmp_path):
+    from station.log_report import summarize
+
+    station, log = make_station(tmp_path, ScriptedCamera([0, 1]), SteppingDetector())
+    station.run(max_parts=2)
+    rows = list(log.rows())
+    assert [r["edge_step"] for r in rows] == [0.4, 3.2]
+    assert rows[1]["reason"].startswith("score ") and rows[1]["reason"].endswith(
+        "; outline check: an edge steps 3.2 times as far as any good part's (flash or a broken edge)")
+    assert summarize(log.rows()).reject_causes == {"edge steps (outline check)": 1}
+    log.close()
+
+
 def test_backpressure_drops_are_logged_as_not_inspected_and_rejected_at_the_plc(tmp_path):
     n = 40
     link = ScriptedLink(n)
