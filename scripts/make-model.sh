@@ -30,8 +30,9 @@
 #      at each one's own 1 % threshold (station residual --second-look; rule 49, docs/results/2026-11-29-second-look.md;
 #      with the curvature window and no test of its own since rule 60, docs/results/2026-11-29-curvature.md)
 #   6b'. shape: the shape check (how far the part's bottom edge bends: a bowed part; rule 70,
-#      docs/results/2026-12-05-moulding-kinds.md) added to the shipped model and to each look without a type, its
-#      spread from the good train parts, its threshold from CALIBRATION's good parts (station shape)
+#      docs/results/2026-12-05-moulding-kinds.md) and the outline check (a short step along its long edges: flash;
+#      docs/results/2026-12-05-outline.md) added to the shipped model and to each look without a type, their
+#      spread from the good train parts, their thresholds from CALIBRATION's good parts (station shape)
 #   6c. threshold: the shipped model's threshold set again on VAL, the finish and edges as built (rules 63 and 67,
 #      docs/results/2026-11-29-finish-vary.md, docs/results/2026-12-02-edge-range.md: the fit knows a range of
 #      finishes and edges, the operating point is the line's)
@@ -139,7 +140,7 @@ variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exi
         "${@:3}"
 }
 shape() {  # shape NAME: the shape check added to RUNS/NAME in place, unless it has one (resumable)
-    grep -qs '"shape": {' "$RUNS/$1.json" && return 0  # its sidecar's train.shape
+    grep -qs '"outline": ' "$RUNS/$1.json" && return 0  # its sidecar's train.shape.outline (since stop 106)
     station shape --model "$RUNS/$1" --data "$DATA" --val-data "$CALIBRATION" --out "$RUNS/$1"
 }
 look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/NAME unless it exists (resumable)

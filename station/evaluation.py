@@ -494,15 +494,17 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
 
 
 def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
-    """Checkpoint ``model`` (with its variation model) plus the shape check (``model.draem.shape_check``): its sag's
-    median and spread from ``data``'s good train parts, its threshold from ``val_data``'s good val parts; written to
-    ``out`` with ``model``'s threshold, its sidecar's ``train.shape`` recording the check; one line saying what it
-    found. UserError when the model has no variation model or its part shows no straight bottom edge."""
+    """Checkpoint ``model`` (with its variation model) plus the shape check (``model.draem.shape_check``) and the
+    outline check (``model.draem.outline_check``): their medians and spreads from ``data``'s good train parts, their
+    thresholds from ``val_data``'s good val parts; written to ``out`` with ``model``'s threshold, its sidecar's
+    ``train.shape`` recording the checks (``outline``: None when it is off); one line saying what they found, or why
+    the outline check is off. UserError when the model has no variation model or its part shows no straight bottom
+    edge."""
     import sys
 
     from model.draem.checkpoint import load_checkpoint, save_checkpoint
     from model.draem.errors import ModelError
-    from model.draem.with_variation import add_shape_check
+    from model.draem.with_variation import add_outline_check, add_shape_check
     from model.normals.estimator import copy_beside
     from station.datasets import manifest_sha256
 
@@ -523,12 +525,14 @@ def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
         raise UserError(f"{model}: the variation model's part region shows no straight bottom edge along the part: "
                         f"no shape check")
     shape = det.variation.shape
+    outline_off = add_outline_check(det, tr.priors, va.priors, window=float(shape.calibration[3]))
     first, end = (int(v) for v in shape.edge[:2])
     centre, spread, threshold, window = (float(v) for v in shape.calibration)
     record = {"data": str(data), "manifest_sha256": manifest_sha256(data), "good_parts": len(tr.priors),
               "calibration_data": str(val_data), "calibration_manifest_sha256": manifest_sha256(val_data),
               "calibration_parts": len(va.priors), "edge_columns": [first, end], "sag_median_px": centre,
               "sag_spread_px": spread, "threshold_z": threshold, "window_at_threshold": window,
+              "outline": outline_record(det.variation.outline),
               "date": time.strftime("%Y-%m-%dT%H:%M:%S"), "from": str(model)}
     meta = ck.meta
     save_checkpoint(out, det, ck.threshold, meta.get("threshold_rule", ""), meta.get("data_manifest_sha256"),
@@ -537,7 +541,29 @@ def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
     return (f"{out}: shape check on the bottom edge over input columns {first}-{end - 1}: good parts' sag "
             f"{centre:.3f} +- {spread:.3f} px; a part is flagged beyond {threshold:.1f} robust SD "
             f"({threshold * spread:.2f} px off), where the largest of {len(va.priors)} good val parts lies; "
-            f"threshold {ck.threshold} kept")
+            f"{outline_words(det.variation.outline, outline_off)}; threshold {ck.threshold} kept")
+
+
+def outline_record(outline) -> dict | None:
+    """The sidecar's record of a fitted ``model.draem.outline_check.OutlineCheck`` (None when it is off)."""
+    if not outline.fitted:
+        return None
+    first, end = (int(v) for v in outline.edges[0, :2])
+    bottom, top, window = (float(v) for v in outline.calibration)
+    return {"edge_columns": [first, end], "bottom_row_at_0": float(outline.edges[0, 2]),
+            "top_row_at_0": float(outline.edges[1, 2]), "threshold_z": {"bottom": bottom, "top": top},
+            "window_at_threshold": window}
+
+
+def outline_words(outline, why_off: str | None) -> str:
+    """What ``station shape`` says of the outline check it fitted, or why there is none (``why_off``)."""
+    r = outline_record(outline)
+    if r is None:
+        return f"no outline check ({why_off})"
+    first, end = r["edge_columns"]
+    z = r["threshold_z"]
+    return (f"outline check on the bottom and top edges over input columns {first}-{end - 1}: a step flagged beyond "
+            f"{z['bottom']:.1f} and {z['top']:.1f} robust SD")
 
 
 def split_camera_thresholds(first_model: str, first_data: str | Sequence[str], second_model: str,

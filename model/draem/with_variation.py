@@ -89,24 +89,43 @@ def outline_deviations(var: VariationModel, x: torch.Tensor) -> np.ndarray:
 
 @torch.no_grad()
 def add_shape_check(detector: Detector, good: torch.Tensor, val_good: torch.Tensor, batch: int = 16) -> bool:
-    """Give ``detector``'s variation model its shape check (``model.draem.shape_check``) and its outline check
-    (``model.draem.outline_check``), in place: the edges from its reference and region, the sag's median and spread
-    and the edges' per-column statistics from ``good`` (N, C, H, W) good training parts' physical priors, the
-    thresholds from ``val_good``'s (good validation parts), with the window score at ``SHAPE_WINDOW_RATE`` of them.
-    False, and neither check, when the region shows no straight bottom edge; the outline check alone is off when its
-    top edge shows no change. ModelError as ``ShapeCheck.calibrate`` and ``OutlineCheck.calibrate``."""
+    """Give ``detector``'s variation model its shape check (``model.draem.shape_check``), in place: the edge from its
+    reference and region, the sag's median and spread from ``good`` (N, C, H, W) good training parts' physical priors,
+    its threshold from ``val_good``'s (good validation parts), with the window score at ``SHAPE_WINDOW_RATE`` of
+    them. False, and no check, when the region shows no straight bottom edge; ModelError as
+    ``ShapeCheck.calibrate``."""
     var = detector.variation
     if var is None:
         raise ModelError("the shape check reads the variation model's registration: add the variation model first")
     if not var.shape.find(var.reference.numpy(), var.region.numpy()):
-        var.outline.clear()
         return False
-    window = shape_window([(var, val_good)], batch)
-    var.shape.calibrate(edge_sags(var, good), edge_sags(var, val_good), window)
-    if var.outline.find(var.reference.numpy(), var.region.numpy()):
-        var.outline.calibrate(outline_deviations(var, good), outline_deviations(var, val_good), window)
+    var.shape.calibrate(edge_sags(var, good), edge_sags(var, val_good), shape_window([(var, val_good)], batch))
     var.check()
     return True
+
+
+@torch.no_grad()
+def add_outline_check(detector: Detector, good: torch.Tensor, val_good: torch.Tensor,
+                      window: float | None = None, batch: int = 16) -> str | None:
+    """Give ``detector``'s variation model its outline check (``model.draem.outline_check``), in place: the edges from
+    its reference and region, the per-column statistics from ``good`` (N, C, H, W) good training parts' physical
+    priors, the thresholds from ``val_good``'s (good validation parts), with ``window`` the window score at
+    ``SHAPE_WINDOW_RATE`` of them (None: measured here; the shape check's, when fitted on the same parts, is the
+    same number). None when fitted; else why not, and the check is off (no two straight edges along the part, too
+    few parts showing them)."""
+    var = detector.variation
+    if var is None:
+        raise ModelError("the outline check reads the variation model's registration: add the variation model first")
+    if not var.outline.find(var.reference.numpy(), var.region.numpy()):
+        return "the reference shows no two straight edges along the part"
+    try:
+        var.outline.calibrate(outline_deviations(var, good), outline_deviations(var, val_good),
+                              shape_window([(var, val_good)], batch) if window is None else window)
+    except ModelError as exc:
+        var.outline.clear()
+        return str(exc)
+    var.check()
+    return None
 
 
 def judged_channels(priors: Sequence[str], judged_priors: Sequence[str] | None) -> list[int] | None:

@@ -1,10 +1,13 @@
-"""``station shape``: add the shape check (``model.draem.shape_check``, rule 70) to a model with a variation model:
-how far the part's bottom edge bends, a finding beside the window's for a part bowed along its length.
+"""``station shape``: add the shape checks to a model with a variation model: the shape check
+(``model.draem.shape_check``, rule 70), how far the part's bottom edge bends, for a part bowed along its length; and
+the outline check (``model.draem.outline_check``), a short step along the part's two long edges, for flash or a
+broken edge. Each is a finding beside the window's.
 
-Its edge comes from the variation model's reference and region; the sag's median and spread from ``--data``'s good
-train parts (the variation model's fit set), its threshold from the good parts of ``--val-data``'s val split (the
-largest of theirs). The model is copied otherwise unchanged, its threshold too; the sidecar records the check
-(``train.shape``).
+Their edges come from the variation model's reference and region; their medians and spreads from ``--data``'s good
+train parts (the variation model's fit set), their thresholds from the good parts of ``--val-data``'s val split (the
+largest of theirs). A part too small for the outline check's runs, or too few parts showing its edges, leave it off
+(the output line says why). The model is copied otherwise unchanged, its threshold too; the sidecar records the
+checks (``train.shape``).
 """
 
 from __future__ import annotations
@@ -13,8 +16,8 @@ import argparse
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("shape", help="add the shape check (how far the part's bottom edge bends: a bowed part) to a "
-                                     "model with a variation model")
+    p = sub.add_parser("shape", help="add the shape checks (how far the part's bottom edge bends: a bowed part; a "
+                                     "step along its edges: flash) to a model with a variation model")
     p.add_argument("--model", required=True, help="checkpoint with a variation model, path without suffix")
     p.add_argument("--data", required=True, help="the variation model's training set (its good train parts)")
     p.add_argument("--val-data", required=True, metavar="DATA",

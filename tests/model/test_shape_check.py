@@ -171,10 +171,13 @@ def test_the_check_survives_a_checkpoint_and_an_old_file_loads_without_it(checke
     old = tmp_path / "old"
     save_checkpoint(old, plain, threshold=0.5, threshold_rule="test")
     state = torch.load(old.with_suffix(".pt"), weights_only=True)
-    for key in ("variation.shape.edge", "variation.shape.calibration"):
+    for key in ("variation.shape.edge", "variation.shape.calibration", *(f"variation.outline.{k}" for k in
+                                                                       ("edges", "median", "centre", "spread",
+                                                                        "calibration"))):
         del state[key]
     torch.save(state, old.with_suffix(".pt"))
-    assert not load_checkpoint(old, verify_hash=False).detector.variation.shape.fitted
+    var = load_checkpoint(old, verify_hash=False).detector.variation
+    assert not var.shape.fitted and not var.outline.fitted  # files before either check: off
 
 
 def test_a_part_without_a_straight_bottom_edge_gets_no_check() -> None:
@@ -185,3 +188,24 @@ def test_a_part_without_a_straight_bottom_edge_gets_no_check() -> None:
     check = ShapeCheck()
     assert not check.find(image, diamond) and not check.fitted
     check.check()  # off, consistently
+
+
+def test_the_variation_model_scores_the_outline_checks_finding_and_reports_its_step(checked, monkeypatch) -> None:
+    """``zmaps`` takes the largest of the window's score and each check's finding, and reports each part's step
+    (``model.draem.outline_check``; its own tests: tests/model/test_outline_check.py)."""
+    import copy
+
+    plain, with_check, _ = checked
+    det = copy.deepcopy(with_check)
+    var = det.variation
+    x = parts(4, 7, play=0.0)
+    before = var.zmaps(x)
+    assert torch.isnan(before.edge_step).all() and "edge_step" in before.frame_checks()  # off: NaN
+    var.outline.edges.fill_(1.0)
+    var.outline.calibration.copy_(torch.tensor([1.0, 1.0, 50.0], dtype=torch.float64))  # on, window score 50
+    steps = iter([0.5, 3.0, float("nan"), 1.0])
+    monkeypatch.setattr(var.outline, "step", lambda intensity: next(steps))
+    out = var.zmaps(x)
+    assert out.edge_step[:2].tolist() == [0.5, 3.0] and math.isnan(float(out.edge_step[2]))
+    assert out.scores[1] == pytest.approx(150.0)  # 3 times the window's 1 % point: above any window score here
+    assert torch.equal(out.scores[[0, 2, 3]], before.scores[[0, 2, 3]])  # within the limit, NaN: the window's

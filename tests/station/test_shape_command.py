@@ -26,11 +26,15 @@ def test_the_shape_check_is_added_recorded_and_the_threshold_kept(tmp_path: Path
     assert len(errors) == 1 and "seen on 4 good validation parts; it needs 10" in errors[0]
     val = make_line_set(tmp_path / "val", n=16, seed=1, validation=True, defective=lambda i: False)
     assert main(["shape", "--model", str(var), "--data", str(data), "--val-data", str(val), "--out", str(out)]) == 0
-    assert "shape check on the bottom edge over input columns" in capsys.readouterr().out
+    said = capsys.readouterr().out
+    assert "shape check on the bottom edge over input columns" in said
+    # too few of these small parts show the outline check's edges: it is off, and the line says why
+    assert "no outline check (outline check: the edges are seen on" in said
     meta, before = json.loads(out.with_suffix(".json").read_text()), json.loads(var.with_suffix(".json").read_text())
     rec = meta["train"]["shape"]
     assert meta["threshold"] == before["threshold"] and rec["from"] == str(var) and rec["good_parts"] > 8
     assert rec["sag_spread_px"] > 0 and rec["threshold_z"] >= 1.0 and rec["window_at_threshold"] > 0
+    assert "outline" in rec and rec["outline"] is None  # make-model's resumption looks for the key
     shape = load_checkpoint(out).detector.variation.shape
     assert shape.fitted and int(shape.edge[1]) - int(shape.edge[0]) >= 10
     assert not load_checkpoint(var).detector.variation.shape.fitted
