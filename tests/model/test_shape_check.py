@@ -195,7 +195,7 @@ def test_the_variation_model_scores_the_outline_checks_finding_and_reports_its_s
     (``model.draem.outline_check``; its own tests: tests/model/test_outline_check.py)."""
     import copy
 
-    plain, with_check, _ = checked
+    _, with_check, _ = checked
     det = copy.deepcopy(with_check)
     var = det.variation
     x = parts(4, 7, play=0.0)
