@@ -517,6 +517,7 @@ def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
     print(f"{data}: {len(tr.priors)} good train parts; {val_data}: {len(va.priors)} good val parts", file=sys.stderr,
           flush=True)
     det = ck.detector  # loaded for this alone: given its check in place
+    det.variation.outline.clear()  # a file fitted before: the window's 1 % point is the window's own
     try:
         found = add_shape_check(det, tr.priors, va.priors)
     except ModelError as exc:

@@ -256,7 +256,7 @@ def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, t
         var.shape.calibrate_crossed(edge_sags(var, x), splits, window)
     except ModelError as exc:
         var.shape = ShapeCheck()  # off: no edge, no calibration
-        var.outline.clear()  # fitted beside it (``with_variation.add_shape_check``): off with it
+        var.outline.clear()  # fitted beside it (``station shape``): off with it
         why = f"no shape check: {exc} (a bent part is judged by the window alone)"
         if outline:
             why += "; no outline check with it (a step along an edge too)"

@@ -725,7 +725,7 @@ class VariationModel(nn.Module):
         tests = self.second_look.tests.clone()  # the recipe's, which a refit keeps
         self.second_look = SecondLook()  # a new fit's references are its own (``with_variation.add_second_look``)
         self.shape = ShapeCheck()  # and its edge (``with_variation.add_shape_check``)
-        self.outline = OutlineCheck(self.outline.median.shape[1])  # and its edges (``add_shape_check``)
+        self.outline = OutlineCheck(self.outline.median.shape[1])  # (``with_variation.add_outline_check``)
         self.second_look.tests.copy_(tests)
         if sigma > 0:
             xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
