@@ -26,3 +26,8 @@ judge() {  # judge MODEL SET TAG: MODEL's report on SET into eval/TAG
 judge B flash-1202 B-1202 & judge S flash-1202 S-1202; wait
 judge B line-heldout-1197 B-1197 & judge S line-heldout-1197 S-1197; wait
 (cd "$HERE" && PYTHONPATH=../../.. ../../../.venv/bin/python read.py > read.txt)
+# the cost: both files in one run of the station's pipeline, on 300 frames of the report set, the machine otherwise idle
+[ -f "$R/bench/pipeline.json" ] || env -u OMP_NUM_THREADS .venv/bin/station bench pipeline \
+    --data data/line-panel-heldout-1194 --models "$R/B,$R/S" --methods bilinear --precisions fp32 \
+    --parts 300 --out "$R/bench" > "$R/bench.log" 2>&1
+cp "$R/bench/pipeline.md" "$R/bench/pipeline.json" "$HERE/"
