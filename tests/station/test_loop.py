@@ -216,47 +216,30 @@ def test_the_models_frame_checks_reach_each_row(tmp_path):
     log.close()
 
 
-class BendingDetector(BrightnessDetector):
-    """Reports an edge bend as the shape check does: beyond its limit on the defective parts (label 1)."""
-
-    def infer(self, priors):
-        out = super().infer(priors)
-        return Inference(out.score, checks={"edge_bend": 2.5 if out.score > self.threshold else 0.3})
-
-
-def test_a_part_the_shape_check_finds_bent_says_so_in_its_row_and_in_the_report(tmp_path):
-    """A bent part has no hotspot: its row named only a score, and the report counted it as any score."""
+@pytest.mark.parametrize("check, beyond, within, words, cause", [
+    ("edge_bend", 2.5, 0.3, "; shape check: the bottom edge bends 2.5 times as far as any good part's",
+     "part bent (shape check)"),
+    ("edge_step", 3.2, 0.4, "; outline check: an edge steps 3.2 times as far as any good part's (flash or a broken "
+     "edge)", "edge steps (outline check)")])
+def test_a_part_a_shape_check_rejects_says_so_in_its_row_and_in_the_report(tmp_path, check, beyond, within, words,
+                                                                          cause):
+    """A bent or stepped part has no hotspot: its row named only a score, and the report counted it as any score."""
     from station.log_report import summarize
 
-    station, log = make_station(tmp_path, ScriptedCamera([0, 1]), BendingDetector())
+    class Reporting(BrightnessDetector):
+        """Reports the check as the model does: beyond its limit on the defective parts (label 1)."""
+
+        def infer(self, priors):
+            out = super().infer(priors)
+            return Inference(out.score, checks={check: beyond if out.score > self.threshold else within})
+
+    station, log = make_station(tmp_path, ScriptedCamera([0, 1]), Reporting())
     station.run(max_parts=2)
     rows = list(log.rows())
-    assert [r["edge_bend"] for r in rows] == [0.3, 2.5]
+    assert [r[check] for r in rows] == [within, beyond]
     assert rows[0]["reason"] is None
-    assert rows[1]["reason"].startswith("score ") and rows[1]["reason"].endswith(
-        "; shape check: the bottom edge bends 2.5 times as far as any good part's")
-    assert summarize(log.rows()).reject_causes == {"part bent (shape check)": 1}
-    log.close()
-
-
-class SteppingDetector(BrightnessDetector):
-    """Reports an edge step as the outline check does: beyond its limit on the defective parts (label 1)."""
-
-    def infer(self, priors):
-        out = super().infer(priors)
-        return Inference(out.score, checks={"edge_step": 3.2 if out.score > self.threshold else 0.4})
-
-
-def test_a_part_the_outline_check_finds_stepped_says_so_in_its_row_and_in_the_report(tmp_path):
-    from station.log_report import summarize
-
-    station, log = make_station(tmp_path, ScriptedCamera([0, 1]), SteppingDetector())
-    station.run(max_parts=2)
-    rows = list(log.rows())
-    assert [r["edge_step"] for r in rows] == [0.4, 3.2]
-    assert rows[1]["reason"].startswith("score ") and rows[1]["reason"].endswith(
-        "; outline check: an edge steps 3.2 times as far as any good part's (flash or a broken edge)")
-    assert summarize(log.rows()).reject_causes == {"edge steps (outline check)": 1}
+    assert rows[1]["reason"].startswith("score ") and rows[1]["reason"].endswith(words)
+    assert summarize(log.rows()).reject_causes == {cause: 1}
     log.close()
 
 
