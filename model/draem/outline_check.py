@@ -64,7 +64,6 @@ SPREAD_FLOOR_PX = 0.02
 """A run's robust spread is floored at this (input px)."""
 MIN_PARTS = 10
 """Fewest parts whose edges are seen that set the medians, spreads or thresholds."""
-EDGES = ("bottom", "top")
 
 
 def find_edges(reference: np.ndarray, region: np.ndarray) -> np.ndarray | None:
