@@ -11,11 +11,14 @@ import shutil
 import time
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from model.draem.config import GOOD_REJECTED_RATE
 from station.config import PRESENCE_RULES
 from station.errors import UserError
+
+if TYPE_CHECKING:
+    from model.draem.outline_check import OutlineCheck
 
 ABLATION = (("R", ("intensity",)), ("R+AoLP", ("intensity", "aolp")), ("R+AoLP+DoLP", ("intensity", "aolp", "dolp")),
             ("all", ("intensity", "aolp", "dolp", "normal")))
@@ -545,7 +548,7 @@ def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
             f"{outline_words(det.variation.outline, outline_off)}; threshold {ck.threshold} kept")
 
 
-def outline_record(outline) -> dict | None:
+def outline_record(outline: OutlineCheck) -> dict | None:
     """The sidecar's record of a fitted ``model.draem.outline_check.OutlineCheck`` (None when it is off)."""
     if not outline.fitted:
         return None
@@ -556,7 +559,7 @@ def outline_record(outline) -> dict | None:
             "window_at_threshold": window}
 
 
-def outline_words(outline, why_off: str | None) -> str:
+def outline_words(outline: OutlineCheck, why_off: str | None) -> str:
     """What ``station shape`` says of the outline check it fitted, or why there is none (``why_off``)."""
     r = outline_record(outline)
     if r is None:
