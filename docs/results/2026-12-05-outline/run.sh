@@ -31,14 +31,3 @@ judge B line-heldout-1197 B-1197 & judge S line-heldout-1197 S-1197; wait
     --data data/line-panel-heldout-1194 --models "$R/B,$R/S" --methods bilinear --precisions fp32 \
     --parts 300 --out "$R/bench" > "$R/bench.log" 2>&1
 cp "$R/bench/pipeline.md" "$R/bench/pipeline.json" "$HERE/"
-# addendum (not in the plan, after the reading above): the two-camera station at its split on the same parts, the side
-# camera's twins of seed 1202 rendered (side-view.toml last, as every twin) and judged by the side file, each line
-# report (B, S) paired with it at the split of docs/results/2026-12-05-side-intensity/split-SI.json
-[ -f "$HERE/eval/side-1202/scores.csv" ] || .venv/bin/station eval --model runs/side-intensity/side \
-    --data data/sw-flash-1202 --val-data data/sw-pv-val --presence-rule row_contrast --no-synthetic --no-plots \
-    --out "$HERE/eval/side-1202" > "$R/eval-side-1202.log" 2>&1
-for f in B S; do
-    .venv/bin/station compare "$HERE/eval/$f-1202" "$HERE/eval/side-1202" \
-        --split docs/results/2026-12-05-side-intensity/split-SI.json --out "$R/pair-$f" > "$R/compare-$f.log" 2>&1
-    for x in md json; do sed "s|$PWD/||g" "$R/pair-$f/two-cameras.$x" > "$HERE/pair-$f.$x"; done
-done
