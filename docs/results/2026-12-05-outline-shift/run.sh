@@ -25,3 +25,4 @@ for f in B S; do
         --data data/line-heldout-1196 --val-data data/line-pv-val --out "$R/$f" > "$R/bench-$f.log" 2>&1
     for x in md json; do sed "s|$PWD/||g" "$R/$f/shift.$x" > "$HERE/shift-$f.$x"; done
 done
+(cd "$HERE" && ../../../.venv/bin/python read.py > read.txt)
