@@ -16,8 +16,8 @@ render() {  # render OUT ARGS...: two shards in parallel, each resumable (as scr
 render data/line-heldout-1196 --count 400 --seed 1196 --defects 0.6 --heldout --visibility > "$R/render-1196.log" 2>&1
 render data/line-pv-val --config sim/presets/panel-vary.toml --count 600 --seed 303 --defects 0.4 --validation \
     > "$R/render-val.log" 2>&1
-[ -f "$R/B.json" ] || .venv/bin/python -c "import sys; from model.draem.checkpoint import copy_checkpoint, \
-load_checkpoint; copy_checkpoint(*sys.argv[1:])" model/weights/default "$R/B"
+[ -f "$R/B.json" ] || .venv/bin/python -c "import sys; from model.draem.checkpoint import copy_checkpoint; \
+copy_checkpoint(*sys.argv[1:])" model/weights/default "$R/B"
 .venv/bin/python "$HERE/outline_off.py" "$R/B"
 for f in B S; do
     m=$R/B; [ $f = S ] && m=model/weights/default

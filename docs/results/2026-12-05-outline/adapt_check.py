@@ -5,20 +5,16 @@ the shipped file, each at its own threshold, on the development flash set (seed 
 `station adapt --model model/weights/default --good data/line-pv-val --split val --limit 300 --out
 runs/outline/adapted`."""
 
-import numpy as np
-
+from model.draem.adapt import image_scores
 from model.draem.checkpoint import load_checkpoint
 from station.evaluation import model_split
 
 for path in ("model/weights/default", "runs/outline/adapted"):
     ck = load_checkpoint(path)
-    det = ck.detector.eval()
     line = [f"{path}: threshold {ck.threshold:.4f}"]
     for data, split in (("data/flash-dev-1201", "test"), ("data/warp-val-1199", "val")):
         sp = model_split(ck, path, data, split)
-        s = np.concatenate([det.predict(sp.priors[i:i + 16]).score.float().numpy()
-                            for i in range(0, len(sp.priors), 16)])
-        rej, lab = s > ck.threshold, sp.label.numpy() == 1
+        rej, lab = image_scores(ck.detector, sp.priors) > ck.threshold, sp.label.numpy() == 1
         line.append(f"{data}: {int(rej[lab].sum())} of {int(lab.sum())} defective caught, "
                     f"{int(rej[~lab].sum())} of {int((~lab).sum())} good rejected")
     print("; ".join(line), flush=True)

@@ -8,6 +8,7 @@ import sys
 
 import numpy as np
 
+from model.draem.adapt import image_scores
 from model.draem.checkpoint import load_checkpoint
 from station.evaluation import model_split
 
@@ -29,9 +30,7 @@ for tag, data in SETS.items():
     x, label = sp.priors[judged], sp.label.numpy()[judged] == 1
     rejected = {}
     for name, ck in files.items():
-        det = ck.detector.eval()
-        s = np.concatenate([det.predict(x[i:i + 16]).score.float().numpy() for i in range(0, len(x), 16)])
-        rejected[name] = s > ck.threshold
+        rejected[name] = image_scores(ck.detector, x) > ck.threshold
     b, a = rejected["B"], rejected["S"]
     types = np.array(sp.defect_type)[judged]
     changed = [f"{types[i] or 'good'}" for i in np.flatnonzero(a != b)]
