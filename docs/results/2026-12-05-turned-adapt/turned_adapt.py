@@ -1,0 +1,42 @@
+"""Does `station adapt` on a turned line's good parts win back what the turn costs? (nothing selected on it)
+
+Seed 1196's held-out line (400 parts, 179 good; the set whose `station bench shift` reading showed the cost,
+docs/results/2026-12-05-outline-shift.md), every part turned 5 degrees as the bench turns it
+(`model.draem.shifts.shift("rotate 5 deg")`). The good parts are split by their place in the set: the even ones adapt
+the shipped file (`model.draem.adapt.adapt`, as `station adapt` does, cross-fitted threshold at 1 %), the odd ones
+and every defective part are judged, by the shipped file (its threshold) unturned and turned, and by the adapted file
+(its own threshold) turned. Run from the repository's root; prints the table."""
+
+import numpy as np
+import torch
+
+from model.draem.adapt import AdaptConfig, adapt, image_scores
+from model.draem.checkpoint import load_checkpoint
+from model.draem.shifts import Channels, shift
+from station.evaluation import model_split
+
+MODEL, DATA = "model/weights/default", "data/line-heldout-1196"
+ck = load_checkpoint(MODEL)
+sp = model_split(ck, MODEL, DATA, "test")
+x = sp.priors.float()
+turned = torch.from_numpy(shift("rotate 5 deg", x.numpy(), Channels.of(ck.detector.config.priors)))
+label = sp.label.numpy() == 1
+good = np.flatnonzero(~label)
+fit, judged_good = good[0::2], good[1::2]
+judged = np.concatenate([judged_good, np.flatnonzero(label)])
+adapted, result = adapt(ck.detector, turned[torch.from_numpy(fit)], sp.object_mask[torch.from_numpy(fit)],
+                        AdaptConfig(), progress=False)
+var = adapted.variation
+print(f"adapted on {len(fit)} turned good parts: threshold {result.threshold.threshold:.4f} ({result.threshold.rule}); "
+      f"shape check {'on' if var.shape.fitted else 'off'}, outline check {'on' if var.outline.fitted else 'off'}; "
+      f"{result.shape or ''}")
+rows = (("shipped file, unturned", ck.detector, x, ck.threshold),
+        ("shipped file, turned 5 deg", ck.detector, turned, ck.threshold),
+        ("adapted on turned good parts, turned 5 deg", adapted, turned, result.threshold.threshold))
+lab = label[judged]
+print(f"judged: {len(judged_good)} good parts (none adapted on), {int(lab.sum())} defective")
+print("| file, frames | threshold | good parts rejected | defective caught |\n|---|---|---|---|")
+for name, det, frames, thr in rows:
+    rej = image_scores(det, frames[torch.from_numpy(judged)]) > thr
+    print(f"| {name} | {thr:.4f} | {int(rej[~lab].sum())} of {int((~lab).sum())} | "
+          f"{int(rej[lab].sum())} of {int(lab.sum())} ({100 * rej[lab].mean():.1f} %) |", flush=True)
