@@ -5,7 +5,11 @@ docs/results/2026-12-05-outline-shift.md), every part turned 5 degrees as the be
 (`model.draem.shifts.shift("rotate 5 deg")`). The good parts are split by their place in the set: the even ones adapt
 the shipped file (`model.draem.adapt.adapt`, as `station adapt` does, cross-fitted threshold at 1 %), the odd ones
 and every defective part are judged, by the shipped file (its threshold) unturned and turned, and by the adapted file
-(its own threshold) turned. Run from the repository's root; prints the table."""
+(its own threshold) turned. With `upright` as its argument the same with nothing turned (the adapted file adapted on
+upright parts: whether its threshold keeps its promise on an upright line). Run from the repository's root; prints
+the table."""
+
+import sys
 
 import numpy as np
 import torch
@@ -19,7 +23,8 @@ MODEL, DATA = "model/weights/default", "data/line-heldout-1196"
 ck = load_checkpoint(MODEL)
 sp = model_split(ck, MODEL, DATA, "test")
 x = sp.priors.float()
-turned = torch.from_numpy(shift("rotate 5 deg", x.numpy(), Channels.of(ck.detector.config.priors)))
+upright = sys.argv[1:] == ["upright"]
+turned = x if upright else torch.from_numpy(shift("rotate 5 deg", x.numpy(), Channels.of(ck.detector.config.priors)))
 label = sp.label.numpy() == 1
 good = np.flatnonzero(~label)
 fit, judged_good = good[0::2], good[1::2]
@@ -27,12 +32,15 @@ judged = np.concatenate([judged_good, np.flatnonzero(label)])
 adapted, result = adapt(ck.detector, turned[torch.from_numpy(fit)], sp.object_mask[torch.from_numpy(fit)],
                         AdaptConfig(), progress=False)
 var = adapted.variation
-print(f"adapted on {len(fit)} turned good parts: threshold {result.threshold.threshold:.4f} ({result.threshold.rule}); "
+how = "upright" if upright else "turned"
+print(f"adapted on {len(fit)} {how} good parts: threshold {result.threshold.threshold:.4f} ({result.threshold.rule}); "
       f"shape check {'on' if var.shape.fitted else 'off'}, outline check {'on' if var.outline.fitted else 'off'}; "
       f"{result.shape or ''}")
 rows = (("shipped file, unturned", ck.detector, x, ck.threshold),
         ("shipped file, turned 5 deg", ck.detector, turned, ck.threshold),
         ("adapted on turned good parts, turned 5 deg", adapted, turned, result.threshold.threshold))
+if upright:
+    rows = (rows[0], ("adapted on upright good parts, upright", adapted, x, result.threshold.threshold))
 lab = label[judged]
 print(f"judged: {len(judged_good)} good parts (none adapted on), {int(lab.sum())} defective")
 print("| file, frames | threshold | good parts rejected | defective caught |\n|---|---|---|---|")
