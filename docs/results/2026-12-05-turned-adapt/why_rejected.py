@@ -22,5 +22,5 @@ for name, det, thr in (("shipped", ck.detector, ck.threshold), ("adapted", adapt
     s, out = image_scores(det, xs), det.variation.zmaps(xs)
     peak = out.maps.flatten(1).max(1).values.numpy()
     for i in np.flatnonzero(s > thr):
-        print(f"{name}: part {int(judged[i])} score {s[i]:.4f} > {thr:.4f}; window score {float(out.scores[i]):.3f}, map "
-              f"max {peak[i]:.3f}, bend {float(out.edge_bend[i]):.3f}, step {float(out.edge_step[i]):.3f}")
+        print(f"{name}: part {int(judged[i])} score {s[i]:.4f} > {thr:.4f}; window score {float(out.scores[i]):.3f}, "
+              f"map max {peak[i]:.3f}, bend {float(out.edge_bend[i]):.3f}, step {float(out.edge_step[i]):.3f}")
