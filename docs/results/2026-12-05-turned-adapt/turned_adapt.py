@@ -7,7 +7,9 @@ the shipped file (`model.draem.adapt.adapt`, as `station adapt` does, cross-fitt
 and every defective part are judged, by the shipped file (its threshold) unturned and turned, and by the adapted file
 (its own threshold) turned. With `upright` as its argument the same with nothing turned (the adapted file adapted on
 upright parts: whether its threshold keeps its promise on an upright line). Run from the repository's root; prints
-the table."""
+the table, then each judged good part a file rejects with what rejected it: its window score, the largest of its
+window map, the shape check's bend and the outline check's step (each check's in units of its own threshold: above 1
+rejects)."""
 
 import sys
 
@@ -44,7 +46,16 @@ if upright:
 lab = label[judged]
 print(f"judged: {len(judged_good)} good parts (none adapted on), {int(lab.sum())} defective")
 print("| file, frames | threshold | good parts rejected | defective caught |\n|---|---|---|---|")
+rejected_good = []
 for name, det, frames, thr in rows:
-    rej = image_scores(det, frames[torch.from_numpy(judged)]) > thr
+    s = image_scores(det, frames[torch.from_numpy(judged)])
+    rej = s > thr
     print(f"| {name} | {thr:.4f} | {int(rej[~lab].sum())} of {int((~lab).sum())} | "
           f"{int(rej[lab].sum())} of {int(lab.sum())} ({100 * rej[lab].mean():.1f} %) |", flush=True)
+    rejected_good.append((name, det, frames, thr, s, np.flatnonzero(rej & ~lab)))
+for name, det, frames, thr, s, which in rejected_good:
+    out = det.variation.zmaps(frames[torch.from_numpy(judged[which])])
+    peak = out.maps.flatten(1).max(1).values.numpy()
+    for k, i in enumerate(which):
+        print(f"{name}: part {int(judged[i])} score {s[i]:.4f} > {thr:.4f}; window score {float(out.scores[k]):.3f}, "
+              f"map max {peak[k]:.3f}, bend {float(out.edge_bend[k]):.3f}, step {float(out.edge_step[k]):.3f}")
