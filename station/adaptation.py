@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import hashlib
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -58,9 +58,11 @@ def frames_sha256(root: str | Path, indices: list[int]) -> str:
 
 def adapt_model(model: str, good: str, out: str, split: str = "train", limit: int | None = None,
                 false_reject: float = GOOD_REJECTED_RATE, fine_tune_steps: int = 0, seed: int = 0,
-                keep_networks: bool = False, presence_rule: str = PRESENCE_RULES[0]) -> AdaptSummary:
+                keep_networks: bool = False, presence_rule: str = PRESENCE_RULES[0],
+                floor_checks: bool | None = None) -> AdaptSummary:
     """Adapt checkpoint ``model`` to the good parts of ``good``'s ``split`` (at most ``limit``), write ``out``; the
-    frames the station would not judge, with the presence check's ``presence_rule`` at its defaults, left out."""
+    frames the station would not judge, with the presence check's ``presence_rule`` at its defaults, left out;
+    ``floor_checks`` None: ``AdaptConfig``'s default."""
     from model.draem.adapt import AdaptConfig, adapt
     from model.draem.checkpoint import load_checkpoint, paths, save_checkpoint
     from model.priors.frame_stats import StatisticsRange
@@ -72,6 +74,8 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
         raise UserError(f"--out {out}: the same checkpoint as --model; write the adapted model beside it")
     cfg = AdaptConfig(false_reject=false_reject, fine_tune_steps=fine_tune_steps, seed=seed,
                       keep_networks=keep_networks)
+    if floor_checks is not None:
+        cfg = replace(cfg, floor_checks=floor_checks)
     ck = load_checkpoint(model)
     sp, left_out = judged_part_of(model_split(ck, model, good, split, limit,
                                               presence=PresenceCheck(rule=presence_rule)))

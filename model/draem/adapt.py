@@ -12,7 +12,11 @@ What depends on the line, in this model:
     calibration, from the held-out scores; its shape check, when the model has one (``model.draem.shape_check``):
     the edge from the refit's reference, the good parts' sag spread from all of them, its threshold the largest z
     of a held-out part against the parts fitted without it, the window's 1 % point from the held-out parts; and
-    its outline check (``model.draem.outline_check``) alike;
+    its outline check (``model.draem.outline_check``) alike. With ``AdaptConfig.floor_checks`` each check's
+    threshold is floored at the trained model's: the largest z of n good parts lets about 1/(n + 1) of new good parts
+    beyond it, and the trained one, in the same units (robust z against the parts' own spread), was set on the
+    model's good calibration parts (363 for the shipped file), so on fewer parts it is the better estimate of the
+    good parts' tail (docs/results/2026-12-05-adapt-floor.md);
   - whether the networks still judge: their held-out good parts' median image score, in robust standard
     deviations of their good validation parts (the trained calibration), after the refit; above
     ``DOMAIN_SHIFT_SD`` they are out of their domain on this line and the adapted model decides on the variation
@@ -92,7 +96,8 @@ class AdaptConfig:
     """false_reject: share of good parts the threshold may reject; folds: cross-fitting folds (normalisation
     only); fine_tune_steps: 0 = no fine-tune; holdout_fraction: good parts kept out of a fine-tune for the
     threshold; refit_normalizer: False keeps the trained normaliser (threshold only); keep_networks: keep the
-    networks in the decision even when they are out of their domain (module docstring)."""
+    networks in the decision even when they are out of their domain; floor_checks: the refitted shape and outline
+    checks' thresholds no lower than the trained model's (module docstring)."""
 
     false_reject: float = GOOD_REJECTED_RATE
     keep_networks: bool = False
@@ -102,6 +107,7 @@ class AdaptConfig:
     batch_size: int = 8
     holdout_fraction: float = 0.3
     refit_normalizer: bool = True
+    floor_checks: bool = False
     seed: int = 0
     anomaly: AnomalyConfig = field(default_factory=AnomalyConfig)
 
@@ -240,13 +246,15 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
 
 
 def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, torch.Tensor]],
-                 splits: list[tuple[np.ndarray, np.ndarray]], batch_size: int = 16, outline: bool = False) -> str:
+                 splits: list[tuple[np.ndarray, np.ndarray]], batch_size: int = 16, outline: bool = False,
+                 floor: VariationModel | None = None) -> str:
     """The shape check of ``final`` (refit on the good parts ``x``) again, in place (module docstring): its edge from
     the refit's reference, its calibration cross-fitted over ``splits`` (``ShapeCheck.calibrate_crossed``), the
     window's 1 % point from ``parts`` (each fold's detector and its held parts). What it measures; when the refit
     shows no straight bottom edge or too few parts show it, why it has none (a warning: the model is then judged
     without it). ``outline``: the model had an outline check, which is refitted alike (``_refit_outline``), or
-    switched off with the shape check."""
+    switched off with the shape check. ``floor``: the trained variation model, whose checks' thresholds the refitted
+    ones are floored at (``AdaptConfig.floor_checks``)."""
     var = final.variation
     assert var is not None
     window = shape_window([(d.variation, xp) for d, xp in parts if d.variation is not None], batch_size)
@@ -263,17 +271,31 @@ def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, t
         log.warning("the adapted variation model has %s", why)
         return why
     first, end = (int(v) for v in var.shape.edge[:2])
-    _, spread, threshold, _ = (float(v) for v in var.shape.calibration)
+    spread = float(var.shape.calibration[1])
+    whose = _floored(var.shape.calibration, 2, None if floor is None else floor.shape.calibration)
     said = (f"shape check refitted: the bottom edge over input columns {first}-{end - 1}, good parts' sag spread "
-            f"{spread:.3g} px, threshold z {threshold:.2f} (the largest held-out part's)")
-    return f"{said}; {_refit_outline(var, x, splits, window)}" if outline else said
+            f"{spread:.3g} px, threshold z {whose}")
+    return f"{said}; {_refit_outline(var, x, splits, window, floor)}" if outline else said
+
+
+def _floored(calibration: torch.Tensor, k: int, trained: torch.Tensor | None) -> str:
+    """Floor the refitted threshold ``calibration[k]`` at the trained model's ``trained[k]`` (when given and
+    finite), in place; says which it is: "z 5.20 (the largest held-out part's)" or "z 5.20 (the trained model's;
+    the largest held-out part's 3.10)"."""
+    refit = float(calibration[k])
+    floor = math.nan if trained is None else float(trained[k])
+    if not floor > refit:  # no floor, or the refit's is the higher
+        return f"{refit:.2f} (the largest held-out part's)"
+    calibration[k] = floor
+    return f"{floor:.2f} (the trained model's; the largest held-out part's {refit:.2f})"
 
 
 def _refit_outline(var: VariationModel, x: torch.Tensor, splits: list[tuple[np.ndarray, np.ndarray]],
-                   window: float) -> str:
+                   window: float, floor: VariationModel | None = None) -> str:
     """The outline check (``model.draem.outline_check``) of ``var`` again, in place, as ``_refit_shape`` refits the
     shape check: its edges from the refit's reference and region, its statistics and thresholds cross-fitted over
-    ``splits`` of the good parts ``x``. What it measures, or why it has none (a warning)."""
+    ``splits`` of the good parts ``x``, each edge's threshold floored at ``floor``'s (the trained variation model),
+    when given. What it measures, or why it has none (a warning)."""
     try:
         if not var.outline.find(var.reference.numpy(), var.region.numpy()):
             raise ModelError("the refit's reference shows no two straight edges along the part")
@@ -283,8 +305,9 @@ def _refit_outline(var: VariationModel, x: torch.Tensor, splits: list[tuple[np.n
         why = f"no outline check: {exc} (a step along an edge is judged by the window alone)"
         log.warning("the adapted variation model has %s", why)
         return why
-    bottom, top, _ = (float(v) for v in var.outline.calibration)
-    return f"outline check refitted: thresholds z {bottom:.2f} (bottom edge) and {top:.2f} (top edge)"
+    trained = None if floor is None else floor.outline.calibration
+    bottom, top = (_floored(var.outline.calibration, k, trained) for k in (0, 1))
+    return f"outline check refitted: thresholds z {bottom} at the bottom edge and z {top} at the top edge"
 
 
 def _calibrate_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:
@@ -402,7 +425,8 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                     "%d good parts in each fold's fit", MIN_REFERENCES)
     shape = None
     if detector.variation is not None and detector.variation.shape.fitted:  # a refit's check is its own
-        shape = _refit_shape(final, x, parts, splits, outline=detector.variation.outline.fitted)
+        shape = _refit_shape(final, x, parts, splits, outline=detector.variation.outline.fitted,
+                             floor=detector.variation if cfg.floor_checks else None)
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
     changed = detector.config.decision != final.config.decision
     if changed:

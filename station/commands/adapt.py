@@ -27,6 +27,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--keep-networks", action="store_true",
                    help="keep the networks in the decision even when their good-part scores on this line are out of "
                         "their domain (default: the adapted model then decides on the variation model alone)")
+    p.add_argument("--floor-checks", action=argparse.BooleanOptionalAction, default=None,
+                   help="floor the refitted shape and outline checks' thresholds at the model's own, set on its "
+                        "calibration parts (default: as model.draem.adapt.AdaptConfig says; "
+                        "docs/results/2026-12-05-adapt-floor.md)")
     add_presence_rule(p)
     p.set_defaults(func=run)
 
@@ -35,5 +39,6 @@ def run(args: argparse.Namespace) -> int:
     from station.adaptation import adapt_model
 
     print(adapt_model(args.model, args.good, args.out, args.split, args.limit, args.false_reject,
-                      args.fine_tune_steps, args.seed, args.keep_networks, args.presence_rule).describe())
+                      args.fine_tune_steps, args.seed, args.keep_networks, args.presence_rule,
+                      args.floor_checks).describe())
     return 0

@@ -14,7 +14,7 @@ import torch
 from line_sets import make_line_set  # same folder (pytest puts it on sys.path)
 
 from model.draem.adapt import AdaptConfig, adapt, adapted_threshold
-from model.draem.checkpoint import load_checkpoint
+from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.errors import ModelError
 from model.draem.train import TensorData, TrainConfig, train
@@ -220,6 +220,17 @@ def test_adapt_refits_the_shape_check_on_the_lines_parts_or_says_why_it_cannot(l
     assert not torch.equal(after.calibration, before.calibration)  # the line's parts' spread and threshold
     assert json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]["shape"].startswith(
         "shape check refitted")
+    # --floor-checks: the refitted threshold no lower than the model's own (here raised above the refit's)
+    refit = float(after.calibration[2])
+    ck = load_checkpoint(shaped)
+    ck.detector.variation.shape.calibration[2] = refit + 2.0
+    high, floored = tmp_path / "high", tmp_path / "floored"
+    save_checkpoint(high, ck.detector, ck.threshold, "test", None, {}, ck.meta.get("train"))
+    assert main(["adapt", "--model", str(high), "--good", str(shifted), "--out", str(floored), "--floor-checks",
+                 "--false-reject", "0.05"]) == 0
+    said = capsys.readouterr().out
+    assert f"threshold z {refit + 2.0:.2f} (the trained model's; the largest held-out part's {refit:.2f})" in said
+    assert float(load_checkpoint(floored).detector.variation.shape.calibration[2]) == refit + 2.0
     with caplog.at_level(logging.WARNING):
         assert main(["adapt", "--model", str(shaped), "--good", str(shifted), "--out", str(few), "--limit", "12",
                      "--false-reject", "0.05"]) == 0
