@@ -34,7 +34,7 @@ ALPHA_TYPES = ("pplastic", "roughplastic", "roughconductor", "roughdielectric")
 FINISHES = ("rough", "smooth", "either")
 BACKGROUNDS = ("plain", "checkerboard", "noise")
 BACKGROUND_MATERIALS = ("diffuse", "pplastic")
-ANGLES_ANY_SIGN = ("yaw_deg", "camera_azimuth_deg", "light_azimuth_deg", "ring_azimuth_deg")
+ANGLES_ANY_SIGN = ("yaw_deg", "camera_azimuth_deg", "light_azimuth_deg", "ring_azimuth_deg", "camera_roll_deg")
 FULL_RING = (0.0, 360.0)
 """``SceneConfig.ring_azimuth_deg`` of a whole ring."""
 
@@ -50,6 +50,11 @@ class SceneConfig:
     camera_azimuth_deg: tuple[float, float] = (0.0, 360.0)
     """Direction of the camera from the object, counter-clockwise from world +x (270 = from -y: image up is +y)."""
     camera_target_jitter_m: float = 0.003
+    camera_roll_deg: float = 0.0
+    """The line camera turned about its optical axis, degrees (a camera mounted out of square; the second camera of
+    ``ViewConfig`` is not turned): positive turns the camera clockwise as seen from behind it, so the scene turns
+    counter-clockwise in the image (image up at the top). Fixed, not drawn: a mount is turned once, not per part;
+    0 = world z up in the image, as every set before it."""
     focal_length_mm: float = 50.0
     sensor_width_mm: float = IMX250MZR_WIDTH_MM
     object_xy_m: float = 0.02
@@ -154,7 +159,7 @@ class SceneConfig:
                     raise SimError(f"scene.{f.name}: need a range (lo, hi) with lo <= hi, got {v}")
                 if min(v) < 0 and f.name not in ANGLES_ANY_SIGN:
                     raise SimError(f"scene.{f.name}: values must be >= 0, got {v}")
-            elif not (np.isfinite(v) and v >= 0):
+            elif not (np.isfinite(v) and (v >= 0 or f.name in ANGLES_ANY_SIGN)):
                 raise SimError(f"scene.{f.name}: must be a number >= 0, got {v}")
         for key in ("camera_polar_deg", "light_polar_deg"):
             if getattr(self, key)[1] >= 90:
@@ -219,7 +224,7 @@ LATER_KEYS = ("camera_azimuth_deg", "light_azimuth_deg", "yaw_deg", "rest_pose",
               "ambient_gradient", "ambient_gradient_azimuth_deg", "ring_radiance", "ring_elevation_deg",
               "ring_azimuth_deg", "ring_fringe_period_deg", "ring_fringe_depth", "ring_fringe_phase_deg",
               "front_light_radiance",
-              "front_light_span_m", "front_light_width_m", "front_light_azimuth_deg", "ggx_share")
+              "front_light_span_m", "front_light_width_m", "front_light_azimuth_deg", "ggx_share", "camera_roll_deg")
 """SceneConfig keys added after renderer version 2's first sets (their defaults draw what the sets drew)."""
 
 
@@ -323,10 +328,18 @@ def part_centre(model: ObjectModel, pose: dict) -> np.ndarray:
     return 0.5 * (world.min(0) + world.max(0))
 
 
-def camera_dict(origin: np.ndarray, target: np.ndarray, cfg: SceneConfig) -> dict[str, Any]:
-    """A scene's ``camera`` entry: origin and target (world metres), up, and the lens's horizontal field of view."""
+def camera_dict(origin: np.ndarray, target: np.ndarray, cfg: SceneConfig, roll_deg: float = 0.0) -> dict[str, Any]:
+    """A scene's ``camera`` entry: origin and target (world metres), up, and the lens's horizontal field of view;
+    the up direction turned ``roll_deg`` about the optical axis (``SceneConfig.camera_roll_deg``'s sign)."""
     fov_deg = float(np.degrees(2 * np.arctan(cfg.sensor_width_mm / 2 / cfg.focal_length_mm)))
-    return {"origin": origin.tolist(), "target": target.tolist(), "up": _up_for(target - origin), "fov_x_deg": fov_deg}
+    up = _up_for(target - origin)
+    if roll_deg:  # Rodrigues about the viewing direction; up is perpendicular to it after look_at's projection
+        f = (target - origin) / np.linalg.norm(target - origin)
+        u = np.asarray(up, np.float64) - f * float(np.dot(up, f))
+        u /= np.linalg.norm(u)
+        a = math.radians(roll_deg)
+        up = (u * math.cos(a) + np.cross(f, u) * math.sin(a)).tolist()
+    return {"origin": origin.tolist(), "target": target.tolist(), "up": up, "fov_x_deg": fov_deg}
 
 
 VIEW_CAMERA_KEYS = ("camera_radius_m", "camera_polar_deg", "camera_azimuth_deg")
@@ -474,7 +487,7 @@ def sample_scene(rng: np.random.Generator, cfg: SceneConfig, model: ObjectModel)
     }
     return {
         "pose": pose,
-        "camera": camera_dict(cam, target, cfg),
+        "camera": camera_dict(cam, target, cfg, cfg.camera_roll_deg),
         "light": {"origin": light.tolist(), "target": centre.tolist(), "intensity": _uniform(rng, cfg.light_intensity),
                   "cutoff_deg": cfg.light_cutoff_deg},
         "ambient_radiance": cfg.ambient_radiance,

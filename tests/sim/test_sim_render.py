@@ -515,3 +515,25 @@ print(float(out.s0.mean()), float(out.s0[out.object_mask].mean()))
         means[variant] = [float(v) for v in run.stdout.split()[-2:]]
     mono, spectral = means["llvm_ad_mono_polarized"], means["scalar_spectral_polarized"]
     assert spectral[0] == pytest.approx(mono[0], rel=0.05) and spectral[1] == pytest.approx(mono[1], rel=0.05)
+
+
+def test_a_turned_camera_renders_the_part_turned_about_the_image_centre(variant: str) -> None:
+    """``SceneConfig.camera_roll_deg`` = 10: the part's silhouette is the square camera's turned 10 degrees counter-
+    clockwise about the image centre (where the camera aims), not clockwise (scipy's positive angle turns an image
+    counter-clockwise as shown, row 0 at the top)."""
+    from scipy.ndimage import rotate
+
+    model = usb_brick()
+    masks = []
+    for roll in (0.0, 10.0):
+        cfg = SceneConfig(camera_target_jitter_m=0.0, camera_polar_deg=(20.0, 40.0), camera_roll_deg=roll)
+        params = sample_scene(np.random.default_rng(5), cfg, model)
+        masks.append(render_sample(model, params, None, RenderSettings(width=128, height=96, spp=1), seed=1)
+                     .object_mask)
+    square, turned = masks
+
+    def iou(a: np.ndarray, b: np.ndarray) -> float:
+        return float((a & b).sum() / (a | b).sum())
+
+    ccw, cw = (rotate(square.astype(np.uint8), angle, reshape=False, order=0) > 0 for angle in (10.0, -10.0))
+    assert iou(turned, ccw) > 0.9 > iou(turned, square) and iou(turned, ccw) > iou(turned, cw) + 0.1

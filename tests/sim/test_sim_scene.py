@@ -308,3 +308,20 @@ def test_a_share_of_parts_draws_a_ggx_lobe_on_its_own_stream() -> None:
     assert any(m.get("distribution") == "ggx" for m in sample.params["scene"]["materials"].values())
     with pytest.raises(SimError, match="ggx_share"):
         SceneConfig(ggx_share=1.5)
+
+
+def test_a_turned_camera_keeps_every_draw_and_turns_the_scene_counter_clockwise_in_the_image() -> None:
+    """``camera_roll_deg``: a camera mounted out of square. Only its up direction changes (no draw: the same parts
+    and poses as the square line), and a point the square camera sees at image right is seen turned by the roll,
+    counter-clockwise (image up at the top)."""
+    square = sample_scene(np.random.default_rng(3), SceneConfig(), usb_brick())
+    turned = sample_scene(np.random.default_rng(3), SceneConfig(camera_roll_deg=5.0), usb_brick())
+    assert turned["camera"].pop("up") != square["camera"].pop("up")
+    assert json.dumps(turned, sort_keys=True) == json.dumps(square, sort_keys=True)
+    turned = sample_scene(np.random.default_rng(3), SceneConfig(camera_roll_deg=5.0), usb_brick())
+    square = sample_scene(np.random.default_rng(3), SceneConfig(), usb_brick())
+    right = camera_axes(square["camera"])[0]  # world direction of the square image's right
+    x, y, z = camera_axes(turned["camera"]) @ right
+    assert np.degrees(np.arctan2(y, x)) == pytest.approx(5.0) and z == pytest.approx(0.0, abs=1e-12)
+    assert SceneConfig(camera_roll_deg=-3.0).camera_roll_deg == -3.0  # either way
+    assert "camera_roll_deg" not in DatasetSpec().to_dict()["scene"]
