@@ -209,7 +209,7 @@ def test_adapt_refits_the_shape_check_on_the_lines_parts_or_says_why_it_cannot(l
     assert main(["shape", "--model", str(with_var), "--data", str(base), "--val-data", str(shifted),
                  "--out", str(shaped)]) == 0
     capsys.readouterr()
-    assert main(["adapt", "--model", str(shaped), "--good", str(shifted), "--out", str(out),
+    assert main(["adapt", "--model", str(shaped), "--good", str(shifted), "--out", str(out), "--no-floor-checks",
                  "--false-reject", "0.05"]) == 0
     said = capsys.readouterr().out
     assert "shape check refitted: the bottom edge over input columns" in said
@@ -220,13 +220,14 @@ def test_adapt_refits_the_shape_check_on_the_lines_parts_or_says_why_it_cannot(l
     assert not torch.equal(after.calibration, before.calibration)  # the line's parts' spread and threshold
     assert json.loads(out.with_suffix(".json").read_text())["train"]["adapted"]["shape"].startswith(
         "shape check refitted")
-    # --floor-checks: the refitted threshold no lower than the model's own (here raised above the refit's)
+    # by default (--floor-checks) the refitted threshold is no lower than the model's own (here raised above the
+    # refit's): on 90 parts of seed 1203 the refit alone rejected 9 of 206 good parts, floored 2
     refit = float(after.calibration[2])
     ck = load_checkpoint(shaped)
     ck.detector.variation.shape.calibration[2] = refit + 2.0
     high, floored = tmp_path / "high", tmp_path / "floored"
     save_checkpoint(high, ck.detector, ck.threshold, "test", None, {}, ck.meta.get("train"))
-    assert main(["adapt", "--model", str(high), "--good", str(shifted), "--out", str(floored), "--floor-checks",
+    assert main(["adapt", "--model", str(high), "--good", str(shifted), "--out", str(floored),
                  "--false-reject", "0.05"]) == 0
     said = capsys.readouterr().out
     assert f"threshold z {refit + 2.0:.2f} (the trained model's; the largest held-out part's {refit:.2f})" in said
