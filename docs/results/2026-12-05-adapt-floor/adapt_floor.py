@@ -5,7 +5,7 @@ Fresh seed 1203's line as built (600 parts, 30 % defective, every part test). Go
 even places adapt the shipped file (`model.draem.adapt.adapt`, as `station adapt` does: cross-fitted, 1 %), the first
 N of them for N in 90 and 200, with `AdaptConfig.floor_checks` off and on; those at odd places and every defective
 part are judged, by the shipped file (its threshold) and by each adapted file (its own). Run from the repository's
-root (optional argument: the set); prints what each adaptation said, the table, defective parts caught per kind,
+root; prints what each adaptation said, the table, defective parts caught per kind,
 then each judged good part a file rejects with what rejected it: its window score, the largest of its window map, the
 shape check's bend and the outline check's step (each in units of its own threshold: above 1 rejects).
 
