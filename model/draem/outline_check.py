@@ -12,7 +12,9 @@ reads the edges column by column against the good parts' at the same column:
    edge, the reference's strongest vertical change within ``shape_check.EDGE_BAND_PX`` above the region's bottom
    line (as the shape check's), and the top edge, its strongest change ``TOP_BAND_PX`` above that edge (on the
    shipped part the front face's top edge), each a robust straight line and the sign of its change.
-2. **Deviation** (per part, on its registered intensity): per column the edge's row to a fraction of a pixel
+2. **Deviation** (per part, on its registered intensity, NaN where the registration did not see the frame:
+   ``VariationModel.checked_intensity``; a column whose searched rows hold one is not read): per column the edge's
+   row to a fraction of a pixel
    (``shape_check.edge_rows``), less the part's own robust parabola through them (so a bend stays the shape
    check's), less the good training parts' median at that column; then its mean over each run of ``RUN_PX`` columns
    (about 4 mm on the shipped part).

@@ -129,14 +129,17 @@ def find_edge(reference: np.ndarray, region: np.ndarray) -> tuple[float, float, 
 def edge_rows(intensity: np.ndarray, edge: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
     """(H, W) registered intensity of a part and an ``edge`` (first column, end column, row at column 0, slope, sign)
     -> the columns where it is sought and, per column, the row of the strongest change of its sign within
-    ``SEARCH_PX`` of its line, to a fraction of a pixel (a parabola through the peak and its neighbours); input px."""
+    ``SEARCH_PX`` of its line, to a fraction of a pixel (a parabola through the peak and its neighbours); input px.
+    A column whose searched rows (and the one above and below) hold a NaN is not read: NaN marks pixels the
+    registration did not see (``VariationModel.checked_intensity``)."""
     first, end, row0, slope, sign = edge
     change = sign * vertical_change(intensity)
+    unseen = ~np.isfinite(intensity)
     rows, used = [], []
     for col in range(int(first), int(end)):
         line = round(row0 + slope * col)
         lo, hi = max(line - SEARCH_PX, 1), min(line + SEARCH_PX + 1, change.shape[0] - 1)
-        if hi <= lo:
+        if hi <= lo or unseen[lo - 1:hi + 2, col].any():
             continue
         r = lo + int(np.argmax(change[lo:hi, col]))
         a, b, d = change[r - 1, col], change[r, col], change[r + 1, col]

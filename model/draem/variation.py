@@ -17,7 +17,14 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               components carry it); every other channel as is (normals as unit vectors)
     register  an affine warp of the frame's log intensity onto ``reference`` (OpenCV ECC, the correlation
               coefficient: blind to brightness and contrast); a failed or implausible fit (shift > 1/4 of a side,
-              scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high
+              scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high.
+              Where the warp reaches outside the frame it replicates the frame's border; those pixels are not
+              ``seen`` (``SEEN_LEVEL``), and the outline check reads no edge there: a camera turned 5 degrees put
+              the belt under the part's left end outside the 96-row input, and its replicated stripes made the
+              outline check's largest steps on good parts (docs/results/2026-12-05-seen-edges.md). The shape
+              check still reads every column (its robust parabola leaves out those off it; fitted on the seen
+              columns alone it spread more: 19 against 7 of 414 good parts of a turned line beyond its
+              threshold), and the window judges every pixel of the region, seen or not
     appearance  the good parts' registered features, each channel divided by its robust spread over the part
               (``channel_scale``), minus their per-pixel mean: what stays is how a good part differs from the
               average one. Its first ``COMPONENTS`` principal components (``components``) are the line's
@@ -191,6 +198,10 @@ MIN_FIT_PARTS = 8
 
 FOLDS = 3
 """The residual scale is measured on parts left out of the appearance fit (each third once)."""
+
+SEEN_LEVEL = 0.999
+"""A pixel is ``seen`` when the warp of a frame of ones with a ring of zeros reaches at least this: every pixel it
+interpolates lies inside the frame's outermost ring (module docstring: register)."""
 
 MAX_SHIFT = 0.25
 """Largest registration shift, as a fraction of the input's side, still taken as a fit."""
@@ -863,7 +874,7 @@ class VariationModel(nn.Module):
         measures it (after the fit and its polarization range)."""
         cs = []
         for xi in xs:
-            warped, _, where = self._aligned(xi)
+            warped, _, where, _ = self._aligned(xi)
             cs.append(self.contrast_factor(warped[:-1], where))
         return torch.tensor([min(cs), max(cs)], dtype=torch.float32)
 
@@ -873,7 +884,7 @@ class VariationModel(nn.Module):
         mean, part = self.mean.numpy(), self.region.numpy()
         ks = []
         for xi in xs:
-            warped, judged = self._registered(xi, part)
+            warped, judged, _ = self._registered(xi, part)
             ks.append(self.polarization_factor(warped[:-1], mean, judged if judged.any() else part))
         gain, turn = np.abs(ks), np.angle(ks) / 2.0
         return torch.tensor([gain.min(), gain.max(), turn.min(), turn.max()], dtype=torch.float32)
@@ -993,9 +1004,10 @@ class VariationModel(nn.Module):
         part = self.region.numpy()
         for xi in x.float().cpu().numpy():
             aligned = self._aligned(xi)
-            sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan  # before alignment
-            step = self.outline.step(aligned[0][self.intensity])
-            r, coef, judged, hidden = self._residual_of(*aligned)
+            # both before the contrast alignment
+            sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan
+            step = self.outline.step(self.checked_intensity(aligned))
+            r, coef, judged, hidden = self._residual_of(*aligned[:3])
             highlights.append(hidden)
             r = self.clustered(r, coef)
             w, level = self.window(r, judged)
@@ -1027,7 +1039,7 @@ class VariationModel(nn.Module):
         """(C, H, W) physical priors of a frame -> its residual in units of ``scale`` (C, H, W) before clusters, its
         (COMPONENTS,) coefficients, the (H, W) bool pixels judged and the share of the part the highlight rule
         found (module docstring: register, highlights, appearance)."""
-        return self._residual_of(*self._aligned(xi))
+        return self._residual_of(*self._aligned(xi)[:3])
 
     def _residual_of(self, warped: np.ndarray, judged: np.ndarray, where: np.ndarray
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
@@ -1044,22 +1056,34 @@ class VariationModel(nn.Module):
         r[self.intensity] *= k  # in the frame's own units: its noise is not rescaled with its contrast
         return r / self.scale.numpy(), coef[0], judged, float(hidden)
 
-    def _aligned(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _aligned(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(C, H, W) physical priors -> (``_registered``'s warped features with their polarization aligned when the
         model aligns it, its judged pixels, the pixels alignments fit over: those judged, or the part region when
-        none are)."""
+        none are, and its ``seen`` pixels)."""
         part = self.region.numpy()
-        warped, judged = self._registered(xi, part)
+        warped, judged, seen = self._registered(xi, part)
         where = judged if judged.any() else part
         if self.aligns_polarization:
             warped[:-1] = self.align_polarization(warped[:-1], self.mean.numpy(), where)
-        return warped, judged, where
+        return warped, judged, where, seen
 
-    def _registered(self, xi: np.ndarray, part: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def checked_intensity(self, aligned: tuple[np.ndarray, ...]) -> np.ndarray:
+        """A frame's ``_aligned`` -> its registered intensity feature as the outline check reads it: NaN where the
+        warp took it from outside the frame (module docstring: register), so that no step is read from a border
+        the warp made up."""
+        return np.where(aligned[3], aligned[0][self.intensity], np.nan)
+
+    def _registered(self, xi: np.ndarray, part: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(C, H, W) physical priors -> (``register``'s warped features with I (1 + DoLP) last, (H, W) bool the
-        pixels of the region ``part`` not hidden by a highlight)."""
-        warped = self.register(xi, self.features(xi))
-        return warped, part & ~self.highlight(warped[-1])
+        pixels of the region ``part`` not hidden by a highlight, (H, W) bool ``seen``: the pixels the warp took from
+        inside the frame (module docstring: register))."""
+        f = self.features(xi)
+        inside = np.zeros((1, *f.shape[1:]), np.float32)
+        inside[0, 1:-1, 1:-1] = 1.0  # warped with the border replicated, its 0 ring marks what came from outside
+        warped = self.register(xi, np.concatenate([f, inside]))
+        seen = warped[-2] >= SEEN_LEVEL
+        warped = np.delete(warped, -2, axis=0)
+        return warped, part & ~self.highlight(warped[-1]), seen
 
     def edge_sag(self, xi: np.ndarray) -> float:
         """(C, H, W) physical priors of a frame -> the shape check's sag of its registered intensity (input px;
@@ -1069,7 +1093,7 @@ class VariationModel(nn.Module):
     def outline_deviations(self, xi: np.ndarray) -> np.ndarray:
         """(C, H, W) physical priors of a frame -> the outline check's (2, W) deviations of its registered intensity
         (input px; ``model.draem.outline_check``; all NaN without edges)."""
-        return self.outline.deviations(self._aligned(xi)[0][self.intensity])
+        return self.outline.deviations(self.checked_intensity(self._aligned(xi)))
 
     def scored_region(self) -> np.ndarray:
         """(H, W) bool: the part region eroded by 1 px (the image border does not erode), where a map is scored: a

@@ -164,3 +164,20 @@ def test_adapt_floors_the_refitted_thresholds_at_the_trained_models_when_asked()
     assert bottom == float(refit[0]) + 3.0 and top == float(refit[1]) and window == 4.0
     assert f"z {bottom:.2f} (the trained model's; the largest held-out part's {float(refit[0]):.2f})" in said
     assert f"z {top:.2f} (the largest held-out part's) at the top edge" in said
+
+
+def test_no_step_is_read_from_pixels_the_registration_made_up(fitted) -> None:
+    """On a turned camera the warp turning a frame back reaches below the input and replicates its border: the belt
+    under the part's left end becomes stripes, and the bottom edge read there stepped up to 76 robust SD on good parts
+    of seed 1203 (docs/results/2026-12-05-seen-edges.md). Marked unseen (NaN), those columns are not read."""
+    rng = np.random.default_rng(8)
+    cols = slice(LEFT + MARGIN_PX, LEFT + MARGIN_PX + 24)
+    made_up = image(rng)
+    made_up[int(BOTTOM) - 2:, cols] = made_up[int(BOTTOM) - 3, cols]  # the row above the edge, replicated down
+    assert fitted.step(made_up) > 2 * EDGE_STEP_LIMIT  # read as it was: a step beyond every good part's
+    marked = made_up.copy()
+    marked[int(BOTTOM) - 2:, cols] = np.nan
+    d = fitted.deviations(marked)
+    assert np.isnan(d[0, cols]).all() and np.isfinite(d[0, cols.stop + 4:RIGHT - MARGIN_PX]).all()
+    assert np.isfinite(d[1, cols]).all()  # the top edge, seen there, is read
+    assert fitted.step(marked) <= 1.3 and fitted.finding(fitted.step(marked)) == 0.0

@@ -648,3 +648,18 @@ def test_a_cluster_spread_is_bounded_per_pixel_not_per_part() -> None:
         vm.cluster_spread[...] = bad
         with pytest.raises(ModelError, match="cluster_spread"):
             vm.check()
+
+
+def test_the_pixels_a_warp_takes_from_outside_the_frame_are_not_seen_and_the_outline_check_reads_none() -> None:
+    """Registration replicates the frame's border where the warp reaches outside it; ``seen`` marks the rest, and the
+    outline check's input is NaN where the frame was not seen (the shape check and the window read it as before)."""
+    vm = fitted()
+    xi = parts(1, 3, play=0.0)[0].numpy()
+    shifted = np.roll(xi, 4, axis=1)  # the part 4 rows lower: the warp takes the bottom rows from below the frame
+    shifted[:, :4] = shifted[:, 4:5]
+    aligned = vm._aligned(shifted)
+    seen = aligned[3]
+    assert not seen[-4:].any() and seen[:-6, 2:-2].all()
+    checked = vm.checked_intensity(aligned)
+    assert np.isnan(checked[~seen]).all() and np.array_equal(checked[seen], aligned[0][vm.intensity][seen])
+    assert np.isfinite(aligned[0]).all()  # the window's input: every pixel, as before
