@@ -14,10 +14,9 @@ reads the edges column by column against the good parts' at the same column:
    shipped part the front face's top edge), each a robust straight line and the sign of its change.
 2. **Deviation** (per part, on its registered intensity, NaN where the registration did not see the frame:
    ``VariationModel.checked_intensity``; a column whose searched rows hold one is not read): per column the edge's
-   row to a fraction of a pixel
-   (``shape_check.edge_rows``), less the part's own robust parabola through them (so a bend stays the shape
-   check's), less the good training parts' median at that column; then its mean over each run of ``RUN_PX`` columns
-   (about 4 mm on the shipped part).
+   row to a fraction of a pixel (``shape_check.edge_rows``), less the part's own robust parabola through them (so a
+   bend stays the shape check's), less the good training parts' median at that column; then its mean over each run
+   of ``RUN_PX`` columns (about 4 mm on the shipped part).
 3. **Step** (``OutlineCheck.step``): each run's mean against the good training parts' at that run (median, 1.4826
    MAD, floored at ``SPREAD_FLOOR_PX``) as a robust z; per edge, its largest |z| over the edge's threshold (the
    largest of the good calibration parts'); the part's step the larger of the two edges'. Beyond 1
