@@ -38,7 +38,8 @@ print(f"judged: {int((~lab).sum())} good parts (none adapted on), {int(lab.sum()
       f"({', '.join(f'{c} {int((kinds[lab] == c).sum())}' for c in names)})")
 print("| file | threshold | good parts rejected | 95 % interval | defective caught | "
       + " | ".join(names) + " |\n|---|---|---|---|---|" + "---|" * len(names))
-for name, d, thr in (("shipped file", ck.detector, ck.threshold), ("adapted on 200", det, res.threshold.threshold)):
+files = (("shipped file", ck.detector, ck.threshold), (f"adapted on {N_ADAPT}", det, res.threshold.threshold))
+for name, d, thr in files:
     s = image_scores(d, x[torch.from_numpy(judged)])
     rej = s > thr
     kg, ng = int(rej[~lab].sum()), int((~lab).sum())
