@@ -8,8 +8,8 @@ The schema version is ``PRAGMA user_version``; columns carry their unit in the n
 ``dolp_level``: ``model.priors.frame_stats``) and ``drift`` (the drift warning in force when the part was judged,
 ``station.drift``), version 4 the model's frame checks (``highlight_fraction``, ``noise_level``: ``FRAME_CHECKS``),
 version 5 the second camera's (``second_score``, ``second_threshold``, ``second_model_id``, ``second_frame_id``:
-``station.second_camera``), version 6 the shape check's ``edge_bend``, version 7 the outline check's ``edge_step``
-(``FRAME_CHECKS``).
+``station.second_camera``), version 6 the shape check's ``edge_bend``, version 7 the outline check's ``edge_step``,
+version 8 ``unseen_fraction``, the share of the part outside the model's view (``FRAME_CHECKS``).
 Opening an older log for writing adds the missing columns (NULL in the old rows); opened
 read-only, they read as NULL. Decisions (``station.decision.Verdict``, stored as its values):
 
@@ -33,7 +33,7 @@ from typing import Any
 from station.decision import Verdict
 from station.errors import UserError
 
-SCHEMA_VERSION = 7
+SCHEMA_VERSION = 8
 WAL_CHECKPOINT_PAGES = 64
 """Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
 WAL_SIZE_LIMIT_BYTES = 256 * 1024
@@ -45,9 +45,10 @@ ADDED_IN_VERSION = {2: ("ground_truth_present",),
                     4: ("highlight_fraction", "noise_level"),
                     5: ("second_score", "second_threshold", "second_model_id", "second_frame_id"),
                     6: ("edge_bend",),
-                    7: ("edge_step",)}
+                    7: ("edge_step",),
+                    8: ("unseen_fraction",)}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
-READABLE_VERSIONS = (1, 2, 3, 4, 5, 6, 7)
+READABLE_VERSIONS = (1, 2, 3, 4, 5, 6, 7, 8)
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
@@ -120,6 +121,10 @@ class InspectionRecord:
     run z over its threshold (beyond 1 further than any good calibration part's, and the reason says so:
     ``model.draem.frame_checks``). None when the model has no outline check, the edges were not seen, or the model
     did not run."""
+    unseen_fraction: float | None = None
+    """The share of the part region the model's registration took from outside the frame (0-1; over
+    ``model.draem.frame_checks.UNSEEN_LIMIT`` the reason says the part lies partly outside the model's view: a camera
+    turned from square, a part off its place). None when the model did not run."""
 
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:

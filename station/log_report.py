@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX, SIGNED_CHECKS
+from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX, SIGNED_CHECKS, UNSEEN_LIMIT
 from station.decision import SECOND_NAME, Verdict
 from station.inspection_log import DECISIONS
 
@@ -20,6 +20,7 @@ NOISY_LINE_LEVEL = 1.5
 (``OWN_RENDERS_NOISE_LEVEL_MAX``)."""
 
 REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("part outside the model's view", ("outside the model's view",)),
     ("part bent (shape check)", ("bottom edge bends",)),
     ("edge steps (outline check)", ("an edge steps",)),
     ("frame unlike the model's line", ("unlike the model's line",)),
@@ -38,7 +39,8 @@ REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 """Why a part was rejected or not inspected, read from its reason, first match wins (the reasons are worded in
 ``station.loop``, ``station.decision``, ``station.inspector`` and ``model.draem.frame_checks``; a test keeps each
-cause's words in that code; a score over threshold with a frame check beyond its limit counts as that check's cause).
+cause's words in that code; a score over threshold with a frame check beyond its limit counts as that check's cause,
+a part partly outside the model's view first: what the other checks read there is the frame's border).
 A reason matching none counts as "other"."""
 
 
@@ -82,6 +84,9 @@ class LogSummary:
     reject_causes: dict[str, int] = field(default_factory=dict)
     """Rejected and not-inspected parts per cause (``reject_cause``), most first: "score over threshold" is the
     model's judgement, every other cause a part the station could not judge."""
+    outside_view_parts: int = 0
+    """Parts, passed or rejected, of which more than ``UNSEEN_LIMIT`` lay outside the model's view
+    (``unseen_fraction``, schema version 8): the camera turned from square or parts off their place."""
 
 
 def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
@@ -94,7 +99,9 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     drift_parts, last_drift = 0, None
     checks: dict[str, list[float]] = {k: [] for k in FRAME_CHECKS}
     causes: Counter[str] = Counter()
+    outside = 0
     for r in rows:
+        outside += (r.get("unseen_fraction") or 0.0) > UNSEEN_LIMIT
         for k in FRAME_CHECKS:
             if r.get(k) is not None:
                 checks[k].append(abs(r[k]) if k in SIGNED_CHECKS else r[k])
@@ -130,6 +137,7 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
         frame_checks={k: {"median": float(np.median(v)), "p99": float(np.percentile(v, 99)), "max": float(max(v))}
                       for k, v in checks.items() if v},
         reject_causes=dict(causes.most_common()),
+        outside_view_parts=outside,
     )
 
 
@@ -164,6 +172,10 @@ def format_summary(s: LogSummary) -> str:
         lines.append(f"NOISE: the frames' median noise level is {noise:.2f} times the model's good parts' (at most "
                      f"{OWN_RENDERS_NOISE_LEVEL_MAX} on its own renders): the camera is noisier than the model's "
                      "line; lower the gain or station adapt on this line's good parts")
+    if s.outside_view_parts:
+        lines.append(f"VIEW: {s.outside_view_parts} part(s) lay over {100 * UNSEEN_LIMIT:g} % outside the model's view "
+                     "as registered (judged from the frame's border there): the camera turned from square to the belt "
+                     "or parts off their place; mount the camera square (docs/bring-up.md)")
     return "\n".join(lines) + "\n"
 
 

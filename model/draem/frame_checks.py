@@ -7,14 +7,17 @@ hidden as a highlight (0-1), ``noise_level`` the frame's median z against a good
 line; the z map is divided by it where it is above 1), ``edge_bend`` how far the part's bottom edge bends, as its
 robust z over the shape check's threshold (signed; NaN, and left out of a prediction's checks, without the check),
 ``edge_step`` how far the part's outline steps along its long edges, as the outline check's largest run z over its
-threshold (``model.draem.outline_check``; NaN and left out without the check)."""
+threshold (``model.draem.outline_check``; NaN and left out without the check), ``unseen_fraction`` the share of the
+part region the registration's warp took from outside the frame (0-1; ``model.draem.variation``: seen): a part
+turned or moved so far that some of it lies outside the model's view, where every check reads the frame's replicated
+border instead of the part."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
 
-FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend", "edge_step")
+FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend", "edge_step", "unseen_fraction")
 """``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
 
 MAX_HIDDEN = 0.5
@@ -37,6 +40,11 @@ EDGE_STEP_LIMIT = 1.0
 a chipped edge), and the outline check scores the part at least the variation model's own 1 % point
 (``model.draem.outline_check``, step 3)."""
 
+UNSEEN_LIMIT = 0.01
+"""``unseen_fraction`` above this: over 1 % of the part lies outside the model's view as registered (a camera turned
+from square, a part off its place), judged from the frame's replicated border there (docs/results/2026-12-05-outside-view.md). It says why; it changes no
+decision."""
+
 OWN_RENDERS_NOISE_LEVEL_MAX = 1.38
 """Highest ``noise_level`` of a good part of the shipped model's own validation and held-out renders (16 spp):
 a line whose median lies above it is noisier than the renders (module docstring of variation: noise)."""
@@ -44,11 +52,15 @@ a line whose median lies above it is noisier than the renders (module docstring 
 
 def beyond_limits(checks: Mapping[str, float]) -> list[str]:
     """A part's frame checks (by ``FRAME_CHECKS`` name; missing or NaN ones say nothing) -> what each one beyond its
-    limit says, in words for a reject's reason (the station adds them after the score): a frame too noisy or too
-    highlighted to be judged as the model's line (it rejects), a part bent beyond every good part's, an outline that
-    steps beyond every good part's."""
+    limit says, in words for a reject's reason (the station adds them after the score): a part partly outside the
+    model's view (first: it explains what the others read there), a frame too noisy or too highlighted to be judged
+    as the model's line (it rejects), a part bent beyond every good part's, an outline that steps beyond every good
+    part's."""
     said = []
-    hidden, noise, bend, step = (checks.get(k, math.nan) for k in FRAME_CHECKS)
+    hidden, noise, bend, step, unseen = (checks.get(k, math.nan) for k in FRAME_CHECKS)
+    if unseen > UNSEEN_LIMIT:
+        said.append(f"{100 * unseen:.0f} % of the part lies outside the model's view as registered, read from the "
+                    "frame's border there (camera turned from square or the part off its place)")
     if hidden > MAX_HIDDEN:
         said.append(f"highlights cover {100 * hidden:.0f} % of the part (over {100 * MAX_HIDDEN:.0f} %: judged "
                     "with them, as a part unlike the model's line)")

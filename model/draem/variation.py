@@ -24,7 +24,9 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               outline check's largest steps on good parts (docs/results/2026-12-05-seen-edges.md). The shape
               check still reads every column (its robust parabola leaves out those off it; fitted on the seen
               columns alone it spread more: 19 against 7 of 414 good parts of a turned line beyond its
-              threshold), and the window judges every pixel of the region, seen or not
+              threshold), and the window judges every pixel of the region, seen or not; the share of the
+              region not seen is a frame check (``unseen_fraction``; ``frame_checks.UNSEEN_LIMIT``), so a reject's
+              reason names a part partly outside the model's view
     appearance  the good parts' registered features, each channel divided by its robust spread over the part
               (``channel_scale``), minus their per-pixel mean: what stays is how a good part differs from the
               average one. Its first ``COMPONENTS`` principal components (``components``) are the line's
@@ -379,7 +381,8 @@ class VariationOutput(NamedTuple):
     ``scale`` after the noise level (``signed_z``; what the residual networks read, ``model.draem.residual``);
     ``judged`` (N, H, W) bool, the pixels judged; both None unless ``zmaps`` was asked for them; ``edge_bend`` (N,)
     the shape check's bend of each part (``ShapeCheck.bend``; NaN without the check); ``edge_step`` (N,) the outline
-    check's step of each part (``OutlineCheck.step``; NaN without the check)."""
+    check's step of each part (``OutlineCheck.step``; NaN without the check); ``unseen_fraction`` (N,) the share of
+    the part region the registration's warp took from outside the frame (module docstring: register, seen)."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -389,6 +392,7 @@ class VariationOutput(NamedTuple):
     judged: torch.Tensor | None = None
     edge_bend: torch.Tensor | None = None
     edge_step: torch.Tensor | None = None
+    unseen_fraction: torch.Tensor | None = None
 
     def frame_checks(self) -> dict[str, torch.Tensor]:
         """The fields that describe the frame or the part's shape rather than a local defect (``FRAME_CHECKS``), by
@@ -1000,13 +1004,14 @@ class VariationModel(nn.Module):
         region = self.scored_region()
         if not region.any():
             region = self.region.numpy()
-        maps, scores, highlights, noise, signed_all, judged_all, bends, steps = [], [], [], [], [], [], [], []
+        maps, scores, highlights, noise, signed_all, judged_all, bends, steps, unseen = ([] for _ in range(9))
         part = self.region.numpy()
         for xi in x.float().cpu().numpy():
             aligned = self._aligned(xi)
             # both before the contrast alignment
             sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan
             step = self.outline.step(self.checked_intensity(aligned))
+            unseen.append(1.0 - float((aligned[3] & part).sum()) / max(float(part.sum()), 1.0))
             r, coef, judged, hidden = self._residual_of(*aligned[:3])
             highlights.append(hidden)
             r = self.clustered(r, coef)
@@ -1033,7 +1038,8 @@ class VariationModel(nn.Module):
                                torch.tensor(noise, dtype=torch.float32),
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
                                torch.from_numpy(np.stack(judged_all)) if signed else None,
-                               torch.tensor(bends, dtype=torch.float32), torch.tensor(steps, dtype=torch.float32))
+                               torch.tensor(bends, dtype=torch.float32), torch.tensor(steps, dtype=torch.float32),
+                               torch.tensor(unseen, dtype=torch.float32))
 
     def _judged_residual(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """(C, H, W) physical priors of a frame -> its residual in units of ``scale`` (C, H, W) before clusters, its

@@ -15,6 +15,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import Alignment, ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
+from model.draem.frame_checks import UNSEEN_LIMIT, beyond_limits
 from model.draem.variation import LATER_BUFFERS, SQUASH_CENTRE, VariationModel, combined_score, squash
 from model.draem.with_variation import add_variation
 
@@ -663,3 +664,23 @@ def test_the_pixels_a_warp_takes_from_outside_the_frame_are_not_seen_and_the_out
     checked = vm.checked_intensity(aligned)
     assert np.isnan(checked[~seen]).all() and np.array_equal(checked[seen], aligned[0][vm.intensity][seen])
     assert np.isfinite(aligned[0]).all()  # the window's input: every pixel, as before
+
+
+def test_a_part_partly_outside_the_view_says_how_much_and_its_reason_names_it() -> None:
+    """``unseen_fraction``: the share of the part region the warp took from outside the frame. A part in its place
+    has none; one moved 7 rows down (its region's bottom rows fetched from below the 32-row frame) has the region's
+    unseen share, and a reject's reason names it first (``beyond_limits``)."""
+    vm = fitted()
+    xi = parts(1, 3, play=0.0)[0].numpy()
+    moved = np.roll(xi, 7, axis=1)
+    moved[:, :7] = moved[:, 7:8]
+    out = vm.zmaps(torch.from_numpy(np.stack([xi, moved])))
+    region = vm.region.numpy()
+    seen = vm._aligned(moved)[3]
+    assert float(out.unseen_fraction[0]) == 0.0
+    assert float(out.unseen_fraction[1]) == pytest.approx(1.0 - (seen & region).sum() / region.sum())
+    assert float(out.unseen_fraction[1]) > UNSEEN_LIMIT
+    checks = {k: float(v[1]) for k, v in out.frame_checks().items()}
+    said = beyond_limits(checks)
+    assert said[0].startswith(f"{100 * checks['unseen_fraction']:.0f} % of the part lies outside the model's view")
+    assert beyond_limits({k: float(v[0]) for k, v in out.frame_checks().items()}) == []

@@ -110,7 +110,7 @@ FULL = InspectionRecord(
     ground_truth_present=True, image_path="img/9.png", median_level=0.4, high_level=0.8, clipped_fraction=0.01,
     dolp_level=0.05, drift="brighter", highlight_fraction=0.02, noise_level=1.1, second_score=0.3,
     second_threshold=0.6, second_model_id="side1", second_frame_id=11, edge_bend=-1.5,
-    edge_step=2.5)
+    edge_step=2.5, unseen_fraction=0.03)
 """A record with every column set (a two-camera station's row: its second model's id is text)."""
 
 
@@ -197,6 +197,25 @@ def test_report_gives_the_size_of_the_edge_bend_which_bends_either_way(tmp_path)
         s = summarize(log.rows())
     assert s.frame_checks["edge_bend"]["max"] == pytest.approx(6.5)
     assert "|edge_bend|: median 0.250" in format_summary(s)
+
+
+def test_report_warns_of_parts_outside_the_models_view_and_names_that_cause_first(tmp_path):
+    """A camera turned from square puts part of the part outside the model's view: the report counts those parts
+    (passed or rejected) and says what to do; a reject whose reason also names another check counts under this
+    cause (what the other check read there is the frame's border)."""
+    from model.draem.frame_checks import UNSEEN_LIMIT, beyond_limits
+    from station.log_report import format_summary, reject_cause, summarize
+
+    with InspectionLog(tmp_path / "log.sqlite") as log:
+        log.append([rec(i, unseen_fraction=u) for i, u in enumerate((0.0, UNSEEN_LIMIT, 0.02, 0.05))] + [rec(4)])
+        s = summarize(log.rows())
+        within = summarize(r for r in log.rows() if (r["unseen_fraction"] or 0.0) <= UNSEEN_LIMIT)
+    assert s.outside_view_parts == 2 and within.outside_view_parts == 0
+    assert "VIEW: 2 part(s) lay over 1 % outside the model's view" in format_summary(s)
+    assert "VIEW" not in format_summary(within)
+    assert s.frame_checks["unseen_fraction"]["max"] == pytest.approx(0.05)
+    both = "; ".join(["score 0.99 > threshold 0.98", *beyond_limits({"edge_bend": 3.0, "unseen_fraction": 0.05})])
+    assert reject_cause(both) == "part outside the model's view"
 
 
 def test_the_log_has_a_column_for_every_frame_check_the_model_reports():
