@@ -173,7 +173,7 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
             if "edge_step" in f.checks:
                 score += f"  edge step {f.checks['edge_step']:.2f}"
             if f.checks.get("unseen_fraction", 0.0) > 0.0:
-                score += f"  outside view {100 * f.checks['unseen_fraction']:.1f} %"
+                score += f"  outside view {100 * f.checks['unseen_fraction']:.2g} %"
             stats = "  ".join(f"{k} {v:.4g}" for k, v in f.stats.items())
             self.stats.setText(f"part {f.part_id}  {score}\n{f.reason or ''}\n{stats}")
             feed.shown += 1

@@ -13,9 +13,12 @@ def test_each_check_beyond_its_limit_says_so_and_none_within_or_missing_or_nan()
                           "unseen_fraction": UNSEEN_LIMIT}) == []  # at a limit: within it
     assert beyond_limits({"highlight_fraction": math.nan, "noise_level": math.nan, "edge_bend": math.nan}) == []
     said = beyond_limits({"highlight_fraction": 0.62, "noise_level": 3.4, "edge_bend": -1.6, "unseen_fraction": 0.034})
-    assert said == ["3 % of the part lies outside the model's view as registered, read from the frame's border there "
-                    "(camera turned from square or the part off its place)",
-                    "highlights cover 62 % of the part (over 50 %: judged with them, as a part unlike the model's "
+    assert said[-1] == ("3.4 % of the part lay outside the model's view as registered, read from the frame's border "
+                        "there (camera turned from square or the part off its place)")
+    assert beyond_limits({"unseen_fraction": 0.00074}) == [
+        "0.074 % of the part lay outside the model's view as registered, read from the frame's border there (camera "
+        "turned from square or the part off its place)"]
+    assert said[:-1] == ["highlights cover 62 % of the part (over 50 %: judged with them, as a part unlike the model's "
                     "line)",
                     "the frame is 3.4 times as noisy as the model's good parts (over 3: judged unscaled, as a part "
                     "unlike the model's line)",

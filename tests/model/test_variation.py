@@ -669,7 +669,7 @@ def test_the_pixels_a_warp_takes_from_outside_the_frame_are_not_seen_and_the_out
 def test_a_part_partly_outside_the_view_says_how_much_and_its_reason_names_it() -> None:
     """``unseen_fraction``: the share of the part region the warp took from outside the frame. A part in its place
     has none; one moved 7 rows down (its region's bottom rows fetched from below the 32-row frame) has the region's
-    unseen share, and a reject's reason names it first (``beyond_limits``)."""
+    unseen share, and a reject's reason names it (``beyond_limits``)."""
     vm = fitted()
     xi = parts(1, 3, play=0.0)[0].numpy()
     moved = np.roll(xi, 7, axis=1)
@@ -682,5 +682,5 @@ def test_a_part_partly_outside_the_view_says_how_much_and_its_reason_names_it() 
     assert float(out.unseen_fraction[1]) > UNSEEN_LIMIT
     checks = {k: float(v[1]) for k, v in out.frame_checks().items()}
     said = beyond_limits(checks)
-    assert said[0].startswith(f"{100 * checks['unseen_fraction']:.0f} % of the part lies outside the model's view")
+    assert said[-1].startswith(f"{100 * checks['unseen_fraction']:.2g} % of the part lay outside the model's view")
     assert beyond_limits({k: float(v[0]) for k, v in out.frame_checks().items()}) == []
