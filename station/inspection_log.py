@@ -97,7 +97,8 @@ class InspectionRecord:
     clipped_fraction: float | None = None
     dolp_level: float | None = None
     drift: str | None = None
-    """The drift warning in force when the part was judged (``station.drift.DriftMonitor``); None in range."""
+    """The drift warnings in force when the part was judged (``station.drift.DriftMonitor``, ``ViewMonitor``; "; "
+    between two); None in range."""
     highlight_fraction: float | None = None
     """Share of the part (0..1) the model found lit to full scale, and did not judge there; above 0.5 it judged the
     whole part. None when the model has no variation member or did not run."""

@@ -12,17 +12,13 @@ import numpy as np
 
 from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX, SIGNED_CHECKS, UNSEEN_LIMIT
 from station.decision import SECOND_NAME, Verdict
+from station.drift import VIEW_ADVICE, VIEW_WARN_MIN_PARTS, VIEW_WARN_SHARE
 from station.inspection_log import DECISIONS
 
 PERCENTILES = (50, 90, 99)
 NOISY_LINE_LEVEL = 1.5
 """Median ``noise_level`` from which the report warns: above the model's own renders' highest
 (``OWN_RENDERS_NOISE_LEVEL_MAX``)."""
-VIEW_WARN_SHARE = 0.05
-"""Share of the parts with ``unseen_fraction`` above which (``UNSEEN_LIMIT``: some of the part outside the model's
-view) the report warns, once ``VIEW_WARN_MIN_PARTS`` have the column: on development sets 0.7 % and 1.7 % of the
-parts of a square line had some, 10.8 % of a line turned 5 degrees (docs/results/2026-12-05-outside-view.md)."""
-VIEW_WARN_MIN_PARTS = 20
 
 REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("part bent (shape check)", ("bottom edge bends",)),
@@ -45,7 +41,7 @@ REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
 ``station.loop``, ``station.decision``, ``station.inspector`` and ``model.draem.frame_checks``; a test keeps each
 cause's words in that code; a score over threshold with a frame check beyond its limit counts as that check's cause;
 a part partly outside the model's view counts by what else its reason says: the share of such parts tells the line,
-``VIEW_WARN_SHARE``).
+``station.drift.VIEW_WARN_SHARE``).
 A reason matching none counts as "other"."""
 
 
@@ -172,8 +168,8 @@ def format_summary(s: LogSummary) -> str:
             lines.append(f"frames without a part: {c.get('none_empty', 0)} logged empty, {judged_empty} judged as a "
                          "part (presence check let them through)")
     if s.drift_parts:
-        lines.append(f"DRIFT: {s.drift_parts} part(s) judged while the frames were outside the model's trained "
-                     f"range; last warning: {s.last_drift}")
+        lines.append(f"DRIFT: {s.drift_parts} part(s) judged while a drift warning was in force (frames outside the "
+                     f"model's trained range, or parts outside its view); last warning: {s.last_drift}")
     for k, v in s.frame_checks.items():
         name = f"|{k}|" if k in SIGNED_CHECKS else k
         lines.append(f"{name}: median {v['median']:.3f}, p99 {v['p99']:.3f}, max {v['max']:.3f}")
@@ -184,9 +180,8 @@ def format_summary(s: LogSummary) -> str:
                      "line; lower the gain or station adapt on this line's good parts")
     if s.view_parts >= VIEW_WARN_MIN_PARTS and s.outside_view_parts > VIEW_WARN_SHARE * s.view_parts:
         lines.append(f"VIEW: {s.outside_view_parts} of {s.view_parts} parts lay partly outside the model's view as "
-                     f"registered (over {100 * VIEW_WARN_SHARE:g} %; judged from the frame's border there): the camera "
-                     "turned from square to the belt or parts off their place; mount the camera square "
-                     "(docs/bring-up.md)")
+                     f"registered (over {100 * VIEW_WARN_SHARE:g} %; judged from the frame's border there): "
+                     f"{VIEW_ADVICE}")
     return "\n".join(lines) + "\n"
 
 

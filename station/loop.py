@@ -45,7 +45,7 @@ from drivers.line_io import Trigger
 from model.draem.frame_checks import FRAME_CHECKS, beyond_limits
 from station.config import frame_delay_limit_ms
 from station.decision import Decision, Verdict, decide, join, late
-from station.drift import DriftMonitor
+from station.drift import DriftMonitor, ViewMonitor
 from station.frame_queue import Closed, FrameQueue
 from station.heap import CollectorPauses, frozen_heap
 from station.inspection_log import LOGGED_STATISTICS, InspectionLog, InspectionRecord
@@ -273,6 +273,9 @@ class Station:
         self.drift = drift
         """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
         logged when it starts and stops, kept in every row while it lasts, and shown in the viewer."""
+        self.view = ViewMonitor()
+        """How many of the last judged parts lay partly outside the model's view (``unseen_fraction``); its warning
+        is logged and kept in each row's ``drift`` as the drift monitor's is."""
         self.queue: FrameQueue[Part] = FrameQueue(queue_size, backpressure)
         self.viewer = viewer
         self.rejects = rejects
@@ -519,6 +522,10 @@ class Station:
                 change = self.drift.update(inspection.frame_stats)
                 if change:
                     log.warning("%s", change)
+            if "unseen_fraction" in inspection.checks and inspection.present:
+                change = self.view.update(inspection.checks["unseen_fraction"])
+                if change:
+                    log.warning("%s", change)
         elif part.error is None and (part.frame is not None or part.late_ms is not None):
             decision = late(late_ms, self.cycle_time_ms, "before the model could start")
         else:
@@ -614,7 +621,8 @@ class Station:
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path,
             **({k: getattr(inspection.frame_stats, k) for k in LOGGED_STATISTICS}
                if inspection is not None and inspection.frame_stats else {}),
-            drift=self.drift.warning if self.drift is not None else None,
+            drift="; ".join(w for w in (self.drift.warning if self.drift is not None else None, self.view.warning)
+                            if w) or None,
             **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks},
             second_score=second.score if second is not None else None, second_threshold=self.second_threshold,
             second_model_id=self.second_model_id, second_frame_id=companion.frame_id if companion is not None else None)

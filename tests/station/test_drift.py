@@ -217,3 +217,24 @@ def test_a_statistic_hovering_at_its_bound_does_not_repeat_the_warning() -> None
     back = mon.update(FrameStatistics(0.3, 0.6, 0.0, 0.1, 0.02, 0.2))
     assert back == "frames back in the trained range over the last 1 frames"
     assert mon.update(soft) is not None  # a new excursion is said again
+
+
+def test_view_monitor_warns_over_its_share_of_enough_parts_then_notes_the_return() -> None:
+    """Under 20 parts nothing is said; then over 5 % of the window partly outside the view warns once, and the share
+    falling back under it is noted (docs/results/2026-12-05-outside-view.md: square lines 0.7-1.7 %)."""
+    from station.drift import VIEW_WARN_MIN_PARTS, ViewMonitor
+
+    m = ViewMonitor(window=40)
+    said = [m.update(0.003 if i < 3 else 0.0) for i in range(VIEW_WARN_MIN_PARTS)]
+    assert said[:-1] == [None] * (VIEW_WARN_MIN_PARTS - 1)
+    assert said[-1] == ("view: 3 of the last 20 parts lay partly outside the model's view as registered (over 5 %): "
+                        "the camera turned from square to the belt or parts off their place: mount the camera square "
+                        "(docs/bring-up.md)")
+    assert m.update(0.0) is None and m.warning.startswith("view: 3 of the last 21")  # in force, said once
+    back = [m.update(0.0) for _ in range(40)]
+    assert [b for b in back if b] == ["parts back in the model's view over the last 40 parts"]
+    assert m.warning is None
+    m = ViewMonitor()
+    assert all(m.update(0.0) is None for _ in range(100)) and m.warning is None  # a square line: nothing
+    with pytest.raises(ValueError, match="at least 20"):
+        ViewMonitor(window=10)
