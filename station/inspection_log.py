@@ -123,9 +123,10 @@ class InspectionRecord:
     ``model.draem.frame_checks``). None when the model has no outline check, the edges were not seen, or the model
     did not run."""
     unseen_fraction: float | None = None
-    """The share of the part region the model's registration took from outside the frame (0-1; over
-    ``model.draem.frame_checks.UNSEEN_LIMIT`` the reason says the part lies partly outside the model's view: a camera
-    turned from square, a part off its place). None when the model did not run."""
+    """The share of the part region the model's registration took from outside the frame (0-1; above
+    ``model.draem.frame_checks.UNSEEN_LIMIT``, 0, a reject's reason says the part lay partly outside the model's view:
+    a camera turned from square, a part off its place). None without a variation model or when the model did not
+    run."""
 
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:

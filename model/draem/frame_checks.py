@@ -9,8 +9,8 @@ robust z over the shape check's threshold (signed; NaN, and left out of a predic
 ``edge_step`` how far the part's outline steps along its long edges, as the outline check's largest run z over its
 threshold (``model.draem.outline_check``; NaN and left out without the check), ``unseen_fraction`` the share of the
 part region the registration's warp took from outside the frame (0-1; ``model.draem.variation``: seen): a part
-turned or moved so far that some of it lies outside the model's view, where every check reads the frame's replicated
-border instead of the part."""
+turned or moved so far that some of it lies outside the model's view, where the window and the shape check read the
+frame's replicated border instead of the part (the outline check reads no column there)."""
 
 from __future__ import annotations
 
