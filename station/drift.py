@@ -126,6 +126,12 @@ VIEW_ADVICE = ("the camera turned from square to the belt or parts off their pla
                "(docs/bring-up.md)")
 
 
+def too_many_outside(outside: int, parts: int) -> bool:
+    """Whether ``outside`` of ``parts`` judged parts lying partly outside the model's view call for the view warning:
+    over ``VIEW_WARN_SHARE`` of at least ``VIEW_WARN_MIN_PARTS`` (``ViewMonitor``, ``station report``)."""
+    return parts >= VIEW_WARN_MIN_PARTS and outside > VIEW_WARN_SHARE * parts
+
+
 class ViewMonitor:
     """Rolling ``window`` of judged parts' ``unseen_fraction``; once ``VIEW_WARN_MIN_PARTS`` are in, ``update`` returns
     a warning when over ``VIEW_WARN_SHARE`` of them lay partly outside the model's view, and a note when the share is
@@ -140,7 +146,7 @@ class ViewMonitor:
     def update(self, unseen_fraction: float) -> str | None:
         self.window.append(unseen_fraction > UNSEEN_LIMIT)
         n, k = len(self.window), sum(self.window)
-        if n >= VIEW_WARN_MIN_PARTS and k > VIEW_WARN_SHARE * n:
+        if too_many_outside(k, n):
             started = self.warning is None
             self.warning = (f"view: {k} of the last {n} parts lay partly outside the model's view as registered "
                             f"(over {100 * VIEW_WARN_SHARE:g} %): {VIEW_ADVICE}")

@@ -12,7 +12,7 @@ import numpy as np
 
 from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX, SIGNED_CHECKS, UNSEEN_LIMIT
 from station.decision import SECOND_NAME, Verdict
-from station.drift import VIEW_ADVICE, VIEW_WARN_MIN_PARTS, VIEW_WARN_SHARE
+from station.drift import VIEW_ADVICE, VIEW_WARN_SHARE, too_many_outside
 from station.inspection_log import DECISIONS
 
 PERCENTILES = (50, 90, 99)
@@ -178,7 +178,7 @@ def format_summary(s: LogSummary) -> str:
         lines.append(f"NOISE: the frames' median noise level is {noise:.2f} times the model's good parts' (at most "
                      f"{OWN_RENDERS_NOISE_LEVEL_MAX} on its own renders): the camera is noisier than the model's "
                      "line; lower the gain or station adapt on this line's good parts")
-    if s.view_parts >= VIEW_WARN_MIN_PARTS and s.outside_view_parts > VIEW_WARN_SHARE * s.view_parts:
+    if too_many_outside(s.outside_view_parts, s.view_parts):
         lines.append(f"VIEW: {s.outside_view_parts} of {s.view_parts} parts lay partly outside the model's view as "
                      f"registered (over {100 * VIEW_WARN_SHARE:g} %; judged from the frame's border there): "
                      f"{VIEW_ADVICE}")

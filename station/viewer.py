@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from model.draem.frame_checks import UNSEEN_LIMIT
 from station.decision import Verdict
 
 DISPLAY_HZ = 30.0
@@ -172,7 +173,7 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
                 score += f"  edge bend {f.checks['edge_bend']:+.2f}"
             if "edge_step" in f.checks:
                 score += f"  edge step {f.checks['edge_step']:.2f}"
-            if f.checks.get("unseen_fraction", 0.0) > 0.0:
+            if f.checks.get("unseen_fraction", 0.0) > UNSEEN_LIMIT:
                 score += f"  outside view {100 * f.checks['unseen_fraction']:.2g} %"
             stats = "  ".join(f"{k} {v:.4g}" for k, v in f.stats.items())
             self.stats.setText(f"part {f.part_id}  {score}\n{f.reason or ''}\n{stats}")

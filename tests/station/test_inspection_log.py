@@ -204,7 +204,8 @@ def test_report_warns_when_more_than_a_few_parts_lay_partly_outside_the_models_v
     of the parts of two development sets). The report warns over ``VIEW_WARN_SHARE`` of the parts with the column,
     once ``VIEW_WARN_MIN_PARTS`` have it; a reject's cause is what else its reason says."""
     from model.draem.frame_checks import beyond_limits
-    from station.log_report import VIEW_WARN_MIN_PARTS, format_summary, reject_cause, summarize
+    from station.drift import VIEW_WARN_MIN_PARTS
+    from station.log_report import format_summary, reject_cause, summarize
 
     n = 40
     few = [0.002 if i == 0 else 0.0 for i in range(n)]  # 1 of 40: a square line's share
