@@ -258,24 +258,26 @@ def build_station(cfg: StationConfig, detector: DraemDetector, camera: Camera, l
         display_priors=("intensity", "dolp", "aolp") if viewer else (), presence=presence_check(cfg),
         statistics=drift is not None, bit_depth=cfg.priors.bit_depth, segments=detector.dome_segments,
         defect_pixels=defect_pixel_map(cfg), black_level=cfg.camera.black_level)
+    second_drift = None
     if second_detector is not None:
+        second_drift = drift_monitor(second_detector, "second_camera")
         inspector = PairInspector(inspector, Inspector(
             second_detector, cfg.priors.mosaic_layout(), cfg.priors.demosaic,
-            presence=presence_check(cfg, cfg.second_camera.presence_rule), bit_depth=cfg.priors.bit_depth,
-            defect_pixels=defect_pixel_map(cfg, second=True), black_level=cfg.second_camera.black_level),
-            cfg.second_camera.parallel)
+            presence=presence_check(cfg, cfg.second_camera.presence_rule), statistics=second_drift is not None,
+            bit_depth=cfg.priors.bit_depth, defect_pixels=defect_pixel_map(cfg, second=True),
+            black_level=cfg.second_camera.black_level), cfg.second_camera.parallel)
     return Station(camera, inspector, link, inspection_log, cycle_time_ms=cfg.acquisition.cycle_time_ms,
                    queue_size=cfg.acquisition.queue_size, backpressure=cfg.acquisition.backpressure,
                    grab_timeout_ms=cfg.camera.timeout_ms, max_frame_delay_ms=cfg.acquisition.max_frame_delay_ms,
-                   viewer=viewer, rejects=rejects, drift=drift)
+                   viewer=viewer, rejects=rejects, drift=drift, second_drift=second_drift)
 
 
-def drift_monitor(detector: DraemDetector) -> DriftMonitor | None:
+def drift_monitor(detector: DraemDetector, section: str = "camera") -> DriftMonitor | None:
     """A drift check against the frame statistics the model records (``station train``, ``station adapt``), or
-    None for a model that records none (said once in the log)."""
+    None for a model that records none (said once in the log); ``section`` the table of the camera it watches."""
     trained = trained_range(detector.meta)
     if trained is None:
         log.info("model %s records no frame statistics: no drift check (station adapt records them)",
                  detector.model_id)
         return None
-    return DriftMonitor(trained)
+    return DriftMonitor(trained, section=section)

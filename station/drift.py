@@ -4,7 +4,8 @@
 camera setting to turn. ``station run`` (``station.loop.Station``) updates it with every judged part in view, logs
 the text it returns, keeps the warning in force in each row's ``drift`` column and shows it in the viewer. Beside it,
 ``ViewMonitor`` watches how many parts lay partly outside the model's view (a camera turned from square), warned
-alike."""
+alike. ``CameraWatch`` holds one camera's pair of them: a station with a second camera watches each camera against its
+own model, the second's warnings named for it."""
 
 from __future__ import annotations
 
@@ -65,12 +66,15 @@ class DriftMonitor:
     windows, and leaves them widened by half the interquartile range far more rarely. ``update`` returns a warning
     text when the window leaves the range and when another statistic leaves it during the same excursion (a statistic
     that comes back and leaves again is not said twice), and a note when every statistic is back; ``warning`` is the
-    current state's text (None in range)."""
+    current state's text (None in range). ``section``: the station.toml table of the camera watched, named in the
+    advice ("[camera] exposure_us"; "second_camera" for the second camera's)."""
 
-    def __init__(self, trained: StatisticsRange, window: int = 50, min_frames: int = 10, margin: float = 0.5):
+    def __init__(self, trained: StatisticsRange, window: int = 50, min_frames: int = 10, margin: float = 0.5,
+                 section: str = "camera"):
         if window < 1 or not 1 <= min_frames <= window:
             raise ValueError(f"drift monitor: need 1 <= min_frames <= window, got {min_frames}, {window}")
         self.trained = trained
+        self.section = section
         self.window: deque[FrameStatistics] = deque(maxlen=window)
         self.min_frames = min_frames
         self.margin = margin
@@ -96,12 +100,16 @@ class DriftMonitor:
                 out.append((name, "low" if med < lo else "high", med))
         return out
 
+    def advice(self, name: str, side: str) -> str:
+        """What to turn when ``name`` is ``side`` ("low"|"high"): ``ADVICE``, its camera keys in this camera's table."""
+        return ADVICE[(name, side)].replace("[camera]", f"[{self.section}]")
+
     def update(self, stats: FrameStatistics) -> str | None:
         self.window.append(stats)
         out = self.outside()
         if out:
             text = "; ".join(f"{name} {med:.3f} outside trained {self.trained.q1[name]:.3f}.."
-                             f"{self.trained.q3[name]:.3f} ({ADVICE[(name, side)]})" for name, side, med in out)
+                             f"{self.trained.q3[name]:.3f} ({self.advice(name, side)})" for name, side, med in out)
             text = f"drift over the last {len(self.window)} frames: {text}"
             new = [o[:2] for o in out if o[:2] not in self._said]  # a statistic newly out in this excursion
             self.warning = text
@@ -155,3 +163,31 @@ class ViewMonitor:
             self.warning = None
             return f"parts back in the model's view over the last {n} parts"
         return None
+
+
+class CameraWatch:
+    """One camera's monitors: its drift against its model's trained frames (``drift``; None when the model records
+    none) and how many of its parts lay partly outside its model's view. ``name``: the camera's name put before each
+    text (None for the first camera, whose texts stand as they are)."""
+
+    def __init__(self, drift: DriftMonitor | None, name: str | None = None) -> None:
+        self.drift, self.view, self.name = drift, ViewMonitor(), name
+
+    def update(self, stats: FrameStatistics | None, checks: Mapping[str, float]) -> list[str]:
+        """A judged part in view: its frame's statistics (None when not computed) and its model's frame checks ->
+        the texts to log now (a warning starting or ending), each named for the camera."""
+        said = []
+        if self.drift is not None and stats is not None:
+            said.append(self.drift.update(stats))
+        if "unseen_fraction" in checks:
+            said.append(self.view.update(checks["unseen_fraction"]))
+        return [self._named(t) for t in said if t]
+
+    @property
+    def warning(self) -> str | None:
+        """The warnings in force, "; "-joined and named for the camera; None when none is."""
+        ws = [w for w in (self.drift.warning if self.drift is not None else None, self.view.warning) if w]
+        return "; ".join(self._named(w) for w in ws) or None
+
+    def _named(self, text: str) -> str:
+        return text if self.name is None else f"{self.name}: {text}"

@@ -45,7 +45,7 @@ from drivers.line_io import Trigger
 from model.draem.frame_checks import FRAME_CHECKS, beyond_limits
 from station.config import frame_delay_limit_ms
 from station.decision import Decision, Verdict, decide, join, late
-from station.drift import DriftMonitor, ViewMonitor
+from station.drift import CameraWatch, DriftMonitor
 from station.frame_queue import Closed, FrameQueue
 from station.heap import CollectorPauses, frozen_heap
 from station.inspection_log import LOGGED_STATISTICS, InspectionLog, InspectionRecord
@@ -248,7 +248,8 @@ class Station:
                  backpressure: str = "drop_oldest",
                  grab_timeout_ms: int = 1000, viewer: ViewerFeed | None = None,
                  rejects: RejectStore | None = None, settle_timeout_s: float = 2.0,
-                 drift: DriftMonitor | None = None, max_frame_delay_ms: float | None = None) -> None:
+                 drift: DriftMonitor | None = None, second_drift: DriftMonitor | None = None,
+                 max_frame_delay_ms: float | None = None) -> None:
         self.camera, self.inspector, self.link, self.log = camera, inspector, link, inspection_log
         self.threshold = inspector.detector.threshold if threshold is None else threshold
         second = inspector.second.detector if isinstance(inspector, PairInspector) else None
@@ -270,12 +271,12 @@ class Station:
             log.warning("line trigger without [acquisition] max_frame_delay_ms: a pulse the camera misses is caught "
                         "only when parts come more than the cycle time (%.0f ms) apart; set it below the part spacing "
                         "(docs/bring-up.md, step 8)", cycle_time_ms)
-        self.drift = drift
-        """Compares a rolling window of judged frames' statistics with the model's training range; its warning is
-        logged when it starts and stops, kept in every row while it lasts, and shown in the viewer."""
-        self.view = ViewMonitor()
-        """How many of the last judged parts lay partly outside the model's view (``unseen_fraction``); its warning
-        is logged and kept in each row's ``drift`` as the drift monitor's is."""
+        self.watches = [CameraWatch(drift)] + ([CameraWatch(second_drift, SECOND_NAME)] if second is not None else [])
+        """Per camera (the first, then the second's when there is one, ``second_drift`` its drift monitor), a rolling
+        window of its judged frames' statistics against its model's training range (``drift``: None, no check) and
+        how many of its last judged parts lay partly outside its model's view (``unseen_fraction``): their warnings
+        are logged when they start and stop, kept in every row's ``drift`` while they last (the second camera's named
+        for it), and shown in the viewer."""
         self.queue: FrameQueue[Part] = FrameQueue(queue_size, backpressure)
         self.viewer = viewer
         self.rejects = rejects
@@ -518,14 +519,10 @@ class Station:
             if decision.decision == Verdict.EMPTY and self.link.triggered:  # an announced part not seen: rejected,
                 decision = Decision(Verdict.REJECT, decision.reason)  # at the PLC and in its row
             inspection.timings_ms["decision"] = 1e3 * (time.perf_counter() - t)
-            if self.drift is not None and inspection.frame_stats is not None and inspection.present:
-                change = self.drift.update(inspection.frame_stats)
-                if change:
-                    log.warning("%s", change)
-            if "unseen_fraction" in inspection.checks and inspection.present:
-                change = self.view.update(inspection.checks["unseen_fraction"])
-                if change:
-                    log.warning("%s", change)
+            for watch, seen in zip(self.watches, (inspection, inspection.second), strict=False):
+                if seen is not None and seen.present:
+                    for change in watch.update(seen.frame_stats, seen.checks):
+                        log.warning("%s", change)
         elif part.error is None and (part.frame is not None or part.late_ms is not None):
             decision = late(late_ms, self.cycle_time_ms, "before the model could start")
         else:
@@ -621,8 +618,7 @@ class Station:
             ground_truth_present=gt.present if gt is not None else None, image_path=image_path,
             **({k: getattr(inspection.frame_stats, k) for k in LOGGED_STATISTICS}
                if inspection is not None and inspection.frame_stats else {}),
-            drift="; ".join(w for w in (self.drift.warning if self.drift is not None else None, self.view.warning)
-                            if w) or None,
+            drift="; ".join(w for w in (watch.warning for watch in self.watches) if w) or None,
             **{k: inspection.checks[k] for k in FRAME_CHECKS if inspection is not None and k in inspection.checks},
             second_score=second.score if second is not None else None, second_threshold=self.second_threshold,
             second_model_id=self.second_model_id, second_frame_id=companion.frame_id if companion is not None else None)

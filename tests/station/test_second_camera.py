@@ -18,7 +18,7 @@ from station.cli import main
 from station.config import ConfigError, parse_config
 from station.decision import Decision, Verdict, join
 from station.inspection_log import InspectionLog
-from station.inspector import Inspector
+from station.inspector import Inference, Inspector
 from station.loop import Station
 from station.presence import Presence, PresenceRule
 from station.reject_store import RejectStore
@@ -72,18 +72,20 @@ class SecondDetector(BrightnessDetector):
     threshold = 0.6
 
 
-def two_camera_station(tmp_path, first, second, n, second_detector=None, first_detector=None, parallel=True):
-    """``n`` announced parts; items 0/1 are good/defective as each camera sees the part, 'dark' no part in view."""
+def two_camera_station(tmp_path, first, second, n, second_detector=None, first_detector=None, parallel=True,
+                       **monitors):
+    """``n`` announced parts; items 0/1 are good/defective as each camera sees the part, 'dark' no part in view;
+    ``monitors``: the station's ``drift`` and ``second_drift``."""
     log = InspectionLog(tmp_path / "log.sqlite")
     rejects = RejectStore(tmp_path / "rejects")
     link = ScriptedLink(n, log=log)
     pair = CameraPair(ScriptedCamera(first, trigger="software"), SideCamera(second, trigger="software"),
                       max_skew_ms=1000.0)
-    inspector = PairInspector(Inspector(first_detector or BrightnessDetector(), IMX250MZR),
-                              Inspector(second_detector or SecondDetector(), IMX250MZR, presence=DarkIsEmpty()),
-                              parallel)
+    inspector = PairInspector(Inspector(first_detector or BrightnessDetector(), IMX250MZR, statistics=True),
+                              Inspector(second_detector or SecondDetector(), IMX250MZR, presence=DarkIsEmpty(),
+                                        statistics=True), parallel)
     station = Station(pair, inspector, link, log, cycle_time_ms=10_000.0, queue_size=16, backpressure="block",
-                      rejects=rejects)
+                      rejects=rejects, **monitors)
     return station, link, log
 
 
@@ -106,6 +108,42 @@ def test_a_part_only_the_second_camera_finds_defective_is_rejected_and_its_row_s
     # a defect only the second camera sees is a defective part's (part T1)
     assert [r["ground_truth_label"] for r in rows] == [0, 1, 1, 1]
     assert station.stats.confusion == {"good_pass": 1, "bad_reject": 3}
+
+
+def test_the_second_camera_is_watched_against_its_own_model_and_its_warnings_name_it(tmp_path, caplog):
+    """The side camera's light dims while the first camera's stays: the second camera's drift monitor warns once,
+    naming it and its own keys, the warning stays in each row's ``drift``, and no decision is made from it; parts
+    partly outside the second model's view warn as the first camera's do, named for it."""
+    from model.priors.frame_stats import FrameStatistics, StatisticsRange
+    from station.drift import DriftMonitor
+
+    class Turned(SecondDetector):
+        """The second model: every third part partly outside its view."""
+
+        calls = 0
+
+        def infer(self, priors):
+            Turned.calls += 1
+            return Inference(super().infer(priors).score, checks={"unseen_fraction": 0.01 * (Turned.calls % 3 == 0)})
+
+    bright = StatisticsRange.from_frames(FrameStatistics(0.78 + 0.01 * (i % 3), 0.785, 0.0, 0.0) for i in range(30))
+    dim = StatisticsRange.from_frames(FrameStatistics(0.078 + 0.001 * (i % 3), 0.0785, 0.0, 0.0) for i in range(30))
+    n = 30
+    station, link, log = two_camera_station(
+        tmp_path, [0] * n, [1] * 10 + [0] * 20, n, Turned(),
+        drift=DriftMonitor(dim, window=10, min_frames=5),  # the first camera's frames: code 20, as trained
+        second_drift=DriftMonitor(bright, window=10, min_frames=5, section="second_camera"))
+    station.run(max_parts=n)
+    rows = list(log.rows())
+    assert len(rows) == n and len(link.reports) == n
+    assert all(r["drift"] is None for r in rows[:14])  # 10 frames as trained, then 4 of 10 dim: the median holds
+    assert all(r["drift"].startswith("second camera: drift over the last 10 frames: median_level") and
+               "raise [second_camera] exposure_us" in r["drift"] for r in rows[14:])
+    assert all("second camera: view: " in r["drift"] for r in rows[19:])  # 6 of 20 parts partly outside its view
+    warned = [r.message for r in caplog.records if "second camera: " in r.message]
+    assert len(warned) == 2 and warned[0].startswith("second camera: drift") and "second camera: view" in warned[1]
+    assert not any(r.message.startswith("drift over") for r in caplog.records)  # the first camera: in range
+    assert [r["decision"] for r in rows] == ["reject"] * 10 + ["pass"] * 20  # by the scores alone
 
 
 def test_any_fault_of_the_second_camera_rejects_the_part(tmp_path):
@@ -181,6 +219,33 @@ def test_station_run_with_a_virtual_second_camera_showing_the_same_parts(tmp_pat
         assert (r["decision"] == "reject") == (r["score"] > 0.5 or r["second_score"] > 0.55)
     summary = json.loads((tmp_path / "s.json").read_text())
     assert summary["camera"]["second_camera"]["completed"] == 6 and summary["camera"]["second_camera"]["unpaired"] == 0
+
+
+def test_station_run_watches_the_second_camera_against_the_frames_its_own_model_records(tmp_path, capsys):
+    """``station run`` builds the second camera's drift monitor from its model's recorded frame statistics: frames
+    darker than those warn, named for the second camera and its keys; the first model records none (no check)."""
+    import torch
+
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+    from model.priors.frame_stats import FrameStatistics, StatisticsRange
+    from tests.station.test_run import make_dataset, make_model, write_config
+
+    side = tmp_path / "side" / "side"
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "center"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    brighter = StatisticsRange.from_frames(FrameStatistics(0.97 + 0.005 * (i % 3), 0.99, 0.0, 0.1) for i in range(9))
+    save_checkpoint(side, det, threshold=0.5, threshold_rule="test", train={"frame_statistics": brighter.to_dict()})
+    model, ds = make_model(tmp_path / "model" / "best"), make_dataset(tmp_path / "ds")
+    twin = make_dataset(tmp_path / "twin")
+    cfg = write_config(tmp_path, model, ds, f'[second_camera]\nenabled = true\nmodel = "{side}"\ndataset = "{twin}"\n'
+                                            'frame_rate_hz = 20.0\npresence_rule = "dolp_contrast"\n')
+    assert main(["run", "--camera", "sim", "--config", str(cfg), "--frames", "12"]) == 0
+    rows = list(InspectionLog(tmp_path / "log.sqlite", readonly=True).rows())
+    assert len(rows) == 12 and all(r["drift"] is None for r in rows[:9])  # 10 frames before the median is read
+    assert all(r["drift"].startswith("second camera: drift over the last") and "median_level" in r["drift"] and
+               "[second_camera] exposure_us" in r["drift"] for r in rows[9:])
 
 
 def test_a_twin_set_of_other_parts_stops_the_station_before_the_first_part(tmp_path, capsys):
