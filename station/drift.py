@@ -4,8 +4,8 @@
 camera setting to turn. ``station run`` (``station.loop.Station``) updates it with every judged part in view, logs
 the text it returns, keeps the warning in force in each row's ``drift`` column and shows it in the viewer. Beside it,
 ``ViewMonitor`` watches how many parts lay partly outside the model's view (a camera turned from square), warned
-alike. ``CameraWatch`` holds one camera's pair of them: a station with a second camera watches each camera against its
-own model, the second's warnings named for it."""
+alike. ``CameraWatch`` holds one camera's monitors: a station with a second camera watches its drift against its own
+model too, its warnings named for it."""
 
 from __future__ import annotations
 
@@ -167,11 +167,13 @@ class ViewMonitor:
 
 class CameraWatch:
     """One camera's monitors: its drift against its model's trained frames (``drift``; None when the model records
-    none) and how many of its parts lay partly outside its model's view. ``name``: the camera's name put before each
-    text (None for the first camera, whose texts stand as they are)."""
+    none) and, with ``view``, how many of its parts lay partly outside its model's view. ``name``: the camera's name
+    put before each text (None for the first camera, whose texts stand as they are). The station watches the second
+    camera's drift but not its view: ``VIEW_WARN_SHARE`` was read off the line camera's sets, and a camera looking
+    level at the part has not been measured (a warning on every square line would teach the line to ignore it)."""
 
-    def __init__(self, drift: DriftMonitor | None, name: str | None = None) -> None:
-        self.drift, self.view, self.name = drift, ViewMonitor(), name
+    def __init__(self, drift: DriftMonitor | None, name: str | None = None, view: bool = True) -> None:
+        self.drift, self.view, self.name = drift, ViewMonitor() if view else None, name
 
     def update(self, stats: FrameStatistics | None, checks: Mapping[str, float]) -> list[str]:
         """A judged part in view: its frame's statistics (None when not computed) and its model's frame checks ->
@@ -179,14 +181,14 @@ class CameraWatch:
         said = []
         if self.drift is not None and stats is not None:
             said.append(self.drift.update(stats))
-        if "unseen_fraction" in checks:
+        if self.view is not None and "unseen_fraction" in checks:
             said.append(self.view.update(checks["unseen_fraction"]))
         return [self._named(t) for t in said if t]
 
     @property
     def warning(self) -> str | None:
         """The warnings in force, "; "-joined and named for the camera; None when none is."""
-        ws = [w for w in (self.drift.warning if self.drift is not None else None, self.view.warning) if w]
+        ws = [w for w in (m.warning for m in (self.drift, self.view) if m is not None) if w]
         return "; ".join(self._named(w) for w in ws) or None
 
     def _named(self, text: str) -> str:

@@ -271,12 +271,14 @@ class Station:
             log.warning("line trigger without [acquisition] max_frame_delay_ms: a pulse the camera misses is caught "
                         "only when parts come more than the cycle time (%.0f ms) apart; set it below the part spacing "
                         "(docs/bring-up.md, step 8)", cycle_time_ms)
-        self.watches = [CameraWatch(drift)] + ([CameraWatch(second_drift, SECOND_NAME)] if second is not None else [])
-        """Per camera (the first, then the second's when there is one, ``second_drift`` its drift monitor), a rolling
-        window of its judged frames' statistics against its model's training range (``drift``: None, no check) and
-        how many of its last judged parts lay partly outside its model's view (``unseen_fraction``): their warnings
-        are logged when they start and stop, kept in every row's ``drift`` while they last (the second camera's named
-        for it), and shown in the viewer."""
+        self.watches = [CameraWatch(drift)] + ([CameraWatch(second_drift, SECOND_NAME, view=False)]
+                                               if second is not None else [])
+        """Per camera (the first, then the second when there is one, ``second_drift`` its drift monitor), a rolling
+        window of its judged frames' statistics against its model's training range (``drift``: None, no check) and,
+        the first camera's, how many of its last judged parts lay partly outside its model's view
+        (``unseen_fraction``; ``station.drift.CameraWatch`` says why not the second's): their warnings are logged
+        when they start and stop, kept in every row's ``drift`` while they last (the second camera's named for it),
+        and shown in the viewer."""
         self.queue: FrameQueue[Part] = FrameQueue(queue_size, backpressure)
         self.viewer = viewer
         self.rejects = rejects

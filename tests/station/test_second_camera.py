@@ -112,8 +112,8 @@ def test_a_part_only_the_second_camera_finds_defective_is_rejected_and_its_row_s
 
 def test_the_second_camera_is_watched_against_its_own_model_and_its_warnings_name_it(tmp_path, caplog):
     """The side camera's light dims while the first camera's stays: the second camera's drift monitor warns once,
-    naming it and its own keys, the warning stays in each row's ``drift``, and no decision is made from it; parts
-    partly outside the second model's view warn as the first camera's do, named for it."""
+    naming it and its own keys, the warning stays in each row's ``drift``, and no decision is made from it. Parts
+    partly outside the second model's view do not warn (``station.drift.CameraWatch``: unmeasured there)."""
     from model.priors.frame_stats import FrameStatistics, StatisticsRange
     from station.drift import DriftMonitor
 
@@ -139,9 +139,9 @@ def test_the_second_camera_is_watched_against_its_own_model_and_its_warnings_nam
     assert all(r["drift"] is None for r in rows[:14])  # 10 frames as trained, then 4 of 10 dim: the median holds
     assert all(r["drift"].startswith("second camera: drift over the last 10 frames: median_level") and
                "raise [second_camera] exposure_us" in r["drift"] for r in rows[14:])
-    assert all("second camera: view: " in r["drift"] for r in rows[19:])  # 6 of 20 parts partly outside its view
+    assert not any("view" in r["drift"] for r in rows[14:])  # 10 of 30 parts partly outside its view: not watched
     warned = [r.message for r in caplog.records if "second camera: " in r.message]
-    assert len(warned) == 2 and warned[0].startswith("second camera: drift") and "second camera: view" in warned[1]
+    assert len(warned) == 1 and warned[0].startswith("second camera: drift")
     assert not any(r.message.startswith("drift over") for r in caplog.records)  # the first camera: in range
     assert [r["decision"] for r in rows] == ["reject"] * 10 + ["pass"] * 20  # by the scores alone
 
