@@ -484,7 +484,8 @@ def run(args: argparse.Namespace) -> int:
         table += (f"\n\nTold where to look (station/told_where.py): the share of each type's defects whose "
                   f"residual at their own pixels lies above {100 * TOLD_WHERE_FALSE_REJECT:g} % of this split's good "
                   f"parts at the same pixels (the localised oracle, by either statistic: what the features show), "
-                  f"and the share the model caught at its validation threshold for the same share of good parts:\n\n"
+                  f"the share the model caught at its validation threshold for the same share of good parts, and "
+                  f"the image AUROC of the defects the features separate against all good parts:\n\n"
                   + markdown_table(where, TOLD_WHERE_COLUMNS))
     if detectors:
         table += ("\n\nImage AUROC by detector (networks: their mean score; variation: the registered variation "

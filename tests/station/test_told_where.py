@@ -28,6 +28,7 @@ def test_rows_per_type_count_only_masked_defects_and_say_what_the_model_caught(t
     assert [r["defects"] for r in rows] == [15, 8, 7]
     dent, scratch = rows[1], rows[2]
     assert dent["separable"] == 1.0 and dent["caught"] == 0.5 and dent["caught_of_separable"] == 0.5
+    assert dent["image_auroc_separable"] == 0.75  # 4 of the 8 separable dents above all 100 good parts, 4 tied
     assert scratch["separable"] <= 2 / 7 and scratch["caught"] == 0.0  # unchanged parts: at most chance
     assert per_part[:100] == [None] * 100 and per_part[-1] is None  # good parts, and the defect without a mask
     assert per_part[100:108] == [True] * 8 and sum(per_part[108:115]) == round(scratch["separable"] * 7)
