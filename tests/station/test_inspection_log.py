@@ -445,3 +445,15 @@ def test_a_command_that_cannot_write_its_output_says_so_in_one_line(tmp_path):
                            text=True)
         assert r.returncode == 2 and "Traceback" not in r.stderr
         assert len(r.stderr.strip().splitlines()) == 1 and r.stderr.startswith(first_line)
+
+
+def test_the_manuals_state_the_schema_version_the_log_writes() -> None:
+    """README and docs/inspection-log.md name the log's schema version: the one ``InspectionLog`` writes (the README
+    said 5 through three version bumps)."""
+    import re
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    readme = re.search(r"SQLite's `user_version` \((\d+)\)", (root / "README.md").read_text())
+    manual = re.search(r"SQLite's `user_version` \(now (\d+):", (root / "docs" / "inspection-log.md").read_text())
+    assert readme and manual and int(readme[1]) == int(manual[1]) == SCHEMA_VERSION
