@@ -128,8 +128,15 @@ above which the station and ``station report`` warn: on development sets 0.7 % a
 some, 1.0 % and 3.0 % of lines turned 2 and 3 degrees (where no more good parts were rejected than square), 8.0 %
 turned 4 degrees (2 more of 134 rejected), 10.8 % of a line turned 5 degrees
 (docs/results/2026-12-05-outside-view.md)."""
-VIEW_WARN_MIN_PARTS = 20
-"""Parts needed before the share is judged."""
+VIEW_WINDOW = 200
+"""Parts the station's share is taken over. A share is a count of few parts, so the window must be long enough that a
+square line's chance clusters stay under the share: over 5 % of 200 parts (11 or more) happens by chance in 0.07 % of
+windows of a line at 1.7 %, 4.0 % at 3 %, and is reached in 93 % of windows of a line turned 4 degrees (8 %),
+99.7 % turned 5 (binomial; docs/results/2026-12-06-view-window.md). A window of 50 warned on 5 % of a square line's
+windows."""
+VIEW_WARN_MIN_PARTS = 100
+"""Parts needed before the share is judged, by the station and by ``station report``: at 100, over 5 % (6 or more)
+happens by chance in 0.7 % of a line at 1.7 %, and is reached in 82 % of lines turned 4 degrees."""
 VIEW_ADVICE = ("the camera turned from square to the belt or parts off their place: mount the camera square "
                "(docs/bring-up.md)")
 
@@ -145,7 +152,7 @@ class ViewMonitor:
     a warning when over ``VIEW_WARN_SHARE`` of them lay partly outside the model's view, and a note when the share is
     back under it; ``warning`` is the current state's text (None while under)."""
 
-    def __init__(self, window: int = 50) -> None:
+    def __init__(self, window: int = VIEW_WINDOW) -> None:
         if window < VIEW_WARN_MIN_PARTS:
             raise ValueError(f"view monitor: need a window of at least {VIEW_WARN_MIN_PARTS} parts, got {window}")
         self.window: deque[bool] = deque(maxlen=window)

@@ -220,24 +220,25 @@ def test_a_statistic_hovering_at_its_bound_does_not_repeat_the_warning() -> None
 
 
 def test_view_monitor_warns_over_its_share_of_enough_parts_then_notes_the_return() -> None:
-    """Under 20 parts nothing is said; then over 5 % of the window partly outside the view warns once, and the share
-    falling back under it is noted (docs/results/2026-12-05-outside-view.md: square lines 0.7-1.7 %)."""
+    """Under ``VIEW_WARN_MIN_PARTS`` parts nothing is said; then over 5 % of the window partly outside the view warns
+    once, and the share falling back under it is noted (docs/results/2026-12-05-outside-view.md: square lines
+    0.7-1.7 %)."""
     from station.drift import VIEW_WARN_MIN_PARTS, ViewMonitor
 
-    m = ViewMonitor(window=40)
-    said = [m.update(0.003 if i < 3 else 0.0) for i in range(VIEW_WARN_MIN_PARTS)]
+    m = ViewMonitor(window=150)
+    said = [m.update(0.003 if i < 6 else 0.0) for i in range(VIEW_WARN_MIN_PARTS)]
     assert said[:-1] == [None] * (VIEW_WARN_MIN_PARTS - 1)
-    assert said[-1] == ("view: 3 of the last 20 parts lay partly outside the model's view as registered (over 5 %): "
+    assert said[-1] == ("view: 6 of the last 100 parts lay partly outside the model's view as registered (over 5 %): "
                         "the camera turned from square to the belt or parts off their place: mount the camera square "
                         "(docs/bring-up.md)")
-    assert m.update(0.0) is None and m.warning.startswith("view: 3 of the last 21")  # in force, said once
-    back = [m.update(0.0) for _ in range(40)]
-    assert [b for b in back if b] == ["parts back in the model's view over the last 40 parts"]
+    assert m.update(0.0) is None and m.warning.startswith("view: 6 of the last 101")  # in force, said once
+    back = [m.update(0.0) for _ in range(150)]
+    assert [b for b in back if b] == ["parts back in the model's view over the last 120 parts"]  # 6 of 120: 5 %
     assert m.warning is None
     m = ViewMonitor()
-    assert all(m.update(0.0) is None for _ in range(100)) and m.warning is None  # a square line: nothing
-    with pytest.raises(ValueError, match="at least 20"):
-        ViewMonitor(window=10)
+    assert all(m.update(0.0) is None for _ in range(300)) and m.warning is None  # a square line: nothing
+    with pytest.raises(ValueError, match="at least 100"):
+        ViewMonitor(window=50)
 
 
 def test_a_second_cameras_watch_names_the_camera_and_its_own_keys() -> None:
@@ -259,11 +260,28 @@ def test_a_second_cameras_watch_names_the_camera_and_its_own_keys() -> None:
     assert first.update(dark, {}) == []  # one frame: too few
     assert "raise [camera] exposure_us" in first.update(dark, {})[0]  # the first camera's text as before
     assert first.warning.startswith("drift over the last 2 frames")
-    for _ in range(20):  # parts partly outside its view: not watched (its share is unmeasured on such a camera)
+    for _ in range(100):  # parts partly outside its view: not watched (its share is unmeasured on such a camera)
         assert second.update(dark, {"unseen_fraction": 0.01}) == []
     assert second.warning.count("second camera: ") == 1 and "view" not in second.warning
     back = [t for _ in range(4) for t in second.update(FrameStatistics(0.5, 0.6, 0.0, 0.1), {})]
     assert back == ["second camera: frames back in the trained range over the last 4 frames"]
     watch = CameraWatch(None)  # a model that records no frame statistics: the view is still watched, unnamed
-    said = [t for _ in range(20) for t in watch.update(dark, {"unseen_fraction": 0.01})]
-    assert len(said) == 1 and said[0].startswith("view: 20 of the last 20") and watch.warning == said[0]
+    said = [t for _ in range(100) for t in watch.update(dark, {"unseen_fraction": 0.01})]
+    assert len(said) == 1 and said[0].startswith("view: 100 of the last 100") and watch.warning == said[0]
+
+
+def test_a_square_lines_few_parts_outside_the_view_do_not_warn() -> None:
+    """A square line has a few parts partly outside the model's view (0.7-1.7 % on two development sets): clustered
+    as chance clusters them, they must not warn. Seen in a station run on a square line's validation parts: 2 of its
+    first 32 parts, 3 of 50, warned "mount the camera square" (the rule was then over 5 % of at least 20 parts of a
+    window of 50: on a line at 1.7 % about 5 % of windows of 50, and up to 14 % of the first 39 parts). A line turned 4
+    degrees (8 % of its parts) still warns."""
+    from station.drift import ViewMonitor
+
+    square = {5, 25, 65, 70, 95, 130, 160, 190, 260, 330}  # 10 of 400 (2.5 %), two in the first 26, five in 100
+    m = ViewMonitor()
+    said = [m.update(0.002 if i in square else 0.0) for i in range(400)]
+    assert not any(said) and m.warning is None
+    m = ViewMonitor()
+    turned = [m.update(0.002 if i % 12 == 0 else 0.0) for i in range(200)]  # 8.3 % of the parts
+    assert sum(t is not None for t in turned) == 1 and m.warning is not None

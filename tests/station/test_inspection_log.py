@@ -207,9 +207,9 @@ def test_report_warns_when_more_than_a_few_parts_lay_partly_outside_the_models_v
     from station.drift import VIEW_WARN_MIN_PARTS
     from station.log_report import format_summary, reject_cause, summarize
 
-    n = 40
-    few = [0.002 if i == 0 else 0.0 for i in range(n)]  # 1 of 40: a square line's share
-    many = [0.002 if i % 8 == 0 else 0.0 for i in range(n)]  # 5 of 40: 12.5 %
+    n = 120
+    few = [0.002 if i in (0, 7, 30) else 0.0 for i in range(n)]  # 3 of 120: a square line's share
+    many = [0.002 if i % 8 == 0 else 0.0 for i in range(n)]  # 15 of 120: 12.5 %
     with InspectionLog(tmp_path / "log.sqlite") as log:
         log.append([rec(i, unseen_fraction=u) for i, u in enumerate(few)] + [rec(n)])
         square = summarize(log.rows())
@@ -217,10 +217,10 @@ def test_report_warns_when_more_than_a_few_parts_lay_partly_outside_the_models_v
         log.append([rec(i, unseen_fraction=u) for i, u in enumerate(many)])
         turned = summarize(log.rows())
         early = summarize(list(log.rows())[:VIEW_WARN_MIN_PARTS - 1])
-    assert (square.outside_view_parts, square.view_parts) == (1, n)  # the row without the column left out
+    assert (square.outside_view_parts, square.view_parts) == (3, n)  # the row without the column left out
     assert "VIEW" not in format_summary(square)
-    assert "VIEW: 5 of 40 parts lay partly outside the model's view" in format_summary(turned)
-    assert early.outside_view_parts == 3 and "VIEW" not in format_summary(early)  # too few parts to tell a line
+    assert "VIEW: 15 of 120 parts lay partly outside the model's view" in format_summary(turned)
+    assert early.outside_view_parts == 13 and "VIEW" not in format_summary(early)  # too few parts to tell a line
     assert turned.frame_checks["unseen_fraction"]["max"] == pytest.approx(0.002)
     both = "; ".join(["score 0.99 > threshold 0.98", *beyond_limits({"edge_bend": 3.0, "unseen_fraction": 0.002})])
     assert reject_cause(both) == "part bent (shape check)"

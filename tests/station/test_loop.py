@@ -666,12 +666,12 @@ def test_drift_from_the_trained_brightness_is_logged_per_part_and_warned_once(tm
 
 
 def test_parts_partly_outside_the_models_view_warn_once_and_the_warning_stays_in_each_row(tmp_path, caplog):
-    """A turned camera puts some of many parts outside the model's view (``unseen_fraction`` > 0): once 20 parts are
+    """A turned camera puts some of many parts outside the model's view (``unseen_fraction`` > 0): once 100 parts are
     judged and over 5 % of them had some, the station warns once and keeps the warning in each row's ``drift``."""
     from station.log_report import format_summary, summarize
 
     class Turned(BrightnessDetector):
-        """Every fourth part partly outside the view, as on a line turned 5 degrees (10.8 % of its parts)."""
+        """Every fourth part partly outside the view."""
 
         calls = 0
 
@@ -680,15 +680,16 @@ def test_parts_partly_outside_the_models_view_warn_once_and_the_warning_stays_in
             Turned.calls += 1
             return Inference(out.score, checks={"unseen_fraction": 0.002 if Turned.calls % 4 == 0 else 0.0})
 
-    station, log = make_station(tmp_path, ScriptedCamera([0] * 30), Turned(), queue_size=32, backpressure="block")
-    station.run(max_parts=30)
+    n = 120
+    station, log = make_station(tmp_path, ScriptedCamera([0] * n), Turned(), queue_size=32, backpressure="block")
+    station.run(max_parts=n)
     rows = list(log.rows())
     assert [r["unseen_fraction"] for r in rows[:4]] == [0.0, 0.0, 0.0, 0.002]
-    assert all(r["drift"] is None for r in rows[:19])  # too few parts to tell a line
-    assert all(r["drift"].startswith("view: ") and "mount the camera square" in r["drift"] for r in rows[19:])
+    assert all(r["drift"] is None for r in rows[:99])  # too few parts to tell a line
+    assert all(r["drift"].startswith("view: ") and "mount the camera square" in r["drift"] for r in rows[99:])
     assert sum(r.message.startswith("view: ") for r in caplog.records) == 1
     assert all(r["decision"] == "pass" for r in rows)  # it changes no decision
-    assert "VIEW: 7 of 30 parts lay partly outside" in format_summary(summarize(log.rows()))
+    assert "VIEW: 30 of 120 parts lay partly outside" in format_summary(summarize(log.rows()))
     log.close()
 
 

@@ -1,4 +1,5 @@
-"""Image AUROC of the defects the optics show, from the shipped file's report (docs/results/2026-12-06-visible-auroc.md).
+"""Image AUROC of the defects the optics show, from the shipped file's report
+(docs/results/2026-12-06-visible-auroc.md).
 
 Reads ``model/weights/default-eval/scores.csv`` (``station eval`` on held-out seed 1194: each part's decision score,
 label, type and whether the localised oracle separates it, ``separable``) and prints, per type, the image AUROC of the
@@ -13,8 +14,8 @@ from model.draem.metrics import auroc
 
 rows = list(csv.DictReader(open("model/weights/default-eval/scores.csv")))
 good = np.array([float(r["score"]) for r in rows if r["label"] == "0"])
-print(f"{len(good)} good parts\n\n| type | shown (separable): defects | image AUROC | not shown: defects | image AUROC |\n"
-      "|---|---|---|---|---|")
+print(f"{len(good)} good parts\n\n| type | shown (separable): defects | image AUROC | not shown: defects "
+      "| image AUROC |\n|---|---|---|---|---|")
 for t in ("all", "chip", "dent", "missing_stud", "scratch", "stain"):
     cells = []
     for sep in ("1", "0"):
