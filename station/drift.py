@@ -177,7 +177,8 @@ class CameraWatch:
     none) and, with ``view``, how many of its parts lay partly outside its model's view. ``name``: the camera's name
     put before each text (None for the first camera, whose texts stand as they are). The station watches the second
     camera's drift but not its view: ``VIEW_WARN_SHARE`` was read off the line camera's sets, and a camera looking
-    level at the part has not been measured (a warning on every square line would teach the line to ignore it)."""
+    level at the part has more on a square line (4-6 of 60 parts with a small side file: it would warn on every
+    two-camera line, which would teach the line to ignore it; docs/results/2026-12-06-side-drift.md)."""
 
     def __init__(self, drift: DriftMonitor | None, name: str | None = None, view: bool = True) -> None:
         self.drift, self.view, self.name = drift, ViewMonitor() if view else None, name
