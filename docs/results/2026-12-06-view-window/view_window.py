@@ -16,3 +16,22 @@ print("| parts in the window | warns at | " + " | ".join(RATES) + " |\n|---|---|
 for n in (20, 30, 39, 50, 100, 150, 200):
     k = math.floor(0.05 * n) + 1
     print(f"| {n} | {k} or more | " + " | ".join(f"{100 * binom.sf(k - 1, n, p):.2f} %" for p in RATES.values()) + " |")
+
+# the plot: chance of a warning against the parts in the window, both rules' thresholds
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ns = np.arange(20, 301)
+fig, ax = plt.subplots(figsize=(6.4, 3.6))
+for name, p in RATES.items():
+    ax.plot(ns, [binom.sf(math.floor(0.05 * n), n, p) for n in ns], label=name)
+for n, text in ((50, "stop 111: 50"), (200, "stop 112: 200")):
+    ax.axvline(n, color="grey", ls=":", lw=1)
+    ax.text(n + 3, 3e-4, text, fontsize=7, rotation=90, va="center")
+ax.set(xlabel="parts in the window", ylabel="chance the window warns (over 5 %)", yscale="log", ylim=(1e-5, 1.5),
+       title="the view warning: a square line's chance clusters against a turned line")
+ax.legend(fontsize=7, loc="lower right")
+fig.savefig("docs/results/2026-12-06-view-window.png", dpi=110, bbox_inches="tight")
