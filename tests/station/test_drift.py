@@ -260,7 +260,7 @@ def test_a_second_cameras_watch_names_the_camera_and_its_own_keys() -> None:
     assert first.update(dark, {}) == []  # one frame: too few
     assert "raise [camera] exposure_us" in first.update(dark, {})[0]  # the first camera's text as before
     assert first.warning.startswith("drift over the last 2 frames")
-    for _ in range(100):  # parts partly outside its view: not watched (its share is unmeasured on such a camera)
+    for _ in range(100):  # parts partly outside its view: not watched (a level camera's square line has more)
         assert second.update(dark, {"unseen_fraction": 0.01}) == []
     assert second.warning.count("second camera: ") == 1 and "view" not in second.warning
     back = [t for _ in range(4) for t in second.update(FrameStatistics(0.5, 0.6, 0.0, 0.1), {})]

@@ -113,7 +113,7 @@ def test_a_part_only_the_second_camera_finds_defective_is_rejected_and_its_row_s
 def test_the_second_camera_is_watched_against_its_own_model_and_its_warnings_name_it(tmp_path, caplog):
     """The side camera's light dims while the first camera's stays: the second camera's drift monitor warns once,
     naming it and its own keys, the warning stays in each row's ``drift``, and no decision is made from it. Parts
-    partly outside the second model's view do not warn (``station.drift.CameraWatch``: unmeasured there)."""
+    partly outside the second model's view do not warn (``station.drift.CameraWatch`` says why)."""
     from model.priors.frame_stats import FrameStatistics, StatisticsRange
     from station.drift import DriftMonitor
 
