@@ -1,7 +1,8 @@
 """``station capture``: record raw mosaics from the camera of ``station.toml`` (or ``--camera``) into the MVTec AD
 layout, with the camera's settings, timestamps and brightness statistics (``station.capture``). With ``--model``
 the statistics are compared with the range the model was trained (or adapted) on. With ``[second_camera]``, the
-second camera's frames go to ``--second-out``, a twin folder."""
+second camera's frames go to ``--second-out``, a twin folder, and with ``--second-model`` its statistics are compared
+with that model's range."""
 
 from __future__ import annotations
 
@@ -26,6 +27,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--second-out", default=None, metavar="DIR",
                    help="with [second_camera] enabled: the second camera's frames, a twin folder of --out (the same "
                         "names for the same parts; station split reads the two after station import)")
+    p.add_argument("--second-model", default=None,
+                   help="with [second_camera] enabled: the second camera's checkpoint whose trained frame statistics "
+                        "to compare its frames with (default: none)")
     p.set_defaults(func=run)
 
 
@@ -43,17 +47,7 @@ def run(args: argparse.Namespace) -> int:
     if cfg.priors.angles_deg is not None:
         raise UserError(f"{cfg.source}: [priors] angles_deg (a custom layout) cannot be recorded for import yet; "
                         f"use a named layout")
-    monitor = None
-    if args.model:
-        from model.draem.checkpoint import read_sidecar
-        from station.drift import DriftMonitor, trained_range
-
-        trained = trained_range(read_sidecar(args.model))
-        if trained is None:
-            print(f"{args.model}: no frame statistics recorded (trained before they were): nothing to compare")
-        else:
-            print(f"{args.model} was trained on: {trained.describe()}")
-            monitor = DriftMonitor(trained, window=min(50, args.frames), min_frames=min(10, args.frames))
+    monitor = _monitor(args.model, args.frames) if args.model else None
     keys = ("kind", "device", "pixel_format", "exposure_us", "gain_db", "width", "height", "offset_x", "offset_y",
             "trigger", "dome_segments")
     settings = {k: getattr(cfg.camera, k) for k in keys}
@@ -62,6 +56,9 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"{cfg.source}: [second_camera] is enabled: name --second-out DIR for its frames (a twin "
                         "folder of --out)" if second else
                         f"--second-out {args.second_out}: {cfg.source} has no [second_camera] enabled")
+    if args.second_model and not second:
+        raise UserError(f"--second-model {args.second_model}: {cfg.source} has no [second_camera] enabled")
+    second_monitor = _monitor(args.second_model, args.frames, "second camera") if args.second_model else None
     defect_pixel_map(cfg)  # a map that cannot be read is one line naming the key, before the camera opens
     if second:
         defect_pixel_map(cfg, second=True)
@@ -81,7 +78,29 @@ def run(args: argparse.Namespace) -> int:
     print(report.describe())
     if monitor is not None and monitor.warning:
         print(f"warning: {monitor.warning}")
+    if second_monitor is not None and report.second is not None:
+        for stats in report.second.stats:  # compared after the capture: the first camera's warnings come as it runs
+            second_monitor.update(stats)
+        if second_monitor.warning:
+            print(f"warning: second camera: {second_monitor.warning}")
     return 0
+
+
+def _monitor(model: str, frames: int, camera: str | None = None):
+    """A ``station.drift.DriftMonitor`` over ``frames`` captured frames against the frame statistics ``model``
+    records, saying what it compares with; None when the model records none. ``camera``: "second camera" for the
+    second camera's (its advice names ``[second_camera]``'s keys)."""
+    from model.draem.checkpoint import read_sidecar
+    from station.drift import DriftMonitor, trained_range
+
+    trained = trained_range(read_sidecar(model))
+    named = f"{camera}: " if camera else ""
+    if trained is None:
+        print(f"{named}{model}: no frame statistics recorded (trained before they were): nothing to compare")
+        return None
+    print(f"{named}{model} was trained on: {trained.describe()}")
+    return DriftMonitor(trained, window=min(50, frames), min_frames=min(10, frames),
+                        section="second_camera" if camera else "camera")
 
 
 def _warn(text: str | None) -> None:

@@ -172,3 +172,31 @@ def test_a_twin_capture_that_fails_on_the_second_camera_leaves_both_folders_twin
     assert main([*args, "--frames", "2"]) == 0  # the pair takes the next parts
     for d in (out, side):
         assert len(list((d / "train" / "good").iterdir())) == 4
+
+
+def test_capture_compares_the_second_cameras_frames_with_its_own_models_range(tmp_path: Path, capsys) -> None:
+    """``--second-model``: the second camera's captured frames against the range its model records, said for that
+    camera and its keys; the first camera's against its own (``--model``) stays quiet where its frames are as
+    adapted. Without a second camera the option is one line naming it."""
+    base = make_line_set(tmp_path / "base", 20)
+    assert main(["adapt", "--model", str(make_model(tmp_path / "m" / "best")), "--good", str(base), "--out",
+                 str(tmp_path / "m" / "adapted")]) == 0
+    adapted = str(tmp_path / "m" / "adapted")
+    ds = make_line_set(tmp_path / "ds", 20)
+    dark = make_line_set(tmp_path / "dark", 20, gain=0.5)  # the second camera's frames: half as bright
+    cfg = write_config(tmp_path, adapted, ds, f'[second_camera]\nenabled = true\nmodel = "{adapted}"\n'
+                                              f'dataset = "{dark}"\npresence_rule = "dolp_contrast"\n')
+    capsys.readouterr()
+    assert main(["capture", "--camera", "sim", "--config", str(cfg), "--frames", "12", "--out", str(tmp_path / "cap"),
+                 "--second-out", str(tmp_path / "cap-side"), "--model", adapted, "--second-model", adapted]) == 0
+    out = capsys.readouterr().out
+    assert f"second camera: {adapted} was trained on: median_level" in out
+    warnings = [line for line in out.splitlines() if line.startswith("warning: ")]
+    assert len(warnings) == 1 and warnings[0].startswith("warning: second camera: drift over the last 12 frames")
+    assert "raise [second_camera] exposure_us" in warnings[0]
+    (tmp_path / "one").mkdir()
+    one = write_config(tmp_path / "one", adapted, ds)
+    assert main(["capture", "--camera", "sim", "--config", str(one), "--frames", "2", "--out", str(tmp_path / "c2"),
+                 "--second-model", adapted]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--second-model" in err[0] and "no [second_camera] enabled" in err[0]
