@@ -7,6 +7,10 @@ with that model's range."""
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from station.drift import DriftMonitor
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -86,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _monitor(model: str, frames: int, camera: str | None = None):
+def _monitor(model: str, frames: int, camera: str | None = None) -> DriftMonitor | None:
     """A ``station.drift.DriftMonitor`` over ``frames`` captured frames against the frame statistics ``model``
     records, saying what it compares with; None when the model records none. ``camera``: "second camera" for the
     second camera's (its advice names ``[second_camera]``'s keys)."""
