@@ -1,8 +1,9 @@
 """Run time against error for the whole station: the real loop on held-out rendered parts over a grid of settings.
 
-For each configuration (demosaic method x model checkpoint x precision x presence check on/off x prior set and
-early exit of a per-prior ensemble) a ``station.loop.Station`` inspects ``--parts`` parts from the virtual camera
-(the dataset's test split, never trained on; the same frames in the same order for every configuration;
+For each configuration (demosaic method x model checkpoint x precision x presence check on/off x drift monitors
+on/off x prior set and early exit of a per-prior ensemble) a ``station.loop.Station`` inspects ``--parts`` parts from
+the virtual camera (the dataset's test split, never trained on; the same frames in the same order for every
+configuration;
 ``--empty-rate`` of them show no part, which needs a set rendered with ``station render --empty-rate``),
 free-running as fast as processing allows (backpressure ``block``, no PLC), and logs to a temporary SQLite file.
 A model that reads a frame per dome segment (photometric stereo) gets each part's frames, triggered one by one as
@@ -21,7 +22,10 @@ From the log:
   of the set, and the station computes only their priors (no normal network without the normal prior); a fused
   model is one prior set (its own), so a fused ablation is one checkpoint per set in ``--models``;
 - the presence check against ground truth: the fraction of empty frames skipped (logged "empty", model not run)
-  and of frames showing a part wrongly skipped; and the check's own time per frame (p50).
+  and of frames showing a part wrongly skipped; and the check's own time per frame (p50);
+- drift monitors (``--drift``, on by default as ``station run`` has them): each camera's frame statistics, computed
+  with its priors (in ``priors_ms``) when its model records the range to compare them with; the row's ``drift`` says
+  on, partly (one camera's model records none) or off.
 
 With ``--second-model`` and ``--second-data`` (the twin set of ``--data``, seen by the second camera), every
 configuration is a two-camera station (``[second_camera]``): both virtual cameras triggered per part, the second one's
@@ -60,6 +64,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "members the model lacks are skipped); fused models run their own priors")
     p.add_argument("--presence", default="on", help="presence check before the model: on, off, or on,off "
                    "(thresholds as [presence] in station.toml's defaults)")
+    p.add_argument("--drift", default="on",
+                   help="drift monitors: each camera's frame statistics against the range its model records, as "
+                        "station run computes them (on; a model that records none has none), off, or on,off")
     p.add_argument("--parts", type=positive_int, default=200, help="frames per configuration")
     p.add_argument("--defect-rate", type=float, default=0.5, help="fraction of the parts shown that are defective")
     p.add_argument("--empty-rate", type=float, default=0.0,
@@ -78,10 +85,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
             device: str, presence: bool = True, empty_rate: float = 0.0, early_exit: float | None = None,
             members: tuple[str, ...] | None = None, second: tuple[str, str] | None = None,
-            parallel: bool = True) -> dict:
+            parallel: bool = True, drift: bool = True) -> dict:
     """One configuration through the real station loop; returns its row. ``second``: (checkpoint, twin set) of a
     second camera (module docstring), judged at the same time as the first (``parallel``) or after it; None: one
-    camera."""
+    camera. ``drift``: each camera's frame statistics computed and watched as ``station run`` does
+    (``station.assembly.drift_monitor``)."""
     from collections.abc import Mapping
     from typing import Any
 
@@ -93,6 +101,7 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from model.priors import get_layout
     from model.priors.photometric import frames_per_part
     from sim.dataset import open_dataset
+    from station.assembly import drift_monitor
     from station.config import PresenceConfig
     from station.inspection_log import InspectionLog
     from station.inspector import Inspector
@@ -143,14 +152,18 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     with tempfile.TemporaryDirectory() as tmp, InspectionLog(Path(tmp) / "log.sqlite") as log:
         camera.open()
         try:
+            monitor = drift_monitor(detector) if drift else None
             inspector: Inspector | PairInspector = Inspector(detector, layout, method, presence=check,
-                                                             segments=detector.dome_segments)
+                                                             segments=detector.dome_segments,
+                                                             statistics=monitor is not None)
+            second_monitor = None
             if second_detector is not None:
                 second_check = PresenceCheck.from_config(cfg, PresenceRule.ROW_CONTRAST) if presence else None
-                inspector = PairInspector(inspector, Inspector(second_detector, layout, method, presence=second_check),
-                                          parallel)
+                second_monitor = drift_monitor(second_detector, "second_camera") if drift else None
+                inspector = PairInspector(inspector, Inspector(second_detector, layout, method, presence=second_check,
+                                                               statistics=second_monitor is not None), parallel)
             station = Station(camera, inspector, NoLink(), log, cycle_time_ms=1e6, queue_size=1, backpressure="block",
-                              grab_timeout_ms=10000)
+                              grab_timeout_ms=10000, drift=monitor, second_drift=second_monitor)
             t = time.perf_counter()
             stats = station.run(parts, progress_every_s=1e9)
             seconds = time.perf_counter() - t
@@ -174,6 +187,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
             "model": detector.model_id, "fusion": detector.config.fusion,
             "priors": "+".join(detector.used_priors), "method": method, "precision": precision,
             "presence": "on" if presence else "off",
+            "drift": ("on" if monitor is not None and (second is None or second_monitor is not None)
+                      else "partly" if monitor is not None or second_monitor is not None else "off"),
             "early_exit": "off" if early_exit is None else "exact" if early_exit == 0 else f"margin {early_exit:g}",
             "members_per_part": detector.members_run / len(model_ms) if model_ms else float("nan"),
             "parts": len(rows), "empty_frames": n_empty,
@@ -205,7 +220,7 @@ def label(r: dict) -> str:
     ck = Path(r.get("checkpoint") or r["model"].split("-")[0])
     name = ck.parent.name if ck.name in ("best", "last") else ck.name  # runs/train/<name>/best
     return (f"{name}/{r['priors']}/{r['method']}/{r['precision']}/"
-            f"presence {r.get('presence', 'off')}{ee}")
+            f"presence {r.get('presence', 'off')}{ee}{'/drift off' if r.get('drift') == 'off' else ''}")
 
 
 def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
@@ -272,23 +287,24 @@ def run(args: argparse.Namespace) -> int:
     pair_modes = args.pair_modes.split(",") if second else ["first-only"]
     if any(m not in PAIR_MODES for m in pair_modes):
         raise UserError(f"--pair-modes: {args.pair_modes!r}: comma-separated {', '.join(PAIR_MODES)}")
-    presence = args.presence.split(",")
-    bad = [p for p in presence if p not in ("on", "off")]
-    if bad:
-        raise UserError(f"--presence: {bad[0]!r} is not on or off")
+    presence, drift = args.presence.split(","), args.drift.split(",")
+    for name, values in (("--presence", presence), ("--drift", drift)):
+        bad = [v for v in values if v not in ("on", "off")]
+        if bad:
+            raise UserError(f"{name}: {bad[0]!r} is not on or off")
     exits = [_margin(e) for e in args.early_exit.split(",")]
     models = args.models.split(",")
     cfgs = {m: read_sidecar(m)["model"] for m in models}  # each sidecar read once
     members = {(m, s): _members(cfgs[m], s) for m in models for s in args.prior_sets.split(",")}
-    grid = [(m, meth, prec, pres, ee, mem, pm) for m in models for meth in args.methods.split(",")
+    grid = [(m, meth, prec, pres, ee, mem, pm, dr) for m in models for meth in args.methods.split(",")
             for prec in args.precisions.split(",") for pres in presence for ee in exits
             for mem in dict.fromkeys(v for (mm, _), v in members.items() if mm == m and v is not False)
-            for pm in pair_modes if ee is None or cfgs[m].get("fusion") == "ensemble"]
+            for pm in pair_modes for dr in drift if ee is None or cfgs[m].get("fusion") == "ensemble"]
     rows = []
-    for model, method, precision, pres, ee, mem, pm in tqdm(grid, desc="bench pipeline", unit="config"):
+    for model, method, precision, pres, ee, mem, pm, dr in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
                             args.device, pres == "on", args.empty_rate, ee, mem,
-                            None if pm == "first-only" else second, pm == "parallel"))
+                            None if pm == "first-only" else second, pm == "parallel", dr == "on"))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
@@ -296,7 +312,7 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
     cols = ["checkpoint", *(["second_checkpoint", "pair_mode"] if second else []), "fusion", "priors",
-            "method", "precision", "presence", "early_exit", "members_per_part",
+            "method", "precision", "presence", "drift", "early_exit", "members_per_part",
             "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
             "image_auroc", "detected", "flagged_good", "pareto"]

@@ -140,3 +140,32 @@ def test_bench_pipeline_prior_sets_run_part_of_an_ensemble(tmp_path: Path) -> No
     assert rows[2]["flagged_good"] == rows[2]["flagged_good"]
     assert main(["bench", "pipeline", "--data", str(tmp_path / "ds"), "--models", str(fused), "--prior-sets", "RGB",
                  "--out", str(out)]) == 2
+
+
+def test_bench_pipeline_drift_axis_computes_the_statistics_the_station_watches(tmp_path: Path, capsys) -> None:
+    """``--drift on`` (the default) runs each camera's drift monitor as ``station run`` does when its model records
+    frame statistics; ``off`` does not; a model that records none has none either way. A bad value is one line."""
+    import torch
+
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+    from model.priors.frame_stats import FrameStatistics, StatisticsRange
+
+    watched = tmp_path / "w" / "watched"
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "center"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    trained = StatisticsRange.from_frames(FrameStatistics(0.5, 0.6, 0.0, 0.1) for _ in range(5))
+    save_checkpoint(watched, det, threshold=0.5, threshold_rule="test", train={"frame_statistics": trained.to_dict()})
+    plain = make_model(tmp_path / "m" / "best")  # records no frame statistics
+    data = make_dataset(tmp_path / "ds", n=20)
+    out = tmp_path / "bench"
+    args = ["bench", "pipeline", "--data", str(data), "--methods", "bilinear", "--precisions", "fp32",
+            "--presence", "off", "--parts", "4", "--out", str(out)]
+    assert main([*args, "--models", f"{watched},{plain}", "--drift", "on,off"]) == 0
+    rows = json.loads((out / "pipeline.json").read_text())["rows"]
+    assert [(Path(r["checkpoint"]).name, r["drift"]) for r in rows] == [("watched", "on"), ("watched", "off"),
+                                                                        ("best", "off"), ("best", "off")]
+    assert all(r["parts"] == r["judged"] == 4 for r in rows)
+    assert main([*args, "--models", str(plain), "--drift", "maybe"]) == 2
+    assert "--drift: 'maybe' is not on or off" in capsys.readouterr().err
