@@ -3,8 +3,7 @@
 For each configuration (demosaic method x model checkpoint x precision x presence check on/off x drift monitors
 on/off x prior set and early exit of a per-prior ensemble) a ``station.loop.Station`` inspects ``--parts`` parts from
 the virtual camera (the dataset's test split, never trained on; the same frames in the same order for every
-configuration;
-``--empty-rate`` of them show no part, which needs a set rendered with ``station render --empty-rate``),
+configuration; ``--empty-rate`` of them show no part, which needs a set rendered with ``station render --empty-rate``),
 free-running as fast as processing allows (backpressure ``block``, no PLC), and logs to a temporary SQLite file.
 A model that reads a frame per dome segment (photometric stereo) gets each part's frames, triggered one by one as
 at the station (``[camera] dome_segments``); its latency counts every frame's grab and demosaic.
