@@ -42,8 +42,9 @@ def told_where(variation, priors, labels: np.ndarray, masks, mask_known: np.ndar
     for k, i in enumerate(bad):
         per_part[i] = bool(res.separable[k])
     kinds = np.asarray(types, dtype=object)[bad]
-    caught = (np.asarray(scores)[bad] > threshold) if threshold is not None else np.full(len(bad), np.nan)
-    good = np.asarray(scores, np.float64)[~labels]
+    scores = np.asarray(scores, np.float64)
+    caught = (scores[bad] > threshold) if threshold is not None else np.full(len(bad), np.nan)
+    good, bad_scores = scores[~labels], scores[bad]
     rows = []
     for typ in ["all", *sorted({str(t) for t in kinds})]:
         sel = np.ones(len(bad), bool) if typ == "all" else kinds == typ
@@ -54,7 +55,7 @@ def told_where(variation, priors, labels: np.ndarray, masks, mask_known: np.ndar
                      "separable": float(sep.mean()), "caught": float(np.mean(caught[sel])),
                      "caught_of_separable": float(np.mean(caught[sel][sep])) if sep.any() else math.nan,
                      "image_auroc_separable": auroc(np.r_[np.zeros(len(good)), np.ones(int(sep.sum()))],
-                                                    np.r_[good, np.asarray(scores, np.float64)[bad][sel][sep]])})
+                                                    np.r_[good, bad_scores[sel][sep]])})
     return rows, per_part
 
 

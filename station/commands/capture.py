@@ -9,6 +9,8 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
+from station.decision import SECOND_NAME
+
 if TYPE_CHECKING:
     from station.drift import DriftMonitor
 
@@ -62,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
                         f"--second-out {args.second_out}: {cfg.source} has no [second_camera] enabled")
     if args.second_model and not second:
         raise UserError(f"--second-model {args.second_model}: {cfg.source} has no [second_camera] enabled")
-    second_monitor = _monitor(args.second_model, args.frames, "second camera") if args.second_model else None
+    second_monitor = _monitor(args.second_model, args.frames, second=True) if args.second_model else None
     defect_pixel_map(cfg)  # a map that cannot be read is one line naming the key, before the camera opens
     if second:
         defect_pixel_map(cfg, second=True)
@@ -86,25 +88,25 @@ def run(args: argparse.Namespace) -> int:
         for stats in report.second.stats:  # compared after the capture: the first camera's warnings come as it runs
             second_monitor.update(stats)
         if second_monitor.warning:
-            print(f"warning: second camera: {second_monitor.warning}")
+            print(f"warning: {SECOND_NAME}: {second_monitor.warning}")
     return 0
 
 
-def _monitor(model: str, frames: int, camera: str | None = None) -> DriftMonitor | None:
+def _monitor(model: str, frames: int, second: bool = False) -> DriftMonitor | None:
     """A ``station.drift.DriftMonitor`` over ``frames`` captured frames against the frame statistics ``model``
-    records, saying what it compares with; None when the model records none. ``camera``: "second camera" for the
-    second camera's (its advice names ``[second_camera]``'s keys)."""
+    records, saying what it compares with; None when the model records none. ``second``: the second camera's (named
+    for it, its advice naming ``[second_camera]``'s keys)."""
     from model.draem.checkpoint import read_sidecar
     from station.drift import DriftMonitor, trained_range
 
     trained = trained_range(read_sidecar(model))
-    named = f"{camera}: " if camera else ""
+    named = f"{SECOND_NAME}: " if second else ""
     if trained is None:
         print(f"{named}{model}: no frame statistics recorded (trained before they were): nothing to compare")
         return None
     print(f"{named}{model} was trained on: {trained.describe()}")
     return DriftMonitor(trained, window=min(50, frames), min_frames=min(10, frames),
-                        section="second_camera" if camera else "camera")
+                        section="second_camera" if second else "camera")
 
 
 def _warn(text: str | None) -> None:
