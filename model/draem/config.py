@@ -23,7 +23,7 @@ from .errors import ModelError
 PRIOR_CHANNELS: dict[str, int] = {"intensity": 1, "dolp": 1, "aolp": 2, "normal": 3, "tilt_x": 1, "tilt_y": 1}
 """Input channels per prior, in the order the station stacks them for the fused network."""
 
-ROIS = ("center", "band", "frame", "object")
+ROIS = ("center", "band", "tall", "frame", "object")
 """Regions a network can see: see ``ModelConfig.roi``."""
 
 UNIT_VECTOR_PRIORS = ("aolp", "normal")
@@ -150,7 +150,10 @@ class ModelConfig:
     the line), image score over the whole square; what a station can run. "band": the middle half (in height) of
     the centre square, at twice the centre square's resolution for the same ``input_size_px`` (input
     ``input_size_px`` x 2 ``input_size_px``): for a part longer than wide laid across the view by the fixture, as
-    on the shipped line (``model.draem.roi.band_box``); also a station's. "frame": the whole frame squeezed to the
+    on the shipped line (``model.draem.roi.band_box``); also a station's. "tall": the middle two thirds of the centre
+    square at the band's detail (input ``input_size_px`` x 1.5 ``input_size_px``, e.g. 128 x 192; the size a
+    multiple of 64): the band with room above and below, so a part turned a few degrees keeps its ends in view
+    (``model.draem.roi.tall_box``); also a station's. "frame": the whole frame squeezed to the
     square input (no crop: the region of interest switched off, for comparison; not with the normal prior, whose
     estimator reads the centre square). "object": a square around the rendered object mask, image score on the
     object only; needs ground truth at inference (research upper bound).
@@ -188,9 +191,10 @@ class ModelConfig:
         object.__setattr__(self, "priors", check_priors(self.priors))
         if self.fusion not in ("ensemble", "fused"):
             raise ModelError(f"fusion must be 'ensemble' or 'fused', got {self.fusion!r}")
-        NetworkConfig(1, self.reconstructive_width, self.discriminative_width, self.input_size_px)
         if self.roi not in ROIS:
             raise ModelError(f"roi must be one of {', '.join(ROIS)}, got {self.roi!r}")
+        h, w = self.input_shape
+        NetworkConfig(1, self.reconstructive_width, self.discriminative_width, h, 0 if w == h else w)
         if self.roi == "frame" and "normal" in self.priors:  # the band lies inside the square: cut from it
             raise ModelError(f"roi {self.roi!r} cannot take the normal prior: its estimator reads the centre square")
         if self.variation and "intensity" not in self.priors:
@@ -236,8 +240,9 @@ class ModelConfig:
 
     @property
     def input_shape(self) -> tuple[int, int]:
-        """(height, width) of the network input in pixels: ``input_size_px`` high, twice as wide for roi "band"."""
-        return self.input_size_px, (2 if self.roi == "band" else 1) * self.input_size_px
+        """(height, width) of the network input in pixels: ``input_size_px`` high, twice as wide for roi "band", 1.5
+        times for "tall", else square."""
+        return self.input_size_px, int({"band": 2, "tall": 1.5}.get(self.roi, 1) * self.input_size_px)
 
     @property
     def networks_decide(self) -> bool:

@@ -44,6 +44,16 @@ def band_box(height: int, width: int, frame_aspect: float = 0.0) -> tuple[int, i
     return (top + (side - band) // 2) & ~1, left, band, side
 
 
+def tall_box(height: int, width: int, frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
+    """The middle two thirds (in height) of the centre square (``center_box``): (top, left, 2 side // 3, side) of a
+    height x width frame, top, left and height even. For 640 x 480: rows 80-399, columns 80-559: the band
+    (``band_box``) with 40 rows more above and below it, at the band's detail for an input 1.5 times as wide as high
+    (320 x 480 at 128 x 192, as 240 x 480 at 96 x 192), so a part turned a few degrees keeps its ends in view."""
+    top, left, side, _ = center_box(height, width, frame_aspect)
+    tall = (2 * side // 3) & ~1
+    return (top + (side - tall) // 2) & ~1, left, tall, side
+
+
 def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None,
             frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
     """The region a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W), for a model
@@ -52,6 +62,8 @@ def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = N
         return center_box(*shape, frame_aspect)
     if roi == "band":
         return band_box(*shape, frame_aspect)
+    if roi == "tall":
+        return tall_box(*shape, frame_aspect)
     if roi == "frame":
         return 0, 0, shape[0], shape[1]
     if roi == "object":

@@ -56,6 +56,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--roi", default="center", choices=ROIS,
                    help="center: centre square of the frame, what a station runs; band: the middle half of that "
                         "square at twice its resolution (input SIZE x 2 SIZE; a part laid across the view); "
+                        "tall: its middle two thirds at the band's detail (input SIZE x 1.5 SIZE, SIZE a multiple "
+                        "of 64: room for a turned camera); "
                         "frame: the whole frame resized "
                         "(no crop, for comparison); object: square around the rendered object mask (needs ground "
                         "truth at inference: research upper bound)")

@@ -29,8 +29,8 @@ def frames(n: int) -> list[dict[str, np.ndarray]]:
     return [dict(priors_from_stokes(NAMES, s0 * rng.uniform(0.5, 1.0, s0.shape), s1, s2)) for _ in range(n)]
 
 
-def save(path: Path, priors: tuple[str, ...], fusion: str, roi: str = "center") -> Path:
-    det = Detector(ModelConfig.from_preset("tiny", priors, fusion, 32, roi))
+def save(path: Path, priors: tuple[str, ...], fusion: str, roi: str = "center", size: int = 32) -> Path:
+    det = Detector(ModelConfig.from_preset("tiny", priors, fusion, size, roi))
     det.init_weights(torch.Generator().manual_seed(0))
     save_checkpoint(path, det, threshold=0.5, threshold_rule="test")
     return path
@@ -80,6 +80,23 @@ def test_roi_band_sees_the_middle_half_of_the_centre_square_at_twice_its_resolut
     # the band lies inside the centre square the normal estimator reads, so it takes the normal prior (cut from the
     # square: tests/station/test_normal_prior.py); the whole frame does not (above)
     assert ModelConfig.from_preset("tiny", ("intensity", "normal"), "fused", 32, "band").roi == "band"
+
+
+def test_roi_tall_sees_the_middle_two_thirds_of_the_centre_square_at_the_bands_detail(tmp_path: Path) -> None:
+    """"tall": room above and below the band's part (a camera turned a few degrees keeps the part's ends in view,
+    docs/results/2026-12-05-seen-edges.md) at the band's detail: 320 x 480 frame px at 128 x 192 as 240 x 480 at
+    96 x 192."""
+    wide = {k: np.concatenate([v, v[:, :32]], 1) for k, v in frames(1)[0].items()}  # 64 x 96
+    assert roi_box("tall", (480, 640)) == (80, 80, 320, 480) and roi_box("tall", (64, 96)) == (10, 16, 42, 64)
+    assert roi_box("tall", (2048, 2448), frame_aspect=4 / 3) == (412, 306, 1224, 1836)
+    assert ModelConfig.from_preset("tiny", ("intensity",), "fused", 128, "tall").input_shape == (128, 192)
+    with pytest.raises(ModelError, match="multiple of 32"):
+        ModelConfig.from_preset("tiny", ("intensity",), "fused", 96, "tall")  # 144 columns
+    det = DraemDetector(save(tmp_path / "tall", ("intensity", "dolp", "aolp"), "fused", "tall", size=64), "cpu")
+    assert det.config.input_shape == (64, 96)
+    heat = det.infer(wide).heatmap
+    assert heat.shape == (64, 96) and heat[10:52, 16:80].all()
+    assert not heat[:10].any() and not heat[52:].any() and not heat[:, :16].any() and not heat[:, 80:].any()
 
 
 def test_the_region_keeps_to_the_training_frames_view_on_a_taller_frame() -> None:
