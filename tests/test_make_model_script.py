@@ -333,3 +333,15 @@ def test_an_empty_base_stop_runs_the_base_schedule_whole(tmp_path: Path) -> None
     unset = [a for a in dry_run(tmp_path / "unset", BASE_STOP="", DECISION="combined")  # "" unsets it
              if a[0] == "train"]
     assert unset[0][unset[0].index("--stop-at-step") + 1] == "500"
+
+
+def test_make_model_region_reaches_every_network(tmp_path: Path) -> None:
+    """ROI and SIZE (model/draem/roi.py): every network make model trains on a region (all but the centre square's
+    base and mixed networks of DECISION=combined) sees the one asked for, by default the shipped file's band at
+    96 x 192."""
+    for env, want in (({}, ("band", "96")), ({"ROI": "tall", "SIZE": "128"}, ("tall", "128")),
+                      ({"ROI": "tall", "SIZE": "128", "DECISION": "combined"}, ("tall", "128"))):
+        runs = tmp_path / "-".join(env.values() or ["default"])
+        runs.mkdir()
+        trained = [a for a in dry_run(runs, NEW_KINDS_COUNT="0", **env) if a[0] == "train" and "--roi" in a]
+        assert trained and {(a[a.index("--roi") + 1], a[a.index("--size") + 1]) for a in trained} == {want}
