@@ -17,10 +17,12 @@ for line in (HERE / "read.txt").read_text().splitlines():
         rows.setdefault(m[1], {})[m[2]] = tuple(int(g) for g in m.groups()[2:])
 sets = list(rows)
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
-for ax, (what, i, j) in zip(axes, (("good parts rejected (%)", 0, 1), ("defective parts caught (%)", 2, 3))):
+PANELS = (("good parts rejected (%)", 0, 1), ("defective parts caught (%)", 2, 3))
+for ax, (what, i, j) in zip(axes, PANELS, strict=True):
     for k, (arm, colour) in enumerate((("B", "tab:grey"), ("T", "tab:blue"))):
-        ax.bar([n + (k - 0.5) * 0.38 for n in range(len(sets))], [100 * rows[s][arm][i] / rows[s][arm][j] for s in sets],
-               0.38, color=colour, label={"B": "B: band, 96 x 192", "T": "T: tall, 128 x 192"}[arm])
+        share = [100 * rows[s][arm][i] / rows[s][arm][j] for s in sets]
+        ax.bar([n + (k - 0.5) * 0.38 for n in range(len(sets))], share, 0.38, color=colour,
+               label={"B": "B: band, 96 x 192", "T": "T: tall, 128 x 192"}[arm])
     ax.set_xticks(range(len(sets)), [s.replace("line-", "") for s in sets], rotation=40, ha="right", fontsize=8)
     ax.set_ylabel(what)
     ax.grid(axis="y", alpha=0.3)
