@@ -140,7 +140,7 @@ class Predictor:
         cut = {k: v[top:top + h, left:left + w] for k, v in maps.items()}
         if self.normals is not None:
             # the estimator reads the centre square, as in training (station.datasets: predict_frame); the DRAEM's
-            # region is that square or the band inside it (ModelConfig refuses roi "frame" with the normal prior)
+            # region is that square or a band inside it (ModelConfig refuses roi "frame" with the normal prior)
             st, sl, sh, sw = roi_box("center", shape, frame_aspect=self.config.frame_aspect)
             square = {k: maps[k][st:st + sh, sl:sl + sw] for k in PRIOR_MAPS["normal"]}
             n = self.normals.predict_box(square, shape, (st, sl, sh, sw))
