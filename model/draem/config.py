@@ -193,8 +193,7 @@ class ModelConfig:
             raise ModelError(f"fusion must be 'ensemble' or 'fused', got {self.fusion!r}")
         if self.roi not in ROIS:
             raise ModelError(f"roi must be one of {', '.join(ROIS)}, got {self.roi!r}")
-        h, w = self.input_shape
-        NetworkConfig(1, self.reconstructive_width, self.discriminative_width, h, 0 if w == h else w)
+        self.networks()  # each network's config checks its input's sides (multiples of 32)
         if self.roi == "frame" and "normal" in self.priors:  # the band lies inside the square: cut from it
             raise ModelError(f"roi {self.roi!r} cannot take the normal prior: its estimator reads the centre square")
         if self.variation and "intensity" not in self.priors:
