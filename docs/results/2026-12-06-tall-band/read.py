@@ -9,7 +9,6 @@ import os
 import sys
 
 import numpy as np
-import torch
 
 from model.draem.adapt import image_scores
 from model.draem.checkpoint import load_checkpoint
@@ -44,4 +43,3 @@ for arg in sys.argv[3:]:
                   f"{float(out.edge_bend[i]):.3f}, step {float(out.edge_step[i]):.3f}, unseen "
                   f"{float(out.unseen_fraction[i]):.4f}")
         del x, out
-        torch.cuda.empty_cache() if torch.cuda.is_available() else None
