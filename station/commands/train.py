@@ -54,10 +54,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="fused: one DRAEM over all priors (the shipped model); ensemble: one per prior, averaged (the "
                         "paper)")
     p.add_argument("--roi", default="center", choices=ROIS,
-                   help="center: centre square of the frame, what a station runs; band: the middle half of that "
-                        "square at twice its resolution (input SIZE x 2 SIZE; a part laid across the view); "
+                   help="center: the centre square of the frame (a part anywhere in it, as an imported set's); "
+                        "band: the middle half of that square at up to twice its detail (input SIZE x 2 SIZE; a part "
+                        "laid across the view: the shipped model's, with --size 96); "
                         "tall: its middle two thirds at the band's detail (input SIZE x 1.5 SIZE, SIZE a multiple "
-                        "of 64: room for a turned camera); "
+                        "of 64: room for a turned camera, at a cost in defects caught); "
                         "frame: the whole frame resized "
                         "(no crop, for comparison); object: square around the rendered object mask (needs ground "
                         "truth at inference: research upper bound)")
