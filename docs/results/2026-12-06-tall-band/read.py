@@ -9,25 +9,41 @@ caught (points, with its standard error) and in good parts rejected (added for p
 
 import os
 import sys
+from typing import NamedTuple
 
 import numpy as np
 
 from model.draem.adapt import image_scores
 from model.draem.checkpoint import Checkpoint, load_checkpoint
+from model.draem.variation import VariationOutput
 from station.evaluation import model_split
+
+
+class Scored(NamedTuple):
+    """One file's judgement of one set's split, per part: the station's score (``rejected`` above the file's
+    threshold), the variation model's output (its window scores and frame checks), defective or not, and the kind."""
+
+    score: np.ndarray
+    rejected: np.ndarray
+    out: VariationOutput
+    defective: np.ndarray
+    kinds: np.ndarray
+
+
+def scored(ck: Checkpoint, file: str, path: str, split: str) -> Scored:
+    """Score every part of ``path``'s ``split`` with ``ck`` (loaded from ``file``), as the station judges it."""
+    sp = model_split(ck, file, path, split)
+    x = sp.priors.float()
+    lab = sp.label.numpy() == 1
+    s = image_scores(ck.detector, x)
+    return Scored(s, s > ck.threshold, ck.detector.variation.zmaps(x), lab,
+                  np.array([sp.defect_type[i] or "" for i in range(len(lab))]))
 
 
 def judge(arm: str, ck: Checkpoint, file: str, path: str, split: str) -> tuple[np.ndarray, np.ndarray]:
     """Print one arm's reading of one set; return (rejected, defective) per part."""
-    sp = model_split(ck, file, path, split)
-    x = sp.priors.float()
-    lab = sp.label.numpy() == 1
-    kinds = np.array([sp.defect_type[i] or "" for i in range(len(lab))])
+    s, rej, out, lab, kinds = scored(ck, file, path, split)
     names = sorted(set(kinds[lab]))
-    det, thr = ck.detector, ck.threshold
-    s = image_scores(det, x)
-    rej = s > thr
-    out = det.variation.zmaps(x)
     unseen = out.unseen_fraction.numpy() > 0
     per = ", ".join(f"{k} {int(rej[lab & (kinds == k)].sum())}/{int((lab & (kinds == k)).sum())}" for k in names)
     caught = f"{int(rej[lab].sum())} of {int(lab.sum())} defective caught ({100 * rej[lab].mean():.1f} %; {per})" \

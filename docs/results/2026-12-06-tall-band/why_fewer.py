@@ -7,25 +7,20 @@ and of the defective ones per file."""
 import sys
 
 import numpy as np
+from read import scored  # beside this script
 
-from model.draem.adapt import image_scores
 from model.draem.checkpoint import load_checkpoint
-from station.evaluation import model_split
 
 files = {"B": sys.argv[1], "T": sys.argv[2]}
 path, split = sys.argv[3].split(":")
 got = {}
 for arm, file in files.items():
     ck = load_checkpoint(file)
-    sp = model_split(ck, file, path, split)
-    x = sp.priors.float()
-    s = image_scores(ck.detector, x)
-    w = ck.detector.variation.zmaps(x).scores.numpy()
-    got[arm] = (s / ck.threshold, w)
-    lab = sp.label.numpy() == 1
-    kinds = [sp.defect_type[i] or "" for i in range(len(lab))]
+    r = scored(ck, file, path, split)
+    w, lab = r.out.scores.numpy(), r.defective
+    got[arm] = (r.score / ck.threshold, w)
     print(f"{arm}: window median good {np.median(w[~lab]):.3f}, defective {np.median(w[lab]):.3f}", flush=True)
 (rb, wb), (rt, wt) = got["B"], got["T"]
 for i in np.flatnonzero((rb > 1) != (rt > 1)):
-    print(f"part {int(i)} ({kinds[i] or 'good'}): B score/threshold {rb[i]:.4f} window {wb[i]:.3f}; "
+    print(f"part {int(i)} ({r.kinds[i] or 'good'}): B score/threshold {rb[i]:.4f} window {wb[i]:.3f}; "
           f"T {rt[i]:.4f} window {wt[i]:.3f}")
