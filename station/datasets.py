@@ -50,6 +50,9 @@ class SplitTensors:
     unjudged: list[str | None] = field(default_factory=list)
     """Per sample: why the station would not judge its frame ("no part in view", "... % of input pixels invalid":
     ``unjudged_reason``), None when it would."""
+    around: Any = None
+    """(N, C, S + 2 a, S' + 2 a) the priors of the frame around each view (``model.draem.roi.around_box``; NaN
+    beyond the frame), which the variation model's registration reads; None when not loaded."""
 
 
 def unjudged_reason(priors: Any, n_pixels: int, presence: PresenceCheck | None = None) -> str | None:
@@ -141,7 +144,8 @@ def defect_type_of(params: dict) -> str:
 def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: int | tuple[int, int],
                limit: int | None = None, good_only: bool = False, progress: bool = True, roi: str = "center",
                normals: NormalEstimator | None = None, frame_aspect: float = 0.0,
-               dome_segments: tuple[float, ...] = (), presence: PresenceCheck | None = None) -> SplitTensors:
+               dome_segments: tuple[float, ...] = (), presence: PresenceCheck | None = None,
+               around_px: int = 0) -> SplitTensors:
     """Read one split of a set into tensors at the network input size (``size_px``: (height, width) or a square's
     side), cropped to ``roi`` (see ``model.draem.config.ModelConfig.roi``) as a model trained on frames of
     ``frame_aspect`` (``ModelConfig.frame_aspect``) crops them. Object and defect masks come along (for
@@ -149,13 +153,15 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
     of view must be the set's), or from the rendered ground truth when it is None. ``dome_segments``: the model's
     (``ModelConfig.dome_segments``); the set's parts must have been imaged under the same (UserError otherwise), and
     each part's frames give one set of priors (``model.priors.api.compute_set_priors``). ``presence``: the check that
-    decides which frames the station would judge (``SplitTensors.unjudged``; default: ``unjudged_reason``'s)."""
+    decides which frames the station would judge (``SplitTensors.unjudged``; default: ``unjudged_reason``'s).
+    ``around_px`` > 0: also the frame around each view, that many input pixels more on each side
+    (``SplitTensors.around``)."""
     import numpy as np
     import torch
     from tqdm import tqdm
 
-    from model.draem.preprocess import crop_resize, stack_priors
-    from model.draem.roi import roi_box
+    from model.draem.preprocess import crop_around, crop_resize, stack_priors
+    from model.draem.roi import around_box, roi_box
     from model.priors.api import compute_set_priors
     from model.priors.frame_stats import frame_statistics
     from model.priors.photometric import describe_segments
@@ -178,7 +184,7 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         names = list(dict.fromkeys(names + list(MAP_NAMES)))
     layout, bit_depth = ds.manifest.get("layout", "imx250mzr"), ds.manifest.get("bit_depth")
     correction = SensorCorrection.of(set_black_level(root, ds.manifest), set_defect_pixels(root, ds.manifest))
-    xs, objs, defs, labels, types, used, known, stats, unjudged = [], [], [], [], [], [], [], [], []
+    xs, objs, defs, labels, types, used, known, stats, unjudged, arounds = [], [], [], [], [], [], [], [], [], []
     no_object = 0
     for i in tqdm(idx, desc=f"loading {split}", unit="sample", disable=not progress):
         if limit is not None and len(used) >= limit:
@@ -214,6 +220,8 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         box = roi_box(roi, obj_mask.shape, obj_mask, frame_aspect)
         xt, (obj, dm) = crop_resize(x, box, size_px, priors, (obj_mask, defect))
         xs.append(xt)
+        if around_px > 0:
+            arounds.append(crop_around(x, *around_box(box, xt.shape[1:], around_px), priors))
         objs.append(obj)
         defs.append(dm)
         labels.append(int(s.label))
@@ -228,7 +236,8 @@ def load_split(root: str | Path, split: str, priors: tuple[str, ...], size_px: i
         log.info("%s: %d of %d samples without an object mask: the whole region of interest stands in",
                  root, no_object, len(used))
     return SplitTensors(torch.stack(xs), torch.stack(objs), torch.stack(defs), torch.tensor(labels), types, used,
-                        torch.tensor(known, dtype=torch.bool), stats, no_object == 0, unjudged)
+                        torch.tensor(known, dtype=torch.bool), stats, no_object == 0, unjudged,
+                        torch.stack(arounds) if arounds else None)
 
 
 def check_trained_on(model: str, data: str) -> str | None:
@@ -273,8 +282,8 @@ def concat(parts: list[SplitTensors]) -> SplitTensors:
     joined = {}
     for f in dataclasses.fields(first):
         values = [getattr(p, f.name) for p in parts]
-        if isinstance(values[0], torch.Tensor):
-            joined[f.name] = torch.cat(values)
+        if isinstance(values[0], torch.Tensor):  # around: only when every set has it
+            joined[f.name] = torch.cat(values) if all(isinstance(v, torch.Tensor) for v in values) else None
         elif isinstance(values[0], list):
             joined[f.name] = [x for v in values for x in v]
     return dataclasses.replace(first, **joined, object_masks_known=all(p.object_masks_known for p in parts))

@@ -202,10 +202,13 @@ def with_normalizer(detector: Detector, normalizer: Normalizer) -> Detector:
 
 
 @torch.no_grad()
-def image_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> np.ndarray:
-    """(N,) image scores of (N, C, S, S) priors (roi "center"/"frame": scored over the whole square)."""
+def image_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16, around: torch.Tensor | None = None
+                 ) -> np.ndarray:
+    """(N,) image scores of (N, C, S, S) priors (roi "center"/"frame": scored over the whole square); ``around``: the
+    frame around each view (``Detector.predict``)."""
     detector.eval()
-    out = [detector.predict(x[i:i + batch_size]).score.float().cpu() for i in range(0, x.shape[0], batch_size)]
+    out = [detector.predict(x[i:i + batch_size], around=None if around is None else around[i:i + batch_size])
+           .score.float().cpu() for i in range(0, x.shape[0], batch_size)]
     return torch.cat(out).numpy()
 
 

@@ -81,9 +81,10 @@ class Detector(nn.Module):
 
     @torch.no_grad()
     def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None,
-                members: Sequence[str] | None = None) -> DetectorOutput:
+                members: Sequence[str] | None = None, around: torch.Tensor | None = None) -> DetectorOutput:
         """x: (N, C, S, S) physical priors stacked as ``config.channel_slices``; object_mask: (N, S, S) bool;
-        ``members``: run only these (default all), and average over them."""
+        ``members``: run only these (default all), and average over them; ``around``: the priors of the frame around
+        each view, which the variation model's registration reads (``VariationModel.zmaps``)."""
         if x.ndim != 4 or x.shape[1] != self.config.in_channels:
             raise ModelError(f"detector input must be (N, {self.config.in_channels}, H, W) for priors "
                              f"{self.config.priors}, got {tuple(x.shape)}")
@@ -94,10 +95,10 @@ class Detector(nn.Module):
             assert isinstance(out, DraemEvalOutput), "predict needs eval mode: call detector.eval()"
             maps[name] = out.anomaly_map.float()
             scores[name] = image_scores(maps[name], object_mask, self.config.score_window)
-        return self.output(x, maps, scores)
+        return self.output(x, maps, scores, around)
 
-    def output(self, x: torch.Tensor, maps: dict[str, torch.Tensor], scores: dict[str, torch.Tensor]
-               ) -> DetectorOutput:
+    def output(self, x: torch.Tensor, maps: dict[str, torch.Tensor], scores: dict[str, torch.Tensor],
+               around: torch.Tensor | None = None) -> DetectorOutput:
         """The detector's answer from its networks' maps and scores on physical input ``x``: their mean, combined
         with the variation model's finding when the model has one (``model.draem.variation.combine``; its map and
         score join the member outputs as "variation"). No network output is needed when the variation model alone
@@ -111,7 +112,7 @@ class Detector(nn.Module):
             raise ModelError("no network ran, and the model's decision needs them")
         if self.variation is None:
             return DetectorOutput(amap, score, maps, scores)
-        v = self.variation.zmaps(x, signed=self.residual is not None)
+        v = self.variation.zmaps(x, signed=self.residual is not None, around=around)
         looks = self.residual is not None and self.residual.looks and self.config.decision != "residual"
         if looks:
             v = v._replace(scores=self.residual_look(v))

@@ -216,7 +216,7 @@ class OnnxDetector:
 
     @torch.no_grad()
     def predict(self, x: torch.Tensor, object_mask: torch.Tensor | None = None,
-                members: Sequence[str] | None = None) -> DetectorOutput:
+                members: Sequence[str] | None = None, around: torch.Tensor | None = None) -> DetectorOutput:
         z = self.detector.normalize(x.float().contiguous())
         maps, scores = {}, {}
         for name in self.sessions if members is None else members:
@@ -224,4 +224,4 @@ class OnnxDetector:
             member_in = z[:, self.detector.member_slice(name)].contiguous().numpy()
             maps[name] = torch.from_numpy(session.run(None, {"x": member_in})[0]).float()
             scores[name] = image_scores(maps[name], object_mask, self.config.score_window)
-        return self.detector.output(x, maps, scores)
+        return self.detector.output(x, maps, scores, around)

@@ -69,6 +69,18 @@ def crop_resize(x: np.ndarray | torch.Tensor, box: tuple[int, int, int, int], si
     return t, tuple(out_masks)
 
 
+def crop_around(x: np.ndarray | torch.Tensor, box: tuple[int, int, int, int], size_px: tuple[int, int],
+                priors: tuple[str, ...]) -> torch.Tensor:
+    """``crop_resize`` of (C, H, W) stacked priors to a ``box`` that may reach outside them
+    (``model.draem.roi.around_box``): NaN there, and in every output pixel that reads it."""
+    t = torch.as_tensor(x, dtype=torch.float32)
+    top, left, hh, ww = box
+    pad = (max(-left, 0), max(left + ww - t.shape[2], 0), max(-top, 0), max(top + hh - t.shape[1], 0))
+    if any(pad):
+        t = F.pad(t, pad, value=float("nan"))
+    return crop_resize(t, (top + pad[2], left + pad[0], hh, ww), size_px, priors)[0]
+
+
 @dataclass(frozen=True)
 class Normalizer:
     """Per-channel affine normalisation ``(x - mean) / std``; stats from training data on object pixels.

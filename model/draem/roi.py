@@ -54,6 +54,24 @@ def tall_box(height: int, width: int, frame_aspect: float = 0.0) -> tuple[int, i
     return (top + (side - tall) // 2) & ~1, left, tall, side
 
 
+AROUND_PX = 16
+"""Input pixels of the frame read around the model's view on each side (``around_box``) by the variation model's
+registration (``model.draem.variation``, module docstring: around): 40 frame pixels at the shipped band's detail
+(240 x 480 at 96 x 192), room for a camera turned 5 degrees to keep the part's ends on real pixels."""
+
+
+def around_box(box: tuple[int, int, int, int], input_shape: tuple[int, int], around_px: int = AROUND_PX
+               ) -> tuple[tuple[int, int, int, int], tuple[int, int]]:
+    """A view's (top, left, height, width) frame box and its input shape (H, W) -> the box of the frame around it,
+    ``around_px`` input pixels more on each side at the view's detail (rounded to whole frame pixels, so the view
+    lies at its centre to within half a frame pixel), and that box's input shape (H + 2 a, W + 2 a). The box may
+    reach outside the frame (``model.draem.preprocess.crop_around`` reads NaN there)."""
+    top, left, h, w = box
+    rows, cols = round(around_px * h / input_shape[0]), round(around_px * w / input_shape[1])
+    return ((top - rows, left - cols, h + 2 * rows, w + 2 * cols),
+            (input_shape[0] + 2 * around_px, input_shape[1] + 2 * around_px))
+
+
 def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None,
             frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
     """The region a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W), for a model

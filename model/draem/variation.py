@@ -342,6 +342,15 @@ def judged_from(channels: Sequence[int], count: int) -> torch.Tensor:
     return out
 
 
+def ring_inside(in_frame: np.ndarray) -> np.ndarray:
+    """(H, W) bool: which pixels of a view (or of the frame around it) the frame holds -> (1, H, W) float32: 1 there,
+    0 elsewhere and on the outermost ring. Warped with the border replicated, what is below ``SEEN_LEVEL`` came from
+    outside the frame (module docstring: register, around)."""
+    inside = np.zeros((1, *in_frame.shape), np.float32)
+    inside[0, 1:-1, 1:-1] = in_frame[1:-1, 1:-1]
+    return inside
+
+
 def curvature_kernels(sigma: float) -> tuple[np.ndarray, np.ndarray]:
     """Sigma (input px, > 0) -> the 1-D Gaussian g (unit sum) and sigma^2 times its second derivative, sampled over
     +-ceil(4 sigma) px (float32): ``curvature`` filters with g2 along one axis and g along the other, then the other
@@ -504,17 +513,25 @@ class VariationModel(nn.Module):
 
     # --- features and registration (numpy) ---
 
-    def features(self, x: np.ndarray, region: np.ndarray | None = None) -> np.ndarray:
-        """(C, H, W) physical priors -> features (module docstring), float32, finite."""
+    def features(self, x: np.ndarray, region: np.ndarray | None = None, median: float | None = None) -> np.ndarray:
+        """(C, H, W) physical priors -> features (module docstring), float32, finite. ``median``: the log intensity's
+        median to take out (the view's, for the frame around it: ``around``); None: its own over the region."""
         f = np.nan_to_num(np.asarray(x, np.float32), nan=0.0, posinf=1.0, neginf=0.0).copy()
         li = np.log(np.maximum(f[self.intensity], LOG_FLOOR))
-        reg = self.region.numpy() if region is None else region
-        f[self.intensity] = li - (np.median(li[reg]) if reg.any() else np.median(li))
+        f[self.intensity] = li - (self.log_median(x, region) if median is None else median)
         if self.dolp is not None and self.aolp is not None:
             f[self.aolp:self.aolp + 2] *= f[self.dolp]
         if not self.dolp_read:
             f[self.dolp] = 0.0
         return f
+
+    def log_median(self, x: np.ndarray, region: np.ndarray | None = None) -> float:
+        """(C, H, W) physical priors -> the median of their log intensity over ``region`` (H, W; None: the part
+        region; all pixels when it is empty): what ``features`` takes out."""
+        i = np.nan_to_num(np.asarray(x[self.intensity], np.float32), nan=0.0, posinf=1.0, neginf=0.0)
+        li = np.log(np.maximum(i, LOG_FLOOR))
+        reg = self.region.numpy() if region is None else region
+        return float(np.median(li[reg]) if reg.any() else np.median(li))
 
     @property
     def aligns_polarization(self) -> bool:
@@ -647,9 +664,13 @@ class VariationModel(nn.Module):
         grow = np.ones((2 * HIGHLIGHT_GROW_PX + 1,) * 2, np.uint8)
         return cv2.dilate((peak >= HIGHLIGHT_LEVEL).astype(np.uint8), grow).astype(bool)
 
-    def warp_to(self, reference: np.ndarray, f: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
+    def warp_to(self, reference: np.ndarray, f: np.ndarray, mask: np.ndarray | None = None,
+                source: np.ndarray | None = None) -> np.ndarray:
         """Features ``f`` (C, H, W) warped onto ``reference`` (H, W) (module docstring: register), matching only
-        where ``mask`` (H, W, of ``f``) is true when given."""
+        where ``mask`` (H, W, of ``f``) is true when given. ``source``: (C, H + 2 m, W + 2 n) the same maps of the
+        frame around ``f`` (``f`` at its centre, m rows and n columns more on each side): the warp fitted on ``f``
+        takes its pixels from it, so it replicates a border only beyond the frame around (module docstring:
+        around)."""
         h, w = reference.shape
         m = np.eye(2, 3, dtype=np.float32)
         ecc_mask = None if mask is None else mask.astype(np.uint8)
@@ -662,6 +683,11 @@ class VariationModel(nn.Module):
         if (not np.isfinite(m).all() or abs(m[0, 2]) > MAX_SHIFT * w or abs(m[1, 2]) > MAX_SHIFT * h
                 or not (0.8 <= sx <= 1.25 and 0.8 <= sy <= 1.25)):
             m = np.eye(2, 3, dtype=np.float32)
+        if source is not None:
+            m = m.copy()  # the warp maps the reference's pixels into f's; f lies at the source's centre
+            m[0, 2] += (source.shape[2] - w) // 2
+            m[1, 2] += (source.shape[1] - h) // 2
+            f = source
         flags = cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP
         return np.stack([cv2.warpAffine(c, m, (w, h), flags=flags, borderMode=cv2.BORDER_REPLICATE) for c in f])
 
@@ -996,18 +1022,21 @@ class VariationModel(nn.Module):
     # --- scoring ---
 
     @torch.no_grad()
-    def zmaps(self, x: torch.Tensor, signed: bool = False) -> VariationOutput:
+    def zmaps(self, x: torch.Tensor, signed: bool = False, around: torch.Tensor | None = None) -> VariationOutput:
         """(N, C, H, W) physical priors -> box-averaged z maps, image scores and what each frame's rules found;
         with ``signed``, also each frame's signed maps and judged pixels (for the residual networks; a model
-        without them does not pay for them)."""
+        without them does not pay for them). ``around``: (N, C, H + 2 m, W + 2 n) the priors of the frame around
+        each view, NaN where the frame ends (``model.draem.roi.around_box``), read by the registration's warp
+        (module docstring: around); None: the warp replicates the view's border."""
         location, spread = self.window_location.numpy(), self.window_spread.numpy()
         region = self.scored_region()
         if not region.any():
             region = self.region.numpy()
         maps, scores, highlights, noise, signed_all, judged_all, bends, steps, unseen = ([] for _ in range(9))
         part = self.region.numpy()
-        for xi in x.float().cpu().numpy():
-            aligned = self._aligned(xi)
+        arounds = [None] * len(x) if around is None else around.float().cpu().numpy()
+        for xi, ai in zip(x.float().cpu().numpy(), arounds, strict=True):
+            aligned = self._aligned(xi, ai)
             # both before the contrast alignment
             sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan
             step = self.outline.step(self.checked_intensity(aligned))
@@ -1062,12 +1091,13 @@ class VariationModel(nn.Module):
         r[self.intensity] *= k  # in the frame's own units: its noise is not rescaled with its contrast
         return r / self.scale.numpy(), coef[0], judged, float(hidden)
 
-    def _aligned(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """(C, H, W) physical priors -> (``_registered``'s warped features with their polarization aligned when the
-        model aligns it, its judged pixels, the pixels alignments fit over: those judged, or the part region when
-        none are, and its ``seen`` pixels)."""
+    def _aligned(self, xi: np.ndarray, around: np.ndarray | None = None
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(C, H, W) physical priors (and the frame ``around`` them, or None) -> (``_registered``'s warped features
+        with their polarization aligned when the model aligns it, its judged pixels, the pixels alignments fit over:
+        those judged, or the part region when none are, and its ``seen`` pixels)."""
         part = self.region.numpy()
-        warped, judged, seen = self._registered(xi, part)
+        warped, judged, seen = self._registered(xi, part, around)
         where = judged if judged.any() else part
         if self.aligns_polarization:
             warped[:-1] = self.align_polarization(warped[:-1], self.mean.numpy(), where)
@@ -1079,14 +1109,18 @@ class VariationModel(nn.Module):
         the warp made up."""
         return np.where(aligned[3], aligned[0][self.intensity], np.nan)
 
-    def _registered(self, xi: np.ndarray, part: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(C, H, W) physical priors -> (``register``'s warped features with I (1 + DoLP) last, (H, W) bool the
-        pixels of the region ``part`` not hidden by a highlight, (H, W) bool ``seen``: the pixels the warp took from
-        inside the frame (module docstring: register))."""
+    def _registered(self, xi: np.ndarray, part: np.ndarray, around: np.ndarray | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(C, H, W) physical priors (and the frame ``around`` them, or None) -> (``register``'s warped features with
+        I (1 + DoLP) last, (H, W) bool the pixels of the region ``part`` not hidden by a highlight, (H, W) bool
+        ``seen``: the pixels the warp took from inside the frame (module docstring: register, around))."""
         f = self.features(xi)
-        inside = np.zeros((1, *f.shape[1:]), np.float32)
-        inside[0, 1:-1, 1:-1] = 1.0  # warped with the border replicated, its 0 ring marks what came from outside
-        warped = self.register(xi, np.concatenate([f, inside]))
+        inside = ring_inside(np.ones(xi.shape[1:], bool))
+        source = None
+        if around is not None:
+            source = np.concatenate([self.features(around, median=self.log_median(xi)),
+                                     ring_inside(np.isfinite(around[self.intensity])), self.peak(around)[None]])
+        warped = self.register(xi, np.concatenate([f, inside]), source)
         seen = warped[-2] >= SEEN_LEVEL
         warped = np.delete(warped, -2, axis=0)
         return warped, part & ~self.highlight(warped[-1]), seen
@@ -1107,14 +1141,16 @@ class VariationModel(nn.Module):
         is left; the residual networks judge these pixels too (``Detector.residual_inputs``)."""
         return cv2.erode(self.region.numpy().astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
 
-    def register(self, xi: np.ndarray, f: np.ndarray) -> np.ndarray:
+    def register(self, xi: np.ndarray, f: np.ndarray, source: np.ndarray | None = None) -> np.ndarray:
         """(C, H, W) physical priors ``xi`` and (K, H, W) maps ``f`` of the same frame -> ``f`` warped onto the
         reference with the frame's I (1 + DoLP) (``peak``) as its last channel (K + 1, H, W): the warp ``zmaps``
-        uses, matched away from highlights unless more than ``MAX_HIDDEN`` of the frame is highlight."""
+        uses, matched away from highlights unless more than ``MAX_HIDDEN`` of the frame is highlight. ``source``:
+        (K + 1, H + 2 m, W + 2 n) the same maps and peak of the frame around ``xi``, read by the warp
+        (``warp_to``)."""
         peak = self.peak(xi)
         seen = ~self.highlight(peak)
         return self.warp_to(self.reference.numpy(), np.concatenate([f, peak[None]]),
-                            seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
+                            seen if seen.mean() > 1.0 - MAX_HIDDEN else None, source)
 
     def register_masks(self, x: torch.Tensor, masks: torch.Tensor) -> torch.Tensor:
         """(N, C, H, W) physical priors and (N, H, W) bool masks of the same frames (a rendered defect's) -> the
