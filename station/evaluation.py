@@ -35,7 +35,9 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
     """``data``'s split (only its good parts with ``good_only``) as checkpoint ``ck`` (loaded from ``model``) sees
     it at the station: its roi, its input size, its learned normal prior; ``presence`` (a
     ``station.presence.PresenceCheck``, default the station's default) marks the frames the station would not
-    judge. Returns ``station.datasets.SplitTensors``."""
+    judge. With a variation model, the frame around each view comes along as the station reads it
+    (``model.draem.roi.around_px_of``). Returns ``station.datasets.SplitTensors``."""
+    from model.draem.roi import around_px_of
     from station.datasets import load_split
 
     cfg = ck.detector.config
@@ -51,7 +53,8 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
     return load_split(data, split, cfg.priors, cfg.input_shape, limit, good_only=good_only, roi=cfg.roi,
                       normals=normals, frame_aspect=cfg.frame_aspect, dome_segments=cfg.dome_segments,
-                      presence=presence)
+                      presence=presence,
+                      around_px=around_px_of(cfg.roi, cfg.priors, ck.detector.variation is not None))
 
 
 def without_held_out_type(sp, train: Mapping):
@@ -104,7 +107,7 @@ def evaluate_tensors(net, sp):
     """Split tensors ``sp`` (``station.datasets.SplitTensors``) run through ``net``: (EvalData, evaluation)."""
     from model.draem.evaluate import EvalData, evaluate
 
-    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known)
+    tensors = EvalData(sp.priors, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known, sp.around)
     return tensors, evaluate(net, tensors)
 
 

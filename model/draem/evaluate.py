@@ -27,7 +27,8 @@ class EvalData:
     """Held-out samples: priors (N, C, S, S), object_mask and defect_mask (N, S, S) bool, label (N,) {0, 1};
     ``kind`` says where the anomalies come from ("rendered" defects or "synthetic"). ``mask_known`` (N,) bool:
     whose defect mask is ground truth (None: all); pixel metrics use only those samples (a defective part without
-    a mask is never scored against an all-zero mask)."""
+    a mask is never scored against an all-zero mask). ``around``: (N, C, S + 2 a, S' + 2 a) the priors of the frame
+    around each view, which the variation model's registration reads (``Detector.predict``); None: not read."""
 
     priors: torch.Tensor
     object_mask: torch.Tensor
@@ -35,6 +36,7 @@ class EvalData:
     label: torch.Tensor
     kind: str = "rendered"
     mask_known: torch.Tensor | None = None
+    around: torch.Tensor | None = None
 
 
 def synthetic_eval_data(good: TrainData, priors: tuple[str, ...], seed: int = 12345, max_samples: int = 256,
@@ -74,7 +76,8 @@ def evaluate(detector: Detector, data: EvalData, batch_size: int = 16, device: t
         if channels_last:
             x = x.contiguous(memory_format=torch.channels_last)
         with autocast(device, precision):  # roi "center": scored over the whole square, as at a station
-            out = detector.predict(x, obj if detector.config.roi == "object" else None)
+            around = None if data.around is None else data.around[i:i + batch_size].to(device)
+            out = detector.predict(x, obj if detector.config.roi == "object" else None, around=around)
         maps.append(out.anomaly_map.float().cpu())
         scores.append(out.score.float().cpu())
         for k, v in out.member_scores.items():

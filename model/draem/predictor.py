@@ -119,6 +119,9 @@ class Predictor:
     meta: dict[str, Any]
     """The checkpoint's sidecar."""
     members_run: int = 0
+    around_px: int = 0
+    """Input pixels of the frame around the view the variation model's registration reads
+    (``model.draem.roi.around_px_of``; 0: none, the warp replicates the view's border)."""
     priors: tuple[str, ...] = field(init=False)
     """Names of the ``model.priors`` maps ``predict`` reads (from ``PRIOR_MAPS``; nothing else is needed)."""
 
@@ -131,7 +134,7 @@ class Predictor:
         import torch
 
         from .preprocess import crop_resize, stack_priors
-        from .roi import roi_box
+        from .roi import around_box, roi_box
         from .runtime import autocast
 
         shape = next(iter(maps.values())).shape[:2]
@@ -148,12 +151,16 @@ class Predictor:
         x = stack_priors(cut, self.used_priors)
         xt, _ = crop_resize(x, (0, 0, h, w), self.config.input_shape, self.used_priors)
         xt = self._all_channels(xt).unsqueeze(0).to(self.device)
+        around = None
+        if self.around_px:
+            around = self._around(maps, (top, left, h, w), around_box((top, left, h, w), self.config.input_shape,
+                                                                       self.around_px))
         if self.device.type == "cpu" and self.precision not in (Precision.ONNX, Precision.INT8):
             xt = xt.contiguous(memory_format=torch.channels_last)
         with autocast(self.device, self.precision):
             if self.early_exit_margin is None:
                 members = self.members if self.networks_decide else ()
-                out = self.net.predict(xt, members=members)
+                out = self.net.predict(xt, members=members, around=around)
                 self.members_run += len(members)
             else:
                 out = self._predict_early(xt)
@@ -162,6 +169,18 @@ class Predictor:
         heat[top:top + h, left:left + w] = cv2.resize(amap, (w, h), interpolation=cv2.INTER_LINEAR)
         checks = {k: float(v[0]) for k, v in out.frame_checks.items()}
         return Prediction(float(out.score[0]), heat, {k: v for k, v in checks.items() if math.isfinite(v)})
+
+    def _around(self, maps: Mapping[str, np.ndarray], box: tuple[int, int, int, int],
+                around: tuple[tuple[int, int, int, int], tuple[int, int]]) -> torch.Tensor:
+        """(1, C, H + 2 a, W + 2 a) the model's priors of the frame around its view ``box`` (``around``:
+        ``model.draem.roi.around_box``'s box and input shape), NaN beyond the frame, on the model's device."""
+        from .preprocess import crop_around, stack_priors
+
+        (top, left, h, w), shape = around
+        t, le = max(top, 0), max(left, 0)
+        near = stack_priors({k: maps[k][t:top + h, le:left + w] for k in self.priors}, self.used_priors)
+        out = crop_around(near, (top - t, left - le, h, w), shape, self.used_priors)
+        return self._all_channels(out).unsqueeze(0).to(self.device)
 
     @property
     def networks_decide(self) -> bool:
@@ -223,7 +242,7 @@ class Predictor:
 
 def load_predictor(path: str | Path, device: str = "auto", precision: str = "auto", threshold: float | None = None,
                    early_exit_margin: float | None = None, fov_x_deg: float | None = None,
-                   members: Sequence[str] | None = None) -> Predictor:
+                   members: Sequence[str] | None = None, around_px: int | None = None) -> Predictor:
     """The checkpoint at folder stem ``path`` (``<path>.pt`` + ``<path>.json``) ready for frames.
 
     device: "auto" (CUDA when present), "cpu", "cuda"; precision: "fp32", "bf16" (autocast), "onnx" (ONNX Runtime,
@@ -236,7 +255,8 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
     the lens's horizontal field of view in degrees for the normal prior's viewing directions (default: the
     training set's). ``members``: run only these members of a per-prior ensemble, and compute only their priors
     (the pipeline benchmark's prior sets; the threshold stays the whole ensemble's, so only scores and their AUROC
-    are meant).
+    are meant). ``around_px``: input pixels of the frame around the view the variation model's registration reads
+    (None: the model's, ``model.draem.roi.around_px_of``; 0: none, as before 2026-12-06).
 
     Raises ``PredictorError`` (one line naming the file or the ``[model]`` key) for a setting or model it cannot
     run, ``CheckpointError`` for a checkpoint it cannot read.
@@ -244,6 +264,7 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
     import torch
 
     from .checkpoint import load_checkpoint, paths
+    from .roi import around_px_of
     from .runtime import resolve_device
 
     if precision not in PRECISIONS:
@@ -307,7 +328,9 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
                           members=chosen_members, used_priors=used_priors, normals=normals,
                           early_exit_margin=(early_exit_margin if len(chosen_members) > 1 and not cfg.variation
                                              else None),
-                          model_id=f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}", meta=ck.meta)
+                          model_id=f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}", meta=ck.meta,
+                          around_px=(around_px_of(cfg.roi, used_priors, ck.detector.variation is not None)
+                                     if around_px is None else around_px))
     log.info("model %s: priors %s, %s %dpx, roi %s, threshold %.4g, %s %s", predictor.model_id, list(cfg.priors),
              cfg.fusion, cfg.input_size_px, cfg.roi, predictor.threshold, dev, precision)
     return predictor

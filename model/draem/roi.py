@@ -72,6 +72,13 @@ def around_box(box: tuple[int, int, int, int], input_shape: tuple[int, int], aro
             (input_shape[0] + 2 * around_px, input_shape[1] + 2 * around_px))
 
 
+def around_px_of(roi: str, priors: tuple[str, ...] | list[str], has_variation: bool) -> int:
+    """How many input pixels of the frame around its view a model reads (``AROUND_PX``): only a variation model's
+    registration reads them, and not for roi "object" (a research crop) or a model reading the normal prior (its
+    estimator sees the centre square alone); 0: none."""
+    return AROUND_PX if has_variation and roi != "object" and "normal" not in priors else 0
+
+
 def roi_box(roi: str, shape: tuple[int, int], object_mask: np.ndarray | None = None,
             frame_aspect: float = 0.0) -> tuple[int, int, int, int]:
     """The region a network with ``ModelConfig.roi`` = ``roi`` sees in a frame of ``shape`` (H, W), for a model

@@ -95,3 +95,37 @@ def test_a_variation_only_decision_skips_the_networks_and_scores_the_same(tmp_pa
     assert pred.members_run == 1 and again.score == p.score and np.array_equal(p.heatmap, again.heatmap)
     with pytest.raises(ModelError, match="no network ran"):
         det.output(x[:1], {}, {})  # a model without the variation member cannot do without them
+
+
+def test_a_variation_model_reads_the_frame_around_its_view(tmp_path: Path, monkeypatch) -> None:
+    """The predictor gives the variation model's registration the frame around the view (``around_px_of``):
+    ``AROUND_PX`` input pixels more on each side at the view's detail, the view at its centre, NaN beyond the frame;
+    with ``around_px`` 0, none (the warp replicates the view's border, as before 2026-12-06)."""
+    from model.draem.roi import AROUND_PX
+    from model.draem.variation import VariationModel
+    from model.draem.with_variation import add_variation
+
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    det.eval()
+    x = torch.stack([torch.from_numpy(np.stack([maps(0)[k][8:40] for k in MAP_NAMES])) for _ in range(12)])
+    x = x + 0.01 * torch.randn(x.shape, generator=torch.Generator().manual_seed(1))
+    save_checkpoint(tmp_path / "v", add_variation(det, x[:10], None, x[10:], decision="variation"), threshold=0.5,
+                    threshold_rule="test")
+    read = []
+    zmaps = VariationModel.zmaps
+    monkeypatch.setattr(VariationModel, "zmaps", lambda self, x, signed=False, around=None: (
+        read.append((x, around)), zmaps(self, x, signed, around))[1])
+    pred = load_predictor(tmp_path / "v", "cpu", "fp32")
+    assert pred.around_px == AROUND_PX
+    p = pred.predict(maps(0))
+    view, around = read[-1]
+    a = AROUND_PX
+    assert around.shape == (1, view.shape[1], view.shape[2] + 2 * a, view.shape[3] + 2 * a)
+    centre = around[..., a:-a, a:-a]
+    assert torch.allclose(centre[..., 2:-2, 2:-2], view[..., 2:-2, 2:-2], atol=1e-5)  # the view's own pixels
+    # the band (rows 12-35, columns 8-55 of 48 x 64, at 32 x 64) and 12 frame px around: the frame's columns end
+    assert torch.isnan(around[..., :, 0]).all() and torch.isfinite(around[..., :, a:-a]).all()
+    assert np.isfinite(p.score) and p.checks["unseen_fraction"] == 0.0
+    assert load_predictor(tmp_path / "v", "cpu", "fp32", around_px=0).predict(maps(0)) is not None
+    assert read[-1][1] is None

@@ -22,20 +22,22 @@ from model.draem.with_variation import add_variation
 H, W = 32, 64
 
 
-def part(rng: np.random.Generator, dy: float = 0.0, dx: float = 0.0, defect: bool = False) -> torch.Tensor:
+def part(rng: np.random.Generator, dy: float = 0.0, dx: float = 0.0, defect: bool = False, margin: int = 0
+         ) -> torch.Tensor:
     """(4, H, W) priors of a textured bright part on a dark belt, shifted by (dy, dx) px, with an optional dent-like
-    change of DoLP and intensity; intensity scaled as an exposure change would."""
-    y, x = np.mgrid[0:H, 0:W].astype(np.float32)
+    change of DoLP and intensity; intensity scaled as an exposure change would. ``margin``: the frame around that
+    view, (4, H + 2 margin, W + 2 margin), the view at its centre."""
+    y, x = np.mgrid[-margin:H + margin, -margin:W + margin].astype(np.float32)
     inside = ((np.abs(y - H / 2 - dy) < 9) & (np.abs(x - W / 2 - dx) < 22)).astype(np.float32)
     texture = 0.1 * np.sin((x - dx) / 3.0) * np.cos((y - dy) / 4.0)
     intensity = (0.05 + inside * (0.4 + texture)) * rng.uniform(0.7, 1.3)
-    dolp = 0.05 + 0.2 * inside + 0.005 * rng.standard_normal((H, W))
+    dolp = 0.05 + 0.2 * inside + 0.005 * rng.standard_normal(y.shape)
     angle = 0.3 + 0.5 * inside
     if defect:
         blob = np.exp(-((y - H / 2 - dy) ** 2 + (x - W / 2 + 8 - dx) ** 2) / 4.0)
         dolp = dolp + 0.15 * blob
         intensity = intensity * (1 - 0.5 * blob)
-    x4 = np.stack([intensity + 0.002 * rng.standard_normal((H, W)), dolp, np.cos(2 * angle), np.sin(2 * angle)])
+    x4 = np.stack([intensity + 0.002 * rng.standard_normal(y.shape), dolp, np.cos(2 * angle), np.sin(2 * angle)])
     return torch.from_numpy(x4.astype(np.float32))
 
 
@@ -58,7 +60,7 @@ def test_registration_undoes_the_fixtures_play_and_a_local_change_stands_out() -
     # without registration the same good parts look defective: the play alone moves edges by pixels
     unregistered = VariationModel(4, (H, W), intensity=0)
     unregistered.load_state_dict(vm.state_dict())
-    unregistered.warp_to = lambda ref, f, mask=None: f  # type: ignore[method-assign]
+    unregistered.warp_to = lambda ref, f, mask=None, source=None: f  # type: ignore[method-assign]
     assert float(unregistered.zmaps(parts(20, 1))[1].median()) > 2 * float(good.median())
     assert bool(vm.region[H // 2, W // 2]) and not bool(vm.region[0, 0])  # the part, not the belt
 
@@ -684,3 +686,29 @@ def test_a_part_partly_outside_the_view_says_how_much_and_its_reason_names_it() 
     said = beyond_limits(checks)
     assert said[-1].startswith(f"{100 * checks['unseen_fraction']:.2g} % of the part lay outside the model's view")
     assert beyond_limits({k: float(v[0]) for k, v in out.frame_checks().items()}) == []
+
+
+def test_the_frame_around_the_view_gives_the_warp_real_pixels_where_the_view_ends() -> None:
+    """A part 7 rows lower than its place: read alone, the view's bottom rows come from below it and are replicated
+    from the view's last row, the part's edge (unseen); with the frame around the view (``around``, 8 px more on each
+    side), the same warp (fitted on the view) takes them from the frame: nothing unseen, and there the part registers
+    as the part in its place does (the belt). A part in its place scores the same either way."""
+    vm = fitted()
+    frame = part(np.random.default_rng(5), dy=7.0, margin=8)
+    view = frame[:, 8:8 + H, 8:8 + W]
+    alone, around = vm._aligned(view.numpy()), vm._aligned(view.numpy(), frame.numpy())
+    unseen = ~alone[3]
+    assert around[3].all()
+    in_place = vm._aligned(part(np.random.default_rng(5)).numpy())[0][vm.intensity]
+    region = vm.region.numpy()
+    off_alone, off_around = (a[0][vm.intensity] - in_place for a in (alone, around))
+    # up to the log intensity's median, which features take out before the warp (over the region, not the part)
+    off_alone, off_around = (d - np.median(d[region]) for d in (off_alone, off_around))
+    below = np.s_[-6:]  # below the part's edge, all unseen alone (the edge's own row differs by a subpixel shift)
+    assert unseen[below].all()
+    assert np.abs(off_around[below]).max() < 0.2 and np.abs(off_alone[below]).max() > 1.0
+    out = vm.zmaps(view[None], around=frame[None])
+    assert float(out.unseen_fraction[0]) == 0.0 and np.isfinite(out.maps).all()
+    here = part(np.random.default_rng(6), margin=8)
+    same = vm.zmaps(here[None, :, 8:8 + H, 8:8 + W]), vm.zmaps(here[None, :, 8:8 + H, 8:8 + W], around=here[None])
+    assert float(same[1].scores[0]) == pytest.approx(float(same[0].scores[0]), rel=1e-3, abs=1e-3)
