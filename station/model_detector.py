@@ -38,12 +38,13 @@ class DraemDetector:
 
     def __init__(self, path: str | Path, device: str = "auto", precision: str = "auto",
                  threshold: float | None = None, early_exit_margin: float | None = None,
-                 fov_x_deg: float | None = None, members: Sequence[str] | None = None) -> None:
+                 fov_x_deg: float | None = None, members: Sequence[str] | None = None,
+                 around_px: int | None = None) -> None:
         from model.draem.predictor import PredictorError, load_predictor
 
         try:
             self.predictor: Predictor = load_predictor(path, device, precision, threshold, early_exit_margin,
-                                                       fov_x_deg, members)
+                                                       fov_x_deg, members, around_px)
         except PredictorError as exc:
             raise ModelLoadError(str(exc)) from None
 

@@ -66,6 +66,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--drift", default="on",
                    help="drift monitors: each camera's frame statistics against the range its model records, as "
                         "station run computes them (on; a model that records none has none), off, or on,off")
+    p.add_argument("--around", default="on",
+                   help="a variation model's registration reads the frame around its view (model.draem.roi.AROUND_PX "
+                        "input px; as station run does: on), or only the view (off), or on,off")
     p.add_argument("--parts", type=positive_int, default=200, help="frames per configuration")
     p.add_argument("--defect-rate", type=float, default=0.5, help="fraction of the parts shown that are defective")
     p.add_argument("--empty-rate", type=float, default=0.0,
@@ -84,11 +87,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def measure(data: str, model: str, method: str, precision: str, parts: int, defect_rate: float, seed: int,
             device: str, presence: bool = True, empty_rate: float = 0.0, early_exit: float | None = None,
             members: tuple[str, ...] | None = None, second: tuple[str, str] | None = None,
-            parallel: bool = True, drift: bool = True) -> dict:
+            parallel: bool = True, drift: bool = True, around: bool = True) -> dict:
     """One configuration through the real station loop; returns its row. ``second``: (checkpoint, twin set) of a
     second camera (module docstring), judged at the same time as the first (``parallel``) or after it; None: one
     camera. ``drift``: each camera's frame statistics computed and watched as ``station run`` does
-    (``station.assembly.drift_monitor``)."""
+    (``station.assembly.drift_monitor``). ``around``: the variation model reads the frame around its view (the
+    model's ``around_px``) or only the view (0)."""
     from collections.abc import Mapping
     from typing import Any
 
@@ -110,7 +114,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
     from station.presence import Presence, PresenceCheck, PresenceRule
     from station.second_camera import PairInspector
 
-    detector = DraemDetector(model, device, precision, early_exit_margin=early_exit, members=members)
+    detector = DraemDetector(model, device, precision, early_exit_margin=early_exit, members=members,
+                             around_px=None if around else 0)
     detector.warm_up()
     detector.members_run = 0
     layout = get_layout(open_dataset(data).manifest.get("layout", "imx250mzr"))
@@ -185,7 +190,8 @@ def measure(data: str, model: str, method: str, precision: str, parts: int, defe
             "pair_mode": ("parallel" if parallel else "serial") if second else "first-only",
             "model": detector.model_id, "fusion": detector.config.fusion,
             "priors": "+".join(detector.used_priors), "method": method, "precision": precision,
-            "presence": "on" if presence else "off",
+            "presence": "on" if presence else "off", "around": "on" if around else "off",
+            "around_px": detector.predictor.around_px,
             "drift": ("on" if monitor is not None and (second is None or second_monitor is not None)
                       else "partly" if monitor is not None or second_monitor is not None else "off"),
             "early_exit": "off" if early_exit is None else "exact" if early_exit == 0 else f"margin {early_exit:g}",
@@ -219,7 +225,8 @@ def label(r: dict) -> str:
     ck = Path(r.get("checkpoint") or r["model"].split("-")[0])
     name = ck.parent.name if ck.name in ("best", "last") else ck.name  # runs/train/<name>/best
     return (f"{name}/{r['priors']}/{r['method']}/{r['precision']}/"
-            f"presence {r.get('presence', 'off')}{ee}{'/drift off' if r.get('drift') == 'off' else ''}")
+            f"presence {r.get('presence', 'off')}{ee}{'/drift off' if r.get('drift') == 'off' else ''}"
+            f"{'/view only' if r.get('around') == 'off' else ''}")
 
 
 def _plot(out: Path, rows: list[dict], front: list[int]) -> str:
@@ -286,8 +293,8 @@ def run(args: argparse.Namespace) -> int:
     pair_modes = args.pair_modes.split(",") if second else ["first-only"]
     if any(m not in PAIR_MODES for m in pair_modes):
         raise UserError(f"--pair-modes: {args.pair_modes!r}: comma-separated {', '.join(PAIR_MODES)}")
-    presence, drift = args.presence.split(","), args.drift.split(",")
-    for name, values in (("--presence", presence), ("--drift", drift)):
+    presence, drift, around = args.presence.split(","), args.drift.split(","), args.around.split(",")
+    for name, values in (("--presence", presence), ("--drift", drift), ("--around", around)):
         bad = [v for v in values if v not in ("on", "off")]
         if bad:
             raise UserError(f"{name}: {bad[0]!r} is not on or off")
@@ -295,15 +302,16 @@ def run(args: argparse.Namespace) -> int:
     models = args.models.split(",")
     cfgs = {m: read_sidecar(m)["model"] for m in models}  # each sidecar read once
     members = {(m, s): _members(cfgs[m], s) for m in models for s in args.prior_sets.split(",")}
-    grid = [(m, meth, prec, pres, ee, mem, pm, dr) for m in models for meth in args.methods.split(",")
+    grid = [(m, meth, prec, pres, ee, mem, pm, dr, ar) for m in models for meth in args.methods.split(",")
             for prec in args.precisions.split(",") for pres in presence for ee in exits
             for mem in dict.fromkeys(v for (mm, _), v in members.items() if mm == m and v is not False)
-            for pm in pair_modes for dr in drift if ee is None or cfgs[m].get("fusion") == "ensemble"]
+            for pm in pair_modes for dr in drift for ar in around
+            if ee is None or cfgs[m].get("fusion") == "ensemble"]
     rows = []
-    for model, method, precision, pres, ee, mem, pm, dr in tqdm(grid, desc="bench pipeline", unit="config"):
+    for model, method, precision, pres, ee, mem, pm, dr, ar in tqdm(grid, desc="bench pipeline", unit="config"):
         rows.append(measure(args.data, model, method, precision, args.parts, args.defect_rate, args.seed,
                             args.device, pres == "on", args.empty_rate, ee, mem,
-                            None if pm == "first-only" else second, pm == "parallel", dr == "on"))
+                            None if pm == "first-only" else second, pm == "parallel", dr == "on", ar == "on"))
     front = pareto_front(rows)
     for i, r in enumerate(rows):
         r["pareto"] = i in front
@@ -311,7 +319,7 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     plot = _plot(out, rows, front)
     cols = ["checkpoint", *(["second_checkpoint", "pair_mode"] if second else []), "fusion", "priors",
-            "method", "precision", "presence", "drift", "early_exit", "members_per_part",
+            "method", "precision", "presence", "drift", "around_px", "early_exit", "members_per_part",
             "parts", "empty_frames", "model_runs", "p50_ms", "p99_ms",
             "priors_p50_ms", "model_p50_ms", "presence_p50_ms", "parts_per_s", "empty_skipped", "parts_skipped",
             "image_auroc", "detected", "flagged_good", "pareto"]

@@ -4,7 +4,8 @@ renderer, lens or camera would change them, with its validation thresholds held 
 The shifts are pure functions on the stacked priors at the model's input (``model.draem.shifts``). Per shift:
 image AUROC, the share of defective parts caught and of good parts rejected at the thresholds that reject 1 % and 5 %
 of the good validation parts, the share rejected at the model's own threshold, and image AUROC per defect type. The
-unchanged row is what ``station eval`` reports on the same parts. What it does not cover: noise (a noisier frame is
+unchanged row is what ``station eval`` reports on the same parts; the frame around the view the variation model's
+registration reads (``model.draem.roi.AROUND_PX``) is shifted with it. What it does not cover: noise (a noisier frame is
 judged against its own noise level: ``model.draem.variation``, docs/results/2026-11-24-noise-level.md) and a line
 whose geometry or light differs (render it: docs/results/2026-11-25-gradient-dome.md)."""
 
@@ -58,7 +59,13 @@ def run(args: argparse.Namespace) -> int:
     rows, per_type = [], {}
     for name in names:
         x = torch.from_numpy(shift(name, sp.priors.numpy(), ch))
-        ev = evaluate(net, EvalData(x, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known))
+        around = None
+        if sp.around is not None:  # the frame around the view, shifted alike (its centre is the view's)
+            a = sp.around.numpy()
+            shifted = shift(name, a, ch)
+            shifted[~np.isfinite(a)] = np.nan  # beyond the frame stays beyond it
+            around = torch.from_numpy(shifted)
+        ev = evaluate(net, EvalData(x, sp.object_mask, sp.defect_mask, sp.label, "rendered", sp.mask_known, around))
         rep = detection_by_type(labels, ev.scores, types, validation=(va.label.numpy(), vev.scores))
         good = ev.scores[labels == 0]
         rows.append({"shift": name, "image_auroc": auroc(labels.astype(bool), ev.scores),

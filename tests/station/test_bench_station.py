@@ -169,3 +169,34 @@ def test_bench_pipeline_drift_axis_computes_the_statistics_the_station_watches(t
     assert all(r["parts"] == r["judged"] == 4 for r in rows)
     assert main([*args, "--models", str(plain), "--drift", "maybe"]) == 2
     assert "--drift: 'maybe' is not on or off" in capsys.readouterr().err
+
+
+def test_bench_pipeline_around_axis_times_the_frame_around_the_view(tmp_path: Path, capsys) -> None:
+    """``--around on`` (the default, as ``station run``) gives a variation model's registration the frame around its
+    view (``model.draem.roi.AROUND_PX``), ``off`` only the view: one row each, the same parts judged."""
+    import numpy as np
+    import torch
+
+    from model.draem.checkpoint import save_checkpoint
+    from model.draem.config import ModelConfig
+    from model.draem.detector import Detector
+    from model.draem.roi import AROUND_PX
+    from model.draem.with_variation import add_variation
+
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    det.eval()
+    x = torch.from_numpy(np.random.default_rng(0).uniform(0.2, 0.8, (12, 4, 32, 64)).astype(np.float32))
+    model = tmp_path / "v"
+    save_checkpoint(model, add_variation(det, x[:10], None, x[10:], decision="variation"), threshold=0.5,
+                    threshold_rule="test")
+    data = make_dataset(tmp_path / "ds", n=20)
+    out = tmp_path / "bench"
+    args = ["bench", "pipeline", "--data", str(data), "--models", str(model), "--methods", "bilinear",
+            "--precisions", "fp32", "--presence", "off", "--drift", "off", "--parts", "4", "--out", str(out)]
+    assert main([*args, "--around", "on,off"]) == 0
+    rows = json.loads((out / "pipeline.json").read_text())["rows"]
+    assert [(r["around"], r["around_px"]) for r in rows] == [("on", AROUND_PX), ("off", 0)]
+    assert all(r["parts"] == r["judged"] == 4 for r in rows)
+    assert main([*args, "--around", "maybe"]) == 2
+    assert "--around: 'maybe' is not on or off" in capsys.readouterr().err
