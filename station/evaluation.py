@@ -35,9 +35,8 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
     """``data``'s split (only its good parts with ``good_only``) as checkpoint ``ck`` (loaded from ``model``) sees
     it at the station: its roi, its input size, its learned normal prior; ``presence`` (a
     ``station.presence.PresenceCheck``, default the station's default) marks the frames the station would not
-    judge. With a variation model, the frame around each view comes along as the station reads it
-    (``model.draem.roi.around_px_of``). Returns ``station.datasets.SplitTensors``."""
-    from model.draem.roi import around_px_of
+    judge. The frame around each view comes along as the station reads it (``ModelConfig.around_px``). Returns
+    ``station.datasets.SplitTensors``."""
     from station.datasets import load_split
 
     cfg = ck.detector.config
@@ -54,7 +53,7 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
     return load_split(data, split, cfg.priors, cfg.input_shape, limit, good_only=good_only, roi=cfg.roi,
                       normals=normals, frame_aspect=cfg.frame_aspect, dome_segments=cfg.dome_segments,
                       presence=presence,
-                      around_px=around_px_of(cfg.roi, cfg.priors, ck.detector.variation is not None))
+                      around_px=cfg.around_px)
 
 
 def without_held_out_type(sp, train: Mapping):

@@ -447,5 +447,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                   "few appearance components, and on renders of lines where something still varied 50 parts scored "
                   "below the model unadapted; adapt again on more good parts")
         log.warning(advice)
+    # the refit and its threshold read the view alone: so does the adapted file (ModelConfig.around_px)
+    final.config = final.config.with_(around_px=0)
     return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position,
                               shift, final.config.decision, changed, advice, shape)

@@ -170,7 +170,11 @@ class ModelConfig:
     ``dome_segments``: the azimuths (degrees) of the dome segments the model's frames were taken under, one frame
     per segment per part, in order (photometric stereo, ``model.priors.photometric``; ``station train`` reads them
     from the set's manifest); empty: one frame per part. Intensity and polarization are read from the frames' mean
-    (the uniform dome), so a model with segments but no tilt prior still needs its frames."""
+    (the uniform dome), so a model with segments but no tilt prior still needs its frames.
+    ``around_px``: input pixels of the frame around the view the variation model's registration reads at a station
+    and in ``station eval`` (``model.draem.variation``, module docstring: around; ``model.draem.roi.AROUND_PX``, which
+    ``station variation`` sets); 0: the view alone, as every file before 2026-12-06 and an adapted file (its refit
+    reads the view alone); needs the variation model, and neither roi "object" nor the normal prior."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"
@@ -185,6 +189,7 @@ class ModelConfig:
     residual_members: int = 0
     frame_aspect: float = 0.0
     dome_segments: tuple[float, ...] = ()
+    around_px: int = 0
     extra: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -217,6 +222,10 @@ class ModelConfig:
             raise ModelError(f"priors {list(self.priors)}: {exc}") from None
         if "normal" in self.priors and self.dome_segments:
             raise ModelError("the normal prior's estimator reads one frame; a model of dome segments cannot take it")
+        if not isinstance(self.around_px, int) or not 0 <= self.around_px <= 64 or (self.around_px and (
+                not self.variation or self.roi == "object" or "normal" in self.priors)):
+            raise ModelError(f"around_px must be 0 or, with the variation model, neither roi 'object' nor the "
+                             f"normal prior, up to 64 input px; got {self.around_px!r}")
         if self.score_window_px < 0 or (self.score_window_px and self.score_window_px % 2 == 0):
             raise ModelError(f"score_window_px must be 0 (auto) or odd, got {self.score_window_px}")
 
@@ -275,6 +284,8 @@ class ModelConfig:
             d["dome_segments"] = list(self.dome_segments)
         else:
             d.pop("dome_segments")  # sidecars of one-frame models stay as they were before the key
+        if not self.around_px:
+            d.pop("around_px")  # as dome_segments: files that read the view alone stay as they were
         return d
 
     @classmethod

@@ -120,8 +120,9 @@ class Predictor:
     """The checkpoint's sidecar."""
     members_run: int = 0
     around_px: int = 0
-    """Input pixels of the frame around the view the variation model's registration reads
-    (``model.draem.roi.around_px_of``; 0: none, the warp replicates the view's border)."""
+    """Input pixels of the frame around the view the variation model's registration reads (the model's
+    ``ModelConfig.around_px`` unless ``load_predictor`` is told otherwise; 0: none, the warp replicates the view's
+    border)."""
     priors: tuple[str, ...] = field(init=False)
     """Names of the ``model.priors`` maps ``predict`` reads (from ``PRIOR_MAPS``; nothing else is needed)."""
 
@@ -256,7 +257,7 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
     training set's). ``members``: run only these members of a per-prior ensemble, and compute only their priors
     (the pipeline benchmark's prior sets; the threshold stays the whole ensemble's, so only scores and their AUROC
     are meant). ``around_px``: input pixels of the frame around the view the variation model's registration reads
-    (None: the model's, ``model.draem.roi.around_px_of``; 0: none, as before 2026-12-06).
+    (None: the model's, ``ModelConfig.around_px``; 0: none, as every file before 2026-12-06).
 
     Raises ``PredictorError`` (one line naming the file or the ``[model]`` key) for a setting or model it cannot
     run, ``CheckpointError`` for a checkpoint it cannot read.
@@ -264,7 +265,6 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
     import torch
 
     from .checkpoint import load_checkpoint, paths
-    from .roi import around_px_of
     from .runtime import resolve_device
 
     if precision not in PRECISIONS:
@@ -329,8 +329,7 @@ def load_predictor(path: str | Path, device: str = "auto", precision: str = "aut
                           early_exit_margin=(early_exit_margin if len(chosen_members) > 1 and not cfg.variation
                                              else None),
                           model_id=f"{Path(path).name}-{cfg.preset}-{cfg.fusion}-{sha[:8]}", meta=ck.meta,
-                          around_px=(around_px_of(cfg.roi, used_priors, ck.detector.variation is not None)
-                                     if around_px is None else around_px))
+                          around_px=cfg.around_px if around_px is None else around_px)
     log.info("model %s: priors %s, %s %dpx, roi %s, threshold %.4g, %s %s", predictor.model_id, list(cfg.priors),
              cfg.fusion, cfg.input_size_px, cfg.roi, predictor.threshold, dev, precision)
     return predictor

@@ -73,9 +73,10 @@ def around_box(box: tuple[int, int, int, int], input_shape: tuple[int, int], aro
 
 
 def around_px_of(roi: str, priors: tuple[str, ...] | list[str], has_variation: bool) -> int:
-    """How many input pixels of the frame around its view a model reads (``AROUND_PX``): only a variation model's
-    registration reads them, and not for roi "object" (a research crop) or a model reading the normal prior (its
-    estimator sees the centre square alone); 0: none."""
+    """How many input pixels of the frame around its view a new variation model reads (``AROUND_PX``;
+    ``ModelConfig.around_px``, which ``station variation`` sets from this): only a variation model's registration
+    reads them, and not for roi "object" (a research crop) or a model reading the normal prior (its estimator sees
+    the centre square alone); 0: none."""
     return AROUND_PX if has_variation and roi != "object" and "normal" not in priors else 0
 
 

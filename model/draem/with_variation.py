@@ -16,6 +16,7 @@ from .detector import Detector
 from .errors import ModelError
 from .metrics import false_reject_threshold
 from .residual import train_member
+from .roi import around_px_of
 from .second_look import MIN_REFERENCES
 from .variation import VariationModel, network_score
 
@@ -48,7 +49,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
         raise ModelError(f"calibrating the variation model needs good validation parts, got {len(val_good)}")
-    out = Detector(detector.config.with_(variation=True, decision=decision), detector.normalizer)
+    around = around_px_of(detector.config.roi, detector.config.priors, True)  # the frame around the view: read
+    out = Detector(detector.config.with_(variation=True, decision=decision, around_px=around), detector.normalizer)
     missing, unexpected = out.load_state_dict(detector.state_dict(), strict=False)
     assert not unexpected and all(k.startswith("variation.") for k in missing), (missing, unexpected)
     out.eval()
@@ -184,7 +186,7 @@ def networks_only(detector: Detector) -> Detector:
     """A copy of ``detector`` with its networks and normalisation only (decision "combined"): its variation model
     and the residual networks that read it dropped. The source of a variation model fitted on another camera's
     parts (``scripts/make-side-model.sh``: the side camera's file from the shipped line file)."""
-    out = Detector(detector.config.with_(variation=False, residual_members=0, decision="combined"),
+    out = Detector(detector.config.with_(variation=False, residual_members=0, decision="combined", around_px=0),
                    detector.normalizer)
     out.load_state_dict({k: v for k, v in detector.state_dict().items()
                          if not k.startswith(("variation.", "residual."))})

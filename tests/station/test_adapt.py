@@ -17,6 +17,7 @@ from model.draem.adapt import AdaptConfig, adapt, adapted_threshold
 from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import ModelConfig
 from model.draem.errors import ModelError
+from model.draem.roi import AROUND_PX
 from model.draem.train import TensorData, TrainConfig, train
 from station.cli import main
 from station.datasets import load_split
@@ -123,6 +124,10 @@ def test_adapt_refits_the_variation_models_statistics_and_calibration(line, tmp_
     assert old is not None and new is not None
     assert torch.equal(old.reference, new.reference) and torch.equal(old.region, new.region)
     assert not torch.equal(old.mean, new.mean) and not torch.equal(old.calibration, new.calibration)
+    # the fit reads the frame around its view at a station; the refit, fitted and thresholded on the view alone, not
+    # (read with it, this line's parts, 8-18 % outside the view, scored every good part above the threshold)
+    assert load_checkpoint(with_var).detector.config.around_px == AROUND_PX
+    assert load_checkpoint(out).detector.config.around_px == 0
     # the second look is fitted again too: the line's own parts as references, its gate from their held-out scores
     assert old.second_look.references > 0 and new.second_look.references == 140
     assert bool(torch.isfinite(new.second_look.calibration).all())

@@ -32,3 +32,21 @@ def test_only_a_variation_models_registration_reads_the_frame_around() -> None:
     assert around_px_of("band", ("intensity",), False) == 0
     assert around_px_of("center", ("intensity", "normal"), True) == 0  # the estimator reads the centre square
     assert around_px_of("object", ("intensity",), True) == 0
+
+
+def test_the_frame_around_is_the_model_files_setting() -> None:
+    """``ModelConfig.around_px``: 0 (the view alone, every file before it) leaves the sidecar as it was; a variation
+    model may read up to 64; a model without one, or reading the normal prior, may not (one line naming the key)."""
+    import pytest
+
+    from model.draem.config import ModelConfig
+    from model.draem.errors import ModelError
+
+    base = ModelConfig.from_preset("tiny", ("intensity",), "fused", 32, "band")
+    assert "around_px" not in base.to_dict()
+    reads = base.with_(variation=True, around_px=AROUND_PX)
+    assert ModelConfig.from_dict(reads.to_dict()) == reads and reads.to_dict()["around_px"] == AROUND_PX
+    for bad in (base.to_dict() | {"around_px": 16}, reads.to_dict() | {"around_px": 65},
+                reads.to_dict() | {"around_px": -1}, reads.to_dict() | {"around_px": 1.5}):
+        with pytest.raises(ModelError, match="around_px must be"):
+            ModelConfig.from_dict(bad)
