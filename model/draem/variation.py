@@ -27,17 +27,19 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               threshold), and the window judges every pixel of the region, seen or not; the share of the
               region not seen is a frame check (``unseen_fraction``; ``frame_checks.UNSEEN_LIMIT``), so a reject's
               reason names a part partly outside the model's view
-    around    the frame around the view (``zmaps``'s ``around``: ``model.draem.roi.AROUND_PX`` input pixels more on
-              each side at the view's detail, NaN beyond the frame; the station and ``station eval`` give it since
-              2026-12-06): the warp is still fitted on the view against the reference, but takes its pixels from
-              the frame around, so a part turned or moved a little has its ends read from the frame, not made up
-              from the view's border; only beyond the frame around, or beyond the frame, is a pixel not seen, and
-              there the frame's border is replicated as the view's was (``frame_filled``: a NaN read as dark
-              made every good part of a centre square whose frame ends at the view's rows reject). Fits
-              (``fit``, the checks' calibrations, ``station adapt``) read the view alone, as before. On seed 1204's
-              parts seen by a camera turned 5 degrees, 2 instead of 10 of 211 good parts rejected (the shape check's
-              8 gone), as many defects caught; on fresh seed 1211 turned 5 degrees 0 instead of 3 of 81, two
-              defective parts fewer of 119 (docs/results/2026-12-06-view-margin.md)
+    around    the frame around the view (``zmaps``'s ``around``: ``ModelConfig.around_px`` input pixels more on each
+              side at the view's detail, NaN beyond the frame; the station and ``station eval`` give it to a file whose
+              ``around_px`` is above 0, as the shipped file's since 2026-12-06): the warp is still fitted on the view
+              against the reference, but takes its pixels from the frame around, so a part turned or moved a little has
+              its ends read from the frame, not made up from the view's border; only beyond the frame around, or beyond
+              the frame, is a pixel not seen, and there the frame's border is replicated as the view's was
+              (``frame_filled``; not a dark border the window would judge). Fits (``fit``, the checks' calibrations,
+              ``station adapt``) read the view alone, as before: on a square line its parts barely reach beyond it, but
+              a refit on parts that do, read with the frame around, rejected every good part of a synthetic line
+              (tests/station/test_adapt.py), so an adapted file reads the view alone. On seed 1204's parts seen by a
+              camera turned 5 degrees, 2 instead of 10 of 211 good parts rejected (the shape check's 8 gone), as many
+              defects caught; on fresh seed 1211 turned 5 degrees 0 instead of 3 of 81, two defective parts fewer of 119
+              (docs/results/2026-12-06-view-margin.md)
     appearance  the good parts' registered features, each channel divided by its robust spread over the part
               (``channel_scale``), minus their per-pixel mean: what stays is how a good part differs from the
               average one. Its first ``COMPONENTS`` principal components (``components``) are the line's
@@ -543,7 +545,7 @@ class VariationModel(nn.Module):
         median to take out (the view's, for the frame around it: ``around``); None: its own over the region."""
         f = np.nan_to_num(np.asarray(x, np.float32), nan=0.0, posinf=1.0, neginf=0.0).copy()
         li = np.log(np.maximum(f[self.intensity], LOG_FLOOR))
-        f[self.intensity] = li - (self.log_median(x, region) if median is None else median)
+        f[self.intensity] = li - (self._median_over(li, region) if median is None else median)
         if self.dolp is not None and self.aolp is not None:
             f[self.aolp:self.aolp + 2] *= f[self.dolp]
         if not self.dolp_read:
@@ -554,7 +556,9 @@ class VariationModel(nn.Module):
         """(C, H, W) physical priors -> the median of their log intensity over ``region`` (H, W; None: the part
         region; all pixels when it is empty): what ``features`` takes out."""
         i = np.nan_to_num(np.asarray(x[self.intensity], np.float32), nan=0.0, posinf=1.0, neginf=0.0)
-        li = np.log(np.maximum(i, LOG_FLOOR))
+        return self._median_over(np.log(np.maximum(i, LOG_FLOOR)), region)
+
+    def _median_over(self, li: np.ndarray, region: np.ndarray | None) -> float:
         reg = self.region.numpy() if region is None else region
         return float(np.median(li[reg]) if reg.any() else np.median(li))
 
