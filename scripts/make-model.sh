@@ -68,7 +68,9 @@ MIXED_STEPS=${MIXED_STEPS:-400}
 BAND_STEPS=${BAND_STEPS:-1200}
 SHELL_STEPS=${SHELL_STEPS:-30}  # the band network's steps when it does not decide (DECISION=variation)
 ROI=${ROI:-band}  # the region the model sees: band (96 x 192, the shipped file) or tall (SIZE=128: 128 x 192, room for
-SIZE=${SIZE:-96}  # a turned camera, 3.4 points fewer caught: docs/results/2026-12-06-tall-band-recipe.md)
+SIZE=${SIZE:-96}  # a turned camera, 3.4 points fewer caught: docs/results/2026-12-06-tall-band-recipe.md; the
+# variation model's frame around the view, which station variation sets, keeps a 5-degree turn's good parts without
+# it: docs/results/2026-12-06-view-margin.md)
 BAND=(--roi "$ROI" --size "$SIZE")
 HOLDOUT_STEPS=${HOLDOUT_STEPS:-150}
 HOLDOUT_TYPES=${HOLDOUT_TYPES:-dent scratch stain chip missing_stud}

@@ -58,7 +58,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "band: the middle half of that square at up to twice its detail (input SIZE x 2 SIZE; a part "
                         "laid across the view: the shipped model's, with --size 96); "
                         "tall: its middle two thirds at the band's detail (input SIZE x 1.5 SIZE, SIZE a multiple "
-                        "of 64: room for a turned camera, at a cost in defects caught); "
+                        "of 64: room for a turned camera, at a cost in defects caught; a variation model's frame "
+                        "around the view does it without the cost up to 5 degrees); "
                         "frame: the whole frame resized "
                         "(no crop, for comparison); object: square around the rendered object mask (needs ground "
                         "truth at inference: research upper bound)")
