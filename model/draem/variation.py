@@ -1143,12 +1143,13 @@ class VariationModel(nn.Module):
         """(C, H, W) physical priors (and the frame ``around`` them, or None) -> (``register``'s warped features with
         I (1 + DoLP) last, (H, W) bool the pixels of the region ``part`` not hidden by a highlight, (H, W) bool
         ``seen``: the pixels the warp took from inside the frame (module docstring: register, around))."""
-        f = self.features(xi)
+        median = self.log_median(xi)  # the view's, taken out of the view and of the frame around it alike
+        f = self.features(xi, median=median)
         inside = ring_inside(np.ones(xi.shape[1:], bool))
         source = None
         if around is not None:
             filled, in_frame = frame_filled(around)
-            source = np.concatenate([self.features(filled, median=self.log_median(xi)), ring_inside(in_frame),
+            source = np.concatenate([self.features(filled, median=median), ring_inside(in_frame),
                                      self.peak(filled)[None]])
         warped = self.register(xi, np.concatenate([f, inside]), source)
         seen = warped[-2] >= SEEN_LEVEL

@@ -66,6 +66,21 @@ def test_the_normal_prior_reads_the_estimator_inputs() -> None:
     assert PRIOR_MAPS["normal"] == MAP_NAMES
 
 
+def save_variation_model(path: Path) -> tuple[Detector, torch.Tensor]:
+    """A tiny band detector (test_onnx's) with a variation model that alone decides, fitted on 10 noisy copies of
+    ``maps(0)``'s band and calibrated on 2, saved at ``path``: (the detector without it, those 12 parts' priors)."""
+    from model.draem.with_variation import add_variation
+
+    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
+    det.init_weights(torch.Generator().manual_seed(0))
+    det.eval()
+    x = torch.stack([torch.from_numpy(np.stack([maps(0)[k][8:40] for k in MAP_NAMES])) for _ in range(12)])
+    x = x + 0.01 * torch.randn(x.shape, generator=torch.Generator().manual_seed(1))
+    save_checkpoint(path, add_variation(det, x[:10], None, x[10:], decision="variation"), threshold=0.5,
+                    threshold_rule="test")
+    return det, x
+
+
 @pytest.mark.parametrize("precision", ["fp32", "onnx"])
 def test_a_variation_only_decision_skips_the_networks_and_scores_the_same(tmp_path: Path, precision: str,
                                                                           monkeypatch) -> None:
@@ -74,15 +89,8 @@ def test_a_variation_only_decision_skips_the_networks_and_scores_the_same(tmp_pa
     if precision == "onnx":
         pytest.importorskip("onnxruntime")
     from model.draem.predictor import Predictor
-    from model.draem.with_variation import add_variation
 
-    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))  # test_onnx's
-    det.init_weights(torch.Generator().manual_seed(0))
-    det.eval()
-    x = torch.stack([torch.from_numpy(np.stack([maps(0)[k][8:40] for k in MAP_NAMES])) for _ in range(12)])
-    x = x + 0.01 * torch.randn(x.shape, generator=torch.Generator().manual_seed(1))
-    full = add_variation(det, x[:10], None, x[10:], decision="variation")
-    save_checkpoint(tmp_path / "v", full, threshold=0.5, threshold_rule="test")
+    det, x = save_variation_model(tmp_path / "v")
     pred = load_predictor(tmp_path / "v", "cpu", precision)
     assert not pred.networks_decide
     p = pred.predict(maps(0))
@@ -103,15 +111,8 @@ def test_a_variation_model_reads_the_frame_around_its_view(tmp_path: Path, monke
     with ``around_px`` 0, none (the warp replicates the view's border, as before 2026-12-06)."""
     from model.draem.roi import AROUND_PX
     from model.draem.variation import VariationModel
-    from model.draem.with_variation import add_variation
 
-    det = Detector(ModelConfig.from_preset("tiny", ("intensity", "dolp", "aolp"), "fused", 32, "band"))
-    det.init_weights(torch.Generator().manual_seed(0))
-    det.eval()
-    x = torch.stack([torch.from_numpy(np.stack([maps(0)[k][8:40] for k in MAP_NAMES])) for _ in range(12)])
-    x = x + 0.01 * torch.randn(x.shape, generator=torch.Generator().manual_seed(1))
-    save_checkpoint(tmp_path / "v", add_variation(det, x[:10], None, x[10:], decision="variation"), threshold=0.5,
-                    threshold_rule="test")
+    save_variation_model(tmp_path / "v")
     read = []
     zmaps = VariationModel.zmaps
     monkeypatch.setattr(VariationModel, "zmaps", lambda self, x, signed=False, around=None: (
