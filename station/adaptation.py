@@ -84,7 +84,7 @@ def adapt_model(model: str, good: str, out: str, split: str = "train", limit: in
         raise UserError(f"{good}: split {split!r} has no good parts the station would judge"
                         + (f" ({describe_left_out(left_out)})" if left_out else ""))
     x, obj = sp.priors[keep], sp.object_mask[keep]
-    det, res = adapt(ck.detector, x, obj, cfg)
+    det, res = adapt(ck.detector, x, obj, cfg, around=None if sp.around is None else sp.around[keep])
     used = [sp.index[int(k)] for k in keep]
     stats = StatisticsRange.from_frames([sp.frame_stats[int(k)] for k in keep])
     record = {**res.record(), "data": str(good), "split": split, "manifest_sha256": manifest_sha256(good),

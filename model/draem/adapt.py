@@ -5,21 +5,22 @@ What depends on the line, in this model:
   - the input normalisation (``Normalizer``: per-channel mean and std over all pixels of the region of interest,
     the same statistic training used): exposure, gain, light and belt move it;
   - per-position statistics: the variation model's appearance (mean, principal components, per-pixel scales;
-    ``model.draem.variation``), when the detector has one: re-estimated on the line's good parts, registered to
-    the reference it was trained with (its part region kept; with blurred copies of the parts when the model was
-    fitted with them, ``VariationModel.blur_copies_sigma``); its second look, when it has one, on the line's own
-    good parts as references (``model.draem.second_look``); then the second look's gate and both detectors'
-    calibration, from the held-out scores; its shape check, when the model has one (``model.draem.shape_check``):
-    the edge from the refit's reference, the good parts' sag spread from all of them, its threshold the largest z
-    of a held-out part against the parts fitted without it, the window's 1 % point from the held-out parts; and
-    its outline check (``model.draem.outline_check``) alike. Each check's threshold is then floored at the trained
-    model's (``AdaptConfig.floor_checks``, on by default): the largest z of n good parts lets about 1/(n + 1) of new
-    good parts beyond it, and the trained one, in the same units (robust z against the parts' own spread), was set
-    on the model's good calibration parts (363 for the shipped file), so on fewer parts it is the better estimate
-    of the good parts' tail. Measured on fresh seed 1203 (docs/results/2026-12-05-adapt-floor.md): adapted on 90
-    good parts the shipped file rejected 9 of 206 others without the floor (7 by the outline check's bottom edge,
-    refitted at z 5.23 against the trained 8.68) and 2 with it; on 200, 8 and 5; defective parts caught 65.8 % both
-    ways on 90, 73.8 % and 73.3 % on 200;
+    ``model.draem.variation``), when the detector has one: re-estimated on the line's good parts, registered to the
+    reference it was trained with (its part region kept; with blurred copies of the parts when the model was fitted
+    with them, ``VariationModel.blur_copies_sigma``; the frame around each part read by the registration, as the
+    station reads it, when the model reads it: ``ModelConfig.around_px``, kept in the adapted file); its second look,
+    when it has one, on the line's own good parts as references (``model.draem.second_look``); then the second look's
+    gate and both detectors' calibration, from the held-out scores; its shape check, when the model has one
+    (``model.draem.shape_check``): the edge from the refit's reference, the good parts' sag spread from all of them,
+    its threshold the largest z of a held-out part against the parts fitted without it, the window's 1 % point from
+    the held-out parts; and its outline check (``model.draem.outline_check``) alike. Each check's threshold is then
+    floored at the trained model's (``AdaptConfig.floor_checks``, on by default): the largest z of n good parts lets
+    about 1/(n + 1) of new good parts beyond it, and the trained one, in the same units (robust z against the parts'
+    own spread), was set on the model's good calibration parts (363 for the shipped file), so on fewer parts it is the
+    better estimate of the good parts' tail. Measured on fresh seed 1203 (docs/results/2026-12-05-adapt-floor.md):
+    adapted on 90 good parts the shipped file rejected 9 of 206 others without the floor (7 by the outline check's
+    bottom edge, refitted at z 5.23 against the trained 8.68) and 2 with it; on 200, 8 and 5; defective parts caught
+    65.8 % both ways on 90, 73.8 % and 73.3 % on 200;
   - whether the networks still judge: their held-out good parts' median image score, in robust standard
     deviations of their good validation parts (the trained calibration), after the refit; above
     ``DOMAIN_SHIFT_SD`` they are out of their domain on this line and the adapted model decides on the variation
@@ -68,6 +69,7 @@ from .with_variation import (
     member_scores,
     outline_deviations,
     residual_raw,
+    rows,
     second_look_scores,
     shape_window,
 )
@@ -125,6 +127,24 @@ class AdaptConfig:
             raise ModelError(f"holdout_fraction {self.holdout_fraction}: a share in (0, 1)")
         if self.fine_tune_steps < 0:
             raise ModelError(f"fine_tune_steps {self.fine_tune_steps}: >= 0")
+
+
+@dataclass(frozen=True)
+class Held:
+    """Good parts held out of a fit: ``detector`` fitted without them, their (N, C, S, S) priors ``x`` and the frame
+    around each (``Detector.predict``'s ``around``), or None when the model reads the view alone."""
+
+    detector: Detector
+    x: torch.Tensor
+    around: torch.Tensor | None = None
+
+    def take(self, index: torch.Tensor) -> Held:
+        """The same detector with parts ``index`` of these."""
+        return Held(self.detector, self.x[index], None if self.around is None else self.around[index])
+
+    def parts(self) -> tuple[torch.Tensor, torch.Tensor | None]:
+        """(x, around)."""
+        return self.x, self.around
 
 
 @dataclass(frozen=True)
@@ -207,25 +227,31 @@ def image_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16, arou
     """(N,) image scores of (N, C, S, S) priors (roi "center"/"frame": scored over the whole square); ``around``: the
     frame around each view (``Detector.predict``)."""
     detector.eval()
-    out = [detector.predict(x[i:i + batch_size], around=None if around is None else around[i:i + batch_size])
-           .score.float().cpu() for i in range(0, x.shape[0], batch_size)]
+    out = [detector.predict(x[i:i + batch_size], around=rows(around, i, batch_size)).score.float().cpu()
+           for i in range(0, x.shape[0], batch_size)]
     return torch.cat(out).numpy()
 
 
-def _refit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Detector:
-    """A copy with the normalisation (and the variation model's statistics, when it has one) fitted on ``x``."""
+def _refit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig, around: torch.Tensor | None = None) -> Detector:
+    """A copy with the normalisation (and the variation model's statistics, when it has one) fitted on ``x`` (the
+    frame ``around`` each read by the registration, when given)."""
     d = with_normalizer(detector, _fit(detector, x, cfg))
     if d.variation is not None:
         looked = d.variation.second_look.references > 0
-        references = d.variation.fit(x, keep_reference=True)  # a new fit has no second look
+        references = d.variation.fit(x, keep_reference=True, around=around)  # a new fit has no second look
         if looked and len(references) >= MIN_REFERENCES:  # one on the line's own parts, calibrated held out
             d.variation.second_look.fit(references, d.variation.region.numpy())
     return d
 
 
-def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]], keep_networks: bool
-                    ) -> tuple[np.ndarray, float | None]:
-    """Held-out image scores: each (detector fitted without them, parts) scored. With a variation model, the
+def _held_out(detector: Detector, good: Held, cfg: AdaptConfig, fit: np.ndarray, held: np.ndarray) -> Held:
+    """Parts ``held`` of ``good``, with ``detector`` refitted on its parts ``fit`` (``_refit``)."""
+    fitted, out = good.take(torch.from_numpy(fit)), good.take(torch.from_numpy(held))
+    return Held(_refit(detector, fitted.x, cfg, fitted.around), out.x, out.around)
+
+
+def _heldout_scores(final: Detector, parts: list[Held], keep_networks: bool) -> tuple[np.ndarray, float | None]:
+    """Held-out image scores: each ``Held`` scored by its detector. With a variation model, the
     networks' shift is measured against the trained calibration (``DOMAIN_SHIFT_SD``: beyond it, and unless
     ``keep_networks``, ``final`` decides on the variation model alone), then the final detector's calibration is
     set from all held-out member scores, and every part's combined score uses it (a calibration from the fitted
@@ -233,43 +259,44 @@ def _heldout_scores(final: Detector, parts: list[tuple[Detector, torch.Tensor]],
     held-out raw scores and the parts' scores are the detector's own (the decision stays theirs: the networks'
     shift concerns the DRAEM networks only). Returns (scores, the networks' shift in robust SD or None)."""
     if final.variation is None:
-        return np.concatenate([image_scores(d, xp) for d, xp in parts]), None
+        return np.concatenate([image_scores(p.detector, p.x, around=p.around) for p in parts]), None
     _calibrate_second_look(final, parts)
     _calibrate_look(final, parts)
-    pairs = [member_scores(d, xp) for d, xp in parts]
+    pairs = [member_scores(p.detector, p.x, around=p.around) for p in parts]
     net, var = torch.cat([p[0] for p in pairs]), torch.cat([p[1] for p in pairs])
     location, spread = (float(c) for c in final.variation.calibration[:2])
     shift = (float(net.double().median()) - location) / spread
     final.variation.calibrate(net, var)
     if final.residual is not None and final.config.decision == "residual":  # they decide: calibrate them the same way
-        raw = torch.cat([residual_raw(d, xp) for d, xp in parts], 1)
+        raw = torch.cat([residual_raw(p.detector, p.x, around=p.around) for p in parts], 1)
         final.residual.calibrate(raw)
-        for d, _ in parts:
-            assert d.residual is not None
-            d.residual.calibration.copy_(final.residual.calibration)
-        return np.concatenate([image_scores(d, xp) for d, xp in parts]), shift
+        for p in parts:
+            assert p.detector.residual is not None
+            p.detector.residual.calibration.copy_(final.residual.calibration)
+        return np.concatenate([image_scores(p.detector, p.x, around=p.around) for p in parts]), shift
     if shift > DOMAIN_SHIFT_SD and not keep_networks:
         final.config = final.config.with_(decision="variation")
     return combined_score(net, var, final.variation.calibration, final.config.networks_decide).numpy(), shift
 
 
-def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, torch.Tensor]],
-                 splits: list[tuple[np.ndarray, np.ndarray]], batch_size: int = 16, outline: bool = False,
-                 floor: VariationModel | None = None) -> str:
-    """The shape check of ``final`` (refit on the good parts ``x``) again, in place (module docstring): its edge from
-    the refit's reference, its calibration cross-fitted over ``splits`` (``ShapeCheck.calibrate_crossed``), the
-    window's 1 % point from ``parts`` (each fold's detector and its held parts). What it measures; when the refit
+def _refit_shape(final: Detector, good: Held, parts: list[Held], splits: list[tuple[np.ndarray, np.ndarray]],
+                 batch_size: int = 16, outline: bool = False, floor: VariationModel | None = None) -> str:
+    """The shape check of ``final`` (refit on the good parts ``good``, its detector unused) again, in place (module
+    docstring): its edge from the refit's reference, its calibration cross-fitted over ``splits``
+    (``ShapeCheck.calibrate_crossed``), the window's 1 % point from ``parts`` (each fold's detector and its held
+    parts). What it measures; when the refit
     shows no straight bottom edge or too few parts show it, why it has none (a warning: the model is then judged
     without it). ``outline``: the model had an outline check, which is refitted alike (``_refit_outline``), or
     switched off with the shape check. ``floor``: the trained variation model, whose checks' thresholds the refitted
     ones are floored at (``AdaptConfig.floor_checks``)."""
     var = final.variation
     assert var is not None
-    window = shape_window([(d.variation, xp) for d, xp in parts if d.variation is not None], batch_size)
+    window = shape_window([(p.detector.variation, p.x, p.around) for p in parts if p.detector.variation is not None],
+                          batch_size)
     try:
         if not var.shape.find(var.reference.numpy(), var.region.numpy()):
             raise ModelError("the refit's reference shows no straight bottom edge")
-        var.shape.calibrate_crossed(edge_sags(var, x), splits, window)
+        var.shape.calibrate_crossed(edge_sags(var, good.x, good.around), splits, window)
     except ModelError as exc:
         var.shape = ShapeCheck()  # off: no edge, no calibration
         var.outline.clear()  # fitted beside it (``station shape``): off with it
@@ -283,7 +310,7 @@ def _refit_shape(final: Detector, x: torch.Tensor, parts: list[tuple[Detector, t
     whose = _floored(var.shape.calibration, 2, None if floor is None else floor.shape.calibration)
     said = (f"shape check refitted: the bottom edge over input columns {first}-{end - 1}, good parts' sag spread "
             f"{spread:.3g} px, threshold z {whose}")
-    return f"{said}; {_refit_outline(var, x, splits, window, floor)}" if outline else said
+    return f"{said}; {_refit_outline(var, good.x, splits, window, floor, good.around)}" if outline else said
 
 
 def _floored(calibration: torch.Tensor, k: int, trained: torch.Tensor | None) -> str:
@@ -299,15 +326,15 @@ def _floored(calibration: torch.Tensor, k: int, trained: torch.Tensor | None) ->
 
 
 def _refit_outline(var: VariationModel, x: torch.Tensor, splits: list[tuple[np.ndarray, np.ndarray]],
-                   window: float, floor: VariationModel | None = None) -> str:
+                   window: float, floor: VariationModel | None = None, around: torch.Tensor | None = None) -> str:
     """The outline check (``model.draem.outline_check``) of ``var`` again, in place, as ``_refit_shape`` refits the
     shape check: its edges from the refit's reference and region, its statistics and thresholds cross-fitted over
-    ``splits`` of the good parts ``x``, each edge's threshold floored at ``floor``'s (the trained variation model),
-    when given. What it measures, or why it has none (a warning)."""
+    ``splits`` of the good parts ``x`` (and the frame ``around`` each, or None), each edge's threshold floored at
+    ``floor``'s (the trained variation model), when given. What it measures, or why it has none (a warning)."""
     try:
         if not var.outline.find(var.reference.numpy(), var.region.numpy()):
             raise ModelError("the refit's reference shows no two straight edges along the part")
-        var.outline.calibrate_crossed(outline_deviations(var, x), splits, window)
+        var.outline.calibrate_crossed(outline_deviations(var, x, around), splits, window)
     except ModelError as exc:
         var.outline.clear()
         why = f"no outline check: {exc} (a step along an edge is judged by the window alone)"
@@ -318,7 +345,7 @@ def _refit_outline(var: VariationModel, x: torch.Tensor, splits: list[tuple[np.n
     return f"outline check refitted: thresholds z {bottom} at the bottom edge and z {top} at the top edge"
 
 
-def _calibrate_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:
+def _calibrate_look(final: Detector, parts: list[Held]) -> None:
     """The residual networks' look (``model.draem.residual``), when they are the second look, from the held-out
     parts' top logits and variation scores, each scored by the detector fitted without them (after its second look
     is calibrated), then shared by all of them; the networks themselves are kept. ``final`` looks no more (the
@@ -326,33 +353,34 @@ def _calibrate_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]])
     if final.residual is None or not final.residual.looks:
         return
     if final.variation is None or not final.variation.second_look.references:
-        for d in (final, *(d for d, _ in parts)):
+        for d in (final, *(p.detector for p in parts)):
             assert d.residual is not None
             d.residual.look.copy_(torch.tensor(NO_LOOK, dtype=torch.float64))
         return
-    pairs = [look_scores(d, xp) for d, xp in parts]
+    pairs = [look_scores(p.detector, p.x, around=p.around) for p in parts]
     final.residual.calibrate_look(torch.cat([p[0] for p in pairs]), np.concatenate([p[1] for p in pairs]))
-    for d, _ in parts:
-        assert d.residual is not None
-        d.residual.look.copy_(final.residual.look)
+    for p in parts:
+        assert p.detector.residual is not None
+        p.detector.residual.look.copy_(final.residual.look)
 
 
-def _calibrate_second_look(final: Detector, parts: list[tuple[Detector, torch.Tensor]]) -> None:
+def _calibrate_second_look(final: Detector, parts: list[Held]) -> None:
     """The refitted second look's gate and units (``model.draem.second_look``) from the held-out parts' window and
     test scores, each scored by the detector fitted without them, then shared by all of them; ``final`` keeps none
     when a fold's detector has none (too few parts to fit it)."""
     assert final.variation is not None
     if not final.variation.second_look.references:
         return
-    if not all(d.variation is not None and d.variation.second_look.references for d, _ in parts):
+    if not all(p.detector.variation is not None and p.detector.variation.second_look.references for p in parts):
         final.variation.second_look.resize(0, 0)
         return
-    scores = [second_look_scores(d.variation, xp) for d, xp in parts if d.variation is not None]
+    scores = [second_look_scores(p.detector.variation, p.x, around=p.around) for p in parts
+              if p.detector.variation is not None]
     final.variation.second_look.calibrate(np.concatenate([w for w, _ in scores]),
                                           np.concatenate([t for _, t in scores]))
-    for d, _ in parts:
-        assert d.variation is not None
-        d.variation.second_look.calibration.copy_(final.variation.second_look.calibration)
+    for p in parts:
+        assert p.detector.variation is not None
+        p.detector.variation.second_look.calibration.copy_(final.variation.second_look.calibration)
 
 
 def fine_tune(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, steps: int, lr: float,
@@ -390,15 +418,27 @@ def _fit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig) -> Normalizer:
 
 
 def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: AdaptConfig = AdaptConfig(),
-          progress: bool = True) -> tuple[Detector, AdaptResult]:
+          progress: bool = True, around: torch.Tensor | None = None) -> tuple[Detector, AdaptResult]:
     """Adapt ``detector`` to the good parts ``x`` (N, C, S, S) at its input size (module docstring); returns the
-    adapted copy (threshold not set on it: see ``AdaptResult.threshold``) and what was done."""
+    adapted copy (threshold not set on it: see ``AdaptResult.threshold``) and what was done. ``around``: (N, C,
+    S + 2 a, ...) the frame around each part (``ModelConfig.around_px`` a; ``model.draem.roi.around_box``), read by
+    the refit, its held-out scores and the checks' calibration as the station reads it, and the adapted file keeps
+    ``around_px``; None (or a file that reads the view alone): all read the view alone, and so does the adapted
+    file (``around_px`` 0: a refit on the view alone, read with the frame around, can reject every good part)."""
     n = x.shape[0]
     if n < MIN_GOOD:
         raise ModelError(f"adapting needs at least {MIN_GOOD} good parts, got {n}")
     if detector.config.roi == "object":
         raise ModelError("a model with roi 'object' needs ground-truth object masks at inference: not adaptable "
                          "to a line")
+    a = detector.config.around_px
+    if a == 0 or detector.variation is None:
+        around = None
+    elif around is not None and (around.shape[0] != n or tuple(around.shape[-2:]) != (x.shape[-2] + 2 * a,
+                                                                                       x.shape[-1] + 2 * a)):
+        raise ModelError(f"the frame around the parts is {tuple(around.shape)}: the model reads {a} input px around "
+                         f"each of {n} views of {tuple(x.shape[-2:])}")
+    good = Held(detector, x, around)
     order = torch.from_numpy(np.random.default_rng(cfg.seed).permutation(n))
     before = detector.normalizer
     what = "normalisation" + (" and variation statistics" if detector.variation is not None else "")
@@ -406,8 +446,8 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         folds = min(cfg.folds, n)
         splits = [(np.setdiff1d(order.numpy(), order[k::folds].numpy()), order[k::folds].numpy())
                   for k in range(folds)]
-        parts = [(_refit(detector, x[torch.from_numpy(fit)], cfg), x[torch.from_numpy(held)]) for fit, held in splits]
-        final = _refit(detector, x, cfg)
+        parts = [_held_out(detector, good, cfg, fit, held) for fit, held in splits]
+        final = _refit(detector, x, cfg, around)
         heldout = np.empty(n)
         heldout[np.concatenate([held for _, held in splits])], shift = _heldout_scores(final, parts, cfg.keep_networks)
         scheme = f"cross-fitted {what}, {folds} folds"
@@ -415,10 +455,11 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
     else:
         n_held = max(1, round(cfg.holdout_fraction * n))
         held, fit = order[:n_held], order[n_held:]
-        tuned = _refit(detector, x[fit], cfg)
+        fitted = good.take(fit)
+        tuned = _refit(detector, fitted.x, cfg, fitted.around)
         final = fine_tune(tuned, x[fit], object_mask[fit], cfg.fine_tune_steps, cfg.fine_tune_lr, cfg.batch_size,
                           cfg.seed, cfg.anomaly, progress)
-        parts = [(final, x[held])]
+        parts = [Held(final, *good.take(held).parts())]
         splits = [(fit.numpy(), held.numpy())]
         heldout, shift = _heldout_scores(final, parts, cfg.keep_networks)
         scheme = f"{what} and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"
@@ -433,7 +474,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                     "%d good parts in each fold's fit", MIN_REFERENCES)
     shape = None
     if detector.variation is not None and detector.variation.shape.fitted:  # a refit's check is its own
-        shape = _refit_shape(final, x, parts, splits, outline=detector.variation.outline.fitted,
+        shape = _refit_shape(final, good, parts, splits, outline=detector.variation.outline.fitted,
                              floor=detector.variation if cfg.floor_checks else None)
     per_position = PER_POSITION if final.variation is None else PER_POSITION_REFIT
     changed = detector.config.decision != final.config.decision
@@ -447,7 +488,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
                   "few appearance components, and on renders of lines where something still varied 50 parts scored "
                   "below the model unadapted; adapt again on more good parts")
         log.warning(advice)
-    # the refit and its threshold read the view alone: so does the adapted file (ModelConfig.around_px)
-    final.config = final.config.with_(around_px=0)
+    # the adapted file reads what its refit and threshold read (ModelConfig.around_px)
+    final.config = final.config.with_(around_px=a if around is not None else 0)
     return final, AdaptResult(before, final.normalizer, choice, heldout, fr, n, n_held, scheme, steps, per_position,
                               shift, final.config.decision, changed, advice, shape)

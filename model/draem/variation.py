@@ -33,10 +33,12 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               against the reference, but takes its pixels from the frame around, so a part turned or moved a little has
               its ends read from the frame, not made up from the view's border; only beyond the frame around, or beyond
               the frame, is a pixel not seen, and there the frame's border is replicated as the view's was
-              (``frame_filled``; not a dark border the window would judge). Fits (``fit``, the checks' calibrations,
-              ``station adapt``) read the view alone, as before: on a square line its parts barely reach beyond it, but
-              a refit on parts that do, read with the frame around, rejected every good part of a synthetic line
-              (tests/station/test_adapt.py), so an adapted file reads the view alone. On seed 1204's parts seen by a
+              (``frame_filled``; not a dark border the window would judge). A refit (``fit``'s ``around``: ``station
+              adapt``) reads the frame around as the station will: a refit on the view alone, read with the frame
+              around, rejected every good part of a synthetic line whose parts lie 8-18 % outside the view
+              (tests/station/test_adapt.py); an adapted file keeps ``around_px``. ``station variation``'s fit and the
+              checks' first calibrations read the view alone, as the shipped file's did: on a square line its parts
+              barely reach beyond it. On seed 1204's parts seen by a
               camera turned 5 degrees, 2 instead of 10 of 211 good parts rejected (the shape check's 8 gone), as many
               defects caught; on fresh seed 1211 turned 5 degrees 0 instead of 3 of 81, two defective parts fewer of 119
               (docs/results/2026-12-06-view-margin.md)
@@ -727,7 +729,8 @@ class VariationModel(nn.Module):
             keep_reference: bool = False, blur_copies_sigma: float | None = None,
             global_polarization: Alignment | str | bool | None = None,
             clusters: int | None = None, global_contrast: Alignment | str | None = None,
-            curvature_sigma: float | None = None, judged_channels: Sequence[int] | None = None) -> np.ndarray:
+            curvature_sigma: float | None = None, judged_channels: Sequence[int] | None = None,
+            around: torch.Tensor | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -760,8 +763,11 @@ class VariationModel(nn.Module):
         px; None: the model's own, so a refit keeps it): the window statistic the fit calibrates and the model scores
         with (0: the box; module docstring: z map). ``judged_channels`` (channel indices; None: the model's own, so a
         refit keeps them): the channels the window statistic is taken over; the others are read (intensity still
-        registers the part) but not judged. ModelError when none of them is a feature."""
+        registers the part) but not judged. ModelError when none of them is a feature. ``around``: (N, C, H + 2 m,
+        W + 2 n) the frame around each part, NaN beyond the frame, read by the registration's warp as ``zmaps``
+        reads it (module docstring: around; a blurred copy's frame around is blurred alike); None: the view alone."""
         xs = x.float().cpu().numpy()
+        arounds: list[np.ndarray | None] = [None] * len(xs) if around is None else list(around.float().cpu().numpy())
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
         if n_parts < MIN_FIT_PARTS:
@@ -798,7 +804,11 @@ class VariationModel(nn.Module):
         self.outline = OutlineCheck(self.outline.median.shape[1])  # (``with_variation.add_outline_check``)
         self.second_look.tests.copy_(tests)
         if sigma > 0:
-            xs = np.concatenate([xs, blurred_copies(xs, Channels(self.intensity, self.dolp, self.aolp), sigma)])
+            channels = Channels(self.intensity, self.dolp, self.aolp)
+            xs = np.concatenate([xs, blurred_copies(xs, channels, sigma)])
+            # the same sigma per part (one seed); beyond the frame its border replicated first
+            arounds += ([None] * n_parts if around is None else
+                        list(blurred_copies(np.stack([frame_filled(a)[0] for a in arounds]), channels, sigma)))
             if object_mask is not None:
                 object_mask = torch.cat([object_mask, object_mask])
         n = len(xs)
@@ -812,8 +822,9 @@ class VariationModel(nn.Module):
         for _ in range(0 if keep_reference else 2):
             ref = np.median(np.stack([self.warp_to(ref, f)[self.intensity] for f in feats[:64]]), 0)
         # each part's mask travels with its features (last channel), so the region is where the registered parts are
-        stack = np.stack([self.warp_to(ref, np.concatenate([f, m[None].astype(np.float32)]))
-                          for f, m in zip(feats, masks, strict=True)])
+        stack = np.stack([self.warp_to(ref, np.concatenate([f, m[None].astype(np.float32)]),
+                                       source=self._fit_source(xi, m, a))
+                          for xi, f, m, a in zip(xs, feats, masks, arounds, strict=True)])
         region = stack[:, -1].mean(0) >= 0.5
         if not region.any():
             region = np.ones_like(region)
@@ -856,16 +867,27 @@ class VariationModel(nn.Module):
             getattr(self, name).copy_(torch.from_numpy(np.asarray(value, np.float32)))
         self.region.copy_(torch.from_numpy(region))
         if mode is Alignment.RANGE:
-            self.polarization_range.copy_(self._polarization_range(xs[:n_parts]))
+            self.polarization_range.copy_(self._polarization_range(xs[:n_parts], arounds[:n_parts]))
         if contrast is Alignment.MEAN:
             self.contrast_range.fill_(1.0)
         elif contrast is Alignment.RANGE:
-            self.contrast_range.copy_(self._contrast_range(xs[:n_parts]))
+            self.contrast_range.copy_(self._contrast_range(xs[:n_parts], arounds[:n_parts]))
         if wanted_clusters >= 2:
-            clustered = self._fit_clusters(xs[:n_parts], wanted_clusters, floor_quantile)
+            clustered = self._fit_clusters(xs[:n_parts], wanted_clusters, floor_quantile, arounds[:n_parts])
             if clustered is not None:
                 return clustered
         return signed[:n_parts]
+
+    def _fit_source(self, xi: np.ndarray, mask: np.ndarray, around: np.ndarray | None) -> np.ndarray | None:
+        """(C, H, W) a part's physical priors, (H, W) its mask and (C, H + 2 m, W + 2 n) the frame around it (or None)
+        -> what ``fit``'s warp reads the part's features and mask from (``warp_to``'s ``source``): the frame around's
+        features (the view's median taken out), the mask's border replicated; None without a frame around."""
+        if around is None:
+            return None
+        filled, _ = frame_filled(around)
+        pad = ((filled.shape[1] - mask.shape[0]) // 2, (filled.shape[2] - mask.shape[1]) // 2)
+        return np.concatenate([self.features(filled, median=self.log_median(xi, mask)),
+                               np.pad(mask, pad, mode="edge")[None].astype(np.float32)])
 
     def _position(self, windows: np.ndarray, region: np.ndarray, floor_quantile: float
                   ) -> tuple[np.ndarray, np.ndarray]:
@@ -877,12 +899,13 @@ class VariationModel(nn.Module):
                                         ABS_NORMAL_SD * self.window_noise()))
         return location, spread
 
-    def _fit_clusters(self, xs: np.ndarray, clusters: int, floor_quantile: float) -> np.ndarray | None:
-        """(N, C, H, W) good parts' physical priors, after the global fit -> their clustered signed z maps (N, C, H,
-        W), each from its cluster without it, with the cluster buffers and the position calibration set; None (and
-        no clusters) when ``appearance_clusters.group`` keeps fewer than 2."""
+    def _fit_clusters(self, xs: np.ndarray, clusters: int, floor_quantile: float,
+                      arounds: Sequence[np.ndarray | None]) -> np.ndarray | None:
+        """(N, C, H, W) good parts' physical priors (and the frame around each, or None), after the global fit ->
+        their clustered signed z maps (N, C, H, W), each from its cluster without it, with the cluster buffers and the
+        position calibration set; None (and no clusters) when ``appearance_clusters.group`` keeps fewer than 2."""
         part = self.region.numpy()
-        judged_residuals = [self._judged_residual(xi) for xi in xs]
+        judged_residuals = [self._judged_residual(xi, a) for xi, a in zip(xs, arounds, strict=True)]
         found = appearance_clusters.group(np.stack([j[1] for j in judged_residuals]), clusters)
         if found is None:
             return None
@@ -928,22 +951,22 @@ class VariationModel(nn.Module):
         stats = [(self.cluster_mean[k].float().numpy(), self.cluster_scale[k].float().numpy()) for k in near]
         return self._unpacked(r, *appearance_clusters.blend(w[near], stats))
 
-    def _contrast_range(self, xs: np.ndarray) -> torch.Tensor:
-        """(N, C, H, W) good parts' physical priors -> (2,) lowest and highest ``contrast_factor`` as ``zmaps``
-        measures it (after the fit and its polarization range)."""
+    def _contrast_range(self, xs: np.ndarray, arounds: Sequence[np.ndarray | None]) -> torch.Tensor:
+        """(N, C, H, W) good parts' physical priors (and the frame around each, or None) -> (2,) lowest and highest
+        ``contrast_factor`` as ``zmaps`` measures it (after the fit and its polarization range)."""
         cs = []
-        for xi in xs:
-            warped, _, where, _ = self._aligned(xi)
+        for xi, a in zip(xs, arounds, strict=True):
+            warped, _, where, _ = self._aligned(xi, a)
             cs.append(self.contrast_factor(warped[:-1], where))
         return torch.tensor([min(cs), max(cs)], dtype=torch.float32)
 
-    def _polarization_range(self, xs: np.ndarray) -> torch.Tensor:
-        """(N, C, H, W) good parts' physical priors -> (4,) lowest and highest gain and turn (radians of AoLP) of
-        their ``polarization_factor`` as ``zmaps`` measures it (after the fit)."""
+    def _polarization_range(self, xs: np.ndarray, arounds: Sequence[np.ndarray | None]) -> torch.Tensor:
+        """(N, C, H, W) good parts' physical priors (and the frame around each, or None) -> (4,) lowest and highest
+        gain and turn (radians of AoLP) of their ``polarization_factor`` as ``zmaps`` measures it (after the fit)."""
         mean, part = self.mean.numpy(), self.region.numpy()
         ks = []
-        for xi in xs:
-            warped, judged, _ = self._registered(xi, part)
+        for xi, a in zip(xs, arounds, strict=True):
+            warped, judged, _ = self._registered(xi, part, a)
             ks.append(self.polarization_factor(warped[:-1], mean, judged if judged.any() else part))
         gain, turn = np.abs(ks), np.angle(ks) / 2.0
         return torch.tensor([gain.min(), gain.max(), turn.min(), turn.max()], dtype=torch.float32)
@@ -1099,11 +1122,12 @@ class VariationModel(nn.Module):
                                torch.tensor(bends, dtype=torch.float32), torch.tensor(steps, dtype=torch.float32),
                                torch.tensor(unseen, dtype=torch.float32))
 
-    def _judged_residual(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-        """(C, H, W) physical priors of a frame -> its residual in units of ``scale`` (C, H, W) before clusters, its
-        (COMPONENTS,) coefficients, the (H, W) bool pixels judged and the share of the part the highlight rule
-        found (module docstring: register, highlights, appearance)."""
-        return self._residual_of(*self._aligned(xi)[:3])
+    def _judged_residual(self, xi: np.ndarray, around: np.ndarray | None = None
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """(C, H, W) physical priors of a frame (and the frame ``around`` it, or None) -> its residual in units of
+        ``scale`` (C, H, W) before clusters, its (COMPONENTS,) coefficients, the (H, W) bool pixels judged and the
+        share of the part the highlight rule found (module docstring: register, highlights, appearance)."""
+        return self._residual_of(*self._aligned(xi, around)[:3])
 
     def _residual_of(self, warped: np.ndarray, judged: np.ndarray, where: np.ndarray
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
@@ -1156,15 +1180,15 @@ class VariationModel(nn.Module):
         warped = np.delete(warped, -2, axis=0)
         return warped, part & ~self.highlight(warped[-1]), seen
 
-    def edge_sag(self, xi: np.ndarray) -> float:
-        """(C, H, W) physical priors of a frame -> the shape check's sag of its registered intensity (input px;
-        ``model.draem.shape_check``; NaN without an edge)."""
-        return self.shape.sag(self._aligned(xi)[0][self.intensity])
+    def edge_sag(self, xi: np.ndarray, around: np.ndarray | None = None) -> float:
+        """(C, H, W) physical priors of a frame (and the frame ``around`` it, or None) -> the shape check's sag of its
+        registered intensity (input px; ``model.draem.shape_check``; NaN without an edge)."""
+        return self.shape.sag(self._aligned(xi, around)[0][self.intensity])
 
-    def outline_deviations(self, xi: np.ndarray) -> np.ndarray:
-        """(C, H, W) physical priors of a frame -> the outline check's (2, W) deviations of its registered intensity
-        (input px; ``model.draem.outline_check``; all NaN without edges)."""
-        return self.outline.deviations(self.checked_intensity(self._aligned(xi)))
+    def outline_deviations(self, xi: np.ndarray, around: np.ndarray | None = None) -> np.ndarray:
+        """(C, H, W) physical priors of a frame (and the frame ``around`` it, or None) -> the outline check's (2, W)
+        deviations of its registered intensity (input px; ``model.draem.outline_check``; all NaN without edges)."""
+        return self.outline.deviations(self.checked_intensity(self._aligned(xi, around)))
 
     def scored_region(self) -> np.ndarray:
         """(H, W) bool: the part region eroded by 1 px (the image border does not erode), where a map is scored: a

@@ -70,23 +70,38 @@ SHAPE_WINDOW_RATE = 0.01
 """The shape check's finding is scaled to the window score at this share of good validation parts rejected."""
 
 
+def rows(around: torch.Tensor | None, i: int, n: int) -> torch.Tensor | None:
+    """Rows ``i`` to ``i + n`` of ``around`` (the frame around each of a batch's views), or None without one."""
+    return None if around is None else around[i:i + n]
+
+
+def _each(around: torch.Tensor | None, n: int) -> list[np.ndarray | None]:
+    return [None] * n if around is None else list(around.float().cpu().numpy())
+
+
 @torch.no_grad()
-def shape_window(scored: Sequence[tuple[VariationModel, torch.Tensor]], batch: int = 16) -> float:
-    """The window score at ``SHAPE_WINDOW_RATE`` of good parts, each set of (N, C, H, W) priors in ``scored`` scored
-    by its variation model (``zmaps``, in batches; before a shape check scores: its own window)."""
-    window = [var.zmaps(x[i:i + batch]).scores.numpy() for var, x in scored for i in range(0, len(x), batch)]
+def shape_window(scored: Sequence[tuple[VariationModel, torch.Tensor, torch.Tensor | None]], batch: int = 16
+                 ) -> float:
+    """The window score at ``SHAPE_WINDOW_RATE`` of good parts, each set of (N, C, H, W) priors in ``scored`` (with
+    the frame around each, or None: ``VariationModel.zmaps``'s ``around``) scored by its variation model (``zmaps``,
+    in batches; before a shape check scores: its own window)."""
+    window = [var.zmaps(x[i:i + batch], around=rows(a, i, batch)).scores.numpy() for var, x, a in scored
+              for i in range(0, len(x), batch)]
     return false_reject_threshold(np.concatenate(window), SHAPE_WINDOW_RATE)
 
 
-def edge_sags(var: VariationModel, x: torch.Tensor) -> np.ndarray:
-    """(N,) the shape check's sag of each of (N, C, H, W) priors (``VariationModel.edge_sag``; NaN where unseen)."""
-    return np.array([var.edge_sag(xi) for xi in x.float().cpu().numpy()])
+def edge_sags(var: VariationModel, x: torch.Tensor, around: torch.Tensor | None = None) -> np.ndarray:
+    """(N,) the shape check's sag of each of (N, C, H, W) priors (and the frame around each, or None;
+    ``VariationModel.edge_sag``; NaN where unseen)."""
+    return np.array([var.edge_sag(xi, a) for xi, a in zip(x.float().cpu().numpy(), _each(around, len(x)),
+                                                           strict=True)])
 
 
-def outline_deviations(var: VariationModel, x: torch.Tensor) -> np.ndarray:
-    """(N, 2, W) the outline check's deviations of each of (N, C, H, W) priors
-    (``VariationModel.outline_deviations``)."""
-    return np.stack([var.outline_deviations(xi) for xi in x.float().cpu().numpy()])
+def outline_deviations(var: VariationModel, x: torch.Tensor, around: torch.Tensor | None = None) -> np.ndarray:
+    """(N, 2, W) the outline check's deviations of each of (N, C, H, W) priors (and the frame around each, or None;
+    ``VariationModel.outline_deviations``)."""
+    return np.stack([var.outline_deviations(xi, a) for xi, a in zip(x.float().cpu().numpy(), _each(around, len(x)),
+                                                                    strict=True)])
 
 
 @torch.no_grad()
@@ -101,7 +116,7 @@ def add_shape_check(detector: Detector, good: torch.Tensor, val_good: torch.Tens
         raise ModelError("the shape check reads the variation model's registration: add the variation model first")
     if not var.shape.find(var.reference.numpy(), var.region.numpy()):
         return False
-    var.shape.calibrate(edge_sags(var, good), edge_sags(var, val_good), shape_window([(var, val_good)], batch))
+    var.shape.calibrate(edge_sags(var, good), edge_sags(var, val_good), shape_window([(var, val_good, None)], batch))
     var.check()
     return True
 
@@ -122,7 +137,7 @@ def add_outline_check(detector: Detector, good: torch.Tensor, val_good: torch.Te
         return "the reference shows no two straight edges along the part"
     try:
         var.outline.calibrate(outline_deviations(var, good), outline_deviations(var, val_good),
-                              shape_window([(var, val_good)], batch) if window is None else window)
+                              shape_window([(var, val_good, None)], batch) if window is None else window)
     except ModelError as exc:
         var.outline.clear()
         return str(exc)
@@ -158,13 +173,15 @@ def add_second_look(detector: Detector, references: np.ndarray, val_good: torch.
 
 
 @torch.no_grad()
-def second_look_scores(var: VariationModel, x: torch.Tensor, batch: int = 16) -> tuple[np.ndarray, np.ndarray]:
-    """(N,) window and (N,) test scores of parts ``x`` (N, C, H, W) by ``var``'s second look, whose references are
-    fitted and whose gate is not yet set (so no part is looked at again): what ``SecondLook.calibrate`` reads."""
+def second_look_scores(var: VariationModel, x: torch.Tensor, batch: int = 16, around: torch.Tensor | None = None
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """(N,) window and (N,) test scores of parts ``x`` (N, C, H, W) (and the frame around each, or None) by ``var``'s
+    second look, whose references are fitted and whose gate is not yet set (so no part is looked at again): what
+    ``SecondLook.calibrate`` reads."""
     region = var.region.numpy()
     window, test = [], []
     for i in range(0, len(x), batch):
-        o = var.zmaps(x[i:i + batch], signed=True)
+        o = var.zmaps(x[i:i + batch], signed=True, around=rows(around, i, batch))
         assert o.signed is not None and o.judged is not None
         window += o.scores.tolist()
         for m, s, j in zip(o.maps.numpy(), o.signed.numpy(), o.judged.numpy(), strict=True):
@@ -194,12 +211,14 @@ def networks_only(detector: Detector) -> Detector:
 
 
 @torch.no_grad()
-def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tuple[torch.Tensor, torch.Tensor]:
-    """(N,) network and (N,) variation image scores of a detector with a variation model, before combining."""
+def member_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16, around: torch.Tensor | None = None
+                  ) -> tuple[torch.Tensor, torch.Tensor]:
+    """(N,) network and (N,) variation image scores of a detector with a variation model, before combining; ``around``:
+    the frame around each part (``Detector.predict``), or None."""
     detector.eval()
     net, var = [], []
     for i in range(0, x.shape[0], batch_size):
-        out = detector.predict(x[i:i + batch_size])
+        out = detector.predict(x[i:i + batch_size], around=rows(around, i, batch_size))
         net.append(network_score(out.member_scores).float().cpu())
         var.append(out.member_scores["variation"].float().cpu())
     return torch.cat(net), torch.cat(var)
@@ -271,14 +290,16 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
 
 
 @torch.no_grad()
-def look_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> tuple[torch.Tensor, np.ndarray]:
-    """What the residual networks' ``look`` is calibrated from, on parts ``x`` (N, C, H, W): (N,) their mean top
-    logits (``ResidualDetector.top_logits``) and (N,) the variation model's scores in the window's robust SD."""
+def look_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16, around: torch.Tensor | None = None
+                ) -> tuple[torch.Tensor, np.ndarray]:
+    """What the residual networks' ``look`` is calibrated from, on parts ``x`` (N, C, H, W) (and the frame around
+    each, or None): (N,) their mean top logits (``ResidualDetector.top_logits``) and (N,) the variation model's scores
+    in the window's robust SD."""
     assert detector.variation is not None and detector.residual is not None
     var, res = detector.variation, detector.residual
     logits, scores = [], []
     for i in range(0, len(x), batch_size):
-        v = var.zmaps(x[i:i + batch_size], signed=True)
+        v = var.zmaps(x[i:i + batch_size], signed=True, around=rows(around, i, batch_size))
         assert v.signed is not None and v.judged is not None
         logits.append(res.top_logits(*detector.residual_inputs(v.signed, v.judged)))
         scores.append(var.second_look.window_sd(v.scores.double().numpy()))
@@ -293,13 +314,14 @@ def calibrate_look(detector: Detector, val_good: torch.Tensor) -> None:
 
 
 @torch.no_grad()
-def residual_raw(detector: Detector, x: torch.Tensor, batch_size: int = 16) -> torch.Tensor:
-    """(members, N) raw scores of the residual networks of ``detector`` on parts ``x``, before calibration (what
-    ``ResidualDetector.calibrate`` reads)."""
+def residual_raw(detector: Detector, x: torch.Tensor, batch_size: int = 16, around: torch.Tensor | None = None
+                 ) -> torch.Tensor:
+    """(members, N) raw scores of the residual networks of ``detector`` on parts ``x`` (and the frame around each, or
+    None), before calibration (what ``ResidualDetector.calibrate`` reads)."""
     assert detector.variation is not None and detector.residual is not None
     raw = []
     for i in range(0, x.shape[0], batch_size):
-        v = detector.variation.zmaps(x[i:i + batch_size], signed=True)
+        v = detector.variation.zmaps(x[i:i + batch_size], signed=True, around=rows(around, i, batch_size))
         assert v.signed is not None and v.judged is not None
         raw.append(detector.residual.raw(*detector.residual_inputs(v.signed, v.judged))[1])
     return torch.cat(raw, 1)

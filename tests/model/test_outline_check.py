@@ -126,7 +126,7 @@ class Registered:
         self.region = torch.from_numpy(region())
         self.outline = OutlineCheck(W)
 
-    def outline_deviations(self, xi: np.ndarray) -> np.ndarray:
+    def outline_deviations(self, xi: np.ndarray, around: np.ndarray | None = None) -> np.ndarray:
         return self.outline.deviations(xi[0])
 
 

@@ -3,6 +3,7 @@ parts, it combines with the networks into scores in [0, 1], and no input makes i
 
 from __future__ import annotations
 
+import copy
 import math
 from pathlib import Path
 
@@ -712,3 +713,24 @@ def test_the_frame_around_the_view_gives_the_warp_real_pixels_where_the_view_end
     here = part(np.random.default_rng(6), margin=8)
     same = vm.zmaps(here[None, :, 8:8 + H, 8:8 + W]), vm.zmaps(here[None, :, 8:8 + H, 8:8 + W], around=here[None])
     assert float(same[1].scores[0]) == pytest.approx(float(same[0].scores[0]), rel=1e-3, abs=1e-3)
+
+
+def test_a_refit_reads_the_frame_around_its_parts_as_the_station_reads_new_ones() -> None:
+    """Parts lying 11-14 px right of their place (up to 11 % of the part beyond the view): refitted (``station
+    adapt``'s ``keep_reference``) on the view alone, new such parts read with the frame around score far above what
+    the same refit gives them read alone (its statistics hold the view's replicated border there, the frame around
+    holds the part); refitted with the frame around (and the blurred copies' frames blurred alike), read with it,
+    they score as the view-alone refit reads them alone."""
+    vm = fitted()
+    rng = np.random.default_rng(7)
+    frames, new = (torch.stack([part(rng, dy=rng.uniform(-1, 1), dx=rng.uniform(11, 14), margin=8) for _ in range(n)])
+                   for n in (40, 12))
+    alone, around = copy.deepcopy(vm), copy.deepcopy(vm)
+    alone.fit(frames[:, :, 8:8 + H, 8:8 + W], keep_reference=True, blur_copies_sigma=1.0)
+    around.fit(frames[:, :, 8:8 + H, 8:8 + W], keep_reference=True, blur_copies_sigma=1.0, around=frames)
+    view = new[:, :, 8:8 + H, 8:8 + W]
+    assert float(alone.zmaps(view).unseen_fraction.max()) > 0.05  # the part leaves the view
+    as_before = float(alone.zmaps(view).scores.max())
+    mixed, both = (float(m.zmaps(view, around=new).scores.max()) for m in (alone, around))
+    assert mixed > 3 * as_before
+    assert both == pytest.approx(as_before, rel=0.3)

@@ -124,10 +124,14 @@ def test_adapt_refits_the_variation_models_statistics_and_calibration(line, tmp_
     assert old is not None and new is not None
     assert torch.equal(old.reference, new.reference) and torch.equal(old.region, new.region)
     assert not torch.equal(old.mean, new.mean) and not torch.equal(old.calibration, new.calibration)
-    # the fit reads the frame around its view at a station; the refit, fitted and thresholded on the view alone, not
-    # (read with it, this line's parts, 8-18 % outside the view, scored every good part above the threshold)
+    # the fit reads the frame around its view at a station, and so do the refit, its held-out scores and the adapted
+    # file (this line's parts lie 8-18 % outside the view: a refit on the view alone, read with the frame around,
+    # scored every good part above the threshold; the false rejects above are read with it)
     assert load_checkpoint(with_var).detector.config.around_px == AROUND_PX
-    assert load_checkpoint(out).detector.config.around_px == 0
+    assert load_checkpoint(out).detector.config.around_px == AROUND_PX
+    x = torch.zeros(12, len(PRIORS), 32, 32)
+    with pytest.raises(ModelError, match="the model reads 16 input px around each of 12 views"):
+        adapt(load_checkpoint(with_var).detector, x, x[:, 0] > 0, around=x)
     # the second look is fitted again too: the line's own parts as references, its gate from their held-out scores
     assert old.second_look.references > 0 and new.second_look.references == 140
     assert bool(torch.isfinite(new.second_look.calibration).all())
