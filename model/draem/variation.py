@@ -885,9 +885,9 @@ class VariationModel(nn.Module):
         if around is None:
             return None
         filled, _ = frame_filled(around)
-        pad = ((filled.shape[1] - mask.shape[0]) // 2, (filled.shape[2] - mask.shape[1]) // 2)
+        m, n = (filled.shape[1] - mask.shape[0]) // 2, (filled.shape[2] - mask.shape[1]) // 2
         return np.concatenate([self.features(filled, median=self.log_median(xi, mask)),
-                               np.pad(mask, pad, mode="edge")[None].astype(np.float32)])
+                               np.pad(mask, ((m, m), (n, n)), mode="edge")[None].astype(np.float32)])
 
     def _position(self, windows: np.ndarray, region: np.ndarray, floor_quantile: float
                   ) -> tuple[np.ndarray, np.ndarray]:
