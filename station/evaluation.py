@@ -52,8 +52,7 @@ def model_split(ck, model: str, data: str | Path, split: str, limit: int | None 
         normals = load_for_checkpoint(paths(model)[1], normal_prior)
     return load_split(data, split, cfg.priors, cfg.input_shape, limit, good_only=good_only, roi=cfg.roi,
                       normals=normals, frame_aspect=cfg.frame_aspect, dome_segments=cfg.dome_segments,
-                      presence=presence,
-                      around_px=cfg.around_px)
+                      presence=presence, around_px=cfg.around_px)
 
 
 def without_held_out_type(sp, train: Mapping):

@@ -44,7 +44,7 @@ from __future__ import annotations
 import copy
 import logging
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from statistics import NormalDist
 from typing import Any
 
@@ -141,10 +141,6 @@ class Held:
     def take(self, index: torch.Tensor) -> Held:
         """The same detector with parts ``index`` of these."""
         return Held(self.detector, self.x[index], None if self.around is None else self.around[index])
-
-    def parts(self) -> tuple[torch.Tensor, torch.Tensor | None]:
-        """(x, around)."""
-        return self.x, self.around
 
 
 @dataclass(frozen=True)
@@ -246,8 +242,8 @@ def _refit(detector: Detector, x: torch.Tensor, cfg: AdaptConfig, around: torch.
 
 def _held_out(detector: Detector, good: Held, cfg: AdaptConfig, fit: np.ndarray, held: np.ndarray) -> Held:
     """Parts ``held`` of ``good``, with ``detector`` refitted on its parts ``fit`` (``_refit``)."""
-    fitted, out = good.take(torch.from_numpy(fit)), good.take(torch.from_numpy(held))
-    return Held(_refit(detector, fitted.x, cfg, fitted.around), out.x, out.around)
+    fitted = good.take(torch.from_numpy(fit))
+    return replace(good.take(torch.from_numpy(held)), detector=_refit(detector, fitted.x, cfg, fitted.around))
 
 
 def _heldout_scores(final: Detector, parts: list[Held], keep_networks: bool) -> tuple[np.ndarray, float | None]:
@@ -459,7 +455,7 @@ def adapt(detector: Detector, x: torch.Tensor, object_mask: torch.Tensor, cfg: A
         tuned = _refit(detector, fitted.x, cfg, fitted.around)
         final = fine_tune(tuned, x[fit], object_mask[fit], cfg.fine_tune_steps, cfg.fine_tune_lr, cfg.batch_size,
                           cfg.seed, cfg.anomaly, progress)
-        parts = [Held(final, *good.take(held).parts())]
+        parts = [replace(good.take(held), detector=final)]
         splits = [(fit.numpy(), held.numpy())]
         heldout, shift = _heldout_scores(final, parts, cfg.keep_networks)
         scheme = f"{what} and {cfg.fine_tune_steps}-step fine-tune on {n - n_held}, {n_held} held out"

@@ -173,8 +173,8 @@ class ModelConfig:
     (the uniform dome), so a model with segments but no tilt prior still needs its frames.
     ``around_px``: input pixels of the frame around the view the variation model's registration reads at a station
     and in ``station eval`` (``model.draem.variation``, module docstring: around; ``model.draem.roi.AROUND_PX``, which
-    ``station variation`` sets); 0: the view alone, as every file before 2026-12-06 and an adapted file (its refit
-    reads the view alone); needs the variation model, and neither roi "object" nor the normal prior."""
+    ``station variation`` sets, ``station adapt`` keeps when it is given the frame around); 0: the view alone, as every
+    file before 2026-12-06; needs the variation model, and neither roi "object" nor the normal prior."""
 
     priors: tuple[str, ...] = ("intensity", "dolp", "aolp", "normal")
     fusion: str = "ensemble"

@@ -357,6 +357,11 @@ def judged_from(channels: Sequence[int], count: int) -> torch.Tensor:
     return out
 
 
+def per_part(around: torch.Tensor | None, n: int) -> list[np.ndarray | None]:
+    """The frame around each of ``n`` parts as float32 arrays (``zmaps``'s ``around``), or ``n`` Nones without one."""
+    return [None] * n if around is None else list(around.float().cpu().numpy())
+
+
 def ring_inside(in_frame: np.ndarray) -> np.ndarray:
     """(H, W) bool: which pixels of a view (or of the frame around it) the frame holds -> (1, H, W) float32: 1 there,
     0 elsewhere and on the outermost ring. Warped with the border replicated, what is below ``SEEN_LEVEL`` came from
@@ -767,7 +772,7 @@ class VariationModel(nn.Module):
         W + 2 n) the frame around each part, NaN beyond the frame, read by the registration's warp as ``zmaps``
         reads it (module docstring: around; a blurred copy's frame around is blurred alike); None: the view alone."""
         xs = x.float().cpu().numpy()
-        arounds: list[np.ndarray | None] = [None] * len(xs) if around is None else list(around.float().cpu().numpy())
+        arounds = per_part(around, len(xs))
         n_parts = len(xs)
         self.reads_dolp.fill_(1.0 if READ_DOLP else 0.0)
         if n_parts < MIN_FIT_PARTS:
@@ -1086,8 +1091,7 @@ class VariationModel(nn.Module):
             region = self.region.numpy()
         maps, scores, highlights, noise, signed_all, judged_all, bends, steps, unseen = ([] for _ in range(9))
         part = self.region.numpy()
-        arounds = [None] * len(x) if around is None else around.float().cpu().numpy()
-        for xi, ai in zip(x.float().cpu().numpy(), arounds, strict=True):
+        for xi, ai in zip(x.float().cpu().numpy(), per_part(around, len(x)), strict=True):
             aligned = self._aligned(xi, ai)
             # both before the contrast alignment
             sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan

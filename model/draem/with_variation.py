@@ -18,7 +18,7 @@ from .metrics import false_reject_threshold
 from .residual import train_member
 from .roi import around_px_of
 from .second_look import MIN_REFERENCES
-from .variation import VariationModel, network_score
+from .variation import VariationModel, network_score, per_part
 
 
 @torch.no_grad()
@@ -75,10 +75,6 @@ def rows(around: torch.Tensor | None, i: int, n: int) -> torch.Tensor | None:
     return None if around is None else around[i:i + n]
 
 
-def _each(around: torch.Tensor | None, n: int) -> list[np.ndarray | None]:
-    return [None] * n if around is None else list(around.float().cpu().numpy())
-
-
 @torch.no_grad()
 def shape_window(scored: Sequence[tuple[VariationModel, torch.Tensor, torch.Tensor | None]], batch: int = 16
                  ) -> float:
@@ -93,14 +89,14 @@ def shape_window(scored: Sequence[tuple[VariationModel, torch.Tensor, torch.Tens
 def edge_sags(var: VariationModel, x: torch.Tensor, around: torch.Tensor | None = None) -> np.ndarray:
     """(N,) the shape check's sag of each of (N, C, H, W) priors (and the frame around each, or None;
     ``VariationModel.edge_sag``; NaN where unseen)."""
-    return np.array([var.edge_sag(xi, a) for xi, a in zip(x.float().cpu().numpy(), _each(around, len(x)),
+    return np.array([var.edge_sag(xi, a) for xi, a in zip(x.float().cpu().numpy(), per_part(around, len(x)),
                                                            strict=True)])
 
 
 def outline_deviations(var: VariationModel, x: torch.Tensor, around: torch.Tensor | None = None) -> np.ndarray:
     """(N, 2, W) the outline check's deviations of each of (N, C, H, W) priors (and the frame around each, or None;
     ``VariationModel.outline_deviations``)."""
-    return np.stack([var.outline_deviations(xi, a) for xi, a in zip(x.float().cpu().numpy(), _each(around, len(x)),
+    return np.stack([var.outline_deviations(xi, a) for xi, a in zip(x.float().cpu().numpy(), per_part(around, len(x)),
                                                                     strict=True)])
 
 
