@@ -548,7 +548,9 @@ def save_npz(path: str | Path, arrays: dict[str, np.ndarray]) -> None:
 
 
 IGNORED_ON_RESUME = ("count", "spp_choice", "visibility")
-"""Manifest keys that may differ when resuming (how spp was chosen does not change the samples; spp does)."""
+"""Manifest keys, and keys of its ``config``, that may differ when resuming: how spp was chosen does not change the
+samples (spp does), nor does the detectability oracle (``--visibility``), which measures each sample it renders after
+it; its summary (the manifest's ``visibility``) counts the samples it measured (``n`` per type)."""
 
 
 def manifest_for(spec: DatasetSpec, count: int, spp_choice: dict[str, Any] | None = None) -> dict[str, Any]:
@@ -575,8 +577,9 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
                            f"version {RENDERER_VERSION} (different pixels for the same seed); resuming would mix "
                            f"the two: render into a new --out, or finish the set with the older code")
         old_cmp = {"renderer_version": 1, **{k: v for k, v in old.items() if k not in IGNORED_ON_RESUME}}
-        old_cmp["config"] = _normalized_config(old_cmp.get("config", {}))
-        same = old_cmp == {k: v for k, v in manifest.items() if k not in IGNORED_ON_RESUME}
+        old_cmp["config"] = _resumable(_normalized_config(old_cmp.get("config", {})))
+        same = old_cmp == {k: _resumable(v) if k == "config" else v for k, v in manifest.items()
+                           if k not in IGNORED_ON_RESUME}
         if not same:
             raise SimError(f"{path} describes a different dataset (seed or config differ); use another --out or "
                            f"the same options")
@@ -591,6 +594,11 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
         if pid.isdigit() and not _alive(int(pid)):
             shutil.rmtree(stale, ignore_errors=True)
     return manifest
+
+
+def _resumable(config: dict[str, Any]) -> dict[str, Any]:
+    """A manifest's config without the keys that may differ when resuming (``IGNORED_ON_RESUME``)."""
+    return {k: v for k, v in config.items() if k not in IGNORED_ON_RESUME}
 
 
 def _normalized_config(config: dict[str, Any]) -> dict[str, Any]:

@@ -94,3 +94,16 @@ def test_a_set_written_by_earlier_code_resumes_when_it_drew_the_same(tmp_path: P
     else:
         with pytest.raises(SimError, match="describes a different dataset"):
             init_dataset(root, DatasetSpec(width=16, height=8), 4)
+
+
+def test_a_set_rendered_without_the_oracle_resumes_with_it(tmp_path: Path) -> None:
+    """`IGNORED_ON_RESUME` names `visibility` (the detectability oracle measures a sample, it does not change it), but
+    the spec's `visibility` went into the manifest's config too, which was compared key for key: a held-out set
+    rendered without `--visibility` refused `make model`'s held-out render of the same parts ("describes a different
+    dataset"). A set with other parts still refuses."""
+    root = tmp_path / "set"
+    init_dataset(root, DatasetSpec(width=16, height=8), 2)
+    init_dataset(root, DatasetSpec(width=16, height=8, visibility=True), 4)
+    assert json.loads((root / "manifest.json").read_text())["count"] == 4
+    with pytest.raises(SimError, match="describes a different dataset"):
+        init_dataset(root, DatasetSpec(width=16, height=8, visibility=True, seed=5), 4)
