@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # plan-2.md, as run: the recipe on 1,800 training parts (resumable: rerun it after an interruption) and H, seed 1216,
-# beside it; then the reading. Run from the repository's root.
+# beside it; then the reading. Run from the repository's root. As run, the recipe stopped once at its held-out
+# render (H, rendered without --visibility, refused the recipe's --visibility until 430e77af) and was run again; it
+# resumed. The shipped file's evaluation ran beside the recipe's variation fit.
 set -euo pipefail
 export OMP_NUM_THREADS=1
 P=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
