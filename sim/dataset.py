@@ -576,11 +576,7 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
             raise SimError(f"{path}: the set was rendered by renderer version {old_renderer}, this code renders "
                            f"version {RENDERER_VERSION} (different pixels for the same seed); resuming would mix "
                            f"the two: render into a new --out, or finish the set with the older code")
-        old_cmp = {"renderer_version": 1, **{k: v for k, v in old.items() if k not in IGNORED_ON_RESUME}}
-        old_cmp["config"] = _resumable(_normalized_config(old_cmp.get("config", {})))
-        same = old_cmp == {k: _resumable(v) if k == "config" else v for k, v in manifest.items()
-                           if k not in IGNORED_ON_RESUME}
-        if not same:
+        if _comparable(old) != _comparable(manifest):
             raise SimError(f"{path} describes a different dataset (seed or config differ); use another --out or "
                            f"the same options")
         if old.get("count", 0) >= count:
@@ -596,9 +592,13 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
     return manifest
 
 
-def _resumable(config: dict[str, Any]) -> dict[str, Any]:
-    """A manifest's config without the keys that may differ when resuming (``IGNORED_ON_RESUME``)."""
-    return {k: v for k, v in config.items() if k not in IGNORED_ON_RESUME}
+def _comparable(manifest: dict[str, Any]) -> dict[str, Any]:
+    """What a resume compares of a manifest: every key but ``IGNORED_ON_RESUME``'s, in its config too, the config as
+    this code writes it (``_normalized_config``); a set from before ``renderer_version`` existed is version 1."""
+    out = {"renderer_version": 1, **{k: v for k, v in manifest.items() if k not in IGNORED_ON_RESUME}}
+    config = _normalized_config(out.get("config", {}))
+    out["config"] = {k: v for k, v in config.items() if k not in IGNORED_ON_RESUME}
+    return out
 
 
 def _normalized_config(config: dict[str, Any]) -> dict[str, Any]:
