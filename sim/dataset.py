@@ -581,6 +581,8 @@ def init_dataset(root: str | Path, spec: DatasetSpec, count: int, spp_choice: di
                            f"the same options")
         if old.get("count", 0) >= count:
             manifest = old
+        elif "visibility" in old:  # what the oracle measured stays until a render with it summarises again
+            manifest["visibility"] = old["visibility"]
     (root / "samples").mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f"manifest.json.tmp-{os.getpid()}")
     tmp.write_text(json.dumps(manifest, indent=1))

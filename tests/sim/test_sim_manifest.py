@@ -107,3 +107,19 @@ def test_a_set_rendered_without_the_oracle_resumes_with_it(tmp_path: Path) -> No
     assert json.loads((root / "manifest.json").read_text())["count"] == 4
     with pytest.raises(SimError, match="describes a different dataset"):
         init_dataset(root, DatasetSpec(width=16, height=8, visibility=True, seed=5), 4)
+
+
+def test_a_resume_without_the_oracle_keeps_what_it_measured(tmp_path: Path) -> None:
+    """A set rendered with `--visibility` and resumed without it to a larger count wrote the new manifest without the
+    oracle's summary (the manifest's `visibility`), though its samples keep their records: the summary of what was
+    measured (`n` per type) stays until a render with the oracle writes it again."""
+    root = tmp_path / "set"
+    init_dataset(root, DatasetSpec(width=16, height=8, visibility=True), 2)
+    path = root / "manifest.json"
+    manifest = json.loads(path.read_text())
+    manifest["visibility"] = {"threshold_snr": 1.0, "by_type": {"dent": {"n": 1}}}
+    path.write_text(json.dumps(manifest))
+    init_dataset(root, DatasetSpec(width=16, height=8), 4)
+    after = json.loads(path.read_text())
+    assert after["count"] == 4
+    assert after["visibility"] == manifest["visibility"]
