@@ -14,7 +14,8 @@ from model.draem.rate_bounds import interval
 
 HERE = Path(__file__).parent
 READS = {0: "../2026-12-06-view-margin/read-S.txt", 3: "../2026-12-06-turned3/read.txt",
-         4: "read-T4.txt", 5: "../2026-12-06-view-margin/read-T.txt", 8: "read-T8.txt"}
+         4: "read-T4.txt", 5: "../2026-12-06-view-margin/read-T.txt", 8: "read-T8.txt",
+         12: "read-T12.txt"}
 LINE = re.compile(r"^\S+:test (before|around): (\d+) of (\d+) good rejected .*?; (\d+) of (\d+) defective caught")
 
 
@@ -48,9 +49,11 @@ def main() -> None:
         ax.set_xticks(sorted(READS))
         ax.tick_params(labelsize=7)
     axes[0].axhline(2.1, color="tab:red", lw=0.8, ls="--", label="the threshold's promise at 95 % (2.1 %)")
+    axes[0].set_ylim(-1, 60)
     axes[0].legend(fontsize=7)
-    axes[1].set_ylim(50, 90)
-    fig.suptitle("Shipped file at its threshold, fresh seeds 1211 (0, 5), 1217 (3), 1218 (4), 1219 (8)", fontsize=9)
+    axes[1].set_ylim(50, 100)
+    fig.suptitle("Shipped file at its threshold, fresh seeds 1211 (0, 5), 1217 (3), 1218 (4), 1219 (8), 1221 (12)",
+                 fontsize=9)
     fig.tight_layout()
     fig.savefig(HERE.parent / "2026-12-06-turns.png", dpi=110)
 
