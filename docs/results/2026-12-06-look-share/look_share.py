@@ -1,6 +1,7 @@
 """What the look network buys per kind at 1 % of good parts rejected (docs/results/2026-12-06-look-share.md; sets read
 before, nothing chosen on it): the shipped file's decision against its variation model's window alone, each thresholded
-on the same 370 good validation parts (the window's in its own units, as ``choose_threshold`` counts).
+on the same 370 good validation parts (the window's in its own units by ``false_reject_threshold``, the count
+``choose_threshold`` uses).
 
 Usage: python look_share.py SET:SPLIT ... (run from the repository's root)."""
 import sys
@@ -9,7 +10,7 @@ import numpy as np
 
 from model.draem.adapt import image_scores
 from model.draem.checkpoint import load_checkpoint
-from model.draem.metrics import allowed_rejects, choose_threshold
+from model.draem.metrics import choose_threshold, false_reject_threshold
 from station.datasets import load_split
 
 ck = load_checkpoint("model/weights/default")
@@ -29,8 +30,7 @@ def scores(arg: str):
 
 lab, _, s, w = scores("data/line-pv-val:val")
 ft = choose_threshold(lab, s).threshold
-good = np.sort(w[~lab])
-wt = float(good[good.size - allowed_rejects(0.01, good.size) - 1])  # as choose_threshold, window units
+wt = false_reject_threshold(w[~lab], 0.01)  # the same count as choose_threshold, in the window's units
 print(f"val: file threshold {ck.threshold:.4f} (chosen again {ft:.4f}); window alone {wt:.3f}", flush=True)
 for arg in sys.argv[1:]:
     lab, kinds, s, w = scores(arg)
