@@ -3,9 +3,10 @@
 (``train.frame_statistics``, written by ``station train`` and ``station adapt``), with a warning that says which
 camera setting to turn. ``station run`` (``station.loop.Station``) updates it with every judged part in view, logs
 the text it returns, keeps the warning in force in each row's ``drift`` column and shows it in the viewer. Beside it,
-``ViewMonitor`` watches how many parts lay partly outside the model's view (a camera turned from square), warned
-alike. ``CameraWatch`` holds one camera's monitors: a station with a second camera watches its drift against its own
-model too, its warnings named for it."""
+``ViewMonitor`` watches how many parts lay partly outside the model's view, and ``TurnMonitor`` how far the parts lie
+turned from the model's good parts (both: a camera turned from square), warned alike. ``CameraWatch`` holds one
+camera's monitors: a station with a second camera watches its drift against its own model too, its warnings named for
+it."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from model.draem.frame_checks import UNSEEN_LIMIT
+from model.draem.frame_checks import TURN_LIMIT_DEG, UNSEEN_LIMIT
 from model.priors.frame_stats import STAT_NAMES, FrameStatistics, StatisticsRange
 
 TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction": 0.002, "dolp_level": 0.01,
@@ -172,8 +173,59 @@ class ViewMonitor:
         return None
 
 
+TURN_WARN_DEG = 5.0
+"""Median ``turn_deg`` (degrees) of the recent parts beyond +-this: the parts lie turned from the model's good parts,
+the camera turned from square to the belt or the fixture turning them. A camera turned t degrees moves every part's
+turn by about -t (seeds 1217-1221: -2.8 to -11.6 at 3-12 degrees); the good parts of the line as built spread +-5.6
+degrees about their median, whose median over 50 parts is within about 0.5 degree of it. The shipped file rejected as
+many good parts turned 3-12 degrees as square, so this warns well before a turn costs parts
+(``frame_checks.TURN_LIMIT_DEG``; docs/results/2026-12-06-turn-check.md)."""
+TURN_WINDOW = 100
+"""Parts the station's median turn is taken over."""
+TURN_WARN_MIN_PARTS = 50
+"""Parts needed before the median turn is judged, by the station and by ``station report``."""
+TURN_ADVICE = ("the camera turned from square to the belt or the fixture turning the parts: mount the camera square "
+               f"(docs/bring-up.md; the shipped file holds parts up to {TURN_LIMIT_DEG:g} degrees)")
+
+
+def line_turn(turns: list[float]) -> float | None:
+    """The median of judged parts' ``turn_deg`` (degrees) when it calls for the turn warning: at least
+    ``TURN_WARN_MIN_PARTS`` of them and beyond +-``TURN_WARN_DEG`` (``TurnMonitor``, ``station report``); else None."""
+    if len(turns) < TURN_WARN_MIN_PARTS:
+        return None
+    median = float(np.median(turns))
+    return median if abs(median) > TURN_WARN_DEG else None
+
+
+class TurnMonitor:
+    """Rolling ``window`` of judged parts' ``turn_deg``; once ``TURN_WARN_MIN_PARTS`` are in, ``update`` returns a
+    warning when their median lies beyond +-``TURN_WARN_DEG``, and a note when it is back within; ``warning`` is the
+    current state's text (None while within)."""
+
+    def __init__(self, window: int = TURN_WINDOW) -> None:
+        if window < TURN_WARN_MIN_PARTS:
+            raise ValueError(f"turn monitor: need a window of at least {TURN_WARN_MIN_PARTS} parts, got {window}")
+        self.window: deque[float] = deque(maxlen=window)
+        self.warning: str | None = None
+
+    def update(self, turn_deg: float) -> str | None:
+        self.window.append(turn_deg)
+        median = line_turn(list(self.window))
+        if median is not None:
+            started = self.warning is None
+            self.warning = (f"turn: the last {len(self.window)} parts lay turned {median:+.1f} degrees from the "
+                            f"model's good parts at the median (beyond {TURN_WARN_DEG:g}): {TURN_ADVICE}")
+            return self.warning if started else None
+        if self.warning is not None:
+            self.warning = None
+            return f"parts back within {TURN_WARN_DEG:g} degrees of the model's good parts' turn over the last " \
+                   f"{len(self.window)} parts"
+        return None
+
+
 class CameraWatch:
     """One camera's monitors: its drift against its model's trained frames (``drift``; None when the model records
+    none), how far its parts lie turned from its model's good parts (``turn``: parts whose model reads no turn give
     none) and, with ``view``, how many of its parts lay partly outside its model's view. ``name``: the camera's name
     put before each text (None for the first camera, whose texts stand as they are). The station watches the second
     camera's drift but not its view: ``VIEW_WARN_SHARE`` was read off the line camera's sets, and a camera looking
@@ -182,6 +234,7 @@ class CameraWatch:
 
     def __init__(self, drift: DriftMonitor | None, name: str | None = None, view: bool = True) -> None:
         self.drift, self.view, self.name = drift, ViewMonitor() if view else None, name
+        self.turn = TurnMonitor()
 
     def update(self, stats: FrameStatistics | None, checks: Mapping[str, float]) -> list[str]:
         """A judged part in view: its frame's statistics (None when not computed) and its model's frame checks ->
@@ -191,12 +244,14 @@ class CameraWatch:
             said.append(self.drift.update(stats))
         if self.view is not None and "unseen_fraction" in checks:
             said.append(self.view.update(checks["unseen_fraction"]))
+        if "turn_deg" in checks:
+            said.append(self.turn.update(checks["turn_deg"]))
         return [self._named(t) for t in said if t]
 
     @property
     def warning(self) -> str | None:
         """The warnings in force, "; "-joined and named for the camera; None when none is."""
-        ws = [w for w in (m.warning for m in (self.drift, self.view) if m is not None) if w]
+        ws = [w for w in (m.warning for m in (self.drift, self.view, self.turn) if m is not None) if w]
         return "; ".join(self._named(w) for w in ws) or None
 
     def _named(self, text: str) -> str:

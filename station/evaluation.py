@@ -122,7 +122,8 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
     is refused. Frames the station would not judge are left out, with the presence check's ``presence_rule``
     (``station.presence.PresenceRule``: the one the camera's ``[presence]`` uses) at its defaults. ``confidence``:
     ``max_good_flagged`` is promised for new good parts at that confidence, not counted on these
-    (``metrics.choose_threshold``)."""
+    (``metrics.choose_threshold``). A model with a variation member also takes the good parts' median turn as the
+    centre each part's turn is read from (``VariationModel.calibrate_turn``: the line's operating point)."""
     from model.draem.checkpoint import load_checkpoint, read_sidecar, save_checkpoint
     from model.draem.metrics import choose_threshold
     from station.datasets import concat, manifest_sha256
@@ -156,6 +157,12 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
     except ValueError as exc:
         raise UserError(f"{name}: split {split!r}: {exc}") from None
     n_good, good_flagged = len(labels) - n_bad, int((ev.scores[labels == 0] > choice.threshold).sum())
+    turn = ""
+    if ck.detector.variation is not None:  # where the line's good parts lie turned: 0 of each part's turn_deg
+        good = labels == 0
+        arounds = None if sp.around is None else list(sp.around[good].float().numpy())
+        centre = ck.detector.variation.calibrate_turn(sp.priors[good].float().numpy(), arounds)
+        turn = f"; its good parts' median turn {centre:+.2f} degrees from the reference"
     train = dict(ck.meta.get("train", {}))
     others = len(trained_on) < len(sets)
     if others:
@@ -172,7 +179,7 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
                if left_out else "")
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
             f"{name}{where} it flags {choice.flagged_good_fraction:.1%} of good parts "
-            f"({new_good_rate(good_flagged, n_good)}){detected}{skipped}")
+            f"({new_good_rate(good_flagged, n_good)}){detected}{turn}{skipped}")
 
 
 def _judged_splits(ck, model: str, sets: Sequence[str], split: str,

@@ -9,7 +9,8 @@ The schema version is ``PRAGMA user_version``; columns carry their unit in the n
 ``station.drift``), version 4 the model's frame checks (``highlight_fraction``, ``noise_level``: ``FRAME_CHECKS``),
 version 5 the second camera's (``second_score``, ``second_threshold``, ``second_model_id``, ``second_frame_id``:
 ``station.second_camera``), version 6 the shape check's ``edge_bend``, version 7 the outline check's ``edge_step``,
-version 8 ``unseen_fraction``, the share of the part outside the model's view (``FRAME_CHECKS``).
+version 8 ``unseen_fraction``, the share of the part outside the model's view, version 9 ``turn_deg``, how far the
+part lay turned from the model's good parts (``FRAME_CHECKS``).
 Opening an older log for writing adds the missing columns (NULL in the old rows); opened
 read-only, they read as NULL. Decisions (``station.decision.Verdict``, stored as its values):
 
@@ -33,7 +34,7 @@ from typing import Any
 from station.decision import Verdict
 from station.errors import UserError
 
-SCHEMA_VERSION = 8
+SCHEMA_VERSION = 9
 WAL_CHECKPOINT_PAGES = 64
 """Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
 WAL_SIZE_LIMIT_BYTES = 256 * 1024
@@ -46,9 +47,10 @@ ADDED_IN_VERSION = {2: ("ground_truth_present",),
                     5: ("second_score", "second_threshold", "second_model_id", "second_frame_id"),
                     6: ("edge_bend",),
                     7: ("edge_step",),
-                    8: ("unseen_fraction",)}
+                    8: ("unseen_fraction",),
+                    9: ("turn_deg",)}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
-READABLE_VERSIONS = (1, 2, 3, 4, 5, 6, 7, 8)
+READABLE_VERSIONS = (1, 2, 3, 4, 5, 6, 7, 8, 9)
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
@@ -127,6 +129,11 @@ class InspectionRecord:
     ``model.draem.frame_checks.UNSEEN_LIMIT``, 0, a reject's reason says the part lay partly outside the model's view:
     a camera turned from square, a part off its place). None without a variation model or when the model did not
     run."""
+    turn_deg: float | None = None
+    """How far the part lay turned from the good parts the model was calibrated on (degrees, positive clockwise as the
+    frame is shown; ``model.draem.variation``: turn). Beyond ``model.draem.frame_checks.TURN_LIMIT_DEG`` a reject's
+    reason says so; a median beyond ``station.drift.TURN_WARN_DEG`` over the recent parts is the turn warning. None
+    without a variation model, for a file without ``turn_centre``, or when the model did not run."""
 
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:

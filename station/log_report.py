@@ -12,7 +12,7 @@ import numpy as np
 
 from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX, SIGNED_CHECKS, UNSEEN_LIMIT
 from station.decision import SECOND_NAME, Verdict
-from station.drift import VIEW_ADVICE, VIEW_WARN_SHARE, too_many_outside
+from station.drift import TURN_ADVICE, TURN_WARN_DEG, VIEW_ADVICE, VIEW_WARN_SHARE, line_turn, too_many_outside
 from station.inspection_log import DECISIONS
 
 PERCENTILES = (50, 90, 99)
@@ -21,6 +21,7 @@ NOISY_LINE_LEVEL = 1.5
 (``OWN_RENDERS_NOISE_LEVEL_MAX``)."""
 
 REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("part turned", ("the part lay turned",)),
     ("part bent (shape check)", ("bottom edge bends",)),
     ("edge steps (outline check)", ("an edge steps",)),
     ("frame unlike the model's line", ("unlike the model's line",)),
@@ -39,7 +40,8 @@ REJECT_CAUSES: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 """Why a part was rejected or not inspected, read from its reason, first match wins (the reasons are worded in
 ``station.loop``, ``station.decision``, ``station.inspector`` and ``model.draem.frame_checks``; a test keeps each
-cause's words in that code; a score over threshold with a frame check beyond its limit counts as that check's cause;
+cause's words in that code; a score over threshold with a frame check beyond its limit counts as that check's cause,
+a part turned beyond ``TURN_LIMIT_DEG`` first: a turned part's edges read bent and stepped;
 a part partly outside the model's view counts by what else its reason says: the share of such parts tells the line,
 ``station.drift.VIEW_WARN_SHARE``).
 A reason matching none counts as "other"."""
@@ -90,6 +92,11 @@ class LogSummary:
     ``UNSEEN_LIMIT``, schema version 8): the camera turned from square or parts off their place."""
     view_parts: int = 0
     """Parts with ``unseen_fraction`` (the model ran and has a variation member)."""
+    turn_median_deg: float | None = None
+    """The median ``turn_deg`` (schema version 9) of the parts that have it, when it calls for the turn warning
+    (``station.drift.line_turn``: at least ``TURN_WARN_MIN_PARTS`` parts, beyond +-``TURN_WARN_DEG``); else None."""
+    turn_parts: int = 0
+    """Parts with ``turn_deg`` (the model ran and reads a turn)."""
 
 
 def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
@@ -103,7 +110,10 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     checks: dict[str, list[float]] = {k: [] for k in FRAME_CHECKS}
     causes: Counter[str] = Counter()
     outside = viewed = 0
+    turns: list[float] = []
     for r in rows:
+        if r.get("turn_deg") is not None:
+            turns.append(r["turn_deg"])
         if r.get("unseen_fraction") is not None:
             viewed += 1
             outside += r["unseen_fraction"] > UNSEEN_LIMIT
@@ -144,6 +154,8 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
         reject_causes=dict(causes.most_common()),
         outside_view_parts=outside,
         view_parts=viewed,
+        turn_median_deg=line_turn(turns),
+        turn_parts=len(turns),
     )
 
 
@@ -182,6 +194,9 @@ def format_summary(s: LogSummary) -> str:
         lines.append(f"VIEW: {s.outside_view_parts} of {s.view_parts} parts lay partly outside the model's view as "
                      f"registered (over {100 * VIEW_WARN_SHARE:g} %; judged from the frame's border there): "
                      f"{VIEW_ADVICE}")
+    if s.turn_median_deg is not None:
+        lines.append(f"TURN: the {s.turn_parts} parts lay turned {s.turn_median_deg:+.1f} degrees from the model's "
+                     f"good parts at the median (beyond {TURN_WARN_DEG:g}): {TURN_ADVICE}")
     return "\n".join(lines) + "\n"
 
 

@@ -175,6 +175,8 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
                 score += f"  edge step {f.checks['edge_step']:.2f}"
             if f.checks.get("unseen_fraction", 0.0) > UNSEEN_LIMIT:
                 score += f"  outside view {100 * f.checks['unseen_fraction']:.2g} %"
+            if "turn_deg" in f.checks:
+                score += f"  turn {f.checks['turn_deg']:+.1f} deg"
             stats = "  ".join(f"{k} {v:.4g}" for k, v in f.stats.items())
             self.stats.setText(f"part {f.part_id}  {score}\n{f.reason or ''}\n{stats}")
             feed.shown += 1

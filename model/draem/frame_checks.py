@@ -10,14 +10,16 @@ robust z over the shape check's threshold (signed; NaN, and left out of a predic
 threshold (``model.draem.outline_check``; NaN and left out without the check), ``unseen_fraction`` the share of the
 part region the registration's warp took from outside the frame (0-1; ``model.draem.variation``: seen): a part
 turned or moved so far that some of it lies outside the model's view, where the window and the shape check read the
-frame's replicated border instead of the part (the outline check reads no column there)."""
+frame's replicated border instead of the part (the outline check reads no column there), ``turn_deg`` how far the
+part lies turned from the good parts the model was calibrated on (degrees, positive clockwise as the frame is shown;
+``model.draem.variation``: turn; NaN and left out for a file without ``turn_centre``)."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
 
-FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend", "edge_step", "unseen_fraction")
+FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend", "edge_step", "unseen_fraction", "turn_deg")
 """``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
 
 MAX_HIDDEN = 0.5
@@ -28,8 +30,9 @@ NOISE_CAP = 3.0
 line reach 1.38 (370 validation parts, 500 held-out), an 8-spp line of the same parts 2.1, a brighter line 2.3;
 a frame above the cap is so unlike the fitted line's parts that it is judged unscaled, and rejects."""
 
-SIGNED_CHECKS = ("edge_bend",)
-"""Frame checks whose sign gives a direction (the edge's middle up or down); a summary over parts takes their size."""
+SIGNED_CHECKS = ("edge_bend", "turn_deg")
+"""Frame checks whose sign gives a direction (the edge's middle up or down, the part turned clockwise or not); a
+summary over parts takes their size."""
 
 EDGE_BEND_LIMIT = 1.0
 """``edge_bend`` beyond +-this: the part's bottom edge bends further than any good validation part's, and the shape
@@ -47,6 +50,12 @@ shares of a square line and of a line turned 5 degrees overlap (good parts of de
 0.38 %, turned at most 0.74 %; docs/results/2026-12-05-outside-view.md), so the reason states the fact and the share
 of parts that have it tells the line (``station.log_report``). It changes no decision."""
 
+TURN_LIMIT_DEG = 12.0
+"""``turn_deg`` beyond +-this: the part lies turned further from the model's good parts than the shipped file was
+measured to hold. Good parts of the line as built lie within +-5.6 degrees of their median (370 validation parts);
+with the camera turned 12 degrees the shipped file rejected 2 of 183 good parts, turned 20 degrees 132 of 180, whose
+parts read -19 degrees at the median (docs/results/2026-12-06-turn-check.md). It says why; it changes no decision."""
+
 OWN_RENDERS_NOISE_LEVEL_MAX = 1.38
 """Highest ``noise_level`` of a good part of the shipped model's own validation and held-out renders (16 spp):
 a line whose median lies above it is noisier than the renders (module docstring of variation: noise)."""
@@ -56,9 +65,10 @@ def beyond_limits(checks: Mapping[str, float]) -> list[str]:
     """A part's frame checks (by ``FRAME_CHECKS`` name; missing or NaN ones say nothing) -> what each one beyond its
     limit says, in words for a reject's reason (the station adds them after the score): a frame too noisy or too
     highlighted to be judged as the model's line (it rejects), a part bent beyond every good part's, an outline that
-    steps beyond every good part's, a part partly outside the model's view."""
+    steps beyond every good part's, a part partly outside the model's view, a part turned further than the model was
+    measured to hold."""
     said = []
-    hidden, noise, bend, step, unseen = (checks.get(k, math.nan) for k in FRAME_CHECKS)
+    hidden, noise, bend, step, unseen, turn = (checks.get(k, math.nan) for k in FRAME_CHECKS)
     if hidden > MAX_HIDDEN:
         said.append(f"highlights cover {100 * hidden:.0f} % of the part (over {100 * MAX_HIDDEN:.0f} %: judged "
                     "with them, as a part unlike the model's line)")
@@ -73,4 +83,7 @@ def beyond_limits(checks: Mapping[str, float]) -> list[str]:
     if unseen > UNSEEN_LIMIT:
         said.append(f"{100 * unseen:.2g} % of the part lay outside the model's view as registered, read from the "
                     "frame's border there (camera turned from square or the part off its place)")
+    if abs(turn) > TURN_LIMIT_DEG:
+        said.append(f"the part lay turned {turn:+.0f} degrees from the model's good parts (beyond "
+                    f"{TURN_LIMIT_DEG:g}: camera turned from square or the part off its place)")
     return said

@@ -15,18 +15,17 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               measured on the training set's val split, image AUROC 0.73 with the unit vector, 0.78 with these);
               DoLP itself not as a feature of its own in new fits (``READ_DOLP``: noise biases it, the Stokes
               components carry it); every other channel as is (normals as unit vectors)
-    register  an affine warp of the frame's log intensity onto ``reference`` (OpenCV ECC, the correlation
-              coefficient: blind to brightness and contrast); a failed or implausible fit (shift > 1/4 of a side,
-              scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high.
-              Where the warp reaches outside the frame it replicates the frame's border; those pixels are not
-              ``seen`` (``SEEN_LEVEL``), and the outline check reads no edge there: a camera turned 5 degrees put
-              the belt under the part's left end outside the 96-row input, and its replicated stripes made the
-              outline check's largest steps on good parts (docs/results/2026-12-05-seen-edges.md). The shape
-              check still reads every column (its robust parabola leaves out those off it; fitted on the seen
-              columns alone it spread more: 19 against 7 of 414 good parts of a turned line beyond its
-              threshold), and the window judges every pixel of the region, seen or not; the share of the
-              region not seen is a frame check (``unseen_fraction``; ``frame_checks.UNSEEN_LIMIT``), so a reject's
-              reason names a part partly outside the model's view
+    register  an affine warp of the frame's log intensity onto ``reference`` (OpenCV ECC, the correlation coefficient:
+              blind to brightness and contrast); a failed or implausible fit (the view's centre shifted > 1/4 of a side,
+              scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high. Where the
+              warp reaches outside the frame it replicates the frame's border; those pixels are not ``seen``
+              (``SEEN_LEVEL``), and the outline check reads no edge there: a camera turned 5 degrees put the belt under
+              the part's left end outside the 96-row input, and its replicated stripes made the outline check's largest
+              steps on good parts (docs/results/2026-12-05-seen-edges.md). The shape check still reads every column (its
+              robust parabola leaves out those off it; fitted on the seen columns alone it spread more: 19 against 7 of
+              414 good parts of a turned line beyond its threshold), and the window judges every pixel of the region,
+              seen or not; the share of the region not seen is a frame check (``unseen_fraction``;
+              ``frame_checks.UNSEEN_LIMIT``), so a reject's reason names a part partly outside the model's view
     around    the frame around the view (``zmaps``'s ``around``: ``ModelConfig.around_px`` input pixels more on each
               side at the view's detail, NaN beyond the frame; the station and ``station eval`` give it to a file whose
               ``around_px`` is above 0, as the shipped file's since 2026-12-06): the warp is still fitted on the view
@@ -42,6 +41,13 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               camera turned 5 degrees, 2 instead of 10 of 211 good parts rejected (the shape check's 8 gone), as many
               defects caught; on fresh seed 1211 turned 5 degrees 0 instead of 3 of 81, two defective parts fewer of 119
               (docs/results/2026-12-06-view-margin.md)
+    turn      how far the warp turns a part onto the reference (``warp_turn_deg``: degrees, positive clockwise as the
+              frame is shown), less ``turn_centre``, the median of the good parts the model was calibrated on
+              (``calibrate_turn``): the reference lies as its first fitted part lay, the shipped file's good parts
+              +4.6 degrees from it. Good parts of the line as built lie within about +-5.5 degrees of their median
+              (the fixture's play); a camera turned by t degrees moves every part's turn by about -t (seeds
+              1217-1221, turned 3-12 degrees: -2.8 to -11.6; docs/results/2026-12-06-turn-check.md). A frame check
+              (``turn_deg``; ``frame_checks.TURN_LIMIT_DEG``) and the station's turn monitor (``station.drift``)
     appearance  the good parts' registered features, each channel divided by its robust spread over the part
               (``channel_scale``), minus their per-pixel mean: what stays is how a good part differs from the
               average one. Its first ``COMPONENTS`` principal components (``components``) are the line's
@@ -221,7 +227,10 @@ SEEN_LEVEL = 0.999
 interpolates lies inside the frame's outermost ring (module docstring: register)."""
 
 MAX_SHIFT = 0.25
-"""Largest registration shift, as a fraction of the input's side, still taken as a fit."""
+"""Largest registration shift of the view's centre, as a fraction of the input's side, still taken as a fit. Until
+2026-12-06 the warp's translation was tested instead, its shift at the view's top left corner, which a turn about the
+centre moves too: a part turned 15 degrees or more on the shipped file's 96 x 192 input lost its warp and was compared
+unaligned (docs/results/2026-12-06-turn-check.md)."""
 
 HIGHLIGHT_LEVEL = 1.0
 """I (1 + DoLP), full-scale units, from which a pixel counts as a highlight (module docstring: highlights): where the
@@ -238,14 +247,16 @@ LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_
                  "polarization_range", "cluster_centres", "cluster_spread", "cluster_mean", "cluster_scale",
                  "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged",
                  "curvature_sigma", "second_look.tests", "judged_channels", "shape.edge", "shape.calibration",
-                 "outline.edges", "outline.median", "outline.centre", "outline.spread", "outline.calibration")
+                 "outline.edges", "outline.median", "outline.centre", "outline.spread", "outline.calibration",
+                 "turn_centre")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their initial
 values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as a feature;
 ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's polarization read as
 it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no clusters; ``contrast_range``
 ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look; ``curvature_sigma`` 0: the box window;
 ``second_look.tests`` 1: a second look tests; ``judged_channels`` all 1: every feature judged; ``shape`` NaN: no
-shape check; ``outline`` NaN: no outline check), which score as those models did. Dotted names are a submodule's
+shape check; ``outline`` NaN: no outline check; ``turn_centre`` NaN: no turn read, ``calibrate_turn``), which score
+as those models did. Dotted names are a submodule's
 (``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
@@ -318,6 +329,10 @@ with DoLP, 0.831 without; caught at 1 % of good parts rejected 49.6 % and 44.3 %
 DoLP changes, now also seen through their Stokes components); on the 8-spp and brighter lines image AUROC 0.751
 and 0.687 with, 0.745 and 0.755 without. Old checkpoints keep reading it (``LATER_BUFFERS``)."""
 
+MAX_TURN_CENTRE = 45.0
+"""Largest ``turn_centre`` (degrees) ``check`` accepts: the registration's warp finds a turn of a part it brings onto
+its reference, the shipped file's good parts' +4.6; a centre beyond 45 degrees is not a warp that converged."""
+
 MAX_SPREAD = 1e3
 """Largest scale or spread ``check`` accepts: the shipped model's reach 5.5; dividing by 1e30 hides any defect."""
 
@@ -342,6 +357,13 @@ scales), a part would otherwise be judged on differences of no physical size."""
 
 MAX_CURVATURE_SIGMA = 16.0
 """Largest ``curvature_sigma`` ``check`` accepts (input px): a wider filter sees the part's outline, not a defect."""
+
+
+def warp_turn_deg(m: np.ndarray) -> float:
+    """(2, 3) affine warp taking the reference's pixels into a frame's (``VariationModel.fitted_warp``) -> how far
+    the part lies turned in the frame against the reference, in degrees, positive clockwise as the frame is shown
+    (x to the right, y down): atan2 of the warp's first column. 0 for the identity, which a failed fit keeps."""
+    return float(np.degrees(np.arctan2(m[1, 0], m[0, 0])))
 
 
 def judged_from(channels: Sequence[int], count: int) -> torch.Tensor:
@@ -425,7 +447,9 @@ class VariationOutput(NamedTuple):
     ``judged`` (N, H, W) bool, the pixels judged; both None unless ``zmaps`` was asked for them; ``edge_bend`` (N,)
     the shape check's bend of each part (``ShapeCheck.bend``; NaN without the check); ``edge_step`` (N,) the outline
     check's step of each part (``OutlineCheck.step``; NaN without the check); ``unseen_fraction`` (N,) the share of
-    the part region the registration's warp took from outside the frame (module docstring: register, seen)."""
+    the part region the registration's warp took from outside the frame (module docstring: register, seen);
+    ``turn_deg`` (N,) how far each part lies turned from the good parts the model was calibrated on, degrees,
+    positive clockwise as shown (``warp_turn_deg`` less ``turn_centre``; NaN without it, module docstring: turn)."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -436,6 +460,7 @@ class VariationOutput(NamedTuple):
     edge_bend: torch.Tensor | None = None
     edge_step: torch.Tensor | None = None
     unseen_fraction: torch.Tensor | None = None
+    turn_deg: torch.Tensor | None = None
 
     def frame_checks(self) -> dict[str, torch.Tensor]:
         """The fields that describe the frame or the part's shape rather than a local defect (``FRAME_CHECKS``), by
@@ -493,6 +518,7 @@ class VariationModel(nn.Module):
         self.register_buffer("cluster_spread", torch.ones(COMPONENTS))
         self.register_buffer("curvature_sigma", torch.tensor(0.0))
         self.register_buffer("judged_channels", torch.ones(channels))
+        self.register_buffer("turn_centre", torch.tensor(math.nan))
         self._resize_clusters(0, 0)
         self.second_look = SecondLook()
         self.shape = ShapeCheck()
@@ -700,25 +726,36 @@ class VariationModel(nn.Module):
         grow = np.ones((2 * HIGHLIGHT_GROW_PX + 1,) * 2, np.uint8)
         return cv2.dilate((peak >= HIGHLIGHT_LEVEL).astype(np.uint8), grow).astype(bool)
 
-    def warp_to(self, reference: np.ndarray, f: np.ndarray, mask: np.ndarray | None = None,
-                source: np.ndarray | None = None) -> np.ndarray:
-        """Features ``f`` (C, H, W) warped onto ``reference`` (H, W) (module docstring: register), matching only
-        where ``mask`` (H, W, of ``f``) is true when given. ``source``: (C, H + 2 m, W + 2 n) the same maps of the
-        frame around ``f`` (``f`` at its centre, m rows and n columns more on each side): the warp fitted on ``f``
-        takes its pixels from it, so it replicates a border only beyond the frame around (module docstring:
-        around)."""
+    def fitted_warp(self, reference: np.ndarray, moving: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
+        """(2, 3) float32 affine warp taking ``reference``'s (H, W) pixels into ``moving``'s (H, W) (module
+        docstring: register), matched only where ``mask`` (H, W, of ``moving``) is true when given; the identity when
+        ECC fails or finds an implausible warp."""
         h, w = reference.shape
         m = np.eye(2, 3, dtype=np.float32)
         ecc_mask = None if mask is None else mask.astype(np.uint8)
         try:
-            _, m = cv2.findTransformECC(reference, f[self.intensity], m, cv2.MOTION_AFFINE,
+            _, m = cv2.findTransformECC(reference, moving, m, cv2.MOTION_AFFINE,
                                         (cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 50, 1e-4), ecc_mask, 5)
         except cv2.error:
             m = np.eye(2, 3, dtype=np.float32)
         sx, sy = float(np.hypot(*m[:, 0])), float(np.hypot(*m[:, 1]))
-        if (not np.isfinite(m).all() or abs(m[0, 2]) > MAX_SHIFT * w or abs(m[1, 2]) > MAX_SHIFT * h
+        centre = np.array([(w - 1) / 2, (h - 1) / 2, 1.0], np.float32)
+        dx, dy = m @ centre - centre[:2]  # the shift of the view's centre: a turn about it moves it not at all
+        if (not np.isfinite(m).all() or abs(dx) > MAX_SHIFT * w or abs(dy) > MAX_SHIFT * h
                 or not (0.8 <= sx <= 1.25 and 0.8 <= sy <= 1.25)):
             m = np.eye(2, 3, dtype=np.float32)
+        return m
+
+    def warp_to(self, reference: np.ndarray, f: np.ndarray, mask: np.ndarray | None = None,
+                source: np.ndarray | None = None, m: np.ndarray | None = None) -> np.ndarray:
+        """Features ``f`` (C, H, W) warped onto ``reference`` (H, W) (module docstring: register), matching only
+        where ``mask`` (H, W, of ``f``) is true when given, by the warp ``m`` when given (``fitted_warp``'s, already
+        fitted). ``source``: (C, H + 2 m, W + 2 n) the same maps of the frame around ``f`` (``f`` at its centre, m rows
+        and n columns more on each side): the warp fitted on ``f`` takes its pixels from it, so it replicates a border
+        only beyond the frame around (module docstring: around)."""
+        h, w = reference.shape
+        if m is None:
+            m = self.fitted_warp(reference, f[self.intensity], mask)
         if source is not None:
             m = m.copy()  # the warp maps the reference's pixels into f's; f lies at the source's centre
             m[0, 2] += (source.shape[2] - w) // 2
@@ -871,6 +908,7 @@ class VariationModel(nn.Module):
                             ("window_spread", spread)):
             getattr(self, name).copy_(torch.from_numpy(np.asarray(value, np.float32)))
         self.region.copy_(torch.from_numpy(region))
+        self.calibrate_turn(xs[:n_parts], arounds[:n_parts])
         if mode is Alignment.RANGE:
             self.polarization_range.copy_(self._polarization_range(xs[:n_parts], arounds[:n_parts]))
         if contrast is Alignment.MEAN:
@@ -956,12 +994,23 @@ class VariationModel(nn.Module):
         stats = [(self.cluster_mean[k].float().numpy(), self.cluster_scale[k].float().numpy()) for k in near]
         return self._unpacked(r, *appearance_clusters.blend(w[near], stats))
 
+    def calibrate_turn(self, xs: np.ndarray, arounds: Sequence[np.ndarray | None] | None = None) -> float:
+        """(N, C, H, W) good parts' physical priors (and the frame around each, or None) -> their median registration
+        turn (degrees, ``warp_turn_deg``), kept as ``turn_centre``: ``zmaps`` gives each part's turn from it, so 0 is
+        where these good parts lie (module docstring: turn). ``fit`` calls it on its good parts; ``station threshold``
+        on the line's good parts (a file fitted before it existed)."""
+        arounds = [None] * len(xs) if arounds is None else arounds
+        part = self.region.numpy()
+        turns = [self._registered(xi, part, a)[3] for xi, a in zip(xs, arounds, strict=True)]
+        self.turn_centre.fill_(float(np.median(turns)))
+        return float(self.turn_centre)
+
     def _contrast_range(self, xs: np.ndarray, arounds: Sequence[np.ndarray | None]) -> torch.Tensor:
         """(N, C, H, W) good parts' physical priors (and the frame around each, or None) -> (2,) lowest and highest
         ``contrast_factor`` as ``zmaps`` measures it (after the fit and its polarization range)."""
         cs = []
         for xi, a in zip(xs, arounds, strict=True):
-            warped, _, where, _ = self._aligned(xi, a)
+            warped, _, where, *_ = self._aligned(xi, a)
             cs.append(self.contrast_factor(warped[:-1], where))
         return torch.tensor([min(cs), max(cs)], dtype=torch.float32)
 
@@ -971,7 +1020,7 @@ class VariationModel(nn.Module):
         mean, part = self.mean.numpy(), self.region.numpy()
         ks = []
         for xi, a in zip(xs, arounds, strict=True):
-            warped, judged, _ = self._registered(xi, part, a)
+            warped, judged, *_ = self._registered(xi, part, a)
             ks.append(self.polarization_factor(warped[:-1], mean, judged if judged.any() else part))
         gain, turn = np.abs(ks), np.angle(ks) / 2.0
         return torch.tensor([gain.min(), gain.max(), turn.min(), turn.max()], dtype=torch.float32)
@@ -1043,6 +1092,11 @@ class VariationModel(nn.Module):
         for name in ("reference", "mean", "channel_scale", "components", "scale", "calibration", *LATER_BUFFERS):
             if name.startswith(("shape.", "outline.")):
                 continue  # NaN is their off state (``ShapeCheck.check``, ``OutlineCheck.check``, below)
+            if name == "turn_centre":
+                if not (math.isnan(float(self.turn_centre)) or abs(float(self.turn_centre)) <= MAX_TURN_CENTRE):
+                    raise ModelError(f"variation model: turn_centre is {float(self.turn_centre):g} degrees, beyond "
+                                     f"+-{MAX_TURN_CENTRE:g} (NaN: no turn read)")
+                continue
             value = self.get_buffer(name)
             if name == "second_look.calibration":
                 value = value[1:]  # its gate is infinite until calibrated: no part is looked at again
@@ -1089,7 +1143,7 @@ class VariationModel(nn.Module):
         region = self.scored_region()
         if not region.any():
             region = self.region.numpy()
-        maps, scores, highlights, noise, signed_all, judged_all, bends, steps, unseen = ([] for _ in range(9))
+        maps, scores, highlights, noise, signed_all, judged_all, bends, steps, unseen, turns = ([] for _ in range(10))
         part = self.region.numpy()
         for xi, ai in zip(x.float().cpu().numpy(), per_part(around, len(x)), strict=True):
             aligned = self._aligned(xi, ai)
@@ -1097,6 +1151,7 @@ class VariationModel(nn.Module):
             sag = self.shape.sag(aligned[0][self.intensity]) if self.shape.fitted else math.nan
             step = self.outline.step(self.checked_intensity(aligned))
             unseen.append(1.0 - float((aligned[3] & part).sum()) / max(float(part.sum()), 1.0))
+            turns.append(aligned[4] - float(self.turn_centre))
             r, coef, judged, hidden = self._residual_of(*aligned[:3])
             highlights.append(hidden)
             r = self.clustered(r, coef)
@@ -1124,7 +1179,7 @@ class VariationModel(nn.Module):
                                torch.from_numpy(np.stack(signed_all)) if signed else None,
                                torch.from_numpy(np.stack(judged_all)) if signed else None,
                                torch.tensor(bends, dtype=torch.float32), torch.tensor(steps, dtype=torch.float32),
-                               torch.tensor(unseen, dtype=torch.float32))
+                               torch.tensor(unseen, dtype=torch.float32), torch.tensor(turns, dtype=torch.float32))
 
     def _judged_residual(self, xi: np.ndarray, around: np.ndarray | None = None
                          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
@@ -1149,16 +1204,16 @@ class VariationModel(nn.Module):
         return r / self.scale.numpy(), coef[0], judged, float(hidden)
 
     def _aligned(self, xi: np.ndarray, around: np.ndarray | None = None
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
         """(C, H, W) physical priors (and the frame ``around`` them, or None) -> (``_registered``'s warped features
         with their polarization aligned when the model aligns it, its judged pixels, the pixels alignments fit over:
-        those judged, or the part region when none are, and its ``seen`` pixels)."""
+        those judged, or the part region when none are, its ``seen`` pixels and its warp's turn in degrees)."""
         part = self.region.numpy()
-        warped, judged, seen = self._registered(xi, part, around)
+        warped, judged, seen, turn = self._registered(xi, part, around)
         where = judged if judged.any() else part
         if self.aligns_polarization:
             warped[:-1] = self.align_polarization(warped[:-1], self.mean.numpy(), where)
-        return warped, judged, where, seen
+        return warped, judged, where, seen, turn
 
     def checked_intensity(self, aligned: tuple[np.ndarray, ...]) -> np.ndarray:
         """A frame's ``_aligned`` -> its registered intensity feature as the outline check reads it: NaN where the
@@ -1167,10 +1222,11 @@ class VariationModel(nn.Module):
         return np.where(aligned[3], aligned[0][self.intensity], np.nan)
 
     def _registered(self, xi: np.ndarray, part: np.ndarray, around: np.ndarray | None = None
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """(C, H, W) physical priors (and the frame ``around`` them, or None) -> (``register``'s warped features with
         I (1 + DoLP) last, (H, W) bool the pixels of the region ``part`` not hidden by a highlight, (H, W) bool
-        ``seen``: the pixels the warp took from inside the frame (module docstring: register, around))."""
+        ``seen``: the pixels the warp took from inside the frame (module docstring: register, around), the warp's
+        turn in degrees (``warp_turn_deg``))."""
         median = self.log_median(xi)  # the view's, taken out of the view and of the frame around it alike
         f = self.features(xi, median=median)
         inside = ring_inside(np.ones(xi.shape[1:], bool))
@@ -1179,10 +1235,10 @@ class VariationModel(nn.Module):
             filled, in_frame = frame_filled(around)
             source = np.concatenate([self.features(filled, median=median), ring_inside(in_frame),
                                      self.peak(filled)[None]])
-        warped = self.register(xi, np.concatenate([f, inside]), source)
+        warped, turn = self.register(xi, np.concatenate([f, inside]), source)
         seen = warped[-2] >= SEEN_LEVEL
         warped = np.delete(warped, -2, axis=0)
-        return warped, part & ~self.highlight(warped[-1]), seen
+        return warped, part & ~self.highlight(warped[-1]), seen, turn
 
     def edge_sag(self, xi: np.ndarray, around: np.ndarray | None = None) -> float:
         """(C, H, W) physical priors of a frame (and the frame ``around`` it, or None) -> the shape check's sag of its
@@ -1200,16 +1256,19 @@ class VariationModel(nn.Module):
         is left; the residual networks judge these pixels too (``Detector.residual_inputs``)."""
         return cv2.erode(self.region.numpy().astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
 
-    def register(self, xi: np.ndarray, f: np.ndarray, source: np.ndarray | None = None) -> np.ndarray:
-        """(C, H, W) physical priors ``xi`` and (K, H, W) maps ``f`` of the same frame -> ``f`` warped onto the
-        reference with the frame's I (1 + DoLP) (``peak``) as its last channel (K + 1, H, W): the warp ``zmaps``
-        uses, matched away from highlights unless more than ``MAX_HIDDEN`` of the frame is highlight. ``source``:
-        (K + 1, H + 2 m, W + 2 n) the same maps and peak of the frame around ``xi``, read by the warp
-        (``warp_to``)."""
+    def register(self, xi: np.ndarray, f: np.ndarray, source: np.ndarray | None = None
+                 ) -> tuple[np.ndarray, float]:
+        """(C, H, W) physical priors ``xi`` and (K, H, W) maps ``f`` of the same frame -> (``f`` warped onto the
+        reference with the frame's I (1 + DoLP) (``peak``) as its last channel (K + 1, H, W), the warp's turn in
+        degrees, ``warp_turn_deg``): the warp ``zmaps`` uses, matched away from highlights unless more than
+        ``MAX_HIDDEN`` of the frame is highlight. ``source``: (K + 1, H + 2 m, W + 2 n) the same maps and peak of the
+        frame around ``xi``, read by the warp (``warp_to``)."""
         peak = self.peak(xi)
         seen = ~self.highlight(peak)
-        return self.warp_to(self.reference.numpy(), np.concatenate([f, peak[None]]),
-                            seen if seen.mean() > 1.0 - MAX_HIDDEN else None, source)
+        f = np.concatenate([f, peak[None]])
+        m = self.fitted_warp(self.reference.numpy(), f[self.intensity],
+                             seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
+        return self.warp_to(self.reference.numpy(), f, source=source, m=m), warp_turn_deg(m)
 
     def register_masks(self, x: torch.Tensor, masks: torch.Tensor) -> torch.Tensor:
         """(N, C, H, W) physical priors and (N, H, W) bool masks of the same frames (a rendered defect's) -> the
@@ -1217,7 +1276,7 @@ class VariationModel(nn.Module):
         out = []
         for xi, mi in zip(x.float().cpu().numpy(), masks.cpu().numpy(), strict=True):
             f = np.concatenate([self.features(xi), mi[None].astype(np.float32)])
-            out.append(self.register(xi, f)[-2] > 0.5)
+            out.append(self.register(xi, f)[0][-2] > 0.5)
         return torch.from_numpy(np.stack(out))
 
     def signed_z(self, r: np.ndarray, judged: np.ndarray, level: float | None = None) -> np.ndarray:

@@ -8,7 +8,8 @@ than the training set (frames captured at the line, ``station import``) the side
 set the threshold (``train.threshold_set``); several sets pool their parts (more good parts: a steadier threshold
 and a narrower promise, ``model.draem.rate_bounds``). Frames the station would not judge (no part in view for the
 camera's presence rule, ``--presence-rule``; too many invalid pixels) are left out and listed. To adapt the input
-normalisation as well, use ``station adapt``.
+normalisation as well, use ``station adapt``. A model with a variation member also takes its good parts' median turn
+as the centre each part's turn is read from (``turn_deg``: the station's turn warning, ``station.drift``).
 """
 
 from __future__ import annotations

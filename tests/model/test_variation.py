@@ -16,7 +16,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.config import Alignment, ModelConfig
 from model.draem.detector import Detector
 from model.draem.errors import CheckpointError, ModelError
-from model.draem.frame_checks import UNSEEN_LIMIT, beyond_limits
+from model.draem.frame_checks import TURN_LIMIT_DEG, UNSEEN_LIMIT, beyond_limits
 from model.draem.variation import LATER_BUFFERS, SQUASH_CENTRE, VariationModel, combined_score, squash
 from model.draem.with_variation import add_variation
 
@@ -61,7 +61,7 @@ def test_registration_undoes_the_fixtures_play_and_a_local_change_stands_out() -
     # without registration the same good parts look defective: the play alone moves edges by pixels
     unregistered = VariationModel(4, (H, W), intensity=0)
     unregistered.load_state_dict(vm.state_dict())
-    unregistered.warp_to = lambda ref, f, mask=None, source=None: f  # type: ignore[method-assign]
+    unregistered.fitted_warp = lambda ref, f, mask=None: np.eye(2, 3, dtype=np.float32)  # type: ignore[method-assign]
     assert float(unregistered.zmaps(parts(20, 1))[1].median()) > 2 * float(good.median())
     assert bool(vm.region[H // 2, W // 2]) and not bool(vm.region[0, 0])  # the part, not the belt
 
@@ -734,3 +734,47 @@ def test_a_refit_reads_the_frame_around_its_parts_as_the_station_reads_new_ones(
     mixed, both = (float(m.zmaps(view, around=new).scores.max()) for m in (alone, around))
     assert mixed > 3 * as_before
     assert both == pytest.approx(as_before, rel=0.3)
+
+
+def turned(x: np.ndarray, degrees: float) -> np.ndarray:
+    """(C, H, W) priors turned ``degrees`` counter-clockwise as shown about the view's centre (a camera turned the
+    other way about its axis), the border replicated."""
+    m = cv2.getRotationMatrix2D(((W - 1) / 2, (H - 1) / 2), degrees, 1.0)
+    return np.stack([cv2.warpAffine(c, m, (W, H), flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+                     for c in x])
+
+
+def test_each_parts_turn_is_read_from_the_good_parts_median_and_one_turned_far_is_named() -> None:
+    """``turn_deg``: how far the registration turns a part onto the reference, less the fitted good parts' median
+    (``turn_centre``), positive clockwise as shown. A part in its place reads about 0; turned 6 and 20 degrees
+    counter-clockwise about the view's centre it reads about -6 and -20, and is registered as the part in place is
+    (a turn about the part's centre is not a shift: the warp's translation at the frame's corner, 10 rows at 20
+    degrees here, used to be taken as one beyond ``MAX_SHIFT`` and the warp thrown away). Past ``TURN_LIMIT_DEG`` a
+    reject's reason names the turn."""
+    vm = fitted()
+    assert abs(float(vm.turn_centre)) < 1.0  # the synthetic parts are not turned
+    xi = parts(1, 3, play=0.0)[0].numpy()
+    out = vm.zmaps(torch.from_numpy(np.stack([xi, turned(xi, 6.0), turned(xi, 20.0)])))
+    turn = out.turn_deg.numpy()
+    assert abs(turn[0]) < 1.0 and turn[1] == pytest.approx(-6.0, abs=1.0) and turn[2] == pytest.approx(-20.0, abs=1.5)
+    unaligned = copy.deepcopy(vm)
+    unaligned.fitted_warp = lambda ref, f, mask=None: np.eye(2, 3, dtype=np.float32)  # type: ignore[method-assign]
+    assert float(out.scores[2]) < 0.5 * float(unaligned.zmaps(torch.from_numpy(turned(xi, 20.0)[None])).scores[0])
+    said = beyond_limits({k: float(v[2]) for k, v in out.frame_checks().items()})
+    assert said[-1].startswith("the part lay turned -20 degrees from the model's good parts (beyond 12")
+    assert not any("turned" in s for s in beyond_limits({k: float(v[1]) for k, v in out.frame_checks().items()}))
+    assert TURN_LIMIT_DEG == 12.0
+
+
+def test_a_file_without_a_turn_centre_reads_no_turn_and_a_wild_centre_is_refused() -> None:
+    """A file fitted before the turn was read has ``turn_centre`` NaN: its parts' ``turn_deg`` is NaN, which
+    ``beyond_limits`` leaves out; a centre beyond ``MAX_TURN_CENTRE`` is not a converged warp: ``check`` refuses it."""
+    vm = fitted()
+    vm.turn_centre.fill_(math.nan)
+    vm.check()
+    out = vm.zmaps(parts(2, 3))
+    assert torch.isnan(out.turn_deg).all()
+    assert beyond_limits({k: float(v[0]) for k, v in out.frame_checks().items()}) == []
+    vm.turn_centre.fill_(90.0)
+    with pytest.raises(ModelError, match="turn_centre"):
+        vm.check()

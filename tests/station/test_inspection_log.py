@@ -110,7 +110,7 @@ FULL = InspectionRecord(
     ground_truth_present=True, image_path="img/9.png", median_level=0.4, high_level=0.8, clipped_fraction=0.01,
     dolp_level=0.05, drift="brighter", highlight_fraction=0.02, noise_level=1.1, second_score=0.3,
     second_threshold=0.6, second_model_id="side1", second_frame_id=11, edge_bend=-1.5,
-    edge_step=2.5, unseen_fraction=0.03)
+    edge_step=2.5, unseen_fraction=0.03, turn_deg=-7.5)
 """A record with every column set (a two-camera station's row: its second model's id is text)."""
 
 
@@ -226,6 +226,33 @@ def test_report_warns_when_more_than_a_few_parts_lay_partly_outside_the_models_v
     assert reject_cause(both) == "part bent (shape check)"
 
 
+def test_report_warns_when_the_parts_lie_turned_from_the_models_good_parts(tmp_path):
+    """A camera turned from square moves every part's ``turn_deg`` (about -7.5 degrees turned 8, seed 1219); a square
+    line's parts spread about 0. The report says TURN once the median of at least ``TURN_WARN_MIN_PARTS`` parts with
+    the column is beyond ``TURN_WARN_DEG``; a reject whose reason names a part turned beyond the limit counts as
+    "part turned", before the shape check its turned edges also tripped."""
+    from model.draem.frame_checks import beyond_limits
+    from station.drift import TURN_WARN_MIN_PARTS
+    from station.log_report import format_summary, reject_cause, summarize
+
+    square = [(-5.0 + 10.0 * i / 119) for i in range(120)]
+    with InspectionLog(tmp_path / "square.sqlite") as log:
+        log.append([rec(i, turn_deg=t) for i, t in enumerate(square)] + [rec(120)])
+        flat = summarize(log.rows())
+    with InspectionLog(tmp_path / "turned.sqlite") as log:
+        log.append([rec(i, turn_deg=t - 7.5) for i, t in enumerate(square)])
+        turned = summarize(log.rows())
+        early = summarize(list(log.rows())[:TURN_WARN_MIN_PARTS - 1])
+    assert flat.turn_median_deg is None and "TURN" not in format_summary(flat)
+    assert turned.turn_median_deg == pytest.approx(-7.5) and turned.turn_parts == 120
+    assert ("TURN: the 120 parts lay turned -7.5 degrees from the model's good parts at the median (beyond 5): the "
+            "camera turned from square") in format_summary(turned)
+    assert early.turn_median_deg is None  # too few parts to tell a line
+    assert turned.frame_checks["turn_deg"]["max"] == pytest.approx(12.5)  # of its size
+    both = "; ".join(["score 0.99 > threshold 0.98", *beyond_limits({"edge_bend": 3.0, "turn_deg": -19.0})])
+    assert reject_cause(both) == "part turned"
+
+
 def test_the_log_has_a_column_for_every_frame_check_the_model_reports():
     from model.draem.frame_checks import FRAME_CHECKS
 
@@ -295,11 +322,11 @@ def test_version_1_log_reads_and_is_migrated_on_write(tmp_path):
 def test_newer_schema_is_refused_by_name(tmp_path):
     import sqlite3
 
-    db = tmp_path / "v9.sqlite"
+    db = tmp_path / "v10.sqlite"
     con = sqlite3.connect(db)
-    con.execute("PRAGMA user_version=9")
+    con.execute("PRAGMA user_version=10")
     con.close()
-    with pytest.raises(LogError, match=r"v9\.sqlite: schema version 9"):
+    with pytest.raises(LogError, match=r"v10\.sqlite: schema version 10"):
         InspectionLog(db, readonly=True)
 
 

@@ -258,3 +258,36 @@ def test_judged_priors_fit_a_judge_of_some_priors_alone_and_a_prior_the_model_la
     assert vm is not None and vm.judged_channels.tolist() == [0.0, 0.0, 1.0, 1.0]
     for bad in ("normal", ""):
         refused_naming(capsys, "--judged-priors", bad, model, data, tmp_path / "w")
+
+
+def test_threshold_gives_a_file_without_a_turn_centre_its_good_parts_median_turn(tmp_path: Path, capsys) -> None:
+    """A variation fit reads its good parts' median turn (``turn_centre``); a file fitted before that has none, and
+    its parts read no turn. ``station threshold`` on a split of the line's good parts gives it theirs, keeps the
+    threshold it would choose anyway, and says so; the station's parts then read their turn from it."""
+    import math
+
+    import torch
+
+    from model.draem.checkpoint import load_checkpoint, save_checkpoint
+
+    data, model = trained(tmp_path, capsys)
+    out = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(out)]) == 0
+    ck = load_checkpoint(out)
+    fitted_centre = float(ck.detector.variation.turn_centre)
+    assert math.isfinite(fitted_centre) and abs(fitted_centre) < 5.0  # the line set's parts are not turned
+    ck.detector.variation.turn_centre.fill_(math.nan)  # as a file fitted before 2026-12-06
+    meta = ck.meta
+    save_checkpoint(out, ck.detector, ck.threshold, meta["threshold_rule"], meta.get("data_manifest_sha256"),
+                    meta.get("metrics"), meta.get("train", {}))
+    old = load_checkpoint(out)
+    x = torch.zeros(1, *old.detector.variation.mean.shape) + old.detector.variation.mean[None]
+    assert torch.isnan(old.detector.variation.zmaps(x).turn_deg).all()
+    capsys.readouterr()
+    assert main(["threshold", "--model", str(out), "--data", str(data)]) == 0
+    line = capsys.readouterr().out
+    assert "its good parts' median turn" in line and "degrees from the reference" in line
+    new = load_checkpoint(out)
+    assert math.isfinite(float(new.detector.variation.turn_centre))
+    assert abs(float(new.detector.variation.turn_centre) - fitted_centre) < 2.0
+    assert new.threshold == pytest.approx(ck.threshold, rel=1e-4)
