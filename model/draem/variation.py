@@ -449,7 +449,8 @@ class VariationOutput(NamedTuple):
     check's step of each part (``OutlineCheck.step``; NaN without the check); ``unseen_fraction`` (N,) the share of
     the part region the registration's warp took from outside the frame (module docstring: register, seen);
     ``turn_deg`` (N,) how far each part lies turned from the good parts the model was calibrated on, degrees,
-    positive clockwise as shown (``warp_turn_deg`` less ``turn_centre``; NaN without it, module docstring: turn)."""
+    positive clockwise as shown (``warp_turn_deg`` less ``turn_centre``; NaN without it or where the warp found no
+    plausible fit, module docstring: turn)."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -726,10 +727,11 @@ class VariationModel(nn.Module):
         grow = np.ones((2 * HIGHLIGHT_GROW_PX + 1,) * 2, np.uint8)
         return cv2.dilate((peak >= HIGHLIGHT_LEVEL).astype(np.uint8), grow).astype(bool)
 
-    def fitted_warp(self, reference: np.ndarray, moving: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
-        """(2, 3) float32 affine warp taking ``reference``'s (H, W) pixels into ``moving``'s (H, W) (module
-        docstring: register), matched only where ``mask`` (H, W, of ``moving``) is true when given; the identity when
-        ECC fails or finds an implausible warp."""
+    def fitted_warp(self, reference: np.ndarray, moving: np.ndarray, mask: np.ndarray | None = None
+                    ) -> tuple[np.ndarray, bool]:
+        """((2, 3) float32 affine warp taking ``reference``'s (H, W) pixels into ``moving``'s (H, W), whether ECC
+        found it) (module docstring: register), matched only where ``mask`` (H, W, of ``moving``) is true when given;
+        the identity and False when ECC fails or finds an implausible warp."""
         h, w = reference.shape
         m = np.eye(2, 3, dtype=np.float32)
         ecc_mask = None if mask is None else mask.astype(np.uint8)
@@ -737,14 +739,14 @@ class VariationModel(nn.Module):
             _, m = cv2.findTransformECC(reference, moving, m, cv2.MOTION_AFFINE,
                                         (cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 50, 1e-4), ecc_mask, 5)
         except cv2.error:
-            m = np.eye(2, 3, dtype=np.float32)
+            return np.eye(2, 3, dtype=np.float32), False
         sx, sy = float(np.hypot(*m[:, 0])), float(np.hypot(*m[:, 1]))
         centre = np.array([(w - 1) / 2, (h - 1) / 2, 1.0], np.float32)
         dx, dy = m @ centre - centre[:2]  # the shift of the view's centre: a turn about it moves it not at all
         if (not np.isfinite(m).all() or abs(dx) > MAX_SHIFT * w or abs(dy) > MAX_SHIFT * h
                 or not (0.8 <= sx <= 1.25 and 0.8 <= sy <= 1.25)):
-            m = np.eye(2, 3, dtype=np.float32)
-        return m
+            return np.eye(2, 3, dtype=np.float32), False
+        return m, True
 
     def warp_to(self, reference: np.ndarray, f: np.ndarray, mask: np.ndarray | None = None,
                 source: np.ndarray | None = None, m: np.ndarray | None = None) -> np.ndarray:
@@ -755,7 +757,7 @@ class VariationModel(nn.Module):
         only beyond the frame around (module docstring: around)."""
         h, w = reference.shape
         if m is None:
-            m = self.fitted_warp(reference, f[self.intensity], mask)
+            m = self.fitted_warp(reference, f[self.intensity], mask)[0]
         if source is not None:
             m = m.copy()  # the warp maps the reference's pixels into f's; f lies at the source's centre
             m[0, 2] += (source.shape[2] - w) // 2
@@ -1002,7 +1004,8 @@ class VariationModel(nn.Module):
         arounds = [None] * len(xs) if arounds is None else arounds
         part = self.region.numpy()
         turns = [self._registered(xi, part, a)[3] for xi, a in zip(xs, arounds, strict=True)]
-        self.turn_centre.fill_(float(np.median(turns)))
+        found = [t for t in turns if math.isfinite(t)]  # a part the warp could not register has no turn
+        self.turn_centre.fill_(float(np.median(found)) if found else math.nan)
         return float(self.turn_centre)
 
     def _contrast_range(self, xs: np.ndarray, arounds: Sequence[np.ndarray | None]) -> torch.Tensor:
@@ -1260,15 +1263,15 @@ class VariationModel(nn.Module):
                  ) -> tuple[np.ndarray, float]:
         """(C, H, W) physical priors ``xi`` and (K, H, W) maps ``f`` of the same frame -> (``f`` warped onto the
         reference with the frame's I (1 + DoLP) (``peak``) as its last channel (K + 1, H, W), the warp's turn in
-        degrees, ``warp_turn_deg``): the warp ``zmaps`` uses, matched away from highlights unless more than
-        ``MAX_HIDDEN`` of the frame is highlight. ``source``: (K + 1, H + 2 m, W + 2 n) the same maps and peak of the
-        frame around ``xi``, read by the warp (``warp_to``)."""
+        degrees, ``warp_turn_deg``, NaN when no plausible warp was found): the warp ``zmaps`` uses, matched away
+        from highlights unless more than ``MAX_HIDDEN`` of the frame is highlight. ``source``: (K + 1, H + 2 m,
+        W + 2 n) the same maps and peak of the frame around ``xi``, read by the warp (``warp_to``)."""
         peak = self.peak(xi)
         seen = ~self.highlight(peak)
         f = np.concatenate([f, peak[None]])
-        m = self.fitted_warp(self.reference.numpy(), f[self.intensity],
-                             seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
-        return self.warp_to(self.reference.numpy(), f, source=source, m=m), warp_turn_deg(m)
+        m, found = self.fitted_warp(self.reference.numpy(), f[self.intensity],
+                                    seen if seen.mean() > 1.0 - MAX_HIDDEN else None)
+        return self.warp_to(self.reference.numpy(), f, source=source, m=m), warp_turn_deg(m) if found else math.nan
 
     def register_masks(self, x: torch.Tensor, masks: torch.Tensor) -> torch.Tensor:
         """(N, C, H, W) physical priors and (N, H, W) bool masks of the same frames (a rendered defect's) -> the
