@@ -4,9 +4,12 @@ Usage: python read.py FILE SET:SPLIT ... (run from the repository's root). Print
 by what (the window's score, the shape check's bend and the outline check's step, each over its own threshold: above 1
 rejects), the defective parts caught per kind, the parts with some of the view taken from outside what was read, the
 parts' turns (``turn_deg``: median and range of the good parts', how many read none) and at which part, in the set's
-order, the station's turn monitor and view monitor would first warn."""
+order, the station's turn monitor and view monitor would first warn; writes read.json beside it (per set: those
+counts and each part's turn, label and decision)."""
 
+import json
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -31,6 +34,7 @@ def main(argv: list[str]) -> None:
     cfg = ck.detector.config
     print(f"{file}: input {cfg.input_shape}, roi {cfg.roi}, threshold {ck.threshold:.4f}, around {cfg.around_px} px, "
           f"turn centre {float(ck.detector.variation.turn_centre):+.2f} degrees")
+    record = {}
     for arg in argv[1:]:
         path, split = arg.split(":")
         sp = load_split(path, split, cfg.priors, cfg.input_shape, roi=cfg.roi, frame_aspect=cfg.frame_aspect,
@@ -56,10 +60,16 @@ def main(argv: list[str]) -> None:
               f"warp found no fit for {int(np.isnan(turn).sum())} of {len(turn)}; the turn monitor first warns at "
               f"part {first_warning(TurnMonitor(), turn)}, the view monitor at part "
               f"{first_warning(ViewMonitor(), unseen)}", flush=True)
+        record[path] = {"good": int((~lab).sum()), "good_rejected": int(rej[~lab].sum()),
+                        "defective": int(lab.sum()), "caught": int(rej[lab].sum()),
+                        "outside": int((unseen > 0).sum()), "no_fit": int(np.isnan(turn).sum()),
+                        "turn_deg": [None if np.isnan(t) else float(t) for t in turn],
+                        "label": lab.astype(int).tolist(), "rejected": rej.astype(int).tolist()}
         for i in np.flatnonzero(rej & ~lab):
             print(f"  good part {int(sp.index[i])}: score {s[i]:.4f}, window {float(out.scores[i]):.3f}, bend "
                   f"{float(out.edge_bend[i]):.3f}, step {float(out.edge_step[i]):.3f}, unseen {unseen[i]:.4f}, turn "
                   f"{turn[i]:+.2f}")
+    Path(__file__).with_name("read.json").write_text(json.dumps(record))
 
 
 if __name__ == "__main__":
