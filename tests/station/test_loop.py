@@ -695,6 +695,35 @@ def test_parts_partly_outside_the_models_view_warn_once_and_the_warning_stays_in
     log.close()
 
 
+def test_parts_turned_from_the_models_good_parts_warn_once_and_the_warning_stays_in_each_row(tmp_path, caplog):
+    """A camera turned 8 degrees moves every part's ``turn_deg`` by about -7.5: once 50 parts are judged and their
+    median lies beyond 5 degrees, the station warns once ("turn: ...") and keeps the warning in each row's ``drift``;
+    each row logs its part's turn, and no decision changes."""
+    from station.log_report import format_summary, summarize
+
+    class Turned(BrightnessDetector):
+        """Parts turned -7.5 degrees, give or take the fixture's play."""
+
+        calls = 0
+
+        def infer(self, priors):
+            out = super().infer(priors)
+            Turned.calls += 1
+            return Inference(out.score, checks={"turn_deg": -7.5 + 5.0 * ((Turned.calls * 7) % 11 - 5) / 5})
+
+    n = 60
+    station, log = make_station(tmp_path, ScriptedCamera([0] * n), Turned(), queue_size=32, backpressure="block")
+    station.run(max_parts=n)
+    rows = list(log.rows())
+    assert [r["turn_deg"] for r in rows[:2]] == [-7.5 + 5.0 * 2 / 5, -7.5 + 5.0 * -2 / 5]
+    assert all(r["drift"] is None for r in rows[:49])  # too few parts to tell a line
+    assert all(r["drift"].startswith("turn: the last ") and "mount the camera square" in r["drift"] for r in rows[49:])
+    assert sum(r.message.startswith("turn: ") for r in caplog.records) == 1
+    assert all(r["decision"] == "pass" for r in rows)  # it changes no decision
+    assert "TURN: the 60 parts lay turned -7." in format_summary(summarize(log.rows()))
+    log.close()
+
+
 class HangingDetector(BrightnessDetector):
     """Its ``hang_on``-th call (1-based; every call when None) blocks until ``release`` is set: a hung model."""
 
