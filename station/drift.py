@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from model.draem.frame_checks import TURN_LIMIT_DEG, UNSEEN_LIMIT
+from model.draem.frame_checks import UNSEEN_LIMIT
 from model.priors.frame_stats import STAT_NAMES, FrameStatistics, StatisticsRange
 
 TOLERANCE_FLOOR = {"median_level": 0.01, "high_level": 0.01, "clipped_fraction": 0.002, "dolp_level": 0.01,
@@ -178,14 +178,14 @@ TURN_WARN_DEG = 5.0
 the camera turned from square to the belt or the fixture turning them. A camera turned t degrees moves every part's
 turn by about -t (seeds 1217-1221: -2.8 to -11.6 at 3-12 degrees); the good parts of the line as built spread +-5.6
 degrees about their median, whose median over 50 parts is within about 0.5 degree of it. The shipped file rejected as
-many good parts turned 3-12 degrees as square, so this warns well before a turn costs parts
+many good parts turned 3-20 degrees as square and 21 of 180 turned 25, so this warns well before a turn costs parts
 (``frame_checks.TURN_LIMIT_DEG``; docs/results/2026-12-06-turn-check.md)."""
 TURN_WINDOW = 100
 """Parts the station's median turn is taken over."""
 TURN_WARN_MIN_PARTS = 50
 """Parts needed before the median turn is judged, by the station and by ``station report``."""
 TURN_ADVICE = ("the camera turned from square to the belt or the fixture turning the parts: mount the camera square "
-               f"(docs/bring-up.md; the shipped file holds parts up to {TURN_LIMIT_DEG:g} degrees)")
+               "(docs/bring-up.md)")
 
 
 def line_turn(turns: list[float]) -> float | None:

@@ -44,10 +44,11 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
     turn      how far the warp turns a part onto the reference (``warp_turn_deg``: degrees, positive clockwise as the
               frame is shown), less ``turn_centre``, the median of the good parts the model was calibrated on
               (``calibrate_turn``): the reference lies as its first fitted part lay, the shipped file's good parts
-              +4.6 degrees from it. Good parts of the line as built lie within about +-5.5 degrees of their median
+              +4.6 degrees from it. Good parts of the line as built lie within -4.9 to +5.6 degrees of their median
               (the fixture's play); a camera turned by t degrees moves every part's turn by about -t (seeds
-              1217-1221, turned 3-12 degrees: -2.8 to -11.6; docs/results/2026-12-06-turn-check.md). A frame check
-              (``turn_deg``; ``frame_checks.TURN_LIMIT_DEG``) and the station's turn monitor (``station.drift``)
+              1217-1227, turned 3-20 degrees: -2.8 to -19.8 at the median; docs/results/2026-12-06-turn-check.md). A
+              frame check (``turn_deg``; ``frame_checks.TURN_LIMIT_DEG``) and the station's turn monitor
+              (``station.drift``)
     appearance  the good parts' registered features, each channel divided by its robust spread over the part
               (``channel_scale``), minus their per-pixel mean: what stays is how a good part differs from the
               average one. Its first ``COMPONENTS`` principal components (``components``) are the line's
@@ -229,8 +230,8 @@ interpolates lies inside the frame's outermost ring (module docstring: register)
 MAX_SHIFT = 0.25
 """Largest registration shift of the view's centre, as a fraction of the input's side, still taken as a fit. Until
 2026-12-06 the warp's translation was tested instead, its shift at the view's top left corner, which a turn about the
-centre moves too: a part turned 15 degrees or more on the shipped file's 96 x 192 input lost its warp and was compared
-unaligned (docs/results/2026-12-06-turn-check.md)."""
+centre moves too: on the shipped file's 96 x 192 input a part turned about the centre beyond -13.7 or +15.6 degrees
+from the reference lost its warp and was compared unaligned (docs/results/2026-12-06-turn-check.md)."""
 
 HIGHLIGHT_LEVEL = 1.0
 """I (1 + DoLP), full-scale units, from which a pixel counts as a highlight (module docstring: highlights): where the

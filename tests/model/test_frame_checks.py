@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from model.draem.frame_checks import EDGE_BEND_LIMIT, MAX_HIDDEN, NOISE_CAP, UNSEEN_LIMIT, beyond_limits
+from model.draem.frame_checks import EDGE_BEND_LIMIT, MAX_HIDDEN, NOISE_CAP, TURN_LIMIT_DEG, UNSEEN_LIMIT, beyond_limits
 
 
 def test_each_check_beyond_its_limit_says_so_and_none_within_or_missing_or_nan():
@@ -23,3 +23,14 @@ def test_each_check_beyond_its_limit_says_so_and_none_within_or_missing_or_nan()
                     "the frame is 3.4 times as noisy as the model's good parts (over 3: judged unscaled, as a part "
                     "unlike the model's line)",
                     "shape check: the bottom edge bends 1.6 times as far as any good part's"]
+
+
+def test_a_part_turned_past_the_limit_says_how_far_and_one_within_or_unread_says_nothing():
+    """``turn_deg`` beyond +-``TURN_LIMIT_DEG`` (24: the largest good part's turn where the shipped file held a camera
+    turned 20 degrees) names the turn in a reject's reason, either way; at the limit, NaN or missing, nothing."""
+    assert TURN_LIMIT_DEG == 24.0
+    assert beyond_limits({"turn_deg": -26.4}) == [
+        "the part lay turned -26 degrees from the model's good parts (beyond 24: camera turned from square or the part "
+        "off its place)"]
+    assert beyond_limits({"turn_deg": 31.0})[0].startswith("the part lay turned +31 degrees")
+    assert beyond_limits({"turn_deg": -TURN_LIMIT_DEG}) == beyond_limits({"turn_deg": math.nan}) == []

@@ -744,13 +744,13 @@ def turned(x: np.ndarray, degrees: float) -> np.ndarray:
                      for c in x])
 
 
-def test_each_parts_turn_is_read_from_the_good_parts_median_and_one_turned_far_is_named() -> None:
+def test_each_parts_turn_is_read_from_the_good_parts_median_and_a_turned_part_keeps_its_warp() -> None:
     """``turn_deg``: how far the registration turns a part onto the reference, less the fitted good parts' median
     (``turn_centre``), positive clockwise as shown. A part in its place reads about 0; turned 6 and 20 degrees
     counter-clockwise about the view's centre it reads about -6 and -20, and is registered as the part in place is
     (a turn about the part's centre is not a shift: the warp's translation at the frame's corner, 10 rows at 20
-    degrees here, used to be taken as one beyond ``MAX_SHIFT`` and the warp thrown away). Past ``TURN_LIMIT_DEG`` a
-    reject's reason names the turn."""
+    degrees here, used to be taken as one beyond ``MAX_SHIFT`` and the warp thrown away). Only past ``TURN_LIMIT_DEG``
+    (24) does a reject's reason name the turn."""
     vm = fitted()
     assert abs(float(vm.turn_centre)) < 1.0  # the synthetic parts are not turned
     xi = parts(1, 3, play=0.0)[0].numpy()
@@ -761,9 +761,9 @@ def test_each_parts_turn_is_read_from_the_good_parts_median_and_one_turned_far_i
     unaligned.fitted_warp = lambda ref, f, mask=None: (np.eye(2, 3, dtype=np.float32), False)  # type: ignore
     assert float(out.scores[2]) < 0.5 * float(unaligned.zmaps(torch.from_numpy(turned(xi, 20.0)[None])).scores[0])
     said = beyond_limits({k: float(v[2]) for k, v in out.frame_checks().items()})
-    assert said[-1].startswith("the part lay turned -20 degrees from the model's good parts (beyond 12")
-    assert not any("turned" in s for s in beyond_limits({k: float(v[1]) for k, v in out.frame_checks().items()}))
-    assert TURN_LIMIT_DEG == 12.0
+    # within the limit the shipped file was measured to hold, a reason names no turn (past it:
+    # tests/model/test_frame_checks.py)
+    assert abs(turn[2]) < TURN_LIMIT_DEG and not any("the part lay turned" in s for s in said)
 
 
 def test_a_file_without_a_turn_centre_reads_no_turn_and_a_wild_centre_is_refused(monkeypatch) -> None:

@@ -301,7 +301,7 @@ def test_the_turn_monitor_warns_once_when_the_parts_median_turn_leaves_5_degrees
     assert len(started) == 1 and started[0].startswith("turn: the last 100 parts lay turned -")  # said once
     assert m.warning.startswith("turn: the last 100 parts lay turned -") and m.warning.endswith(
         "(beyond 5): the camera turned from square to the belt or the fixture turning the parts: mount the camera "
-        "square (docs/bring-up.md; the shipped file holds parts up to 12 degrees)")  # in force, its median now
+        "square (docs/bring-up.md)")  # in force, its median now
     back = [b for b in (m.update(float(t)) for t in rng.uniform(-5.6, 5.6, 100)) if b]
     assert len(back) == 1 and back[0].startswith("parts back within 5 degrees of the model's good parts' turn")
     assert m.warning is None

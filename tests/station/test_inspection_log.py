@@ -249,7 +249,7 @@ def test_report_warns_when_the_parts_lie_turned_from_the_models_good_parts(tmp_p
             "camera turned from square") in format_summary(turned)
     assert early.turn_median_deg is None  # too few parts to tell a line
     assert turned.frame_checks["turn_deg"]["max"] == pytest.approx(12.5)  # of its size
-    both = "; ".join(["score 0.99 > threshold 0.98", *beyond_limits({"edge_bend": 3.0, "turn_deg": -19.0})])
+    both = "; ".join(["score 0.99 > threshold 0.98", *beyond_limits({"edge_bend": 3.0, "turn_deg": -26.0})])
     assert reject_cause(both) == "part turned"
 
 
