@@ -148,29 +148,42 @@ def too_many_outside(outside: int, parts: int) -> bool:
     return parts >= VIEW_WARN_MIN_PARTS and outside > VIEW_WARN_SHARE * parts
 
 
-class ViewMonitor:
+class PartsWarning:
+    """A rolling ``window`` of one value per judged part (at least ``min_parts`` long) and the warning it calls for:
+    ``warning`` is the text in force (None while none is). ``said`` keeps it: it returns the text when a warning
+    starts and the ``back`` note when it ends (each said once), None otherwise."""
+
+    def __init__(self, window: int, min_parts: int, name: str) -> None:
+        if window < min_parts:
+            raise ValueError(f"{name} monitor: need a window of at least {min_parts} parts, got {window}")
+        self.window: deque = deque(maxlen=window)
+        self.warning: str | None = None
+
+    def said(self, warning: str | None, back: str) -> str | None:
+        if warning is not None:
+            started = self.warning is None
+            self.warning = warning
+            return warning if started else None
+        if self.warning is not None:
+            self.warning = None
+            return back
+        return None
+
+
+class ViewMonitor(PartsWarning):
     """Rolling ``window`` of judged parts' ``unseen_fraction``; once ``VIEW_WARN_MIN_PARTS`` are in, ``update`` returns
     a warning when over ``VIEW_WARN_SHARE`` of them lay partly outside the model's view, and a note when the share is
     back under it; ``warning`` is the current state's text (None while under)."""
 
     def __init__(self, window: int = VIEW_WINDOW) -> None:
-        if window < VIEW_WARN_MIN_PARTS:
-            raise ValueError(f"view monitor: need a window of at least {VIEW_WARN_MIN_PARTS} parts, got {window}")
-        self.window: deque[bool] = deque(maxlen=window)
-        self.warning: str | None = None
+        super().__init__(window, VIEW_WARN_MIN_PARTS, "view")
 
     def update(self, unseen_fraction: float) -> str | None:
         self.window.append(unseen_fraction > UNSEEN_LIMIT)
         n, k = len(self.window), sum(self.window)
-        if too_many_outside(k, n):
-            started = self.warning is None
-            self.warning = (f"view: {k} of the last {n} parts lay partly outside the model's view as registered "
-                            f"(over {100 * VIEW_WARN_SHARE:g} %): {VIEW_ADVICE}")
-            return self.warning if started else None
-        if self.warning is not None:
-            self.warning = None
-            return f"parts back in the model's view over the last {n} parts"
-        return None
+        warning = (f"view: {k} of the last {n} parts lay partly outside the model's view as registered (over "
+                   f"{100 * VIEW_WARN_SHARE:g} %): {VIEW_ADVICE}") if too_many_outside(k, n) else None
+        return self.said(warning, f"parts back in the model's view over the last {n} parts")
 
 
 TURN_WARN_DEG = 5.0
@@ -197,30 +210,22 @@ def line_turn(turns: list[float]) -> float | None:
     return median if abs(median) > TURN_WARN_DEG else None
 
 
-class TurnMonitor:
+class TurnMonitor(PartsWarning):
     """Rolling ``window`` of judged parts' ``turn_deg``; once ``TURN_WARN_MIN_PARTS`` are in, ``update`` returns a
     warning when their median lies beyond +-``TURN_WARN_DEG``, and a note when it is back within; ``warning`` is the
     current state's text (None while within)."""
 
     def __init__(self, window: int = TURN_WINDOW) -> None:
-        if window < TURN_WARN_MIN_PARTS:
-            raise ValueError(f"turn monitor: need a window of at least {TURN_WARN_MIN_PARTS} parts, got {window}")
-        self.window: deque[float] = deque(maxlen=window)
-        self.warning: str | None = None
+        super().__init__(window, TURN_WARN_MIN_PARTS, "turn")
 
     def update(self, turn_deg: float) -> str | None:
         self.window.append(turn_deg)
-        median = line_turn(list(self.window))
-        if median is not None:
-            started = self.warning is None
-            self.warning = (f"turn: the last {len(self.window)} parts lay turned {median:+.1f} degrees from the "
-                            f"model's good parts at the median (beyond {TURN_WARN_DEG:g}): {TURN_ADVICE}")
-            return self.warning if started else None
-        if self.warning is not None:
-            self.warning = None
-            return f"parts back within {TURN_WARN_DEG:g} degrees of the model's good parts' turn over the last " \
-                   f"{len(self.window)} parts"
-        return None
+        n, median = len(self.window), line_turn(list(self.window))
+        warning = None if median is None else (
+            f"turn: the last {n} parts lay turned {median:+.1f} degrees from the model's good parts at the median "
+            f"(beyond {TURN_WARN_DEG:g}): {TURN_ADVICE}")
+        return self.said(warning, f"parts back within {TURN_WARN_DEG:g} degrees of the model's good parts' turn over "
+                                  f"the last {n} parts")
 
 
 class CameraWatch:

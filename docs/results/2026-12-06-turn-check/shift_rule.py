@@ -2,7 +2,9 @@
 the new one (the shift of the view's centre) throw away, on the validation set of the line as built, two square
 held-out sets read before, and the turned-camera sets (development sets: seeds 1217-1226). Every call of OpenCV's ECC
 in ``VariationModel.fitted_warp`` is recorded as ``zmaps`` makes it. Run from the repository's root; prints
-shift_rule.txt's lines."""
+shift_rule.txt's lines. Arguments NAME=SET:SPLIT ... read those sets instead (plan-2.md)."""
+import sys
+
 import cv2
 import numpy as np
 import torch
@@ -18,6 +20,8 @@ SETS = (("square, validation", "data/line-pv-val", "val"),
         ("turned 4", "data/turned4-1218", "test"), ("turned 8", "data/turned8-1219", "test"),
         ("turned 12", "data/turned12-1221", "test"), ("turned 20", "data/turned20-1225", "test"),
         ("turned 30", "data/turned30-1226", "test"))
+if len(sys.argv) > 1:
+    SETS = tuple((a.split("=")[0], *a.split("=")[1].split(":")) for a in sys.argv[1:])
 det = load_checkpoint("model/weights/default").detector
 cfg, var = det.config, det.variation
 h, w = cfg.input_shape
