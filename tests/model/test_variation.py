@@ -732,7 +732,9 @@ def test_a_refit_reads_the_frame_around_its_parts_as_the_station_reads_new_ones(
     assert float(alone.zmaps(view).unseen_fraction.max()) > 0.05  # the part leaves the view
     as_before = float(alone.zmaps(view).scores.max())
     mixed, both = (float(m.zmaps(view, around=new).scores.max()) for m in (alone, around))
-    assert mixed > 3 * as_before
+    # 2.9x here; 3x or more before ECC started again from turned warps where it found none from the identity (4 of
+    # these 12 parts, read alone): those were compared unaligned, which raised the view-alone reading
+    assert mixed > 2 * as_before
     assert both == pytest.approx(as_before, rel=0.3)
 
 
@@ -788,3 +790,33 @@ def test_a_file_without_a_turn_centre_reads_no_turn_and_a_wild_centre_is_refused
     vm.turn_centre.fill_(90.0)
     with pytest.raises(ModelError, match="turn_centre"):
         vm.check()
+
+
+def test_ecc_starts_again_from_turned_warps_when_it_finds_none_from_the_identity(monkeypatch) -> None:
+    """A camera turned -20 degrees put the shipped file's parts about +25 degrees from its reference, and ECC started
+    from no turn found no warp for 73 of 300 of them (fresh seed 1229). ``fitted_warp`` then starts ECC again from
+    ``RETRY_TURNS_DEG`` about the good parts' median turn and keeps the best plausible warp: here ECC is made to fail
+    from the identity, and the part turned 20 degrees still registers, reading its turn. A part that registers from
+    the identity never takes the retries."""
+    import model.draem.variation as variation
+
+    vm = fitted()
+    x = torch.from_numpy(turned(parts(1, 3, play=0.0)[0].numpy(), 20.0)[None])
+    real, starts, fail_from_identity = cv2.findTransformECC, [], [False]
+
+    def recorded(ref, moving, start, *args):
+        starts.append(variation.warp_turn_deg(start))
+        if fail_from_identity[0] and np.allclose(start, np.eye(2, 3)):
+            raise cv2.error("no fit from the identity")
+        return real(ref, moving, start, *args)
+
+    monkeypatch.setattr(variation.cv2, "findTransformECC", recorded)
+    assert float(vm.zmaps(x).turn_deg[0]) == pytest.approx(-20.0, abs=1.5) and starts == [0.0]  # one ECC call
+    starts.clear()
+    fail_from_identity[0] = True
+    out = vm.zmaps(x)
+    assert float(out.turn_deg[0]) == pytest.approx(-20.0, abs=1.5)
+    centre = float(vm.turn_centre)
+    assert starts[0] == 0.0 and starts[1:] == pytest.approx([centre + t for t in variation.RETRY_TURNS_DEG], abs=1e-3)
+    monkeypatch.setattr(variation, "RETRY_TURNS_DEG", ())
+    assert torch.isnan(vm.zmaps(x).turn_deg).all()  # without the retries: no warp, no turn
