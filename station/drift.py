@@ -191,8 +191,9 @@ TURN_WARN_DEG = 5.0
 the camera turned from square to the belt or the fixture turning them. A camera turned t degrees moves every part's
 turn by about -t (seeds 1217-1221: -2.8 to -11.6 at 3-12 degrees); the good parts of the line as built spread +-5.6
 degrees about their median, whose median over 50 parts is within about 0.5 degree of it. The shipped file rejected as
-many good parts turned 3-20 degrees as square and 21 of 180 turned 25, so this warns well before a turn costs parts
-(``frame_checks.TURN_LIMIT_DEG``; docs/results/2026-12-06-turn-check.md)."""
+many good parts turned 3-20 degrees one way as square, 21 of 180 turned 25, and 6 of 175 turned 12 the other way
+(``frame_checks.TURN_LIMIT_DEG``; docs/results/2026-12-06-turn-check.md): a median beyond 5 degrees is a camera to
+square before it costs parts."""
 TURN_WINDOW = 100
 """Parts the station's median turn is taken over."""
 TURN_WARN_MIN_PARTS = 50

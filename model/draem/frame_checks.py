@@ -55,8 +55,10 @@ TURN_LIMIT_DEG = 24.0
 measured to hold. Good parts of the line as built lie within -4.9 to +5.6 degrees of their median (370 validation
 parts). With the camera turned 20 degrees (fresh seed 1227) the shipped file rejected 1 of 193 good parts, whose turns
 reached -24.4 degrees; turned 25 (seed 1228) it rejected 21 of 180 (docs/results/2026-12-06-turn-check.md, its plan
-fixed the rule: the largest good part's turn on the largest turn tolerated, rounded down). It says why; it changes no
-decision."""
+fixed the rule: the largest good part's turn on the largest turn tolerated, rounded down). Measured one way: turned
+the other way the file rejected 6 of 175 good parts at -12 degrees (parts +11 to +18), so within the limit a turn
+there is not named per part; the turn warning (``station.drift.TURN_WARN_DEG``) names the line. It says why; it
+changes no decision."""
 
 OWN_RENDERS_NOISE_LEVEL_MAX = 1.38
 """Highest ``noise_level`` of a good part of the shipped model's own validation and held-out renders (16 spp):

@@ -16,16 +16,18 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               DoLP itself not as a feature of its own in new fits (``READ_DOLP``: noise biases it, the Stokes
               components carry it); every other channel as is (normals as unit vectors)
     register  an affine warp of the frame's log intensity onto ``reference`` (OpenCV ECC, the correlation coefficient:
-              blind to brightness and contrast); a failed or implausible fit (the view's centre shifted > 1/4 of a side,
-              scale outside 0.8-1.25) keeps the identity, so the part is compared unaligned and scores high. Where the
-              warp reaches outside the frame it replicates the frame's border; those pixels are not ``seen``
-              (``SEEN_LEVEL``), and the outline check reads no edge there: a camera turned 5 degrees put the belt under
-              the part's left end outside the 96-row input, and its replicated stripes made the outline check's largest
-              steps on good parts (docs/results/2026-12-05-seen-edges.md). The shape check still reads every column (its
-              robust parabola leaves out those off it; fitted on the seen columns alone it spread more: 19 against 7 of
-              414 good parts of a turned line beyond its threshold), and the window judges every pixel of the region,
-              seen or not; the share of the region not seen is a frame check (``unseen_fraction``;
-              ``frame_checks.UNSEEN_LIMIT``), so a reject's reason names a part partly outside the model's view
+              blind to brightness and contrast), started from the identity and, when that finds no plausible warp, again
+              from turns about the good parts' median (``RETRY_TURNS_DEG``); a failed or implausible fit (the view's
+              centre shifted > 1/4 of a side, scale outside 0.8-1.25) keeps the identity, so the part is compared
+              unaligned and scores high. Where the warp reaches outside the frame it replicates the frame's border;
+              those pixels are not ``seen`` (``SEEN_LEVEL``), and the outline check reads no edge there: a camera turned
+              5 degrees put the belt under the part's left end outside the 96-row input, and its replicated stripes made
+              the outline check's largest steps on good parts (docs/results/2026-12-05-seen-edges.md). The shape check
+              still reads every column (its robust parabola leaves out those off it; fitted on the seen columns alone it
+              spread more: 19 against 7 of 414 good parts of a turned line beyond its threshold), and the window judges
+              every pixel of the region, seen or not; the share of the region not seen is a frame check
+              (``unseen_fraction``; ``frame_checks.UNSEEN_LIMIT``), so a reject's reason names a part partly outside the
+              model's view
     around    the frame around the view (``zmaps``'s ``around``: ``ModelConfig.around_px`` input pixels more on each
               side at the view's detail, NaN beyond the frame; the station and ``station eval`` give it to a file whose
               ``around_px`` is above 0, as the shipped file's since 2026-12-06): the warp is still fitted on the view

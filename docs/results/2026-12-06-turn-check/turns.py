@@ -29,9 +29,10 @@ for name, camera, path, split in SETS:
             turns += o.turn_deg.tolist()
     bad = sp.label.numpy().astype(bool)
     t = np.array(turns)
-    out[name] = {"camera_deg": camera, "good": t[~bad].tolist(), "defective": t[bad].tolist()}
-    g = t[~bad]
+    out[name] = {"camera_deg": camera, "good": [None if np.isnan(v) else float(v) for v in t[~bad]],
+                 "defective": [None if np.isnan(v) else float(v) for v in t[bad]]}
+    g = t[~bad & np.isfinite(t)]  # a part whose warp was not found reads no turn
     print(f"{name:20s} good {len(g):3d}: median {np.median(g):+6.2f}  p1 {np.percentile(g, 1):+6.2f}  "
           f"p99 {np.percentile(g, 99):+6.2f}  min {g.min():+6.2f} max {g.max():+6.2f}; defective median "
-          f"{np.median(t[bad]):+6.2f}", flush=True)
+          f"{np.nanmedian(t[bad]):+6.2f}; no warp found {int(np.isnan(t).sum())} of {len(t)}", flush=True)
 json.dump(out, open(sys.argv[1] if len(sys.argv) > 1 else "docs/results/2026-12-06-turn-check/turns.json", "w"))
