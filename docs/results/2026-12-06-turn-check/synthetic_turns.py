@@ -1,0 +1,43 @@
+"""After plan 3's read, a diagnosis, nothing chosen on it: is the asymmetry in the model or in the renders? The good
+parts of the threshold's validation set (seed 303, the line as built), each view and the frame around it turned in the
+image by +-12 and +-20 degrees about the view's centre (OpenCV, bilinear; beyond the frame read, NaN in the frame around
+and the view's border replicated, as the station reads a frame's end). Each part's turn_deg moves by the image's turn
+(clockwise as shown), as a camera turned the other way moves it. Prints, per turn, the good parts the shipped file
+rejects and their turn_deg. Run from the repository's root."""
+import cv2
+import numpy as np
+import torch
+
+from model.draem.adapt import image_scores
+from model.draem.checkpoint import load_checkpoint
+from station.datasets import load_split
+
+ck = load_checkpoint("model/weights/default")
+cfg = ck.detector.config
+sp = load_split("data/line-pv-val", "val", cfg.priors, cfg.input_shape, roi=cfg.roi, frame_aspect=cfg.frame_aspect,
+                dome_segments=cfg.dome_segments, around_px=cfg.around_px, progress=False)
+good = (sp.label == 0).nonzero().flatten()
+x, around = sp.priors[good].float().numpy(), sp.around[good].float().numpy()
+h, w = x.shape[2:]
+a = cfg.around_px
+
+
+def turned(img: np.ndarray, degrees: float, border: int, value: float = 0.0) -> np.ndarray:
+    """(C, H, W) turned counter-clockwise as shown by ``degrees`` about its centre."""
+    hh, ww = img.shape[1:]
+    m = cv2.getRotationMatrix2D(((ww - 1) / 2, (hh - 1) / 2), degrees, 1.0)
+    return np.stack([cv2.warpAffine(c, m, (ww, hh), flags=cv2.INTER_LINEAR, borderMode=border, borderValue=value)
+                     for c in img])
+
+
+for part_turn in (0, 12, -12, 20, -20):
+    image_turn = -part_turn  # cv2's angle is counter-clockwise as shown, turn_deg clockwise
+    ar = np.stack([turned(f, image_turn, cv2.BORDER_CONSTANT, np.nan) for f in around])
+    view = np.stack([turned(f, image_turn, cv2.BORDER_REPLICATE)[:, a:a + h, a:a + w] for f in around])
+    view = np.where(np.isfinite(view), view, np.stack([turned(v, image_turn, cv2.BORDER_REPLICATE) for v in x]))
+    xt, at = torch.from_numpy(view.astype(np.float32)), torch.from_numpy(ar.astype(np.float32))
+    s = image_scores(ck.detector, xt, around=at)
+    t = ck.detector.variation.zmaps(xt, around=at).turn_deg.numpy()
+    print(f"parts turned {part_turn:+3d} (as by a camera turned {-part_turn:+3d}): {int((s > ck.threshold).sum())} of "
+          f"{len(s)} good parts rejected; turn_deg median "
+          f"{np.nanmedian(t):+.2f}, {np.nanmin(t):+.2f} to {np.nanmax(t):+.2f}", flush=True)
