@@ -1,9 +1,14 @@
 """After plan 3's read, a diagnosis, nothing chosen on it: is the asymmetry in the model or in the renders? The good
 parts of the threshold's validation set (seed 303, the line as built), each view and the frame around it turned in the
-image by +-12 and +-20 degrees about the view's centre (OpenCV, bilinear; beyond the frame read, NaN in the frame around
-and the view's border replicated, as the station reads a frame's end). Each part's turn_deg moves by the image's turn
-(clockwise as shown), as a camera turned the other way moves it. Prints, per turn, the good parts the shipped file
-rejects and their turn_deg. Run from the repository's root."""
+image about the view's centre (OpenCV, bilinear; beyond the frame read, NaN in the frame around and the view's border
+replicated, as the station reads a frame's end). Each part's turn_deg moves by the image's turn (clockwise as shown), as
+a camera turned the other way moves it. Prints, per turn (those named on the command line; 0, +-12 and +-20 without),
+the good parts the shipped file rejects, those by the window alone (neither the shape nor the outline check beyond its
+threshold), the parts partly outside what was read, and their turn_deg. Run from the repository's root: without
+arguments it prints synthetic_turns.txt, with ``20 -20 25 -25`` synthetic_turns_checks.txt."""
+
+import sys
+
 import cv2
 import numpy as np
 import torch
@@ -30,14 +35,19 @@ def turned(img: np.ndarray, degrees: float, border: int, value: float = 0.0) -> 
                      for c in img])
 
 
-for part_turn in (0, 12, -12, 20, -20):
+for part_turn in [int(v) for v in sys.argv[1:]] or [0, 12, -12, 20, -20]:
     image_turn = -part_turn  # cv2's angle is counter-clockwise as shown, turn_deg clockwise
     ar = np.stack([turned(f, image_turn, cv2.BORDER_CONSTANT, np.nan) for f in around])
     view = np.stack([turned(f, image_turn, cv2.BORDER_REPLICATE)[:, a:a + h, a:a + w] for f in around])
     view = np.where(np.isfinite(view), view, np.stack([turned(v, image_turn, cv2.BORDER_REPLICATE) for v in x]))
     xt, at = torch.from_numpy(view.astype(np.float32)), torch.from_numpy(ar.astype(np.float32))
     s = image_scores(ck.detector, xt, around=at)
-    t = ck.detector.variation.zmaps(xt, around=at).turn_deg.numpy()
+    z = ck.detector.variation.zmaps(xt, around=at)
+    t = z.turn_deg.numpy()
+    rej = s > ck.threshold
+    alone = rej & (np.abs(z.edge_bend.numpy()) <= 1) & (z.edge_step.numpy() <= 1)
+    unseen = int((z.unseen_fraction.numpy() > 0).sum())
     print(f"parts turned {part_turn:+3d} (as by a camera turned {-part_turn:+3d}): {int((s > ck.threshold).sum())} of "
-          f"{len(s)} good parts rejected; turn_deg median "
+          f"{len(s)} good parts rejected, {int(alone.sum())} by the window alone; {unseen} partly outside what was "
+          f"read; turn_deg median "
           f"{np.nanmedian(t):+.2f}, {np.nanmin(t):+.2f} to {np.nanmax(t):+.2f}", flush=True)
