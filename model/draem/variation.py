@@ -813,39 +813,40 @@ class VariationModel(nn.Module):
             curvature_sigma: float | None = None, judged_channels: Sequence[int] | None = None,
             around: torch.Tensor | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
-        (rendered sets have it; None: the whole input). The reference is the part of the first 64 nearest their median
-        pose (``median_part``), then twice the median of those 64 registered to it; the region is where at least half of
-        the registered masks lie. ``keep_reference``: register to the reference and keep the region already fitted,
-        re-estimating only the appearance (mean, components, scales: ``station adapt`` on a line's good parts, which
-        have no object masks). Returns the parts' ``signed_z`` (N, C, H, W) float32, each from the appearance fitted
-        without it: what ``zmaps`` gives a good part it never saw (in-sample residuals are too small), for
-        ``model.draem.residual``. ``blur_copies_sigma`` (input px; None: the model's own, ``blur_copies_sigma`` buffer,
-        so a refit keeps it): when above 0, the fit also sees one copy of each part blurred by a Gaussian of sigma
-        uniform in [0, it] applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask,
-        and left out with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts'
-        only. A softer lens or another renderer's pixel filter is then among what good parts look like
-        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (an ``Alignment``; None: the model's own, so a refit keeps it):
-        ``MEAN`` puts each registered part's polarization onto the parts' mean by one frame-wide gain and turn before
-        anything is measured (``align_polarization``: twice, the mean taken again after the first), and so every frame
-        it judges; ``RANGE`` fits as ``OFF`` and then takes the lowest and highest gain and turn of the parts (not their
-        blurred copies) as ``zmaps`` measures them into ``polarization_range``, so only frames beyond them are aligned
-        (ModelError for a model without the DoLP and AoLP priors). ``clusters`` (None: the model's own count, so a refit
-        keeps it): when 2 or more, the good parts (not their blurred copies) are then judged as ``zmaps`` judges a
-        frame, grouped by their components' coefficients (``model.draem.appearance_clusters.group``: fewer clusters when
-        there are few parts), each cluster's mean residual and scale kept, and the position calibration measured again
-        on each part's clustered z, from its cluster without itself; the returned maps are those z (module docstring:
-        clusters). ``global_contrast`` (an ``Alignment``; None: the model's own, so a refit keeps it): ``MEAN`` divides
-        each registered part's log intensity feature by its contrast gain against the parts' mean before anything is
-        measured (twice, the mean taken again after the first), and so every frame it judges (``contrast_range`` (1,
-        1)); ``RANGE`` fits as ``OFF`` and then takes the lowest and highest contrast gain of the parts (not their
-        copies) as ``zmaps`` measures it into ``contrast_range`` (before the clusters), so only frames beyond them are
-        aligned (``align_contrast``); ``OFF`` keeps ``CONTRAST_GAIN_RANGE``, which aligns nothing. ``curvature_sigma``
-        (input px; None: the model's own, so a refit keeps it): the window statistic the fit calibrates and the model
-        scores with (0: the box; module docstring: z map). ``judged_channels`` (channel indices; None: the model's own,
-        so a refit keeps them): the channels the window statistic is taken over; the others are read (intensity still
-        registers the part) but not judged. ModelError when none of them is a feature. ``around``: (N, C, H + 2 m, W + 2
-        n) the frame around each part, NaN beyond the frame, read by the registration's warp as ``zmaps`` reads it
-        (module docstring: around; a blurred copy's frame around is blurred alike); None: the view alone."""
+        (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
+        of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
+        ``keep_reference``: register to the reference and keep the region already fitted, re-estimating only the
+        appearance (mean, components, scales: ``station adapt`` on a line's good parts, which have no object
+        masks). Returns the parts' ``signed_z`` (N, C, H, W) float32, each from the appearance fitted without it: what
+        ``zmaps`` gives a good part it never saw (in-sample residuals are too small), for ``model.draem.residual``.
+        ``blur_copies_sigma`` (input px; None: the model's own, ``blur_copies_sigma`` buffer, so a refit keeps it):
+        when above 0, the fit also sees one copy of each part blurred by a Gaussian of sigma uniform in [0, it]
+        applied to the Stokes vector (``model.draem.shifts.blurred_copies``), with its part's mask, and left out
+        with its part when the residual scale is measured (``FOLDS``); the returned maps are the parts' only. A softer
+        lens or another renderer's pixel filter is then among what good parts look like
+        (``BLUR_COPIES_SIGMA``). ``global_polarization`` (an ``Alignment``; None: the model's own, so a
+        refit keeps it): ``MEAN`` puts each registered part's polarization onto the parts' mean by one frame-wide
+        gain and turn before anything is measured (``align_polarization``: twice, the mean taken again after the
+        first), and so every frame it judges; ``RANGE`` fits as ``OFF`` and then takes the lowest and highest gain
+        and turn of the parts (not their blurred copies) as ``zmaps`` measures them into ``polarization_range``, so
+        only frames beyond them are aligned (ModelError for a model without the DoLP and AoLP priors).
+        ``clusters`` (None: the model's own count, so a refit keeps it): when 2 or more, the good parts (not their
+        blurred copies) are then judged as ``zmaps`` judges a frame, grouped by their components' coefficients
+        (``model.draem.appearance_clusters.group``: fewer clusters when there are few parts), each cluster's mean
+        residual and scale kept, and the position calibration measured again on each part's clustered z, from its
+        cluster without itself; the returned maps are those z (module docstring: clusters). ``global_contrast``
+        (an ``Alignment``; None: the model's own, so a refit keeps it): ``MEAN`` divides each registered part's
+        log intensity feature by its contrast gain against the parts' mean before anything is measured (twice, the
+        mean taken again after the first), and so every frame it judges (``contrast_range`` (1, 1)); ``RANGE`` fits
+        as ``OFF`` and then takes the lowest and highest contrast gain of the parts (not their copies) as ``zmaps``
+        measures it into ``contrast_range`` (before the clusters), so only frames beyond them are aligned
+        (``align_contrast``); ``OFF`` keeps ``CONTRAST_GAIN_RANGE``, which aligns nothing. ``curvature_sigma`` (input
+        px; None: the model's own, so a refit keeps it): the window statistic the fit calibrates and the model scores
+        with (0: the box; module docstring: z map). ``judged_channels`` (channel indices; None: the model's own, so a
+        refit keeps them): the channels the window statistic is taken over; the others are read (intensity still
+        registers the part) but not judged. ModelError when none of them is a feature. ``around``: (N, C, H + 2 m,
+        W + 2 n) the frame around each part, NaN beyond the frame, read by the registration's warp as ``zmaps``
+        reads it (module docstring: around; a blurred copy's frame around is blurred alike); None: the view alone."""
         xs = x.float().cpu().numpy()
         arounds = per_part(around, len(xs))
         n_parts = len(xs)
@@ -898,7 +899,7 @@ class VariationModel(nn.Module):
             masks = (np.ones((n, *xs.shape[2:]), bool) if object_mask is None
                      else object_mask.bool().cpu().numpy())
         feats = [self.features(xi, mi) for xi, mi in zip(xs, masks, strict=True)]
-        ref = self.reference.numpy() if keep_reference else feats[self.median_part(feats[:64])][self.intensity]
+        ref = self.reference.numpy() if keep_reference else feats[0][self.intensity]
         for _ in range(0 if keep_reference else 2):
             ref = np.median(np.stack([self.warp_to(ref, f)[self.intensity] for f in feats[:64]]), 0)
         # each part's mask travels with its features (last channel), so the region is where the registered parts are
@@ -958,26 +959,6 @@ class VariationModel(nn.Module):
             if clustered is not None:
                 return clustered
         return signed[:n_parts]
-
-    def median_part(self, feats: Sequence[np.ndarray]) -> int:
-        """Good parts' (C, H, W) features -> the index of the part lying nearest their median pose: each registered
-        onto the first part, the median pose is their median warp turn (``warp_turn_deg``) about the view's centre
-        and their median shift of it; nearest is the least mean distance of the view's four corners under the part's
-        warp from under the median's (input px). ``fit``'s reference starts from that part: the first part lies
-        wherever it happened to lie (the shipped file's +4.6 degrees from its good parts), and at the median a warp's
-        plausible range and ECC's retries lie symmetric about the good parts
-        (docs/results/2026-12-07-median-pose.md). 0 when no part registers."""
-        first = feats[0][self.intensity]
-        h, w = first.shape
-        warps = {i: m for i, (m, found) in enumerate(self.fitted_warp(first, f[self.intensity]) for f in feats)
-                 if found}
-        if not warps:
-            return 0
-        centre = np.array([(w - 1) / 2, (h - 1) / 2, 1.0], np.float32)
-        median = turn_about_centre(float(np.median([warp_turn_deg(m) for m in warps.values()])), h, w)
-        median[:, 2] += np.median([m @ centre - centre[:2] for m in warps.values()], 0)
-        corners = np.array([[0, 0, 1], [w - 1, 0, 1], [0, h - 1, 1], [w - 1, h - 1, 1]], np.float32).T
-        return min(warps, key=lambda i: float(np.linalg.norm((warps[i] - median) @ corners, axis=0).mean()))
 
     def _fit_source(self, xi: np.ndarray, mask: np.ndarray, around: np.ndarray | None) -> np.ndarray | None:
         """(C, H, W) a part's physical priors, (H, W) its mask and (C, H + 2 m, W + 2 n) the frame around it (or None)
