@@ -2,8 +2,8 @@
 part (as before this stop) and from the part nearest the median pose (``median_part``): four fit seeds, plain parts and
 parts with a mottled end, each fit read on 100 new good parts of the fixture's play (2 px). Prints per fit the good
 parts' RMS of registered intensity against the reference (median, 95th percentile, highest) and their scores (highest
-and 95th percentile). Run from the repository's root: ``PYTHONPATH=.:tests/model python synthetic_fits.py``; its
-output is synthetic_fits.txt."""
+and 95th percentile). Run from the repository's root at commit 62001ae5, the change (``median_part``; reverted in
+480b4cee): ``PYTHONPATH=.:tests/model python synthetic_fits.py``; its output is synthetic_fits.txt."""
 
 import numpy as np
 import torch
