@@ -379,11 +379,8 @@ def warp_turn_deg(m: np.ndarray) -> float:
 
 def turn_about_centre(degrees: float, h: int, w: int) -> np.ndarray:
     """(2, 3) float32 warp that turns an (H, W) view by ``degrees`` about its centre (``warp_turn_deg``'s convention:
-    positive clockwise as shown), as a start for ECC."""
-    t = math.radians(degrees)
-    c, s = math.cos(t), math.sin(t)
-    cx, cy = (w - 1) / 2, (h - 1) / 2
-    return np.array([[c, -s, cx - c * cx + s * cy], [s, c, cy - s * cx - c * cy]], np.float32)
+    positive clockwise as shown; OpenCV's angle is counter-clockwise as shown), as a start for ECC."""
+    return cv2.getRotationMatrix2D(((w - 1) / 2, (h - 1) / 2), -degrees, 1.0).astype(np.float32)
 
 
 def judged_from(channels: Sequence[int], count: int) -> torch.Tensor:
