@@ -42,6 +42,13 @@ def main(first: str, second: str, data: str) -> None:
     for path, (rg, ng, rd, nd, thr) in zip((first, second), own, strict=True):
         print(f"{path} at its own threshold {thr:.4f}: {rg} of {ng} good rejected, {rd} of {nd} defective caught "
               f"({100 * rd / nd:.1f} %)")
+    matched(a, b, lab)
+
+
+def matched(a: np.ndarray, b: np.ndarray, lab: np.ndarray, names: tuple[str, str] = ("A", "B")) -> None:
+    """Print the table: each of two score arrays' defective parts caught (``lab`` True) at each of ``RATES`` of the
+    good parts rejected, the second less the first with a bootstrap SE, and their mean over the rates."""
+    first, second = names
     rng = np.random.default_rng(0)
     gi, di = np.flatnonzero(~lab), np.flatnonzero(lab)
     boots = []
@@ -50,7 +57,8 @@ def main(first: str, second: str, data: str) -> None:
         boots.append([caught_at(b[g], b[d], r) - caught_at(a[g], a[d], r) for r in RATES])
     boots = np.array(boots)
     diffs = []
-    print("| good parts rejected at most | A caught | B caught | B - A (points) | bootstrap SE |")
+    print(f"| good parts rejected at most | {first} caught | {second} caught | {second} - {first} (points) | "
+          "bootstrap SE |")
     print("|---|---|---|---|---|")
     for j, r in enumerate(RATES):
         k = math.floor(r * len(gi))
@@ -58,9 +66,8 @@ def main(first: str, second: str, data: str) -> None:
         diffs.append(cb - ca)
         print(f"| {100 * r:.0f} % ({k} of {len(gi)}) | {100 * ca:.1f} % | {100 * cb:.1f} % | {100 * (cb - ca):+.1f} | "
               f"{100 * boots[:, j].std(ddof=1):.1f} |")
-    print(f"mean B - A over the three rates: {100 * np.mean(diffs):+.2f} points (bootstrap SE "
+    print(f"mean {second} - {first} over the three rates: {100 * np.mean(diffs):+.2f} points (bootstrap SE "
           f"{100 * boots.mean(axis=1).std(ddof=1):.1f})")
-
 
 if __name__ == "__main__":
     main(*sys.argv[1:])
