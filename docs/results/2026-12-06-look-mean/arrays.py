@@ -17,8 +17,10 @@ from station.datasets import load_split
 OUT = Path("runs/look-mean")
 
 
-def arrays(path: str, split: str) -> dict[str, np.ndarray]:
-    det = load_checkpoint("model/weights/default").detector
+def arrays(path: str, split: str, model: str = "model/weights/default") -> dict[str, np.ndarray]:
+    """One set's split through ``model`` (the shipped file unless given; stop 122's
+    ../2026-12-07-ggx-train/screen.py reads other files with it)."""
+    det = load_checkpoint(model).detector
     cfg, var, res = det.config, det.variation, det.residual
     sp = load_split(path, split, cfg.priors, cfg.input_shape, roi=cfg.roi, frame_aspect=cfg.frame_aspect,
                     dome_segments=cfg.dome_segments, around_px=cfg.around_px, progress=False)

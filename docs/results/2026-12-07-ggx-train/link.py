@@ -4,13 +4,15 @@ render` renders only the parts the draw gives a GGX lobe. Prints how many it lin
 
 Usage: python link.py SOURCE OUT SHARE (run from the repository's root)."""
 
+import json
 import sys
 from pathlib import Path
 
 import numpy as np
 
 source, out, share = Path(sys.argv[1]), Path(sys.argv[2]), float(sys.argv[3])
-seed, count = 101, 900  # data/line-ef-train-900's manifest
+manifest = json.loads((source / "manifest.json").read_text())
+seed, count = manifest["seed"], manifest["count"]
 (out / "samples").mkdir(parents=True, exist_ok=True)
 linked = 0
 for index in range(count):

@@ -2,7 +2,7 @@
 second look's gate, the larger of the window with its checks and the look network's finding) and the blend D of stop
 119 (a quarter the window's, three quarters the network's finding, each over its own 1 % threshold, with the checks;
 docs/results/2026-12-06-look-mean.md), each thresholded at 1 % of its own 370 good validation parts (data/line-pv-val)
-and held fixed. Per part arrays as that study's arrays.py, for any file, cached in runs/ggx-900/arrays/.
+and held fixed. Per part arrays from that study's arrays.py, for any file, cached in runs/ggx-900/arrays/.
 
 Usage: python screen.py MODEL_A MODEL_B DATA:SPLIT ... (run from the repository's root with PYTHONPATH=.)."""
 
@@ -10,12 +10,12 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import torch
 
 from model.draem.checkpoint import load_checkpoint
 from model.draem.metrics import false_reject_threshold
-from model.draem.with_variation import rows
-from station.datasets import load_split
+
+sys.path.insert(0, "docs/results/2026-12-06-look-mean")
+import arrays as look_mean_arrays  # stop 119's per-part arrays, for any file
 
 CACHE = Path("runs/ggx-900/arrays")
 WEIGHT = 0.25  # D's share of the window, as stop 119's plan chose it
@@ -30,21 +30,7 @@ def arrays(model: str, arg: str) -> dict[str, np.ndarray]:
     if cache.exists():
         with np.load(cache) as d:
             return {k: d[k] for k in d.files}
-    det = load_checkpoint(model).detector
-    cfg, var, res = det.config, det.variation, det.residual
-    sp = load_split(path, split, cfg.priors, cfg.input_shape, roi=cfg.roi, frame_aspect=cfg.frame_aspect,
-                    dome_segments=cfg.dome_segments, around_px=cfg.around_px, progress=False)
-    x, around = sp.priors.float(), None if sp.around is None else sp.around.float()
-    score, window, logits = [], [], []
-    with torch.no_grad():
-        for i in range(0, len(x), 16):
-            v = var.zmaps(x[i:i + 16], signed=True, around=rows(around, i, 16))
-            score.append(v.scores.double().numpy())
-            window.append(var.second_look.window_sd(v.maps.flatten(1).amax(1).double().numpy()))
-            logits.append(res.top_logits(*det.residual_inputs(v.signed, v.judged)).numpy())
-    found = var.second_look.from_window_sd(res.look_score(torch.from_numpy(np.concatenate(logits))).numpy())
-    out = {"label": sp.label.numpy() == 1, "kind": np.array(sp.defect_type, dtype=str),
-           "score": np.concatenate(score), "window_sd": np.concatenate(window), "found": found}
+    out = look_mean_arrays.arrays(path, split, model)
     cache.parent.mkdir(parents=True, exist_ok=True)
     np.savez(cache, **out)
     return out
