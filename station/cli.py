@@ -15,7 +15,7 @@ from station import __version__
 from station.errors import USER_ERRORS
 
 COMMANDS = ["run", "view", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train",
-            "ensemble", "variation", "residual", "shape", "threshold", "quantize", "eval", "normals", "import",
+            "ensemble", "variation", "residual", "shape", "blend", "threshold", "quantize", "eval", "normals", "import",
             "export", "split", "capture", "adapt", "compare", "defect-pixels"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 MODULE_OF = {"import": "import_set"}

@@ -556,6 +556,43 @@ def fit_shape(model: str, data: str, val_data: str, out: str) -> str:
             f"{outline_words(det.variation.outline, outline_off)}; threshold {ck.threshold} kept")
 
 
+def fit_blend(model: str, data: str, out: str, weight: float | None = None,
+              max_good_flagged: float = GOOD_REJECTED_RATE) -> str:
+    """Checkpoint ``model`` (whose residual networks are its variation model's look) with the look blended
+    (``model.draem.residual.blended``): the window's share ``weight`` (None: ``BLEND_WEIGHT``), the two 1 %
+    thresholds from ``data``'s good val parts, which then set the threshold with ``station threshold``'s rule;
+    written to ``out``, its sidecar's ``train.blend`` recording them; one line saying what it does there."""
+    from model.draem.checkpoint import load_checkpoint
+    from model.draem.errors import ModelError
+    from model.draem.residual import BLEND_WEIGHT
+    from model.draem.with_variation import add_blend
+
+    check_max_good_flagged(max_good_flagged)
+    weight = BLEND_WEIGHT if weight is None else weight
+    if not 0.0 < weight <= 1.0:
+        raise UserError(f"--weight {weight}: the window's share of the blend must be in (0, 1]")
+    ck = load_checkpoint(model)
+    if ck.detector.residual is None or not ck.detector.residual.looks:  # before minutes of loading
+        raise UserError(f"{model}: the blend weighs the residual networks' finding as the variation model's second "
+                        f"look, and the model has none (station residual --second-look)")
+    va = model_split(ck, model, data, "val")
+    good = va.label == 0
+    try:
+        det = add_blend(ck.detector, va.priors[good], weight, None if va.around is None else va.around[good])
+    except ModelError as exc:
+        raise UserError(f"{model}: {exc}") from None
+    assert det.residual is not None
+    _, t_w, t_f = (float(v) for v in det.residual.blend)
+    record = {"weight": weight, "window_threshold": t_w, "finding_threshold": t_f, "good_parts": int(good.sum())}
+    choice, ev, labels = _threshold_and_save(ck, model, det, va, data, out, max_good_flagged, "blend", record)
+    detected = f" and {choice.detected_fraction:.1%} of defective" if int(labels.sum()) else ""
+    return (f"{out}: the look blended ({weight:g} of the window's finding over its 1 % threshold {t_w:.4g}, "
+            f"{1 - weight:g} of the network's over {t_f:.4g}, asked about every part); threshold "
+            f"{choice.threshold:.4g} ({choice.rule}); on {len(labels)} val parts it flags "
+            f"{choice.flagged_good_fraction:.1%} of good parts{detected}; image AUROC "
+            f"{ev.metrics.get('image_auroc', float('nan')):.3f}")
+
+
 def outline_record(outline: OutlineCheck) -> dict | None:
     """The sidecar's record of a fitted ``model.draem.outline_check.OutlineCheck`` (None when it is off)."""
     if not outline.fitted:

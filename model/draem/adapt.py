@@ -59,11 +59,12 @@ from .loss import draem_loss
 from .metrics import false_reject_threshold, usable_threshold
 from .networks import DraemTrainOutput
 from .preprocess import Normalizer
-from .residual import NO_LOOK
+from .residual import NO_BLEND, NO_LOOK
 from .second_look import MIN_REFERENCES
 from .shape_check import ShapeCheck
 from .variation import VariationModel, combined_score
 from .with_variation import (
+    blend_inputs,
     edge_sags,
     look_scores,
     member_scores,
@@ -258,6 +259,7 @@ def _heldout_scores(final: Detector, parts: list[Held], keep_networks: bool) -> 
         return np.concatenate([image_scores(p.detector, p.x, around=p.around) for p in parts]), None
     _calibrate_second_look(final, parts)
     _calibrate_look(final, parts)
+    _calibrate_blend(final, parts)
     pairs = [member_scores(p.detector, p.x, around=p.around) for p in parts]
     net, var = torch.cat([p[0] for p in pairs]), torch.cat([p[1] for p in pairs])
     location, spread = (float(c) for c in final.variation.calibration[:2])
@@ -358,6 +360,26 @@ def _calibrate_look(final: Detector, parts: list[Held]) -> None:
     for p in parts:
         assert p.detector.residual is not None
         p.detector.residual.look.copy_(final.residual.look)
+
+
+def _calibrate_blend(final: Detector, parts: list[Held]) -> None:
+    """The look's blend (``model.draem.residual.blended``), when it has one: its weight kept, its two thresholds from
+    the held-out parts' scores and findings (``blend_inputs``), each scored by the detector fitted without them
+    (after its look is calibrated), then shared by all of them. No blend when the look was dropped."""
+    if final.residual is None or not float(final.residual.blend[0]) > 0:
+        return
+    detectors = (final, *(p.detector for p in parts))
+    if not final.residual.looks:
+        for d in detectors:
+            assert d.residual is not None
+            d.residual.blend.copy_(torch.tensor(NO_BLEND, dtype=torch.float64))
+        return
+    pairs = [blend_inputs(p.detector, p.x, around=p.around) for p in parts]
+    final.residual.calibrate_blend(float(final.residual.blend[0]), np.concatenate([p[0] for p in pairs]),
+                                   np.concatenate([p[1] for p in pairs]))
+    for p in parts:
+        assert p.detector.residual is not None
+        p.detector.residual.blend.copy_(final.residual.blend)
 
 
 def _calibrate_second_look(final: Detector, parts: list[Held]) -> None:

@@ -251,6 +251,7 @@ def load_checkpoint(path: str | Path, map_location: str | torch.device = "cpu", 
             raise CheckpointError(f"{pt}: {exc}") from None
     if detector.residual is not None:  # added later (rule 49): absent, the networks are no second look
         state.setdefault("residual.look", detector.residual.look.clone())
+        state.setdefault("residual.blend", detector.residual.blend.clone())  # added later: absent, the cascade
     missing = sorted(set(detector.state_dict()) - set(state))
     unexpected = sorted(set(state) - set(detector.state_dict()))
     if missing or unexpected:

@@ -139,10 +139,16 @@ class Detector(nn.Module):
     def residual_look(self, v: VariationOutput) -> torch.Tensor:
         """(N,) the variation model's scores with the residual networks as its second look (``model.draem.residual``,
         ``look``): a part above the second look's gate scores the larger of its score and the networks' finding in
-        the window's units; the networks run on those parts only. The rest keep their score."""
+        the window's units; the networks run on those parts only. The rest keep their score. With a blend
+        (``ResidualDetector.blends``) the networks run on every part and each scores ``blended``."""
         assert self.residual is not None and self.variation is not None and v.signed is not None
         look = self.variation.second_look
         window = v.maps.flatten(1).amax(1)
+        if self.residual.blends:
+            assert v.judged is not None
+            found = look.from_window_sd(self.residual.look_score(self.residual.top_logits(
+                *self.residual_inputs(v.signed, v.judged))))
+            return self.residual.blend_score(v.scores, window, found).to(v.scores.dtype)
         ask = [i for i, w in enumerate(window.tolist()) if look.suspicious(w)]
         if not ask:
             return v.scores

@@ -78,6 +78,43 @@ an interrupted training loses at most a minute or two."""
 NO_LOOK = (0.0, 1.0, float("inf"), float("inf"))
 """``ResidualDetector.look`` of networks that are no second look (``LOOK``)."""
 
+BLEND = ("weight", "window_threshold", "finding_threshold")
+"""The entries of ``ResidualDetector.blend`` (float64), in order: the window's share of the blend (0: no blend, the
+cascade), and the 1 % thresholds (``BLEND_FALSE_REJECT``) of the variation model's score without the look and of the
+networks' finding (``look_score``), both in the window's units, on the good parts of the set the blend was calibrated
+on (``station blend``: the threshold set). Rule ``blended``."""
+
+NO_BLEND = (0.0, float("inf"), float("inf"))
+"""``ResidualDetector.blend`` of a look without a blend: the cascade (and files from before the blend load so)."""
+
+BLEND_FALSE_REJECT = 0.01
+"""The blend puts each finding over its own threshold at this rate of good parts rejected (stop 119's rule, read on
+fresh seeds 1238-1239: docs/results/2026-12-07-blend-rates.md)."""
+
+BLEND_WEIGHT = 0.25
+"""The window's share of the blend (``station blend --weight``): chosen by stop 119's plan on sets read before
+(docs/results/2026-12-06-look-mean.md), then held fixed and read on fresh seeds 1238-1239."""
+
+CHECK_MARGIN = 1e-4
+"""How far (window units) the variation model's score must lie above its window's largest value to count as a check's
+finding (the shape, outline or frame checks raise the score; the window alone gives it exactly)."""
+
+
+def blended(score: torch.Tensor, window: torch.Tensor, found: torch.Tensor, weight: float, window_threshold: float,
+            finding_threshold: float) -> torch.Tensor:
+    """The blend's score (rule of stop 119, docs/results/2026-12-06-look-mean.md; read on fresh sets in
+    docs/results/2026-12-07-blend-rates.md), all in the window's units: (N,) ``score`` the variation model's score
+    with its checks and without the look, (N,) ``window`` its window's largest value, (N,) ``found`` the networks'
+    finding (``ResidualDetector.look_score``, in window units). With t_w, t_f the two thresholds and c the checks'
+    part (``score`` where it lies above ``window`` by more than ``CHECK_MARGIN``, else 0), a part scores
+    t_w * max(weight * score / t_w + (1 - weight) * found / t_f, c / t_w): a quarter (the shipped weight) of the
+    window's finding and three quarters of the network's, each over its own 1 % threshold, and a check's finding
+    whole. float64."""
+    s, f = score.double(), found.double().to(score.device)
+    checks = torch.where(s > window.double().to(s.device) + CHECK_MARGIN, s, torch.zeros_like(s))
+    mix = weight * s / window_threshold + (1.0 - weight) * f / finding_threshold
+    return window_threshold * torch.maximum(mix, checks / window_threshold)
+
 UNJUDGEABLE_Z = 1e3
 """Decision score (robust SD) of a frame the variation model cannot judge: its noise level beyond ``NOISE_CAP`` (a
 frame nothing like the fitted line's parts: hostile, black, saturated, another part) or more than ``MAX_HIDDEN`` of
@@ -127,11 +164,18 @@ class ResidualDetector(nn.Module):
         self.members = nn.ModuleList(ResidualNet(channels + 2) for _ in range(members))
         self.register_buffer("calibration", torch.tensor([[0.0, 1.0]] * members))
         self.register_buffer("look", torch.tensor(NO_LOOK, dtype=torch.float64))
+        self.register_buffer("blend", torch.tensor(NO_BLEND, dtype=torch.float64))
 
     @property
     def looks(self) -> bool:
         """Whether the networks are the variation model's second look (``look`` set by ``calibrate_look``)."""
         return bool(torch.isfinite(self.look).all())
+
+    @property
+    def blends(self) -> bool:
+        """Whether the look is blended (``blend``, set by ``calibrate_blend``): the networks are asked about every
+        part, not only those above the second look's gate."""
+        return self.looks and float(self.blend[0]) > 0
 
     @staticmethod
     def inputs(signed: torch.Tensor, region: torch.Tensor, window_spread: torch.Tensor) -> torch.Tensor:
@@ -200,6 +244,29 @@ class ResidualDetector(nn.Module):
         loc, spread, t, tv = (float(v) for v in self.look)
         return (top_logits.double() - loc) / spread / t * tv
 
+    def calibrate_blend(self, weight: float, scores: np.ndarray, found: np.ndarray) -> None:
+        """Set ``blend`` (``BLEND``) from the window's share ``weight`` in (0, 1] and the good parts' (N,) variation
+        scores without the look and (N,) ``look_score`` findings, both in window units; ModelError without a look,
+        for a weight out of range, or for a threshold not > 0 (the blend divides by both)."""
+        from .metrics import false_reject_threshold
+
+        if not self.looks:
+            raise ModelError("the blend weighs the networks' finding as the second look: they are no look (station "
+                             "residual --second-look)")
+        if not 0.0 < weight <= 1.0:
+            raise ModelError(f"blend weight (the window's share) must be in (0, 1], got {weight}")
+        t_w = false_reject_threshold(np.asarray(scores, np.float64), BLEND_FALSE_REJECT)
+        t_f = false_reject_threshold(np.asarray(found, np.float64), BLEND_FALSE_REJECT)
+        if not (t_w > 0 and t_f > 0 and math.isfinite(t_w) and math.isfinite(t_f)):
+            raise ModelError(f"blend: the 1 % thresholds on the good parts must be > 0, got {t_w:.3g} (window) and "
+                             f"{t_f:.3g} (networks)")
+        self.blend.copy_(torch.tensor([weight, t_w, t_f], dtype=torch.float64))
+
+    def blend_score(self, score: torch.Tensor, window: torch.Tensor, found: torch.Tensor) -> torch.Tensor:
+        """``blended`` with this look's ``blend``."""
+        weight, t_w, t_f = (float(v) for v in self.blend)
+        return blended(score, window, found, weight, t_w, t_f)
+
     def calibrate(self, raw: torch.Tensor) -> None:
         """Set ``calibration`` from (members, N) raw scores of good validation parts (at least 2)."""
         if raw.shape[1] < 2:
@@ -217,6 +284,10 @@ class ResidualDetector(nn.Module):
             raise ModelError("residual networks: a calibration spread is not > 0")
         if not bool((self.look[1:] > 0).all()) or bool(torch.isnan(self.look).any()):
             raise ModelError("residual networks: look needs a spread and thresholds > 0")
+        weight, t_w, t_f = (float(v) for v in self.blend)
+        if not (weight == 0.0 or (0.0 < weight <= 1.0 and self.looks and 0 < t_w < math.inf and 0 < t_f < math.inf)):
+            raise ModelError(f"residual networks: blend {[weight, t_w, t_f]} needs a look, a weight in (0, 1] and "
+                             f"finite thresholds > 0 (or weight 0: none)")
 
 
 def shape_mask(rng: np.random.Generator, judged: np.ndarray) -> np.ndarray | None:

@@ -310,6 +310,42 @@ def calibrate_look(detector: Detector, val_good: torch.Tensor) -> None:
 
 
 @torch.no_grad()
+def blend_inputs(detector: Detector, x: torch.Tensor, batch_size: int = 16, around: torch.Tensor | None = None
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """What the look's blend is calibrated from (``ResidualDetector.calibrate_blend``), on parts ``x`` (N, C, H, W)
+    (and the frame around each, or None): (N,) the variation model's scores with their checks and without the look,
+    and (N,) the networks' finding (``ResidualDetector.look_score``), both in the window's units, float64."""
+    assert detector.variation is not None and detector.residual is not None
+    var, res = detector.variation, detector.residual
+    scores, found = [], []
+    for i in range(0, len(x), batch_size):
+        v = var.zmaps(x[i:i + batch_size], signed=True, around=rows(around, i, batch_size))
+        assert v.signed is not None and v.judged is not None
+        scores.append(v.scores.double().numpy())
+        logits = res.top_logits(*detector.residual_inputs(v.signed, v.judged))
+        found.append(var.second_look.from_window_sd(res.look_score(logits)).numpy())
+    return np.concatenate(scores), np.concatenate(found)
+
+
+def add_blend(detector: Detector, val_good: torch.Tensor, weight: float, around: torch.Tensor | None = None
+              ) -> Detector:
+    """A copy of ``detector`` (whose residual networks are its look) whose look is blended
+    (``model.draem.residual.blended``): the window's share ``weight``, the two thresholds from ``val_good`` (N, C, H,
+    W) good parts (and the frame around each, or None), those of the set its threshold will be set on
+    (``blend_inputs``). ModelError when the networks are no look."""
+    if detector.residual is None or not detector.residual.looks:
+        raise ModelError("the blend weighs the residual networks' finding as the variation model's second look: the "
+                         "model has no look (station residual --second-look)")
+    if len(val_good) < 2:
+        raise ModelError(f"calibrating the blend needs good parts, got {len(val_good)}")
+    out = copy.deepcopy(detector).eval()
+    assert out.residual is not None
+    out.residual.calibrate_blend(weight, *blend_inputs(detector, val_good, around=around))
+    out.residual.check()
+    return out
+
+
+@torch.no_grad()
 def residual_raw(detector: Detector, x: torch.Tensor, batch_size: int = 16, around: torch.Tensor | None = None
                  ) -> torch.Tensor:
     """(members, N) raw scores of the residual networks of ``detector`` on parts ``x`` (and the frame around each, or
