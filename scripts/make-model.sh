@@ -33,6 +33,9 @@
 #      docs/results/2026-12-05-moulding-kinds.md) and the outline check (a short step along its long edges: flash;
 #      docs/results/2026-12-05-outline.md) added to the shipped model and to each look without a type, their
 #      spread from the good train parts, their thresholds from CALIBRATION's good parts (station shape)
+#   6b''. blend: each look asked about every part and blended with the window (BLEND of the window's finding, the
+#      rest the network's, each over its own 1 % threshold on VAL's good parts, the checks' finding whole; in place;
+#      station blend, docs/results/2026-12-07-blend-rates.md); BLEND=0 keeps the cascade of 6b
 #   6c. threshold: the shipped model's threshold set again on VAL, the finish and edges as built (rules 63 and 67,
 #      docs/results/2026-11-29-finish-vary.md, docs/results/2026-12-02-edge-range.md: the fit knows a range of
 #      finishes and edges, the operating point is the line's)
@@ -79,6 +82,7 @@ SHIP=${SHIP:-1}
 DECISION=${DECISION:-variation}
 LOOK_MEMBERS=${LOOK_MEMBERS:-1}
 LOOK_STEPS=${LOOK_STEPS:-3000}
+BLEND=${BLEND:-0.25}  # the window's share of the look's blend (model.draem.residual.BLEND_WEIGHT); 0: the cascade
 PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml)
 VARY=(--config sim/presets/panel-vary.toml)  # training and validation only (rule 52)
 FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only (rules 62-63)
@@ -152,6 +156,10 @@ look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/N
         --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/$1" \
         "${@:2}"
 }
+blend() {  # blend NAME: the look of RUNS/NAME blended in place, unless it is (resumable)
+    grep -qs '"blend": ' "$RUNS/$1.json" && return 0  # its sidecar's train.blend
+    station blend --model "$RUNS/$1" --data "$VAL" --weight "$BLEND" --out "$RUNS/$1"
+}
 variation "$RUNS/$BAND_NET" "$RUNS/band-variation" --decision "$DECISION"
 SHIPPED=band-variation
 HELD=()
@@ -166,6 +174,10 @@ if [ "$DECISION" = variation ]; then  # steps 6b and 7: the look and the looks w
     for p in "${pids[@]}"; do wait "$p"; done
     shape band-look  # step 6b': in place, before the threshold counts what it rejects
     for t in $HOLDOUT_TYPES; do shape "holdout-$t"; done
+    if [ "$BLEND" != 0 ]; then  # step 6b'': after the checks, whose finding it keeps whole
+        blend band-look
+        for t in $HOLDOUT_TYPES; do blend "holdout-$t"; done
+    fi
 fi
 station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
 for t in $HOLDOUT_TYPES; do

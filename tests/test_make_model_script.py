@@ -74,6 +74,23 @@ def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
     assert all(i > last_shape for i, a in enumerate(calls) if a[0] == "threshold" and "base/last" not in a[2])
 
 
+def test_make_model_blends_each_look_in_place_on_the_threshold_set_after_its_checks(tmp_path: Path) -> None:
+    """The shipped decision since stop 123 (docs/results/2026-12-07-blend-rates.md): the look network asked about
+    every part, blended with the window, its two thresholds from the set the threshold is set on; BLEND=0 keeps the
+    cascade."""
+    calls = dry_run(tmp_path)
+    types = ["dent", "scratch", "stain", "chip", "missing_stud"]
+    blended = [(out_name(a, tmp_path), a[a.index("--model") + 1], a[a.index("--data") + 1], a[a.index("--weight") + 1])
+               for a in calls if a[0] == "blend"]
+    assert [n for n, *_ in blended] == ["band-look", *(f"holdout-{t}" for t in types)]
+    assert all(m == str(tmp_path / "runs" / n) and d == "data/line-pv-val" and w == "0.25" for n, m, d, w in blended)
+    first, last = (f(i for i, a in enumerate(calls) if a[0] == "blend") for f in (min, max))
+    assert all(i < first for i, a in enumerate(calls) if a[0] == "shape")  # the checks' part is in what it blends
+    assert all(i > last for i, a in enumerate(calls) if a[0] in ("threshold", "eval"))
+    (tmp_path / "cascade").mkdir()
+    assert not [a for a in dry_run(tmp_path / "cascade", BLEND="0") if a[0] == "blend"]
+
+
 def test_make_model_with_networks_deciding_holds_types_out_of_the_networks(tmp_path: Path) -> None:
     """DECISION=combined: the networks decide, so each held-out type is left out of their training and their
     variation model counts them."""
