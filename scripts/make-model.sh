@@ -45,6 +45,7 @@
 #      residual --holdout-type; the variation model never sees a defect).
 #      With another DECISION the networks decide: they are trained without the type (from the base's last step) and
 #      their variation model counts them (decision combined)
+#   (6b-6c and 8 run JOBS at a time: each on one thread, two on 2 cores take the wall time of one)
 #   8. evaluation on the held-out set (thresholds from validation), copy to model/weights/default (fp32 only: the
 #      int8 networks of an earlier model scored a hostile frame across the threshold, see model/weights/README.md)
 #   9. kinds nobody rendered: a held-out set of the line as built with blisters and particles only
@@ -160,45 +161,48 @@ blend() {  # blend NAME: the look of RUNS/NAME blended in place, unless it is (r
     grep -qs '"blend": ' "$RUNS/$1.json" && return 0  # its sidecar's train.blend
     station blend --model "$RUNS/$1" --data "$VAL" --weight "$BLEND" --out "$RUNS/$1"
 }
+at_once() {  # at_once FUNCTION NAME...: FUNCTION NAME for each NAME, JOBS at a time, started in order (each on one
+    local pids=() name p  # thread: two on 2 cores take the wall time of one); a failed one stops the recipe
+    for name in "${@:2}"; do
+        if [ "${#pids[@]}" -ge "$JOBS" ]; then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi
+        "$1" "$name" & pids+=($!)
+    done
+    for p in "${pids[@]}"; do wait "$p"; done
+}
+look_named() {  # look_named NAME: band-look, or holdout-T without type T (steps 6b and 7)
+    if [ "$1" = band-look ]; then look band-look; else look "$1" --holdout-type "${1#holdout-}"; fi
+}
+finish() {  # finish NAME: a look's checks (6b'), in place; its blend (6b''); its threshold on VAL (6c)
+    shape "$1"
+    [ "$BLEND" = 0 ] || blend "$1"
+    station threshold --model "$RUNS/$1" --data "$VAL"
+}
+evaluate() {  # evaluate MODEL: station eval on the held-out set (step 8) into RUNS/eval-NAME
+    local name=${1%/last}
+    name=${name%/best}
+    station eval --model "$RUNS/$1" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-${name//\//-}"
+}
 variation "$RUNS/$BAND_NET" "$RUNS/band-variation" --decision "$DECISION"
 SHIPPED=band-variation
 HELD=()
-if [ "$DECISION" = variation ]; then  # steps 6b and 7: the look and the looks without each type, JOBS at once
+if [ "$DECISION" = variation ]; then  # steps 6b-7: the look and the looks without each type, each finished
     SHIPPED=band-look
-    pids=()
-    for t in - $HOLDOUT_TYPES; do  # one thread each: two on 2 cores take the wall time of one
-        if [ "${#pids[@]}" -ge "$JOBS" ]; then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi
-        if [ "$t" = - ]; then look band-look & else look "holdout-$t" --holdout-type "$t" & fi
-        pids+=($!)
-    done
-    for p in "${pids[@]}"; do wait "$p"; done
-    shape band-look  # step 6b': in place, before the threshold counts what it rejects
-    for t in $HOLDOUT_TYPES; do shape "holdout-$t"; done
-    if [ "$BLEND" != 0 ]; then  # step 6b'': after the checks, whose finding it keeps whole
-        blend band-look
-        for t in $HOLDOUT_TYPES; do blend "holdout-$t"; done
-    fi
-fi
-station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
-for t in $HOLDOUT_TYPES; do
-    if [ "$DECISION" = variation ]; then  # thresholded as the shipped model
-        station threshold --model "$RUNS/holdout-$t" --data "$VAL"
-        HELD+=("holdout-$t")
-    else  # from the base's last step: keep-best there saw every type in validation
+    for t in $HOLDOUT_TYPES; do HELD+=("holdout-$t"); done
+    at_once look_named band-look "${HELD[@]}"
+    at_once finish band-look "${HELD[@]}"  # thresholded as the shipped model
+else
+    station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
+    for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation
         train --data "$DATA" "${MODEL[@]}" "${BAND[@]}" --steps "$HOLDOUT_STEPS" \
             --eval-every "$HOLDOUT_STEPS" --rendered-fraction 0.25 --holdout-type "$t" --init "$RUNS/base/last" \
             --out "$RUNS/holdout-$t"
         variation "$RUNS/holdout-$t/best" "$RUNS/holdout-$t/variation" --decision combined  # the networks count
         HELD+=("holdout-$t/variation")
-    fi
-done
+    done
+fi
 
 [ "${#NETS[@]}" = 0 ] || station threshold --model "$RUNS/base/last" --data "$DATA"
-for m in "${NETS[@]}" band-variation ${SHIPPED/band-variation/} "${HELD[@]}"
-do
-    name=${m%/last}; name=${name%/best}; name=${name//\//-}
-    station eval --model "$RUNS/$m" --data "$HELDOUT" --val-data "$VAL" --out "$RUNS/eval-$name"
-done
+at_once evaluate "${NETS[@]}" band-variation ${SHIPPED/band-variation/} "${HELD[@]}"
 station compare "$RUNS"/eval-* --out "$RUNS/compare"
 
 if [ "$SHIP" = 1 ]; then
