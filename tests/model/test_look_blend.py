@@ -17,7 +17,7 @@ from model.draem.checkpoint import load_checkpoint, save_checkpoint
 from model.draem.detector import Detector
 from model.draem.errors import ModelError
 from model.draem.metrics import false_reject_threshold
-from model.draem.residual import NO_BLEND, ResidualDetector, blended
+from model.draem.residual import BLEND_WEIGHT, NO_BLEND, ResidualDetector, blended
 from model.draem.with_variation import add_blend, blend_inputs
 
 
@@ -128,3 +128,11 @@ def test_adapting_sets_the_blends_thresholds_on_the_lines_parts(
     few = parts(15, 9)  # no second look, so no look, so no blend
     adapted, _ = adapt(blend, few, torch.ones(len(few), *few.shape[2:], dtype=torch.bool), progress=False)
     assert adapted.residual is not None and not adapted.residual.looks and not adapted.residual.blends
+
+
+def test_the_shipped_file_decides_by_the_blend() -> None:
+    """model/weights/default is the recipe make model makes: its look blended at BLEND_WEIGHT, both thresholds set."""
+    residual = load_checkpoint("model/weights/default").detector.residual
+    assert residual is not None and residual.blends
+    weight, t_w, t_f = (float(v) for v in residual.blend)
+    assert weight == BLEND_WEIGHT and np.isfinite([t_w, t_f]).all() and t_w > 0 and t_f > 0
