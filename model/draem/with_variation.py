@@ -5,7 +5,7 @@ networks that read it (``model.draem.residual``)."""
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -291,15 +291,23 @@ def look_scores(detector: Detector, x: torch.Tensor, batch_size: int = 16, aroun
     """What the residual networks' ``look`` is calibrated from, on parts ``x`` (N, C, H, W) (and the frame around
     each, or None): (N,) their mean top logits (``ResidualDetector.top_logits``) and (N,) the variation model's scores
     in the window's robust SD."""
-    assert detector.variation is not None and detector.residual is not None
-    var, res = detector.variation, detector.residual
+    assert detector.variation is not None
     logits, scores = [], []
-    for i in range(0, len(x), batch_size):
-        v = var.zmaps(x[i:i + batch_size], signed=True, around=rows(around, i, batch_size))
-        assert v.signed is not None and v.judged is not None
-        logits.append(res.top_logits(*detector.residual_inputs(v.signed, v.judged)))
-        scores.append(var.second_look.window_sd(v.scores.double().numpy()))
+    for v_scores, top in _window_and_logits(detector, x, batch_size, around):
+        logits.append(top)
+        scores.append(detector.variation.second_look.window_sd(v_scores.double().numpy()))
     return torch.cat(logits), np.concatenate(scores)
+
+
+def _window_and_logits(detector: Detector, x: torch.Tensor, batch_size: int, around: torch.Tensor | None
+                       ) -> Iterator[tuple[torch.Tensor, torch.Tensor]]:
+    """Per batch of parts ``x`` (N, C, H, W) (and the frame around each, or None): the variation model's scores (B,)
+    with its checks and without the look, and the residual networks' mean top logits (B,) on its signed residuals."""
+    assert detector.variation is not None and detector.residual is not None
+    for i in range(0, len(x), batch_size):
+        v = detector.variation.zmaps(x[i:i + batch_size], signed=True, around=rows(around, i, batch_size))
+        assert v.signed is not None and v.judged is not None
+        yield v.scores, detector.residual.top_logits(*detector.residual_inputs(v.signed, v.judged))
 
 
 def calibrate_look(detector: Detector, val_good: torch.Tensor) -> None:
@@ -318,11 +326,8 @@ def blend_inputs(detector: Detector, x: torch.Tensor, batch_size: int = 16, arou
     assert detector.variation is not None and detector.residual is not None
     var, res = detector.variation, detector.residual
     scores, found = [], []
-    for i in range(0, len(x), batch_size):
-        v = var.zmaps(x[i:i + batch_size], signed=True, around=rows(around, i, batch_size))
-        assert v.signed is not None and v.judged is not None
-        scores.append(v.scores.double().numpy())
-        logits = res.top_logits(*detector.residual_inputs(v.signed, v.judged))
+    for v_scores, logits in _window_and_logits(detector, x, batch_size, around):
+        scores.append(v_scores.double().numpy())
         found.append(var.second_look.from_window_sd(res.look_score(logits)).numpy())
     return np.concatenate(scores), np.concatenate(found)
 
