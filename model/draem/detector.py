@@ -146,17 +146,22 @@ class Detector(nn.Module):
         window = v.maps.flatten(1).amax(1)
         if self.residual.blends:
             assert v.judged is not None
-            found = look.from_window_sd(self.residual.look_score(self.residual.top_logits(
-                *self.residual_inputs(v.signed, v.judged))))
+            found = self.look_finding(self.residual.top_logits(*self.residual_inputs(v.signed, v.judged)))
             return self.residual.blend_score(v.scores, window, found).to(v.scores.dtype)
         ask = [i for i, w in enumerate(window.tolist()) if look.suspicious(w)]
         if not ask:
             return v.scores
         assert v.judged is not None
-        found = self.residual.look_score(self.residual.top_logits(*self.residual_inputs(v.signed[ask], v.judged[ask])))
+        found = self.look_finding(self.residual.top_logits(*self.residual_inputs(v.signed[ask], v.judged[ask])))
         scores = v.scores.clone()
-        scores[ask] = torch.maximum(scores[ask], look.from_window_sd(found).to(scores.dtype).to(scores.device))
+        scores[ask] = torch.maximum(scores[ask], found.to(scores.dtype).to(scores.device))
         return scores
+
+    def look_finding(self, top_logits: torch.Tensor) -> torch.Tensor:
+        """(N,) the residual networks' ``top_logits`` -> (N,) their finding as the second look, in the window's units
+        (``ResidualDetector.look_score`` in robust SD, back through the second look's ``from_window_sd``), float64."""
+        assert self.residual is not None and self.variation is not None
+        return self.variation.second_look.from_window_sd(self.residual.look_score(top_logits))
 
     def residual_inputs(self, signed: torch.Tensor, judged: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """(the residual networks' input (N, C + 2, H, W), (N, H, W) the pixels they judge: ``judged`` inside the

@@ -322,13 +322,11 @@ def blend_inputs(detector: Detector, x: torch.Tensor, batch_size: int = 16, arou
                  ) -> tuple[np.ndarray, np.ndarray]:
     """What the look's blend is calibrated from (``ResidualDetector.calibrate_blend``), on parts ``x`` (N, C, H, W)
     (and the frame around each, or None): (N,) the variation model's scores with their checks and without the look,
-    and (N,) the networks' finding (``ResidualDetector.look_score``), both in the window's units, float64."""
-    assert detector.variation is not None and detector.residual is not None
-    var, res = detector.variation, detector.residual
+    and (N,) the networks' finding (``Detector.look_finding``), both in the window's units, float64."""
     scores, found = [], []
     for v_scores, logits in _window_and_logits(detector, x, batch_size, around):
         scores.append(v_scores.double().numpy())
-        found.append(var.second_look.from_window_sd(res.look_score(logits)).numpy())
+        found.append(detector.look_finding(logits).numpy())
     return np.concatenate(scores), np.concatenate(found)
 
 
