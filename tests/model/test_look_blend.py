@@ -10,7 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import torch
-from test_residual_look import with_look  # noqa: F401  (the fixture: a detector whose networks are its look)
+from test_residual_look import (  # noqa: F401  (with_look: the fixture, a detector whose networks are its look)
+    nan_and_inf_frames_score_finite_and_high,
+    with_look,
+)
 from test_variation import parts  # same folder (pytest puts it on sys.path)
 
 from model.draem.checkpoint import load_checkpoint, save_checkpoint
@@ -97,12 +100,7 @@ def test_the_blend_survives_a_checkpoint_and_a_file_from_before_it_scores_by_the
 def test_a_frame_of_nan_or_inf_scores_finite_and_high_with_the_blend(
         with_look: tuple[Detector, Detector, Path]) -> None:  # noqa: F811
     _, det, _ = with_look
-    blend = add_blend(det, parts(30, 3), 0.25)
-    x = parts(3, 6)
-    x[0], x[1] = float("nan"), float("inf")
-    out = blend.predict(x)
-    assert bool(torch.isfinite(out.score).all()) and bool(torch.isfinite(out.anomaly_map).all())
-    assert float(out.score[:2].min()) > 0.99
+    nan_and_inf_frames_score_finite_and_high(add_blend(det, parts(30, 3), 0.25))
 
 
 def test_a_blend_needs_the_networks_as_a_look() -> None:

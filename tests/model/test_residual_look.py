@@ -93,7 +93,11 @@ def test_the_look_survives_a_checkpoint_and_a_file_from_before_it_does_not_look(
 
 def test_a_frame_of_nan_or_inf_scores_finite_and_high_with_the_look(
         with_look: tuple[Detector, Detector, Path]) -> None:
-    _, det, _ = with_look
+    nan_and_inf_frames_score_finite_and_high(with_look[1])
+
+
+def nan_and_inf_frames_score_finite_and_high(det: Detector) -> None:
+    """A frame of NaN and one of Inf beside a good part: every score and map finite, both frames scored high."""
     x = parts(3, 6)
     x[0], x[1] = float("nan"), float("inf")
     out = det.predict(x)
