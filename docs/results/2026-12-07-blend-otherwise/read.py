@@ -23,7 +23,8 @@ SETS = {"built": "as built", "ggx": "GGX microfacets instead of Beckmann",
         "motion2": "moving 2 px in the exposure", "motion4": "moving 4 px in the exposure",
         "pedestal256": "black level 256 codes, unstated", "camera": "polarizer, gain spread and pedestal 64",
         "hot30": "30 pixels stuck at full scale, unmapped", "blurff": "a lens blur of 0.7 px",
-        "allff": "that blur, vignetting and three sensor imperfections"}
+        "allff": "that blur, vignetting and three sensor imperfections",
+        "rough": "a duller plastic (alpha 0.02-0.04; addendum)", "half": "the panel at half its radiance (addendum)"}
 MODELS = ("S", "C")
 TYPES = ("chip", "dent", "missing_stud", "scratch", "stain")
 PROMISE = 0.021  # plan.md: the 95 % promise of a 1 % threshold on 370 good validation parts
