@@ -6,7 +6,7 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 cd "$HERE/../../.."
 S=.venv/bin/station
 R=runs/blend-otherwise
-C=$R/cascade
+C=$R/cascade/default
 export OMP_NUM_THREADS=1 PYTHONPATH=.
 V=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml
    --count 400 --seed 1240 --defects 0.6 --heldout)

@@ -11,8 +11,9 @@ R=runs/blend-otherwise
 mkdir -p "$R"
 export OMP_NUM_THREADS=1 PYTHONPATH=.
 STEP=${STEP:-all}
-C=$R/cascade   # the same file without the blend: the shipped file before stop 123's b0b178d4
+C=$R/cascade/default   # the same file without the blend: the shipped file before stop 123's b0b178d4
 if [ ! -f $C.json ]; then
+    mkdir -p "$(dirname $C)"
     for x in pt json; do git show b0b178d4^:model/weights/default.$x > $C.$x; done
 fi
 V=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml
