@@ -7,8 +7,8 @@ Writes read.json beside it. The tests are stop 101's (../2026-12-04-ship-otherwi
 the good parts only one file rejects, a bootstrap SE over parts of the difference in defective parts caught.
 """
 import csv
+import importlib.util
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -16,8 +16,10 @@ import numpy as np
 from model.draem.metrics import auroc
 
 HERE = Path(__file__).parent
-sys.path.insert(0, str(HERE.parent / "2026-12-04-ship-otherwise"))
-from read import boot_se, sign_test  # noqa: E402
+_spec = importlib.util.spec_from_file_location("ship_otherwise_read", HERE.parent / "2026-12-04-ship-otherwise/read.py")
+_earlier = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_earlier)
+boot_se, sign_test = _earlier.boot_se, _earlier.sign_test
 
 SETS = {"built": "as built", "ggx": "GGX microfacets instead of Beckmann",
         "motion2": "moving 2 px in the exposure", "motion4": "moving 4 px in the exposure",
