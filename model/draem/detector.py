@@ -115,7 +115,7 @@ class Detector(nn.Module):
         v = self.variation.zmaps(x, signed=self.residual is not None, around=around)
         looks = self.residual is not None and self.residual.looks and self.config.decision != "residual"
         if looks:
-            v = v._replace(scores=self.residual_look(v))
+            v = self.residual_look(v)
         maps, scores = {**maps, "variation": v.maps}, {**scores, "variation": v.scores}
         if self.residual is not None and not looks:
             assert v.signed is not None and v.judged is not None  # asked for above
@@ -136,26 +136,28 @@ class Detector(nn.Module):
         assert self.residual is not None
         return self.residual.predict(*self.residual_inputs(signed, judged))
 
-    def residual_look(self, v: VariationOutput) -> torch.Tensor:
-        """(N,) the variation model's scores with the residual networks as its second look (``model.draem.residual``,
-        ``look``): a part above the second look's gate scores the larger of its score and the networks' finding in
-        the window's units; the networks run on those parts only. The rest keep their score. With a blend
-        (``ResidualDetector.blends``) the networks run on every part and each scores ``blended``."""
+    def residual_look(self, v: VariationOutput) -> VariationOutput:
+        """``v`` with the variation model's scores given the residual networks as its second look
+        (``model.draem.residual``, ``look``): a part above the second look's gate scores the larger of its score and
+        the networks' finding in the window's units; the networks run on those parts only. The rest keep their score.
+        With a blend (``ResidualDetector.blends``) the networks run on every part, each scores ``blended``, and
+        ``look_level`` is each part's finding over its blend threshold (a frame check)."""
         assert self.residual is not None and self.variation is not None and v.signed is not None
         look = self.variation.second_look
         window = v.maps.flatten(1).amax(1)
         if self.residual.blends:
             assert v.judged is not None
             found = self.look_finding(self.residual.top_logits(*self.residual_inputs(v.signed, v.judged)))
-            return self.residual.blend_score(v.scores, window, found).to(v.scores.dtype)
+            return v._replace(scores=self.residual.blend_score(v.scores, window, found).to(v.scores.dtype),
+                              look_level=(found / float(self.residual.blend[2])).float())
         ask = [i for i, w in enumerate(window.tolist()) if look.suspicious(w)]
         if not ask:
-            return v.scores
+            return v
         assert v.judged is not None
         found = self.look_finding(self.residual.top_logits(*self.residual_inputs(v.signed[ask], v.judged[ask])))
         scores = v.scores.clone()
         scores[ask] = torch.maximum(scores[ask], found.to(scores.dtype).to(scores.device))
-        return scores
+        return v._replace(scores=scores)
 
     def look_finding(self, top_logits: torch.Tensor) -> torch.Tensor:
         """(N,) the residual networks' ``top_logits`` -> (N,) their finding as the second look, in the window's units

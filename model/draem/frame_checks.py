@@ -12,14 +12,18 @@ part region the registration's warp took from outside the frame (0-1; ``model.dr
 turned or moved so far that some of it lies outside the model's view, where the window and the shape check read the
 frame's replicated border instead of the part (the outline check reads no column there), ``turn_deg`` how far the
 part lies turned from the good parts the model was calibrated on (degrees, positive clockwise as the frame is shown;
-``model.draem.variation``: turn; NaN and left out for a file without ``turn_centre``)."""
+``model.draem.variation``: turn; NaN and left out for a file without ``turn_centre``), ``look_level`` the look
+network's finding over its blend threshold (``Detector.residual_look``: f / t_f, 1 where the network alone would reject;
+left out for a file without the blend). A defect raises one part's look level; frames unlike the renders to the network
+(a lens's vignetting) raise the good parts' (``station.drift.LookMonitor``)."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
 
-FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend", "edge_step", "unseen_fraction", "turn_deg")
+FRAME_CHECKS = ("highlight_fraction", "noise_level", "edge_bend", "edge_step", "unseen_fraction", "turn_deg",
+                "look_level")
 """``VariationOutput`` fields that say what the frame's rules found; the station logs them per inspection."""
 
 MAX_HIDDEN = 0.5
@@ -72,7 +76,7 @@ def beyond_limits(checks: Mapping[str, float]) -> list[str]:
     steps beyond every good part's, a part partly outside the model's view, a part turned further than the model was
     measured to hold."""
     said = []
-    hidden, noise, bend, step, unseen, turn = (checks.get(k, math.nan) for k in FRAME_CHECKS)
+    hidden, noise, bend, step, unseen, turn = (checks.get(k, math.nan) for k in FRAME_CHECKS[:6])  # look: no reason
     if hidden > MAX_HIDDEN:
         said.append(f"highlights cover {100 * hidden:.0f} % of the part (over {100 * MAX_HIDDEN:.0f} %: judged "
                     "with them, as a part unlike the model's line)")

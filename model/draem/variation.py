@@ -467,7 +467,8 @@ class VariationOutput(NamedTuple):
     the part region the registration's warp took from outside the frame (module docstring: register, seen);
     ``turn_deg`` (N,) how far each part lies turned from the good parts the model was calibrated on, degrees,
     positive clockwise as shown (``warp_turn_deg`` less ``turn_centre``; NaN without it or where the warp found no
-    plausible fit, module docstring: turn)."""
+    plausible fit, module docstring: turn); ``look_level`` (N,) the look network's finding over its blend threshold,
+    set by ``Detector.residual_look`` when the file blends (None otherwise)."""
 
     maps: torch.Tensor
     scores: torch.Tensor
@@ -479,6 +480,7 @@ class VariationOutput(NamedTuple):
     edge_step: torch.Tensor | None = None
     unseen_fraction: torch.Tensor | None = None
     turn_deg: torch.Tensor | None = None
+    look_level: torch.Tensor | None = None
 
     def frame_checks(self) -> dict[str, torch.Tensor]:
         """The fields that describe the frame or the part's shape rather than a local defect (``FRAME_CHECKS``), by

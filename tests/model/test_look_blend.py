@@ -80,6 +80,20 @@ def test_a_blended_detector_asks_the_network_about_every_part_and_scores_by_the_
     assert not np.allclose(got, cascade)  # parts below the gate are asked too
 
 
+def test_a_blended_detector_reports_each_parts_look_level_and_the_cascade_none(
+        with_look: tuple[Detector, Detector, Path]) -> None:  # noqa: F811
+    """``look_level``, a frame check: the network's finding over its blend threshold (f / t_f), what the station's
+    look monitor reads; a file without the blend reports none."""
+    _, det, _ = with_look
+    blend = add_blend(det, parts(30, 3), 0.25)
+    x = torch.cat([parts(8, 4), parts(4, 5, defect=True)])
+    _, f = blend_inputs(det, x)
+    checks = blend.predict(x).frame_checks
+    assert "look_level" in checks and checks["look_level"].shape == (12,)
+    assert checks["look_level"].double().numpy() == pytest.approx(f / float(blend.residual.blend[2]), rel=1e-5)
+    assert "look_level" not in det.predict(x).frame_checks
+
+
 def test_the_blend_survives_a_checkpoint_and_a_file_from_before_it_scores_by_the_cascade(
         with_look: tuple[Detector, Detector, Path], tmp_path: Path) -> None:  # noqa: F811
     _, det, _ = with_look
