@@ -4,7 +4,8 @@
 camera setting to turn. ``station run`` (``station.loop.Station``) updates it with every judged part in view, logs
 the text it returns, keeps the warning in force in each row's ``drift`` column and shows it in the viewer. Beside it,
 ``ViewMonitor`` watches how many parts lay partly outside the model's view, and ``TurnMonitor`` how far the parts lie
-turned from the model's good parts (both: a camera turned from square), warned alike. ``CameraWatch`` holds one
+turned from the model's good parts (both: a camera turned from square), and ``LookMonitor`` how the look network
+reads the good parts (a lens unlike the renders'), warned alike. ``CameraWatch`` holds one
 camera's monitors: a station with a second camera watches its drift against its own model too, its warnings named for
 it."""
 
@@ -229,10 +230,53 @@ class TurnMonitor(PartsWarning):
                                   f"the last {n} parts")
 
 
+LOOK_WARN_LEVEL = 0.4
+"""Median ``look_level`` (the look network's finding over its blend threshold) of the recent parts above this: the
+network reads the line's frames as unlike its renders, most likely the lens (vignetting, focus), and at the file's
+threshold more good parts are rejected than the validation promised. The
+shipped file's good parts read 0.27 at the median on its validation set and on fresh seed 1240; the median of 100
+parts of a line with up to a fifth of them defective stays within 0.25-0.33 there (99 % of draws), and reaches 0.46-0.67
+through a lens keeping 80 % of the light at the frame's corners, where the file rejected 7 of 146 good parts against 4
+as built (docs/results/2026-12-07-blend-otherwise.md, findings.py). A line with more defective parts reads higher."""
+LOOK_WINDOW = 100
+"""Parts the station's median look level is taken over."""
+LOOK_WARN_MIN_PARTS = 50
+"""Parts needed before the median look level is judged, by the station and by ``station report``."""
+LOOK_ADVICE = ("the look network reads these frames as unlike its renders (a lens's vignetting or focus, another "
+               "camera): adapt on the line's good parts through its own lens (station adapt, docs/bring-up.md step 6)")
+
+
+def line_look(levels: list[float]) -> float | None:
+    """The median of judged parts' ``look_level`` when it calls for the look warning: at least
+    ``LOOK_WARN_MIN_PARTS`` of them and above ``LOOK_WARN_LEVEL`` (``LookMonitor``, ``station report``); else None."""
+    if len(levels) < LOOK_WARN_MIN_PARTS:
+        return None
+    median = float(np.median(levels))
+    return median if median > LOOK_WARN_LEVEL else None
+
+
+class LookMonitor(PartsWarning):
+    """Rolling ``window`` of judged parts' ``look_level`` (a file that blends its look network); once
+    ``LOOK_WARN_MIN_PARTS`` are in, ``update`` returns a warning when their median lies above ``LOOK_WARN_LEVEL``, and
+    a note when it is back under; ``warning`` is the current state's text (None while under)."""
+
+    def __init__(self, window: int = LOOK_WINDOW) -> None:
+        super().__init__(window, LOOK_WARN_MIN_PARTS, "look")
+
+    def update(self, look_level: float) -> str | None:
+        self.window.append(look_level)
+        n, median = len(self.window), line_look(list(self.window))
+        warning = None if median is None else (
+            f"look: the last {n} parts' look level is {median:.2f} at the median (above {LOOK_WARN_LEVEL:g}): "
+            f"{LOOK_ADVICE}")
+        return self.said(warning, f"look level back under {LOOK_WARN_LEVEL:g} over the last {n} parts")
+
+
 class CameraWatch:
     """One camera's monitors: its drift against its model's trained frames (``drift``; None when the model records
     none), how far its parts lie turned from its model's good parts (``turn``: parts whose model reads no turn give
-    none) and, with ``view``, how many of its parts lay partly outside its model's view. ``name``: the camera's name
+    none), how its look network reads them (``look``: a file that blends, ``LookMonitor``) and, with ``view``, how
+    many of its parts lay partly outside its model's view. ``name``: the camera's name
     put before each text (None for the first camera, whose texts stand as they are). The station watches the second
     camera's drift but not its view: ``VIEW_WARN_SHARE`` was read off the line camera's sets, and a camera looking
     level at the part has more on a square line (4-6 of 60 parts with a small side file: it would warn on every
@@ -240,7 +284,7 @@ class CameraWatch:
 
     def __init__(self, drift: DriftMonitor | None, name: str | None = None, view: bool = True) -> None:
         self.drift, self.view, self.name = drift, ViewMonitor() if view else None, name
-        self.turn = TurnMonitor()
+        self.turn, self.look = TurnMonitor(), LookMonitor()
 
     def update(self, stats: FrameStatistics | None, checks: Mapping[str, float]) -> list[str]:
         """A judged part in view: its frame's statistics (None when not computed) and its model's frame checks ->
@@ -252,12 +296,14 @@ class CameraWatch:
             said.append(self.view.update(checks["unseen_fraction"]))
         if "turn_deg" in checks:
             said.append(self.turn.update(checks["turn_deg"]))
+        if "look_level" in checks:
+            said.append(self.look.update(checks["look_level"]))
         return [self._named(t) for t in said if t]
 
     @property
     def warning(self) -> str | None:
         """The warnings in force, "; "-joined and named for the camera; None when none is."""
-        ws = [w for w in (m.warning for m in (self.drift, self.view, self.turn) if m is not None) if w]
+        ws = [w for w in (m.warning for m in (self.drift, self.view, self.turn, self.look) if m is not None) if w]
         return "; ".join(self._named(w) for w in ws) or None
 
     def _named(self, text: str) -> str:

@@ -10,7 +10,8 @@ The schema version is ``PRAGMA user_version``; columns carry their unit in the n
 version 5 the second camera's (``second_score``, ``second_threshold``, ``second_model_id``, ``second_frame_id``:
 ``station.second_camera``), version 6 the shape check's ``edge_bend``, version 7 the outline check's ``edge_step``,
 version 8 ``unseen_fraction``, the share of the part outside the model's view, version 9 ``turn_deg``, how far the
-part lay turned from the model's good parts (``FRAME_CHECKS``).
+part lay turned from the model's good parts, version 10 ``look_level``, the look network's finding over its blend
+threshold (``FRAME_CHECKS``).
 Opening an older log for writing adds the missing columns (NULL in the old rows); opened
 read-only, they read as NULL. Decisions (``station.decision.Verdict``, stored as its values):
 
@@ -34,7 +35,7 @@ from typing import Any
 from station.decision import Verdict
 from station.errors import UserError
 
-SCHEMA_VERSION = 9
+SCHEMA_VERSION = 10
 WAL_CHECKPOINT_PAGES = 64
 """Checkpoint the write-ahead log every 64 pages (256 KiB) instead of SQLite's 1000 ..."""
 WAL_SIZE_LIMIT_BYTES = 256 * 1024
@@ -48,9 +49,10 @@ ADDED_IN_VERSION = {2: ("ground_truth_present",),
                     6: ("edge_bend",),
                     7: ("edge_step",),
                     8: ("unseen_fraction",),
-                    9: ("turn_deg",)}
+                    9: ("turn_deg",),
+                    10: ("look_level",)}
 """Columns each schema version added (older logs gain them, NULL in old rows, when a station writes to them)."""
-READABLE_VERSIONS = (1, 2, 3, 4, 5, 6, 7, 8, 9)
+READABLE_VERSIONS = (1, 2, 3, 4, 5, 6, 7, 8, 9, 10)
 DECISIONS: tuple[str, ...] = tuple(v.value for v in Verdict)
 """The values of ``Verdict`` as the log stores them: "pass", "reject", "empty", "not_inspected"."""
 STAGES = ("grab", "demosaic", "priors", "model", "decision", "io", "total")
@@ -134,6 +136,10 @@ class InspectionRecord:
     frame is shown; ``model.draem.variation``: turn). Beyond ``model.draem.frame_checks.TURN_LIMIT_DEG`` a reject's
     reason says so; a median beyond ``station.drift.TURN_WARN_DEG`` over the recent parts is the turn warning. None
     without a variation model, for a file without ``turn_centre``, or when the model did not run."""
+    look_level: float | None = None
+    """The look network's finding over its blend threshold (``model.draem.frame_checks``; 1 where the network alone
+    would reject). A median above ``station.drift.LOOK_WARN_LEVEL`` over the recent parts is the look warning. None for
+    a file without the blend, or when the model did not run."""
 
     def __post_init__(self) -> None:
         if self.decision not in DECISIONS:

@@ -12,7 +12,17 @@ import numpy as np
 
 from model.draem.frame_checks import FRAME_CHECKS, OWN_RENDERS_NOISE_LEVEL_MAX, SIGNED_CHECKS, UNSEEN_LIMIT
 from station.decision import SECOND_NAME, Verdict
-from station.drift import TURN_ADVICE, TURN_WARN_DEG, VIEW_ADVICE, VIEW_WARN_SHARE, line_turn, too_many_outside
+from station.drift import (
+    LOOK_ADVICE,
+    LOOK_WARN_LEVEL,
+    TURN_ADVICE,
+    TURN_WARN_DEG,
+    VIEW_ADVICE,
+    VIEW_WARN_SHARE,
+    line_look,
+    line_turn,
+    too_many_outside,
+)
 from station.inspection_log import DECISIONS
 
 PERCENTILES = (50, 90, 99)
@@ -97,6 +107,11 @@ class LogSummary:
     (``station.drift.line_turn``: at least ``TURN_WARN_MIN_PARTS`` parts, beyond +-``TURN_WARN_DEG``); else None."""
     turn_parts: int = 0
     """Parts with ``turn_deg`` (the model ran and reads a turn)."""
+    look_median: float | None = None
+    """The median ``look_level`` (schema version 10) of the parts that have it, when it calls for the look warning
+    (``station.drift.line_look``: at least ``LOOK_WARN_MIN_PARTS`` parts, above ``LOOK_WARN_LEVEL``); else None."""
+    look_parts: int = 0
+    """Parts with ``look_level`` (the model ran and blends its look network)."""
 
 
 def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
@@ -111,7 +126,10 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
     causes: Counter[str] = Counter()
     outside = viewed = 0
     turns: list[float] = []
+    looks: list[float] = []
     for r in rows:
+        if r.get("look_level") is not None:
+            looks.append(r["look_level"])
         if r.get("turn_deg") is not None:
             turns.append(r["turn_deg"])
         if r.get("unseen_fraction") is not None:
@@ -156,6 +174,8 @@ def summarize(rows: Iterable[dict[str, Any]], bins: int = 20) -> LogSummary:
         view_parts=viewed,
         turn_median_deg=line_turn(turns),
         turn_parts=len(turns),
+        look_median=line_look(looks),
+        look_parts=len(looks),
     )
 
 
@@ -197,6 +217,9 @@ def format_summary(s: LogSummary) -> str:
     if s.turn_median_deg is not None:
         lines.append(f"TURN: the {s.turn_parts} parts lay turned {s.turn_median_deg:+.1f} degrees from the model's "
                      f"good parts at the median (beyond {TURN_WARN_DEG:g}): {TURN_ADVICE}")
+    if s.look_median is not None:
+        lines.append(f"LOOK: the {s.look_parts} parts' look level is {s.look_median:.2f} at the median (above "
+                     f"{LOOK_WARN_LEVEL:g}): {LOOK_ADVICE}")
     return "\n".join(lines) + "\n"
 
 

@@ -177,6 +177,8 @@ def create_window(feed: ViewerFeed):  # -> ViewerWindow (Qt types only exist aft
                 score += f"  outside view {100 * f.checks['unseen_fraction']:.2g} %"
             if "turn_deg" in f.checks:
                 score += f"  turn {f.checks['turn_deg']:+.1f} deg"
+            if "look_level" in f.checks:
+                score += f"  look {f.checks['look_level']:.2f}"
             stats = "  ".join(f"{k} {v:.4g}" for k, v in f.stats.items())
             self.stats.setText(f"part {f.part_id}  {score}\n{f.reason or ''}\n{stats}")
             feed.shown += 1

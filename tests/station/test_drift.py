@@ -314,3 +314,30 @@ def test_the_turn_monitor_warns_once_when_the_parts_median_turn_leaves_5_degrees
     assert all(watch.update(None, {}) == [] for _ in range(60)) and watch.warning is None
     said = [t for _ in range(60) for t in watch.update(None, {"turn_deg": 8.0})]
     assert len(said) == 1 and said[0].startswith("second camera: turn: the last 50 parts lay turned +8.0 degrees")
+
+
+def test_the_look_monitor_warns_once_when_the_parts_median_look_level_rises_and_says_when_back() -> None:
+    """``LookMonitor``: the look network's finding over its blend threshold sits about 0.27 at the median on the
+    renders' good parts and 0.53 through a vignetting lens (seed 1240, docs/results/2026-12-07-blend-otherwise.md):
+    once 50 parts are in, a median above ``LOOK_WARN_LEVEL`` is said once, kept in force and ended when it is back."""
+    from station.drift import LOOK_WARN_LEVEL, LOOK_WARN_MIN_PARTS, CameraWatch, LookMonitor
+
+    rng = np.random.default_rng(0)
+    m = LookMonitor()
+    assert all(m.update(float(v)) is None for v in rng.uniform(0.1, 0.45, 400)) and m.warning is None
+    said = [m.update(float(v)) for v in rng.uniform(0.35, 0.75, 100)]
+    started = [s for s in said if s]
+    assert len(started) == 1 and started[0].startswith("look: the last 100 parts' look level is 0.")
+    assert m.warning.endswith("adapt on the line's good parts through its own lens (station adapt, "
+                              "docs/bring-up.md step 6)")
+    back = [b for b in (m.update(float(v)) for v in rng.uniform(0.1, 0.45, 100)) if b]
+    assert len(back) == 1 and back[0].startswith(f"look level back under {LOOK_WARN_LEVEL:g}")
+    assert m.warning is None
+    fresh = LookMonitor()
+    assert all(fresh.update(0.6) is None for _ in range(LOOK_WARN_MIN_PARTS - 1))  # too few parts to judge
+    assert fresh.update(0.6) is not None
+    watch = CameraWatch(None)  # a file without the blend reports no look level: nothing is watched
+    assert all(watch.update(None, {"turn_deg": 0.0}) == [] for _ in range(60)) and watch.warning is None
+    said = [t for _ in range(60) for t in watch.update(None, {"turn_deg": 0.0, "look_level": 0.6})]
+    assert len(said) == 1 and said[0].startswith("look: the last 50 parts' look level is 0.60")
+    assert watch.warning is not None and watch.warning.startswith("look:")

@@ -110,7 +110,7 @@ FULL = InspectionRecord(
     ground_truth_present=True, image_path="img/9.png", median_level=0.4, high_level=0.8, clipped_fraction=0.01,
     dolp_level=0.05, drift="brighter", highlight_fraction=0.02, noise_level=1.1, second_score=0.3,
     second_threshold=0.6, second_model_id="side1", second_frame_id=11, edge_bend=-1.5,
-    edge_step=2.5, unseen_fraction=0.03, turn_deg=-7.5)
+    edge_step=2.5, unseen_fraction=0.03, turn_deg=-7.5, look_level=0.31)
 """A record with every column set (a two-camera station's row: its second model's id is text)."""
 
 
@@ -253,6 +253,28 @@ def test_report_warns_when_the_parts_lie_turned_from_the_models_good_parts(tmp_p
     assert reject_cause(both) == "part turned"
 
 
+def test_report_warns_when_the_look_network_reads_the_parts_as_unlike_its_renders(tmp_path):
+    """A lens the renders did not have raises the good parts' ``look_level`` (median 0.27 on the renders, 0.53 through
+    a vignetting lens, seed 1240). The report says LOOK once the median of at least ``LOOK_WARN_MIN_PARTS`` parts with
+    the column is above ``LOOK_WARN_LEVEL``; a log from a file without the blend has none and says nothing."""
+    from station.drift import LOOK_WARN_MIN_PARTS
+    from station.log_report import format_summary, summarize
+
+    renders = [0.1 + 0.35 * i / 119 for i in range(120)]
+    with InspectionLog(tmp_path / "renders.sqlite") as log:
+        log.append([rec(i, look_level=v) for i, v in enumerate(renders)] + [rec(120)])
+        quiet = summarize(log.rows())
+    with InspectionLog(tmp_path / "lens.sqlite") as log:
+        log.append([rec(i, look_level=v + 0.26) for i, v in enumerate(renders)])
+        lens = summarize(log.rows())
+        early = summarize(list(log.rows())[:LOOK_WARN_MIN_PARTS - 1])
+    assert quiet.look_median is None and "LOOK" not in format_summary(quiet)
+    assert lens.look_median == pytest.approx(0.535) and lens.look_parts == 120
+    assert ("LOOK: the 120 parts' look level is 0.54 at the median (above 0.4): the look network reads these frames "
+            "as unlike its renders") in format_summary(lens)
+    assert early.look_median is None  # too few parts to tell a line
+
+
 def test_the_log_has_a_column_for_every_frame_check_the_model_reports():
     from model.draem.frame_checks import FRAME_CHECKS
 
@@ -322,11 +344,11 @@ def test_version_1_log_reads_and_is_migrated_on_write(tmp_path):
 def test_newer_schema_is_refused_by_name(tmp_path):
     import sqlite3
 
-    db = tmp_path / "v10.sqlite"
+    db = tmp_path / "v11.sqlite"
     con = sqlite3.connect(db)
-    con.execute("PRAGMA user_version=10")
+    con.execute("PRAGMA user_version=11")
     con.close()
-    with pytest.raises(LogError, match=r"v10\.sqlite: schema version 10"):
+    with pytest.raises(LogError, match=r"v11\.sqlite: schema version 11"):
         InspectionLog(db, readonly=True)
 
 

@@ -724,6 +724,36 @@ def test_parts_turned_from_the_models_good_parts_warn_once_and_the_warning_stays
     log.close()
 
 
+def test_a_look_network_reading_the_parts_as_unlike_its_renders_warns_once_and_stays_in_each_row(tmp_path, caplog):
+    """Through a lens the renders did not have the look network's finding on good parts rises (median look level 0.53
+    through a vignetting lens, 0.27 on the renders): once 50 parts are judged and their median is above 0.4, the
+    station warns once ("look: ...") and keeps the warning in each row's ``drift``; each row logs its part's look
+    level, and no decision changes."""
+    from station.log_report import format_summary, summarize
+
+    class Vignetted(BrightnessDetector):
+        """Good parts whose look level reads 0.45-0.65."""
+
+        calls = 0
+
+        def infer(self, priors):
+            out = super().infer(priors)
+            Vignetted.calls += 1
+            return Inference(out.score, checks={"look_level": 0.55 + 0.1 * ((Vignetted.calls * 7) % 11 - 5) / 5})
+
+    n = 60
+    station, log = make_station(tmp_path, ScriptedCamera([0] * n), Vignetted(), queue_size=32, backpressure="block")
+    station.run(max_parts=n)
+    rows = list(log.rows())
+    assert [r["look_level"] for r in rows[:2]] == pytest.approx([0.55 + 0.1 * 2 / 5, 0.55 + 0.1 * -2 / 5])
+    assert all(r["drift"] is None for r in rows[:49])  # too few parts to tell a line
+    assert all(r["drift"].startswith("look: the last ") and "station adapt" in r["drift"] for r in rows[49:])
+    assert sum(r.message.startswith("look: ") for r in caplog.records) == 1
+    assert all(r["decision"] == "pass" for r in rows)  # it changes no decision
+    assert "LOOK: the 60 parts' look level is 0.5" in format_summary(summarize(log.rows()))
+    log.close()
+
+
 class HangingDetector(BrightnessDetector):
     """Its ``hang_on``-th call (1-based; every call when None) blocks until ``release`` is set: a hung model."""
 

@@ -32,7 +32,7 @@ def frame(decision: str, anomaly: bool, part: str = "P1") -> ViewFrame:
                      aolp=(np.pi * y / h).astype(np.float32), normal=np.dstack([0 * x, 0 * x, 1 + 0 * x]),
                      heatmap=heat, stats={"parts": 10, "parts_per_s": 12.5},
                      checks={"noise_level": 1.5, "highlight_fraction": 0.04, "edge_bend": -0.4,
-                             "unseen_fraction": 0.023, "turn_deg": -7.46})
+                             "unseen_fraction": 0.023, "turn_deg": -7.46, "look_level": 0.314})
 
 
 def grab(app, window, tmp_path, name):
@@ -71,7 +71,8 @@ def test_reject_shows_red_badge_and_heatmap_pass_shows_green(app, tmp_path):
     bad = grab(app, window, tmp_path, "reject.png")
     assert window.badge.text() == "REJECT" and "part P2" in window.stats.text()
     # the model's frame checks
-    assert "noise level 1.50  highlights 4 %  edge bend -0.40  outside view 2.3 %  turn -7.5 deg" in window.stats.text()
+    assert ("noise level 1.50  highlights 4 %  edge bend -0.40  outside view 2.3 %  turn -7.5 deg  look 0.31"
+            in window.stats.text())
     assert green_pixels(ok) > 2000 and red_pixels(ok) < 200
     # the red badge plus an opaque red heatmap patch over the intensity image
     assert red_pixels(bad) > red_pixels(ok) + 4000
