@@ -88,6 +88,8 @@ PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml
 VARY=(--config sim/presets/panel-vary.toml)  # training and validation only (rule 52)
 FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only (rules 62-63)
 EDGES=(--edge-mm 0,0.4)  # training and calibration only (rule 67): each part's chamfer drawn 0-0.4 mm
+LENS=${LENS:-}  # a preset layered last on the training, calibration and validation sets (sim/presets/lens-vary.toml:
+LENS_CONFIG=(${LENS:+--config "$LENS"})  # a lens drawn per part; docs/results/2026-12-08-lens-train/plan.md); "": none
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores
 # the priors every network and the variation model read: the shipped file's intensity alone (since 2026-12-04:
@@ -122,10 +124,12 @@ render() {  # render OUT ARGS...: JOBS shards in parallel, each resumable
     record "$t0" render "$out"
 }
 
-render "$DATA" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" --count "$TRAIN_COUNT" --seed 101 --defects 0.4 --defects-in-train
+render "$DATA" "${VARY[@]}" "${FINISH[@]}" "${LENS_CONFIG[@]}" "${EDGES[@]}" --count "$TRAIN_COUNT" --seed 101 \
+    --defects 0.4 --defects-in-train
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 --heldout --visibility
-render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" "${EDGES[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
-render "$VAL" "${VARY[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
+render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" "${LENS_CONFIG[@]}" "${EDGES[@]}" --count "$VAL_COUNT" --seed 303 \
+    --defects 0.4 --validation
+render "$VAL" "${VARY[@]}" "${LENS_CONFIG[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
 if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
     render "$NEW_KINDS" --config sim/presets/new-kinds.toml --count "$NEW_KINDS_COUNT" --seed "$NEW_KINDS_SEED" \
         --defects 0.6 --heldout --visibility

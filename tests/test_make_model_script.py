@@ -367,3 +367,26 @@ def test_make_model_region_reaches_every_network(tmp_path: Path) -> None:
         runs.mkdir()
         trained = [a for a in dry_run(runs, NEW_KINDS_COUNT="0", **env) if a[0] == "train" and "--roi" in a]
         assert trained and {(a[a.index("--roi") + 1], a[a.index("--size") + 1]) for a in trained} == {want}
+
+
+def test_a_lens_preset_is_layered_last_on_the_fit_calibration_and_threshold_sets_only(tmp_path: Path) -> None:
+    """``LENS=PRESET`` (docs/results/2026-12-08-lens-train/plan.md): the sets the model is fitted, calibrated and
+    thresholded on draw the lens that preset names (``sim/presets/lens-vary.toml``: a blur and vignetting per part),
+    layered last; the held-out and new-kinds sets stay the line as built. Unset, no render names it."""
+    lens = "sim/presets/lens-vary.toml"
+    assert (ROOT / lens).is_file()
+    for env, want in (({}, False), ({"LENS": lens}, True)):
+        (tmp_path / str(want)).mkdir()
+        calls = dry_run(tmp_path / str(want), **env)
+        renders = {args[args.index("--out") + 1]: args for args in calls if args[0] == "render"}
+        configs = {out: [a[i + 1] for i, x in enumerate(a) if x == "--config"] for out, a in renders.items()}
+        for out in ("data/line-ef-train", "data/line-ef-val", "data/line-pv-val"):
+            assert (configs[out][-1] == lens) is want, out
+        for out in ("data/line-panel-heldout", "data/new-kinds-heldout"):
+            assert lens not in configs[out], out
+
+
+def test_the_lens_preset_draws_a_blur_and_vignetting_per_part() -> None:
+    """Its ranges are the plan's: a blur of 0-1 frame px and 0-30 % of the light lost at the frame's corners."""
+    data = tomllib.loads((ROOT / "sim" / "presets" / "lens-vary.toml").read_text())
+    assert data["variation"] == {"lens_blur_px": [0.0, 1.0], "vignetting": [0.0, 0.3]}
