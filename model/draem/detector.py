@@ -149,7 +149,7 @@ class Detector(nn.Module):
             assert v.judged is not None
             found = self.look_finding(self.residual.top_logits(*self.residual_inputs(v.signed, v.judged)))
             return v._replace(scores=self.residual.blend_score(v.scores, window, found).to(v.scores.dtype),
-                              look_level=(found / float(self.residual.blend[2])).float())
+                              look_level=self.residual.look_level(found))
         ask = [i for i, w in enumerate(window.tolist()) if look.suspicious(w)]
         if not ask:
             return v

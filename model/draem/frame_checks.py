@@ -76,7 +76,8 @@ def beyond_limits(checks: Mapping[str, float]) -> list[str]:
     steps beyond every good part's, a part partly outside the model's view, a part turned further than the model was
     measured to hold."""
     said = []
-    hidden, noise, bend, step, unseen, turn = (checks.get(k, math.nan) for k in FRAME_CHECKS[:6])  # look: no reason
+    hidden, noise, bend, step, unseen, turn = (checks.get(k, math.nan) for k in (  # look_level gives no reason
+        "highlight_fraction", "noise_level", "edge_bend", "edge_step", "unseen_fraction", "turn_deg"))
     if hidden > MAX_HIDDEN:
         said.append(f"highlights cover {100 * hidden:.0f} % of the part (over {100 * MAX_HIDDEN:.0f} %: judged "
                     "with them, as a part unlike the model's line)")

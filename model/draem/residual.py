@@ -267,6 +267,11 @@ class ResidualDetector(nn.Module):
         weight, t_w, t_f = (float(v) for v in self.blend)
         return blended(score, window, found, weight, t_w, t_f)
 
+    def look_level(self, found: torch.Tensor) -> torch.Tensor:
+        """(N,) the networks' finding in the window's units -> (N,) over this blend's finding threshold (1 where the
+        network alone would reject), float32: the ``look_level`` frame check."""
+        return (found / float(self.blend[2])).float()
+
     def calibrate(self, raw: torch.Tensor) -> None:
         """Set ``calibration`` from (members, N) raw scores of good validation parts (at least 2)."""
         if raw.shape[1] < 2:
