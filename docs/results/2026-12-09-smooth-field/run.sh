@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# plan.md's fresh sets (rendered before candidate Q exists; read only once it does): B' (seed 1243, as built),
+# V' (B' through the whole lens chain), N' (seed 1244, kinds nobody rendered). Resumable; at nice 19 (autogroup).
+set -euo pipefail
+HERE=$(cd "$(dirname "$0")" && pwd)
+cd "$HERE/../../.."
+BIN=.venv/bin
+R=runs/smooth-field
+mkdir -p "$R"
+echo 19 > /proc/self/autogroup 2>/dev/null || true  # nice across sessions: Linux autogroups ignore a process's own nice
+export OMP_NUM_THREADS=1 PYTHONPATH=.
+PRESET=(--config sim/presets/line-polar.toml --config sim/presets/variation.toml --config sim/presets/panel.toml
+        --count 400 --defects 0.6 --heldout)
+render() {  # render DIR ARGS...: two shards at once, each resumable
+    local dir=$1; shift
+    [ -f "$R/$(basename "$dir").done" ] && return
+    for k in 0 1; do "$BIN/station" render --out "$dir" "${PRESET[@]}" --shard "$k/2" "$@" \
+        > "$R/$(basename "$dir")-$k.log" 2>&1 & done
+    wait
+    touch "$R/$(basename "$dir").done"
+}
+render data/sf-built-1243 --seed 1243
+if [ ! -f "$R/allff.done" ]; then
+    rm -rf data/sf-allff-1243
+    "$BIN/python" docs/results/2026-11-29-fireflies/reexpose.py data/sf-built-1243 data/sf-allff-1243 all \
+        > "$R/derive-allff.log" 2>&1
+    touch "$R/allff.done"
+fi
+render data/sf-new-1244 --config sim/presets/new-kinds.toml --seed 1244
+echo "sets done $(date +%T)"
