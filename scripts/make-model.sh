@@ -90,6 +90,8 @@ FINISH=(--config sim/presets/finish-vary.toml)  # training and calibration only 
 EDGES=(--edge-mm 0,0.4)  # training and calibration only (rule 67): each part's chamfer drawn 0-0.4 mm
 LENS=${LENS:-}  # a preset layered last on the training, calibration and validation sets (sim/presets/lens-vary.toml:
 LENS_CONFIG=(${LENS:+--config "$LENS"})  # a lens drawn per part; docs/results/2026-12-08-lens-train/plan.md); "": none
+SMOOTH_FIELD=${SMOOTH_FIELD:-0}  # 1: every variation fit takes a lens's smooth field out (station variation
+SMOOTH=(); [ "$SMOOTH_FIELD" = 1 ] && SMOOTH=(--smooth-field)  # --smooth-field; docs/results/2026-12-09-smooth-field)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores
 # the priors every network and the variation model read: the shipped file's intensity alone (since 2026-12-04:
@@ -150,7 +152,7 @@ else
 fi
 variation() {  # variation IN OUT [ARGS]: add the variation model unless OUT exists (resumable)
     [ -f "$2.json" ] || station variation --model "$1" --data "$DATA" --val-data "$CALIBRATION" --out "$2" \
-        "${@:3}"
+        "${SMOOTH[@]}" "${@:3}"
 }
 shape() {  # shape NAME: the shape check added to RUNS/NAME in place, unless it has one (resumable)
     grep -qs '"outline": ' "$RUNS/$1.json" && return 0  # its sidecar's train.shape.outline (since stop 106)

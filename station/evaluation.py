@@ -268,7 +268,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
                   global_polarization: str | None = None, clusters: int | None = None,
                   global_contrast: str | None = None, second_look: bool | None = None,
                   curvature_sigma: float | None = None, second_look_test: bool | None = None,
-                  judged_priors: list[str] | None = None) -> str:
+                  judged_priors: list[str] | None = None, smooth_field: bool | None = None) -> str:
     """Checkpoint ``model`` plus the variation model fitted on ``data``'s good train parts and calibrated on the good
     parts of ``val_data``'s val split (default ``data``'s), thresholded on that split (``set_threshold``'s rule),
     written to ``out``; one line saying what it does on the val split. ``decision``: ``ModelConfig.decision``
@@ -289,7 +289,9 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     ``second_look_test``: the second look tests where the map points (False: it only gates the parts a look network
     is asked about; None: the shipped recipe, ``model.draem.variation.SECOND_LOOK_TEST``). ``judged_priors``: the
     priors whose channels the window is taken over (None: all, the shipped recipe; the others are read, intensity
-    registers the part: ``model.draem.variation``'s ``judged_channels``). The sidecar's
+    registers the part: ``model.draem.variation``'s ``judged_channels``). ``smooth_field``: take a lens's smooth
+    field out of every frame's residual (None: the shipped recipe, ``model.draem.variation.SMOOTH_FIELD``). The
+    sidecar's
     frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
     variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
@@ -305,6 +307,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         MIN_FIT_PARTS,
         SECOND_LOOK,
         SECOND_LOOK_TEST,
+        SMOOTH_FIELD,
         shipped_alignment,
     )
     from model.draem.with_variation import add_variation, judged_channels, without_variation
@@ -317,6 +320,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     second_look = SECOND_LOOK if second_look is None else second_look
     curvature_sigma = CURVATURE_SIGMA if curvature_sigma is None else curvature_sigma
     second_look_test = SECOND_LOOK_TEST if second_look_test is None else second_look_test
+    smooth_field = SMOOTH_FIELD if smooth_field is None else smooth_field
     if not 0.0 <= curvature_sigma <= MAX_CURVATURE_SIGMA:
         raise UserError(f"--curvature {curvature_sigma}: give the curvature's sigma in input px, in [0, "
                         f"{MAX_CURVATURE_SIGMA:g}] (0: the box window)")
@@ -362,7 +366,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
                             va.priors[good_va], decision=decision, blur_copies_sigma=blur_copies_sigma,
                             global_polarization=alignment, clusters=clusters, global_contrast=contrast,
                             second_look=second_look, curvature_sigma=curvature_sigma,
-                            second_look_test=second_look_test, judged_priors=judged_priors)
+                            second_look_test=second_look_test, judged_priors=judged_priors,
+                            smooth_field=smooth_field)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "variation", {
@@ -373,7 +378,7 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         "second_look_references": det.variation.second_look.references,
         "curvature_sigma": float(det.variation.curvature_sigma),
         "second_look_test": det.variation.second_look.testing if det.variation.second_look.references else None,
-        "judged_priors": judged_priors},
+        "judged_priors": judged_priors, "smooth_field": det.variation.takes_smooth_field},
         StatisticsRange.from_frames(tr.frame_stats).to_dict())
     n_bad = int(labels.sum())
     detected = f" and {choice.detected_fraction:.1%} of defective" if n_bad else ""
@@ -389,6 +394,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
         copies += f", its window each channel's curvature over {curvature_sigma:g} px"
     if judged_priors:
         copies += f", judging {', '.join(judged_priors)} only"
+    if det.variation.takes_smooth_field:
+        copies += ", a lens's smooth field taken out"
     looks = det.variation.second_look.references
     if looks and det.variation.second_look.testing:
         copies += f", a second look at suspicious parts against {looks} of them"

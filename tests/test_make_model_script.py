@@ -386,6 +386,15 @@ def test_a_lens_preset_is_layered_last_on_the_fit_calibration_and_threshold_sets
             assert lens not in configs[out], out
 
 
+def test_smooth_field_reaches_every_variation_fit_and_is_off_unset(tmp_path: Path) -> None:
+    """``SMOOTH_FIELD=1`` (docs/results/2026-12-09-smooth-field/plan.md): every variation model make model fits takes
+    a lens's smooth field out (``station variation --smooth-field``); unset, none is asked for (the shipped recipe)."""
+    for env, want in (({}, False), ({"SMOOTH_FIELD": "1"}, True)):
+        (tmp_path / str(want)).mkdir()
+        fits = [args for args in dry_run(tmp_path / str(want), **env) if args[0] == "variation"]
+        assert fits and all(("--smooth-field" in args) is want for args in fits)
+
+
 def test_the_lens_preset_draws_a_blur_and_vignetting_per_part() -> None:
     """Its ranges are the plan's: a blur of 0-1 frame px and 0-30 % of the light lost at the frame's corners."""
     data = tomllib.loads((ROOT / "sim" / "presets" / "lens-vary.toml").read_text())

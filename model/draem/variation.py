@@ -117,6 +117,11 @@ Convention (all at the network's input: ``ModelConfig.input_shape``, channels as
               response that is a power of I (a gamma g: I -> I^g) multiplies log I, and so the feature (log I minus
               its median), by g; exposure and gain, a factor on I, the median takes out. A defect changes a place,
               not the part's contrast
+    smooth field  (``smooth_field`` 1; off in the shipped recipe and in files before 2026-12-07) a lens's
+              vignetting, a smooth field in the log intensity feature that no rendered good part had, fitted on
+              ``model.draem.smooth_field.smooth_basis`` (a quadratic over the part region) beside the components
+              and so taken out of every frame's residual; the good parts lose their own before their components
+              are fitted (docs/results/2026-12-09-smooth-field/plan.md)
     clusters  (``clusters`` >= 2; none in files before 2026-11-28) the residual after the components, judged against
               the good parts most like the frame, not against all of them: the fit groups its good parts by their
               components' coefficients (k-means, ``model.draem.appearance_clusters``) and keeps each group's mean
@@ -153,6 +158,7 @@ from .outline_check import OutlineCheck
 from .second_look import SecondLook
 from .shape_check import ShapeCheck
 from .shifts import Channels, blurred_copies
+from .smooth_field import smooth_basis
 
 LOG_FLOOR = 1e-3
 """Intensity below this (full scale) is read as this before the log: black belt and shadows stay finite."""
@@ -251,15 +257,15 @@ LATER_BUFFERS = ("window_location", "window_spread", "reads_dolp", "blur_copies_
                  "contrast_range", "second_look.calibration", "second_look.chi", "second_look.judged",
                  "curvature_sigma", "second_look.tests", "judged_channels", "shape.edge", "shape.calibration",
                  "outline.edges", "outline.median", "outline.centre", "outline.spread", "outline.calibration",
-                 "turn_centre")
+                 "turn_centre", "smooth_field")
 """Buffers added after the first variation checkpoints were shipped: a checkpoint without them loads with their initial
 values (window location 0 and spread 1: the window statistic uncalibrated; ``reads_dolp`` 1: DoLP read as a feature;
 ``blur_copies_sigma`` 0: fitted without blurred copies; ``global_polarization`` 0: each frame's polarization read as
 it is; ``polarization_range`` ``NO_POLARIZATION_RANGE``, which ``MEAN`` files had; no clusters; ``contrast_range``
 ``CONTRAST_GAIN_RANGE``: contrast judged as it is; no second look; ``curvature_sigma`` 0: the box window;
 ``second_look.tests`` 1: a second look tests; ``judged_channels`` all 1: every feature judged; ``shape`` NaN: no
-shape check; ``outline`` NaN: no outline check; ``turn_centre`` NaN: no turn read, ``calibrate_turn``), which score
-as those models did. Dotted names are a submodule's
+shape check; ``outline`` NaN: no outline check; ``turn_centre`` NaN: no turn read, ``calibrate_turn``;
+``smooth_field`` 0: no smooth field taken out), which score as those models did. Dotted names are a submodule's
 (``nn.Module.get_buffer``)."""
 
 NO_POLARIZATION_RANGE = (1.0, 1.0, 0.0, 0.0)
@@ -291,6 +297,10 @@ blurred copies (1.5 px): every frame-wide shift held (good parts rejected at the
 1.25 7.1 % against 27.6 %, under 1 px of blur 15.4 % against 56.4 %), but scratches 0.790 against 0.836 (2.3 paired
 SE): dividing the frame by its gain rescaled its noise with its contrast (a robust fit of the gain did no better),
 which the residual in the frame's own units no longer does (rule 43)."""
+
+SMOOTH_FIELD = False
+"""The shipped recipe's ``smooth_field`` (``station variation --smooth-field``): off, until
+docs/results/2026-12-09-smooth-field/plan.md's bars are read (module docstring: smooth field)."""
 
 CURVATURE_SIGMA = 3.0
 """The shipped recipe's window statistic (``station variation --curvature``; 0: the box average of the largest
@@ -539,6 +549,7 @@ class VariationModel(nn.Module):
         self.register_buffer("curvature_sigma", torch.tensor(0.0))
         self.register_buffer("judged_channels", torch.ones(channels))
         self.register_buffer("turn_centre", torch.tensor(math.nan))
+        self.register_buffer("smooth_field", torch.tensor(0.0))
         self._resize_clusters(0, 0)
         self.second_look = SecondLook()
         self.shape = ShapeCheck()
@@ -684,6 +695,18 @@ class VariationModel(nn.Module):
         lo_hi = tuple(float(v) for v in self.contrast_range)
         return {CONTRAST_GAIN_RANGE: Alignment.OFF, (1.0, 1.0): Alignment.MEAN}.get(lo_hi, Alignment.RANGE)
 
+    @property
+    def takes_smooth_field(self) -> bool:
+        """Whether the fit takes a lens's smooth field out of each frame's residual (``smooth_field``)."""
+        return float(self.smooth_field) == 1.0
+
+    def _smooth_basis(self) -> np.ndarray:
+        """``smooth_basis`` over the part region when the model takes the smooth field out, else (0, C, H, W)."""
+        channels = len(self.mean)
+        if not self.takes_smooth_field:
+            return np.zeros((0, channels, *self.region.shape), np.float32)
+        return smooth_basis(self.region.numpy(), channels, self.intensity)
+
     def contrast_factor(self, f: np.ndarray, where: np.ndarray, reference: np.ndarray | None = None) -> float:
         """Registered features ``f`` (C, H, W) -> the frame-wide gain c that best maps ``reference`` (H, W; None:
         the good parts' mean log intensity feature) onto the frame's log intensity feature over the pixels
@@ -810,7 +833,7 @@ class VariationModel(nn.Module):
             global_polarization: Alignment | str | bool | None = None,
             clusters: int | None = None, global_contrast: Alignment | str | None = None,
             curvature_sigma: float | None = None, judged_channels: Sequence[int] | None = None,
-            around: torch.Tensor | None = None) -> np.ndarray:
+            around: torch.Tensor | None = None, smooth_field: bool | None = None) -> np.ndarray:
         """Fit on good parts: ``x`` (N, C, H, W) physical priors, ``object_mask`` (N, H, W) bool where the part is
         (rendered sets have it; None: the whole input). The reference is the first part, then twice the median
         of the first 64 parts registered to it; the region is where at least half of the registered masks lie.
@@ -845,7 +868,10 @@ class VariationModel(nn.Module):
         refit keeps them): the channels the window statistic is taken over; the others are read (intensity still
         registers the part) but not judged. ModelError when none of them is a feature. ``around``: (N, C, H + 2 m,
         W + 2 n) the frame around each part, NaN beyond the frame, read by the registration's warp as ``zmaps``
-        reads it (module docstring: around; a blurred copy's frame around is blurred alike); None: the view alone."""
+        reads it (module docstring: around; a blurred copy's frame around is blurred alike); None: the view alone.
+        ``smooth_field`` (None: the model's own, so a refit keeps it): take a lens's smooth field out (module
+        docstring: smooth field): the good parts' features lose their projection on ``smooth_basis`` before their
+        appearance is fitted, and every frame's residual is fitted on it beside the components."""
         xs = x.float().cpu().numpy()
         arounds = per_part(around, len(xs))
         n_parts = len(xs)
@@ -870,6 +896,8 @@ class VariationModel(nn.Module):
                              "DoLP")
         self.blur_copies_sigma.fill_(sigma)
         self.curvature_sigma.fill_(curvature_sigma)
+        if smooth_field is not None:
+            self.smooth_field.fill_(1.0 if smooth_field else 0.0)
         mode = (self.polarization_alignment if global_polarization is None
                 else Alignment.of(global_polarization))
         if mode is not Alignment.OFF and (self.dolp is None or self.aolp is None):
@@ -923,6 +951,8 @@ class VariationModel(nn.Module):
         spread = 1.4826 * np.median(np.abs(stack - np.median(stack, 0))[:, :, region], axis=(0, 2))
         channel_scale = np.maximum(spread, MIN_SCALE).astype(np.float32)
         u = stack / channel_scale[:, None, None] * region
+        if self.takes_smooth_field:  # the good parts without their own smooth field: the components need not hold it
+            u = self._residual(u, smooth_basis(region, u.shape[1], self.intensity))[0]
         k = min(COMPONENTS, (n_parts - n_parts // FOLDS) // 20)
         mean, components = self._appearance(u, k)
         # residuals of each part from a fit without it: in-sample ones are too small, the more so the more components;
@@ -1155,6 +1185,8 @@ class VariationModel(nn.Module):
         if not bool(((judged == 0) | (judged == 1)).all()) or not self.judged_mask().any():
             raise ModelError(f"variation model: judged_channels is {judged.tolist()}: each 0 or 1, at least one "
                              f"feature judged")
+        if float(self.smooth_field) not in (0.0, 1.0):
+            raise ModelError(f"variation model: smooth_field is {float(self.smooth_field):g}: 0 or 1")
         sigma = float(self.curvature_sigma)
         if not 0.0 <= sigma <= MAX_CURVATURE_SIGMA:  # NaN fails too
             raise ModelError(f"variation model: curvature_sigma is {sigma:g}, outside [0, {MAX_CURVATURE_SIGMA:g}] "
@@ -1237,8 +1269,10 @@ class VariationModel(nn.Module):
         if judged.sum() < (1.0 - MAX_HIDDEN) * part.sum():
             judged = part  # too much hidden to judge the part by the rest: fail closed
         u = (warped[:-1] - mean) / self.channel_scale.numpy()[:, None, None] * part
-        r, coef = self._residual(u[None], self.components.numpy(), judged)
-        r = r[0]
+        smooth = self._smooth_basis()
+        components = np.concatenate([smooth, self.components.numpy()]) if len(smooth) else self.components.numpy()
+        r, coef = self._residual(u[None], components, judged)
+        r, coef = r[0], coef[:, len(smooth):]  # the appearance's coefficients (the clusters group by them)
         r[self.intensity] *= k  # in the frame's own units: its noise is not rescaled with its contrast
         return r / self.scale.numpy(), coef[0], judged, float(hidden)
 

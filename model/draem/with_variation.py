@@ -28,7 +28,7 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
                   global_polarization: Alignment | str | bool = Alignment.OFF,
                   clusters: int = 0, global_contrast: Alignment | str = Alignment.OFF,
                   second_look: bool = False, curvature_sigma: float = 0.0, second_look_test: bool = True,
-                  judged_priors: Sequence[str] | None = None) -> Detector:
+                  judged_priors: Sequence[str] | None = None, smooth_field: bool = False) -> Detector:
     """A copy of ``detector`` with ``config.variation`` set: the variation model fitted on ``good`` (N, C, H, W)
     physical priors of good training parts (``good_object_mask`` (N, H, W): where the part is; None: the whole
     input), then calibrated with both detectors' image scores on ``val_good`` (good validation parts, never the
@@ -44,7 +44,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     the box). ``second_look_test``: the second look tests the regions its map points at (False: it only gates the
     parts a look network is asked about; ``model.draem.second_look``). ``judged_priors``: the priors whose channels
     the window statistic is taken over (``judged_channels``; None: all; the others are read, intensity registers the
-    part); ModelError for a prior the detector does not read."""
+    part); ModelError for a prior the detector does not read. ``smooth_field``: take a lens's smooth field out of
+    every frame's residual (``VariationModel.fit``)."""
     if detector.config.variation:
         raise ModelError("the detector already has a variation model")
     if len(val_good) < 2:
@@ -58,7 +59,8 @@ def add_variation(detector: Detector, good: torch.Tensor, good_object_mask: torc
     references = out.variation.fit(good, good_object_mask, blur_copies_sigma=blur_copies_sigma,
                                    global_polarization=global_polarization, clusters=clusters,
                                    global_contrast=global_contrast, curvature_sigma=curvature_sigma,
-                                   judged_channels=judged_channels(detector.config.priors, judged_priors))
+                                   judged_channels=judged_channels(detector.config.priors, judged_priors),
+                                   smooth_field=smooth_field)
     if second_look and len(references) >= MIN_REFERENCES:
         add_second_look(out, references, val_good, batch, test=second_look_test)
     out.variation.calibrate(*member_scores(out, val_good, batch))  # member scores do not depend on calibration

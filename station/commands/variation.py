@@ -75,6 +75,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="comma-separated priors whose channels the window statistic is taken over; the others are "
                         "read (intensity still registers the part) but not judged: e.g. normal for a judge of a "
                         "deflectometry map alone beside the line's own file (default: all, the shipped recipe)")
+    p.add_argument("--smooth-field", action=argparse.BooleanOptionalAction, default=None,
+                   help="take a lens's smooth field (its vignetting: a quadratic over the part in log intensity) out "
+                        "of every frame's residual, beside the appearance components (model.draem.smooth_field; "
+                        "default: the shipped recipe, model.draem.variation.SMOOTH_FIELD: off)")
     p.add_argument("--refit", action="store_true",
                    help="the model already has a variation model: fit it again, networks kept (e.g. the shipped "
                         "model with --blur-copies, or on more good parts)")
@@ -88,5 +92,6 @@ def run(args: argparse.Namespace) -> int:
     print(fit_variation(args.model, args.data, args.out, args.max_good_flagged, args.val_data, args.decision,
                         args.fit_parts, args.blur_copies, args.refit, args.global_polarization, args.clusters,
                         args.global_contrast, args.second_look, args.curvature, args.second_look_test,
-                        args.judged_priors.split(",") if args.judged_priors is not None else None))
+                        args.judged_priors.split(",") if args.judged_priors is not None else None,
+                        args.smooth_field))
     return 0

@@ -227,6 +227,22 @@ def test_the_curvature_window_is_fitted_recorded_kept_by_a_refit_and_a_bad_sigma
         refused_naming(capsys, "--curvature", bad, model, data, tmp_path / "w")
 
 
+def test_the_smooth_field_is_taken_out_when_asked_recorded_and_said(tmp_path: Path, capsys) -> None:
+    """``--smooth-field``: the variation model takes a lens's smooth field out of every frame's residual
+    (``model.draem.smooth_field``); the file, its sidecar and the command's line say so. Without the flag the shipped
+    recipe's (none)."""
+    from model.draem.checkpoint import load_checkpoint
+
+    data, model = trained(tmp_path, capsys)
+    for flag, on in (("--smooth-field", True), ("--no-smooth-field", False)):
+        out = tmp_path / flag
+        assert main(["variation", "--model", str(model), "--data", str(data), flag, "--out", str(out)]) == 0
+        assert ("a lens's smooth field taken out" in capsys.readouterr().out) is on
+        assert json.loads(out.with_suffix(".json").read_text())["train"]["variation"]["smooth_field"] is on
+        vm = load_checkpoint(out).detector.variation
+        assert vm is not None and vm.takes_smooth_field is on
+
+
 def test_a_second_look_without_its_test_is_recorded_and_said(tmp_path: Path, capsys) -> None:
     """``--no-second-look-test``: the second look only gates the parts a look network is asked about; the file, its
     sidecar and the command's line say so (this set's ~30 good parts make 20 or more references)."""
