@@ -31,8 +31,10 @@ MODELS = ("S", "L")
 
 
 def read(name: str) -> dict:
+    """One set's read of the shipped file S against the candidate (``MODELS``' second)."""
+    c = MODELS[1]
     d = {m: load(m, name) for m in MODELS}
-    assert (d["S"]["index"] == d["L"]["index"]).all() and (d["S"]["label"] == d["L"]["label"]).all()
+    assert (d["S"]["index"] == d[c]["index"]).all() and (d["S"]["label"] == d[c]["label"]).all()
     y, types = d["S"]["label"], d["S"]["type"]
     res: dict = {"good": int((y == 0).sum()), "defective": int((y == 1).sum())}
     rej = {m: d[m]["score"] > d[m]["threshold"] for m in MODELS}
@@ -45,48 +47,50 @@ def read(name: str) -> dict:
                   "caught_by_type": {t: float(rej[m][types == t].mean()) for t in kinds},
                   "auroc_by_type": {t: auroc(y[(y == 0) | (types == t)], s[(y == 0) | (types == t)]) for t in kinds}}
         res[m]["matched_mean"] = float(np.mean(res[m]["matched"]))
-    only_l = int((rej["L"] & ~rej["S"] & (y == 0)).sum())
-    only_s = int((rej["S"] & ~rej["L"] & (y == 0)).sum())
-    res["good_only_L"], res["good_only_S"], res["good_sign_p"] = only_l, only_s, sign_test(only_l, only_s)
-    res["caught_diff_se"] = boot_se(rej["L"][y == 1].astype(float), rej["S"][y == 1].astype(float))
+    only_c = int((rej[c] & ~rej["S"] & (y == 0)).sum())
+    only_s = int((rej["S"] & ~rej[c] & (y == 0)).sum())
+    res[f"good_only_{c}"], res["good_only_S"], res["good_sign_p"] = only_c, only_s, sign_test(only_c, only_s)
+    res["caught_diff_se"] = boot_se(rej[c][y == 1].astype(float), rej["S"][y == 1].astype(float))
     return res
 
 
-def main() -> None:
+def main(out_name: str = "read.json") -> None:
+    """Print the tables and the plan's bars (the sets ``SETS`` names: B, V, N in that order); write ``out_name``."""
+    c = MODELS[1]
     out: dict = {}
-    print("| set | good | S: good rejected | L: good rejected | only L / only S (p) | S: caught | L: caught | "
-          "L - S (SE) | S: AUROC | L: AUROC |")
+    print(f"| set | good | S: good rejected | {c}: good rejected | only {c} / only S (p) | S: caught | {c}: caught | "
+          f"{c} - S (SE) | S: AUROC | {c}: AUROC |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for name, label in SETS.items():
         if not all((HERE / "eval" / f"{m}-{name}" / "scores.csv").exists() for m in MODELS):
             print(f"| {label} | not evaluated |||||||||")
             continue
         r = out[name] = read(name)
-        s, lo = r["S"], r["L"]
+        s, lo = r["S"], r[c]
         print(f"| {label} | {r['good']} | {s['good_rejected']} ({s['good_rejected'] / r['good']:.1%}) | "
-              f"{lo['good_rejected']} ({lo['good_rejected'] / r['good']:.1%}) | {r['good_only_L']} / "
+              f"{lo['good_rejected']} ({lo['good_rejected'] / r['good']:.1%}) | {r[f'good_only_{c}']} / "
               f"{r['good_only_S']} ({r['good_sign_p']:.2g}) | {s['caught']:.1%} | {lo['caught']:.1%} | "
               f"{lo['caught'] - s['caught']:+.1%} ({r['caught_diff_se']:.1%}) | {s['auroc']:.3f} | {lo['auroc']:.3f} |")
     for name, r in out.items():
         print(f"\n== {SETS[name]}: caught at the stored threshold / image AUROC per type")
-        print("| type | S caught | L caught | S AUROC | L AUROC |\n|---|---|---|---|---|")
+        print(f"| type | S caught | {c} caught | S AUROC | {c} AUROC |\n|---|---|---|---|---|")
         for t in r["S"]["caught_by_type"]:
-            print(f"| {t} | {r['S']['caught_by_type'][t]:.1%} | {r['L']['caught_by_type'][t]:.1%} | "
-                  f"{r['S']['auroc_by_type'][t]:.3f} | {r['L']['auroc_by_type'][t]:.3f} |")
+            print(f"| {t} | {r['S']['caught_by_type'][t]:.1%} | {r[c]['caught_by_type'][t]:.1%} | "
+                  f"{r['S']['auroc_by_type'][t]:.3f} | {r[c]['auroc_by_type'][t]:.3f} |")
         print()
         d = {m: load(m, name) for m in MODELS}
-        matched(d["S"]["score"], d["L"]["score"], d["S"]["label"] == 1, ("S", "L"))
+        matched(d["S"]["score"], d[c]["score"], d["S"]["label"] == 1, ("S", c))
     bars = {}
-    if {"allff-1241", "built-1241", "new-1242"} <= out.keys():
-        v, b, n = out["allff-1241"], out["built-1241"], out["new-1242"]
-        bars = {"1 V: L good rejected <= 2.1 %": v["L"]["good_rejected"] / v["good"] <= PROMISE,
-                "2 B: L matched mean >= S's - 1 point": b["L"]["matched_mean"] >= b["S"]["matched_mean"] - 0.01,
-                "3 B: L good rejected <= 2.1 %": b["L"]["good_rejected"] / b["good"] <= PROMISE,
-                "4 N: L matched mean >= S's - 2 points": n["L"]["matched_mean"] >= n["S"]["matched_mean"] - 0.02}
+    if set(SETS) <= out.keys():
+        b, v, n = (out[k] for k in SETS)
+        bars = {f"1 V: {c} good rejected <= 2.1 %": v[c]["good_rejected"] / v["good"] <= PROMISE,
+                f"2 B: {c} matched mean >= S's - 1 point": b[c]["matched_mean"] >= b["S"]["matched_mean"] - 0.01,
+                f"3 B: {c} good rejected <= 2.1 %": b[c]["good_rejected"] / b["good"] <= PROMISE,
+                f"4 N: {c} matched mean >= S's - 2 points": n[c]["matched_mean"] >= n["S"]["matched_mean"] - 0.02}
         print("\n== the plan's bars")
         for k, ok in bars.items():
             print(f"- {k}: {'holds' if ok else 'FAILS'}")
-    (HERE / "read.json").write_text(json.dumps({"sets": out, "bars": bars}, indent=1))
+    (HERE / out_name).write_text(json.dumps({"sets": out, "bars": bars}, indent=1))
 
 
 if __name__ == "__main__":

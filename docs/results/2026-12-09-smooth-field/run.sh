@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # plan.md's fresh sets (rendered before candidate Q exists; read only once it does): B' (seed 1243, as built),
-# V' (B' through the whole lens chain), N' (seed 1244, kinds nobody rendered). Resumable; at nice 19 (autogroup).
+# V' (B' through the whole lens chain), N' (seed 1244, kinds nobody rendered); then, once make model has made Q
+# (runs/make-model-sf.sh), S, Q and the control R evaluated on each and read.py. Resumable; at nice 19 (autogroup).
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 cd "$HERE/../../.."
@@ -28,3 +29,17 @@ if [ ! -f "$R/allff.done" ]; then
 fi
 render data/sf-new-1244 --config sim/presets/new-kinds.toml --seed 1244
 echo "sets done $(date +%T)"
+mkdir -p "$HERE/eval"
+judge() {  # judge ARM MODEL SET: station eval unless written (thresholds stored; 1 and 5 % from data/line-pv-val)
+    local out="$HERE/eval/$1-$3"
+    [ -f "$out/eval.md" ] || "$BIN/station" eval --model "$2" --data "data/sf-$3" --val-data data/line-pv-val \
+        --no-synthetic --no-plots --out "$out" > "$R/eval-$1-$3.log" 2>&1
+}
+until [ -f runs/make-model-sf/eval-band-look/eval.md ]; do sleep 60; done  # Q made (make model evaluated it)
+for arm in S:model/weights/default Q:runs/make-model-sf/band-look R:runs/make-model-900/band-look; do
+    judge "${arm%%:*}" "${arm#*:}" built-1243 & a=$!
+    judge "${arm%%:*}" "${arm#*:}" allff-1243; wait $a
+    judge "${arm%%:*}" "${arm#*:}" new-1244
+done
+"$BIN/python" "$HERE/read.py"
+echo "done $(date +%T)"
