@@ -3,11 +3,12 @@ fresh sets B' (seed 1243 as built), V' (B' through the whole lens chain) and N' 
 then the plan's four bars (read.txt, read.json); then the addendum's control R (the recipe remade without the option)
 against S the same way (read-control.txt, read-control.json), which decides nothing.
 
-    PYTHONPATH=. .venv/bin/python docs/results/2026-12-09-smooth-field/read.py
+    PYTHONPATH=. .venv/bin/python docs/results/2026-12-09-smooth-field/read.py [Q] [R]
 
 The tables, matched rates and bars are the lens-train read's (../2026-12-08-lens-train/read.py)."""
 import contextlib
 import importlib.util
+import sys
 from pathlib import Path
 
 HERE = Path(__file__).parent
@@ -20,6 +21,8 @@ lens_train.SETS = {"built-1243": "B': as built (seed 1243)", "allff-1243": "V': 
 
 if __name__ == "__main__":
     for candidate, name in (("Q", "read"), ("R", "read-control")):
+        if sys.argv[1:] and candidate not in sys.argv[1:]:
+            continue
         lens_train.MODELS = ("S", candidate)
         with open(HERE / f"{name}.txt", "w") as f, contextlib.redirect_stdout(f):
             lens_train.main(f"{name}.json")

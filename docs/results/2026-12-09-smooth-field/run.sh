@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # plan.md's fresh sets (rendered before candidate Q exists; read only once it does): B' (seed 1243, as built),
-# V' (B' through the whole lens chain), N' (seed 1244, kinds nobody rendered); then, once make model has made Q
-# (runs/make-model-sf.sh), S, Q and the control R evaluated on each and read.py. Resumable; at nice 19 (autogroup).
+# V' (B' through the whole lens chain), N' (seed 1244, kinds nobody rendered); S evaluated on each; then, once
+# make-q.sh has made Q, Q and read.py Q; then, once it has made the control R, R and read.py R. Resumable; at nice 19
+# (autogroup).
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 cd "$HERE/../../.."
@@ -35,11 +36,17 @@ judge() {  # judge ARM MODEL SET: station eval unless written (thresholds stored
     [ -f "$out/eval.md" ] || "$BIN/station" eval --model "$2" --data "data/sf-$3" --val-data data/line-pv-val \
         --no-synthetic --no-plots --out "$out" > "$R/eval-$1-$3.log" 2>&1
 }
-until [ -f runs/make-model-sf/eval-band-look/eval.md ]; do sleep 60; done  # Q made (make model evaluated it)
-for arm in S:model/weights/default Q:runs/make-model-sf/band-look R:runs/make-model-900/band-look; do
-    judge "${arm%%:*}" "${arm#*:}" built-1243 & a=$!
-    judge "${arm%%:*}" "${arm#*:}" allff-1243; wait $a
-    judge "${arm%%:*}" "${arm#*:}" new-1244
-done
-"$BIN/python" "$HERE/read.py"
+each() {  # each ARM MODEL: judge the model on the three sets, two at once
+    judge "$1" "$2" built-1243 & local a=$!
+    judge "$1" "$2" allff-1243; wait $a
+    judge "$1" "$2" new-1244
+}
+each S model/weights/default
+until [ -f runs/make-model-sf/eval-band-look/eval.md ]; do sleep 60; done  # Q made (make-q.sh; make model evaluated it)
+each Q runs/make-model-sf/band-look
+"$BIN/python" "$HERE/read.py" Q
+echo "Q read $(date +%T)"
+until [ -f runs/make-model-r/eval-band-look/eval.md ]; do sleep 60; done  # the control R made (make-q.sh)
+each R runs/make-model-r/band-look
+"$BIN/python" "$HERE/read.py" R
 echo "done $(date +%T)"
