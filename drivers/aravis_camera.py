@@ -14,7 +14,11 @@ bytes are copied once out of the buffer (``get_image_data``) and decoded without
 Loss: a grab that times out (or a failed command) probes the device with one register read. If that fails (the
 GVCP timeout is ~2.5 s) or the heartbeat thread reported ``control-lost``, the camera is lost: with
 ``config.reconnect`` it is reopened with back-off and the stream restarted, else ``CameraLost`` is raised.
-Statistics survive both.
+Statistics survive both. A lost device's objects are dropped in a worker thread (their finalisers wait for GVCP
+timeouts), with the driver's ``control-lost`` handler disconnected first: GLib then skips the signal, so the lost
+device's heartbeat thread, which emits it when a camera answers at that address again, never holds a reference to the
+device. Had it held the last one, the device would be finalised on that thread, which joins itself (a GLib error: the
+process dies of SIGTRAP); and the old device's signal would mark the new connection lost.
 
 Aravis objects are dropped in ``close()`` (also at interpreter exit): a stream still alive at exit aborts the
 process in ``g_mutex_clear``.
@@ -151,6 +155,7 @@ class AravisCamera(CameraBase):
         self._stream: Any = None
         self._started = False
         self._lost = threading.Event()
+        self._control_lost_handler = 0  # the id of the handler on the open device's control-lost signal
         self._tracker = FrameIdTracker()
         self._format: pixel_formats.PixelFormat | None = None
         self._stream_base = {"resent": 0, "missing_packets": 0}  # counters of streams already torn down
@@ -211,7 +216,7 @@ class AravisCamera(CameraBase):
         with self._lock:
             self.stop()
             self._teardown_stream(stop_acquisition=False)
-            self._camera = None
+            self._drop_camera()
             _OPEN.discard(self)
 
     @property
@@ -308,7 +313,7 @@ class AravisCamera(CameraBase):
             except GLib.Error as exc:
                 raise CameraNotFound(f"camera {matches[0][0]}: cannot open: {exc.message}") from None
         self._lost.clear()
-        self._camera.get_device().connect("control-lost", lambda _dev: self._lost.set())
+        self._control_lost_handler = self._camera.get_device().connect("control-lost", lambda _dev: self._lost.set())
         log.info("camera %s: opened %s %s (serial %s)", self.name, self._camera.get_vendor_name(),
                  self._camera.get_model_name(), self._camera.get_device_serial_number())
 
@@ -505,6 +510,17 @@ class AravisCamera(CameraBase):
             return False
         return True
 
+    def _drop_camera(self) -> Any:
+        """Disconnect the control-lost handler from the device and forget the camera; returns it (or None) for the
+        caller to release. See the module docstring: no handler may be left on a device being dropped."""
+        cam, self._camera = self._camera, None
+        if cam is not None and self._control_lost_handler:
+            device = cam.get_device()
+            if device.handler_is_connected(self._control_lost_handler):
+                device.disconnect(self._control_lost_handler)
+        self._control_lost_handler = 0
+        return cam
+
     def _handle_loss(self, why: str) -> None:
         """Reconnect with back-off (if configured) or raise ``CameraLost``; statistics are kept either way."""
         stats = self.statistics()
@@ -515,8 +531,7 @@ class AravisCamera(CameraBase):
         self._lost.set()
         dead: list[Any] = []
         self._teardown_stream(stop_acquisition=False, release=dead)
-        dead.append(self._camera)
-        self._camera = None
+        dead.append(self._drop_camera())
         _release_in_background(dead)
         if self.config.reconnect:
             for attempt, delay_s in enumerate(backoff_delays_s(self.config.reconnect_backoff_s,
@@ -531,7 +546,8 @@ class AravisCamera(CameraBase):
                 except CameraError as exc:
                     log.warning("camera %s: reconnect attempt %d/%d failed: %s", self.name, attempt,
                                 self.config.reconnect_attempts, exc)
-                    self._camera = None
+                    if (half_open := self._drop_camera()) is not None:  # opened, then refused its settings
+                        _release_in_background([half_open])
                     continue
                 self._stats.reconnects += 1
                 log.info("camera %s: reconnected after %d attempt(s)", self.name, attempt)
@@ -542,10 +558,20 @@ class AravisCamera(CameraBase):
                          + f". Frames: {stats.completed} completed, {stats.failed} incomplete, {stats.dropped} dropped")
 
 
+RELEASE_DELAY_S = 1.0
+"""How long a lost device's objects are kept before they are dropped: a control-lost emission under way when its
+handler was disconnected (it holds a reference to the device until it ends, microseconds later) has ended by then."""
+
+
 def _release_in_background(objects: list[Any]) -> None:
     """Drop the last references to a lost device's Aravis objects in a worker thread (their finalisers wait for
-    GVCP timeouts). The thread is not a daemon: the interpreter waits for it, so no stream outlives exit."""
-    threading.Thread(target=objects.clear, name="aravis-release", daemon=False).start()
+    GVCP timeouts), ``RELEASE_DELAY_S`` later. The thread is not a daemon: the interpreter waits for it, so no stream
+    outlives exit."""
+    def release() -> None:
+        time.sleep(RELEASE_DELAY_S)
+        objects.clear()
+
+    threading.Thread(target=release, name="aravis-release", daemon=False).start()
 
 
 @atexit.register

@@ -7,6 +7,7 @@ network namespace (loopback only), as the network rule requires. Run it alone th
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import subprocess
 import threading
@@ -213,6 +214,40 @@ def test_reconnect_with_backoff_after_the_camera_comes_back(fake: FakeGv) -> Non
                 continue
         stats = cam.statistics()
     assert stats.reconnects == 1 and frame is not None and stats.completed >= 2
+
+
+def test_a_lost_device_is_released_with_no_handler_left_on_it(fake: FakeGv, monkeypatch) -> None:
+    """The station died of SIGTRAP when a camera came back: the lost device's heartbeat thread read the new camera's
+    control register, emitted control-lost for the driver's handler, and dropped the device's last reference at the
+    end of that emission, so the device was finalised on its own heartbeat thread, which joined itself
+    ('g_system_thread_wait: Resource deadlock avoided', a GLib error: SIGTRAP). With no handler left on a lost device
+    GLib skips the emission, so no reference is taken there. The lost device's control-lost also marked the new
+    connection lost."""
+    from drivers import aravis_camera
+
+    released: list[list[object]] = []
+    monkeypatch.setattr(aravis_camera, "_release_in_background", lambda objects: released.append(list(objects)))
+    with AravisCamera(cfg(reconnect=True, reconnect_attempts=6, reconnect_backoff_s=0.3)) as cam:
+        cam.start()
+        cam.grab()
+        fake.kill()
+        threading.Timer(1.0, fake.start).start()
+        for _ in range(100):
+            with contextlib.suppress(CameraTimeout):
+                cam.grab(timeout_ms=300)
+            if cam.statistics().reconnects:
+                break
+        assert cam.statistics().reconnects == 1
+        from gi.repository import GObject
+
+        devices = [o.get_device() for batch in released for o in batch if hasattr(o, "get_device")]
+        assert devices, released
+        for dev in devices:
+            assert not GObject.signal_has_handler_pending(dev, GObject.signal_lookup("control-lost", dev), 0, False)
+            dev.emit("control-lost")  # what the lost device's heartbeat does when the camera answers again
+        assert not cam._lost.is_set()
+        assert cam.grab(timeout_ms=2000).raw.shape == (48, 64)
+        assert cam.statistics().reconnects == 1
 
 
 def test_config_errors_name_the_feature() -> None:
