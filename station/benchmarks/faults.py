@@ -1,5 +1,5 @@
-"""Fault injection: the station under hostile files, camera stalls and loss, packet loss, a silent PLC, a full disk,
-SIGTERM and a serial reconnect; per case parts announced, answered, logged, and the fail-open count.
+"""Fault injection: the station under hostile files, camera stalls, loss and power cycles, packet loss, a silent PLC,
+a full disk, SIGTERM and a serial reconnect; per case parts announced, answered, logged, and the fail-open count.
 
 Every case runs the real station (``station run`` in a subprocess, the shipped model with ``[decision] threshold =
 1.0`` and no presence check, so that every part judged in time passes and any other pass is visible) against the
@@ -38,7 +38,7 @@ from station.commands.arguments import positive_int
 from station.decision import Verdict
 
 CASES = ("baseline", "hostile_files", "camera_stall", "packet_loss", "plc_silent", "full_disk", "sigterm",
-         "serial_reconnect", "camera_killed")
+         "serial_reconnect", "camera_killed", "camera_power_cycle")
 SLACK_MS = 50.0
 """Serial line and scheduling time allowed on top of the cycle time before a PASS counts as too late."""
 
@@ -72,9 +72,18 @@ class CaseResult:
 # -- the parts (worker side, inside the namespaces) ----------------------------------------------------------------
 class FakeCamera:
     def __init__(self, loss_per_mille: int = 0) -> None:
+        self.loss_per_mille = loss_per_mille
+        self.restart()
+
+    def restart(self) -> None:
+        """A camera (again) at the same address: after a kill, a power-cycled camera coming back."""
         from drivers.netns import start_fake_gv_camera
 
-        self.proc = start_fake_gv_camera("FAULTS", loss_per_mille)
+        old = getattr(self, "proc", None)
+        if old is not None:  # reaped (or killed, if still running)
+            old.kill()
+            old.wait()
+        self.proc = start_fake_gv_camera("FAULTS", self.loss_per_mille)
 
     def signal(self, sig: int) -> None:
         if self.proc.poll() is None:
@@ -251,6 +260,10 @@ def run_case(case: str, args: argparse.Namespace, work: Path) -> CaseResult:
             if case == "camera_killed" and i == n // 3:
                 camera.signal(signal.SIGKILL)
                 note = "camera killed (SIGKILL) at 1/3, triggers continue until the station exits"
+            if case == "camera_power_cycle" and i == n // 3:
+                camera.signal(signal.SIGKILL)
+                threading.Timer(1.0, camera.restart).start()
+                note = "camera killed (SIGKILL) at 1/3 and back 1 s later (reconnect on), triggers continue"
             if case == "serial_reconnect" and i == n // 2:
                 plc.close()
                 pair.kill()

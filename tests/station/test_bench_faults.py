@@ -47,3 +47,20 @@ def test_bench_faults_baseline_and_silent_plc(tmp_path: Path) -> None:
         assert c["fail_open"] == 0 and c["unanswered"] == 0 and c["rows"] == c["announced"] == 20
         assert c["io_right"] == c["rows"]
     assert cases["plc_silent"]["acks"] == 10
+
+
+@pytest.mark.slow
+def test_bench_faults_camera_power_cycle(tmp_path: Path) -> None:
+    """The camera killed and back at the same address 1 s later: the station reconnects and keeps running, every part
+    announced answered with one row (those during the outage rejected), none passed unjudged."""
+    why = namespaces_unavailable_reason()
+    if why:
+        pytest.skip(f"no private namespaces for the fault benchmark: {why}")
+    from station.cli import main
+
+    out = tmp_path / "faults"
+    assert main(["bench", "faults", "--cases", "camera_power_cycle", "--parts", "30", "--out", str(out)]) == 0
+    (c,) = json.loads((out / "faults.json").read_text())["cases"]
+    assert c["fail_open"] == 0 and c["unanswered"] == 0 and c["rows"] == c["announced"] == 30
+    assert c["extra"]["exit_code"] == 0 and c["extra"]["summary"]["camera"]["reconnects"] == 1
+    assert c["passes"] < 30  # the parts announced while the camera was away were rejected
