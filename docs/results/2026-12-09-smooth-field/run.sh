@@ -41,6 +41,7 @@ each() {  # each ARM MODEL: judge the model on the three sets, two at once
     judge "$1" "$2" allff-1243; wait $a
     judge "$1" "$2" new-1244
 }
+until grep -qs "render	data/line-pv-val" runs/make-model-sf/timings.tsv; do sleep 60; done  # make-q.sh rendered VAL
 each S model/weights/default
 until [ -f runs/make-model-sf/eval-band-look/eval.md ]; do sleep 60; done  # Q made (make-q.sh; make model evaluated it)
 each Q runs/make-model-sf/band-look
