@@ -9,7 +9,10 @@ set -euo pipefail
 cd "$(dirname "$0")/../../.."
 echo 19 > /proc/self/autogroup 2>/dev/null || true  # nice across sessions: Linux autogroups ignore a process's own nice
 export SHIP=0 HOLDOUT_TYPES=" " NEW_KINDS_COUNT=0 HELDOUT=data/line-heldout-1194 HELDOUT_SEED=1194 HELDOUT_COUNT=150
+seen=$(cat runs/make-model-sf/timings.tsv 2>/dev/null | wc -l)  # a rerun: wait for this run's lines, not the last's
 SMOOTH_FIELD=1 RUNS=runs/make-model-sf scripts/make-model.sh & q=$!
-until grep -qs "render	data/line-pv-val" runs/make-model-sf/timings.tsv; do sleep 30; done  # Q's last render
+until tail -n "+$((seen + 1))" runs/make-model-sf/timings.tsv 2>/dev/null | grep -q "render	data/line-pv-val"; do
+    sleep 30  # Q's last render (resumed: done at once)
+done
 SMOOTH_FIELD=0 RUNS=runs/make-model-r scripts/make-model.sh
 wait "$q"
