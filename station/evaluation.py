@@ -291,9 +291,8 @@ def fit_variation(model: str, data: str, out: str, max_good_flagged: float = GOO
     priors whose channels the window is taken over (None: all, the shipped recipe; the others are read, intensity
     registers the part: ``model.draem.variation``'s ``judged_channels``). ``smooth_field``: take a lens's smooth
     field out of every frame's residual (None: the shipped recipe, ``model.draem.variation.SMOOTH_FIELD``). The
-    sidecar's
-    frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts fitted: the
-    variation model decides, and may be fitted on another line than its networks."""
+    sidecar's frame statistics (the drift monitor's trained range, ``station.drift``) become those of the parts
+    fitted: the variation model decides, and may be fitted on another line than its networks."""
     from model.draem.checkpoint import load_checkpoint
     from model.draem.config import Alignment
     from model.draem.errors import ModelError
