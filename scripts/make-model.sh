@@ -92,6 +92,8 @@ LENS=${LENS:-}  # a preset layered last on the training, calibration and validat
 LENS_CONFIG=(${LENS:+--config "$LENS"})  # a lens drawn per part; docs/results/2026-12-08-lens-train/plan.md); "": none
 SMOOTH_FIELD=${SMOOTH_FIELD:-0}  # 1: every variation fit takes a lens's smooth field out (station variation
 SMOOTH=(); [ "$SMOOTH_FIELD" = 1 ] && SMOOTH=(--smooth-field)  # --smooth-field; docs/results/2026-12-09-smooth-field)
+LOOK_LENS=${LOOK_LENS:-}  # LO,HI: every look network also learns from a lens copy of each good part (station residual
+LOOK_LENS_ARGS=(${LOOK_LENS:+--lens-copies "$LOOK_LENS"})  # --lens-copies; docs/results/2026-12-10-look-lens); "": none
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores
 # the priors every network and the variation model read: the shipped file's intensity alone (since 2026-12-04:
@@ -161,7 +163,7 @@ shape() {  # shape NAME: the shape check added to RUNS/NAME in place, unless it 
 look() {  # look NAME [ARGS]: the look network added to band-variation as RUNS/NAME unless it exists (resumable)
     [ -f "$RUNS/$1.json" ] || station residual --model "$RUNS/band-variation" --data "$DATA" \
         --val-data "$CALIBRATION" --members "$LOOK_MEMBERS" --steps "$LOOK_STEPS" --second-look --out "$RUNS/$1" \
-        "${@:2}"
+        "${LOOK_LENS_ARGS[@]}" "${@:2}"
 }
 blend() {  # blend NAME: the look of RUNS/NAME blended in place, unless it is (resumable)
     grep -qs '"blend": ' "$RUNS/$1.json" && return 0  # its sidecar's train.blend

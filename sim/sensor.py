@@ -6,8 +6,9 @@ sampled by ``model.priors.mosaic.stokes_to_mosaic``, never redefined here.
 Chain, per pixel (all in full-scale units until the ADC; 1.0 = the largest code of ``bit_depth``):
   1. exposure:  ``S * exposure_gain`` (full scale per unit of rendered radiance; folds exposure time, aperture
      and quantum efficiency into one number).
-  1b. vignetting: the lens's relative illumination, ``cos^4`` of the field angle, scaled so the frame's corners get
-     ``1 - vignetting`` of the centre's light (0: none, as the renders' pinhole camera), on S0, S1 and S2 alike.
+  1b. vignetting: the lens's relative illumination (``model.priors.lens``), ``cos^4`` of the field angle, scaled
+     so the frame's corners get ``1 - vignetting`` of the centre's light (0: none, as the renders' pinhole camera),
+     on S0, S1 and S2 alike.
      0.2 at the corners made the shipped model reject 11 % of good parts against 5 %
      (docs/results/2026-11-29-sensor-optics.md).
   1c. lens blur: a Gaussian point spread of ``lens_blur_px`` (sigma, frame px) on S0, S1 and S2 alike, before the
@@ -33,6 +34,7 @@ import cv2
 import numpy as np
 
 from model.priors.conventions import get_layout
+from model.priors.lens import relative_illumination
 from model.priors.mosaic import stokes_to_mosaic
 
 from .errors import SimError
@@ -175,17 +177,6 @@ def lens(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig
         fall = relative_illumination(*np.shape(s0), config.vignetting)
         s0, s1, s2 = (s * fall for s in (s0, s1, s2))
     return lens_blur(s0, s1, s2, config.lens_blur_px)
-
-
-def relative_illumination(height: int, width: int, vignetting: float) -> np.ndarray:
-    """(H, W) float32 share of the centre's irradiance each pixel gets through the lens: ``cos^4`` of the field
-    angle, with the angle at the frame's corners chosen so they get ``1 - vignetting`` (all ones at 0)."""
-    if vignetting <= 0:
-        return np.ones((height, width), np.float32)
-    yy, xx = np.mgrid[0:height, 0:width].astype(np.float64)
-    r = np.hypot(xx - (width - 1) / 2, yy - (height - 1) / 2) / np.hypot((width - 1) / 2, (height - 1) / 2)
-    tan_corner = np.tan(np.arccos((1.0 - vignetting) ** 0.25))
-    return (np.cos(np.arctan(r * tan_corner)) ** 4).astype(np.float32)
 
 
 def ideal_mosaic(s0: np.ndarray, s1: np.ndarray, s2: np.ndarray, config: SensorConfig) -> np.ndarray:

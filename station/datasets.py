@@ -114,14 +114,20 @@ def manifest_sha256(root: str | Path) -> str:
     return hashlib.sha256((Path(root) / "manifest.json").read_bytes()).hexdigest()
 
 
-def frame_aspect_of(root: str | Path) -> float:
-    """Width / height of a set's frames from its manifest (``ModelConfig.frame_aspect``); 0 when it does not say."""
+def frame_shape_of(root: str | Path) -> tuple[int, int] | None:
+    """(height, width) px of a set's frames from its manifest; None when it does not say."""
     from sim.dataset import open_dataset
 
     m = open_dataset(root).manifest
-    w, h = m.get("width"), m.get("height")
+    h, w = m.get("height"), m.get("width")
     ok = all(isinstance(v, int) and not isinstance(v, bool) and v > 0 for v in (w, h))
-    return w / h if ok else 0.0
+    return (h, w) if ok else None
+
+
+def frame_aspect_of(root: str | Path) -> float:
+    """Width / height of a set's frames from its manifest (``ModelConfig.frame_aspect``); 0 when it does not say."""
+    shape = frame_shape_of(root)
+    return shape[1] / shape[0] if shape else 0.0
 
 
 def dome_segments_of(root: str | Path) -> tuple[float, ...]:

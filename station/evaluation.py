@@ -429,23 +429,28 @@ def residual_states(out: str, recipe: dict[str, Any]) -> Path:
 
 def fit_residual(model: str, data: str, out: str, val_data: str | None = None, members: int = 3, steps: int = 3000,
                  seed: int = 0, holdout_type: str | None = None, max_good_flagged: float = GOOD_REJECTED_RATE,
-                 look: bool = False, more_defects: Sequence[str] = ()) -> str:
+                 look: bool = False, more_defects: Sequence[str] = (),
+                 lens_copies: tuple[float, float] | None = None) -> str:
     """Checkpoint ``model`` (with its variation model) plus ``members`` residual networks (``model.draem.residual``)
     deciding (``look``: as the variation model's second look instead, the model's decision kept), trained on
     ``data``'s train split (good parts and rendered defective parts with masks, without ``holdout_type``'s; plus the
     defective train parts of each set in ``more_defects``, whose good parts are not used: the good parts' residuals
     are left out of the fit on ``data``'s), calibrated and thresholded on ``val_data``'s val split (default
-    ``data``'s) as ``fit_variation``; written to ``out``; one line saying what it does on the val split. Progress on
-    stderr."""
+    ``data``'s) as ``fit_variation``; written to ``out``; one line saying what it does on the val split.
+    ``lens_copies``: the vignetting range (share of light lost at the frame's corners) of a lens copy of each good
+    part the networks also learn from (``model.draem.lens_copies``), placed by ``data``'s frame; None: none. Progress
+    on stderr."""
     import sys
 
     import torch
 
     from model.draem.checkpoint import load_checkpoint, paths, sha256_file
     from model.draem.errors import ModelError
+    from model.draem.lens_copies import LensCopies
+    from model.draem.roi import roi_box
     from model.draem.with_variation import add_residual, can_look
     from sim.defects import DEFECT_TYPES
-    from station.datasets import manifest_sha256
+    from station.datasets import frame_shape_of, manifest_sha256
 
     check_max_good_flagged(max_good_flagged)
     if holdout_type is not None and holdout_type not in DEFECT_TYPES:
@@ -464,10 +469,23 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     for d in more_defects:  # before minutes of loading
         if Path(d).resolve() == Path(data).resolve():
             raise UserError(f"--more-defects {d}: the training set itself (--data); give another rendered set")
+    lens = None
+    if lens_copies is not None:
+        frame = frame_shape_of(data)
+        if frame is None:
+            raise UserError(f"{Path(data) / 'manifest.json'}: width, height: --lens-copies places the view under the "
+                            f"lens by the set's frame size, and the manifest does not give it")
+        cfg = ck.detector.config
+        try:
+            lens = LensCopies(lens_copies, frame, roi_box(cfg.roi, frame, frame_aspect=cfg.frame_aspect), seed)
+        except ModelError as exc:
+            raise UserError(f"--lens-copies: {exc}") from None
     manifests = {d: manifest_sha256(d) for d in (data, *more_defects)}
     recipe = {"model_sha256": sha256_file(paths(model)[0]), "manifest_sha256": manifests[data],
               "more_defects": [manifests[d] for d in more_defects], "holdout_type": holdout_type, "steps": steps,
               "seed": seed}  # what the networks learn from, whatever the paths it is given by
+    if lens is not None:
+        recipe["lens_copies"] = lens.to_record()
     states = residual_states(out, recipe)  # before minutes of loading
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
@@ -492,13 +510,14 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     record = {"data": str(data), "manifest_sha256": manifests[data], "good_parts": len(good),
               "more_defects": [{"data": str(d), "manifest_sha256": manifests[d]} for d in more_defects],
               "defective_parts": n_def, "holdout_type": holdout_type, "types": sorted(learned), "members": members,
-              "steps": steps, "seed": seed, "look": look}
+              "steps": steps, "seed": seed, "look": look, "lens_copies": None if lens is None else lens.to_record()}
     states.mkdir(parents=True, exist_ok=True)
     (states / "recipe.json").write_text(json.dumps(recipe, indent=1))
     try:
         det = add_residual(ck.detector, tr.priors[good], tr.object_mask[good] if tr.object_masks_known else None,
                            torch.cat(defects), torch.cat(masks), va.priors[good_va], members, steps, seed,
-                           progress=lambda line: print(line, file=sys.stderr, flush=True), look=look, states=states)
+                           progress=lambda line: print(line, file=sys.stderr, flush=True), look=look, states=states,
+                           lens=lens)
     except ModelError as exc:
         raise UserError(f"{model}: {exc}") from None
     choice, ev, labels = _threshold_and_save(ck, model, det, va, val_data, out, max_good_flagged, "residual", record)

@@ -395,6 +395,17 @@ def test_smooth_field_reaches_every_variation_fit_and_is_off_unset(tmp_path: Pat
         assert fits and all(("--smooth-field" in args) is want for args in fits)
 
 
+def test_look_lens_reaches_every_look_network_and_is_off_unset(tmp_path: Path) -> None:
+    """``LOOK_LENS=LO,HI`` (docs/results/2026-12-10-look-lens/plan.md): every look network make model trains, the
+    held-out types' too, learns from lens copies of the good parts (``station residual --lens-copies``); unset, none
+    does (the shipped recipe)."""
+    for env, want in (({}, None), ({"LOOK_LENS": "0,0.3"}, "0,0.3")):
+        (tmp_path / str(want)).mkdir()
+        looks = [args for args in dry_run(tmp_path / str(want), **env) if args[0] == "residual"]
+        assert looks and all((args[args.index("--lens-copies") + 1] if "--lens-copies" in args else None) == want
+                             for args in looks)
+
+
 def test_the_lens_preset_draws_a_blur_and_vignetting_per_part() -> None:
     """Its ranges are the plan's: a blur of 0-1 frame px and 0-30 % of the light lost at the frame's corners."""
     data = tomllib.loads((ROOT / "sim" / "presets" / "lens-vary.toml").read_text())

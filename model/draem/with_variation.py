@@ -14,6 +14,7 @@ import torch
 from .config import Alignment, channel_slices
 from .detector import Detector
 from .errors import ModelError
+from .lens_copies import LensCopies, lensed_signed
 from .metrics import false_reject_threshold
 from .residual import train_member
 from .roi import around_px_of
@@ -233,7 +234,7 @@ def can_look(detector: Detector) -> bool:
 def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch.Tensor | None,
                  defects: torch.Tensor, defect_masks: torch.Tensor, val_good: torch.Tensor, members: int = 3,
                  steps: int = 3000, seed: int = 0, progress: Callable[[str], None] | None = None,
-                 look: bool = False, states: Path | None = None) -> Detector:
+                 look: bool = False, states: Path | None = None, lens: LensCopies | None = None) -> Detector:
     """A copy of ``detector`` (which has the variation model) with ``members`` residual networks
     (``model.draem.residual``) deciding: trained on the left-out residuals of ``good`` (N, C, H, W) good training
     parts (the variation model fitted again on them, in a copy: the same parts give the same fit, and the model's
@@ -243,7 +244,8 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
     variation model's second look (``ResidualDetector.look``, calibrated on ``val_good``); the model's decision is
     kept, and it needs a fitted second look (``add_second_look``). ``progress``: one line per 250 steps. ``states``: a
     folder for each member's resume state (``member-K.pt``, ``train_member``'s ``state``): an interrupted run given
-    the same folder continues where it stopped; the caller removes it when the detector is saved."""
+    the same folder continues where it stopped; the caller removes it when the detector is saved. ``lens``: a lens
+    copy of each good part joins the good parts the networks learn from (``model.draem.lens_copies``)."""
     if detector.variation is None:
         raise ModelError("the residual networks read the variation model: add it first (station variation)")
     if detector.residual is not None:
@@ -264,6 +266,9 @@ def add_residual(detector: Detector, good: torch.Tensor, good_object_mask: torch
     signed = torch.from_numpy(copy.deepcopy(var).fit(good, good_object_mask))
     region = var.region.bool()
     good_in = res.inputs(signed, region, var.window_spread).numpy()
+    if lens is not None:
+        copies = res.inputs(lensed_signed(var, good, signed, lens), region, var.window_spread).numpy()
+        good_in = np.concatenate([good_in, copies])
     if len(defects):
         v = var.zmaps(defects, signed=True)
         assert v.signed is not None and v.judged is not None

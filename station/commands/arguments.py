@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Callable
 
 from model.draem.config import GOOD_REJECTED_RATE
 from station.config import MAX_SEED, PRESENCE_RULES
@@ -65,6 +66,20 @@ def path_text(text: str) -> str:
     if not text.strip():
         raise argparse.ArgumentTypeError("empty: give a path")
     return text
+
+
+def number_range(flag: str, example: str) -> Callable[[str], tuple[float, float]]:
+    """An argument type for ``flag``: ``X`` -> (X, X), ``LO,HI`` -> (LO, HI), floats; ``example`` completes the error
+    ("must be X or LO,HI in <example>"). Range checks are the caller's."""
+    def parse(text: str) -> tuple[float, float]:
+        try:
+            values = [float(x) for x in text.split(",")]
+        except ValueError:
+            values = []
+        if len(values) not in (1, 2):
+            raise argparse.ArgumentTypeError(f"{flag} must be X or LO,HI in {example}, got {text!r}")
+        return values[0], values[-1]
+    return parse
 
 
 def add_max_good_flagged(p: argparse.ArgumentParser, of: str = "the val split's good parts") -> None:

@@ -8,7 +8,7 @@ import logging
 from pathlib import Path
 
 from sim.meshes import EDGE_SHAPES
-from station.commands.arguments import seed
+from station.commands.arguments import number_range, seed
 
 log = logging.getLogger(__name__)
 
@@ -33,15 +33,8 @@ def azimuths(text: str) -> tuple[float, ...]:
                                          f"got {text!r}") from None
 
 
-def edge_mm(text: str) -> tuple[float, float]:
-    """``0.3`` -> (0.3, 0.3), ``0,0.4`` -> (0.0, 0.4): ``--edge-mm`` (range checks: ``sim.dataset.DatasetSpec``)."""
-    try:
-        values = [float(x) for x in text.split(",")]
-    except ValueError:
-        values = []
-    if len(values) not in (1, 2):
-        raise argparse.ArgumentTypeError(f"--edge-mm must be MM or LO,HI in mm (e.g. 0.3 or 0,0.4), got {text!r}")
-    return values[0], values[-1]
+edge_mm = number_range("--edge-mm", "mm (e.g. 0.3 or 0,0.4)")
+"""``0.3`` -> (0.3, 0.3), ``0,0.4`` -> (0.0, 0.4): ``--edge-mm`` (range checks: ``sim.dataset.DatasetSpec``)."""
 
 
 MAX_COUNT = 10_000_000

@@ -5,14 +5,15 @@ Trained on ``--data``'s train split (its good parts' left-out residuals, half of
 its rendered defective parts with their masks, and those of each ``--more-defects`` set; ``--holdout-type`` leaves
 one type's out), calibrated and thresholded on ``--val-data``'s val split with ``station threshold``'s rule. The
 networks and the variation model are copied (the variation model fitted again on the same good parts: the same
-fit); the sidecar records the training (``train.residual``).
+fit); the sidecar records the training (``train.residual``). ``--lens-copies`` adds a lens copy of each good part
+(``model.draem.lens_copies``).
 """
 
 from __future__ import annotations
 
 import argparse
 
-from station.commands.arguments import add_max_good_flagged, seed
+from station.commands.arguments import add_max_good_flagged, number_range, seed
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -41,6 +42,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="the networks do not decide: they are the variation model's second look at parts above its "
                         "gate, side by side with its score at each one's own 1 %% threshold (the shipped recipe; "
                         "needs a model with the second look)")
+    p.add_argument("--lens-copies", type=number_range("--lens-copies", "[0, 1) (e.g. 0,0.3)"), default=None,
+                   metavar="LO,HI",
+                   help="also train on a lens copy of each good part: the part as a lens losing LO to HI of the light "
+                        "at the frame's corners (drawn per copy) would show it, so that a lens's smooth fall is no "
+                        "defect (model.draem.lens_copies; default: none)")
     p.set_defaults(func=run)
 
 
@@ -48,5 +54,6 @@ def run(args: argparse.Namespace) -> int:
     from station.evaluation import fit_residual
 
     print(fit_residual(args.model, args.data, args.out, args.val_data, args.members, args.steps, args.seed,
-                       args.holdout_type, args.max_good_flagged, args.second_look, args.more_defects))
+                       args.holdout_type, args.max_good_flagged, args.second_look, args.more_defects,
+                       args.lens_copies))
     return 0

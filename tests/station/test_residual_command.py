@@ -4,6 +4,7 @@ one line."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 from pathlib import Path
 
@@ -175,3 +176,29 @@ def test_an_interrupted_training_continues_where_it_stopped_and_its_states_go_on
     assert main([a if a != str(data) else f"{data}/." for a in args]) == 0
     assert steps_run[0] == 3 and out.with_suffix(".json").is_file() and not states.exists()
     assert "2 residual networks decide" in capsys.readouterr().out
+
+
+def test_lens_copies_are_placed_by_the_sets_frame_recorded_and_a_bad_range_refused_in_one_line(
+        tmp_path: Path, capsys) -> None:
+    """``--lens-copies LO,HI``: the lens copies' vignetting range, the set's frame (its manifest's height and width)
+    and the model's view in it go into the sidecar's ``train.residual.lens_copies``; a range outside [0, 1) is one
+    line naming the flag, before any training."""
+    data, model = trained(tmp_path, capsys)
+    var = tmp_path / "v"
+    assert main(["variation", "--model", str(model), "--data", str(data), "--out", str(var)]) == 0
+    out = tmp_path / "r"
+    assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(out), "--members", "1",
+                 "--steps", "2", "--lens-copies", "0,0.3"]) == 0
+    manifest = json.loads((Path(data) / "manifest.json").read_text())
+    rec = json.loads(out.with_suffix(".json").read_text())["train"]["residual"]["lens_copies"]
+    assert rec["vignetting"] == [0.0, 0.3] and rec["frame"] == [manifest["height"], manifest["width"]]
+    top, left, h, w = rec["box"]
+    assert 0 <= top and top + h <= manifest["height"] and 0 <= left and left + w <= manifest["width"]
+    capsys.readouterr()
+    for bad in ("0.2,1.5", "a"):
+        with pytest.raises(SystemExit) if bad == "a" else contextlib.nullcontext():
+            assert main(["residual", "--model", str(var), "--data", str(data), "--out", str(tmp_path / "r2"),
+                         "--steps", "1", "--lens-copies", bad]) == 2
+        err = capsys.readouterr().err
+        assert "--lens-copies" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "r2.json").exists()
