@@ -484,8 +484,9 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     recipe = {"model_sha256": sha256_file(paths(model)[0]), "manifest_sha256": manifests[data],
               "more_defects": [manifests[d] for d in more_defects], "holdout_type": holdout_type, "steps": steps,
               "seed": seed}  # what the networks learn from, whatever the paths it is given by
-    if lens is not None:
-        recipe["lens_copies"] = lens.to_record()
+    lens_record = None if lens is None else lens.to_record()
+    if lens_record is not None:  # only then: resume states written before the option stay valid
+        recipe["lens_copies"] = lens_record
     states = residual_states(out, recipe)  # before minutes of loading
     tr = model_split(ck, model, data, "train")
     good = [i for i, lab in enumerate(tr.label.tolist()) if not lab]
@@ -510,7 +511,7 @@ def fit_residual(model: str, data: str, out: str, val_data: str | None = None, m
     record = {"data": str(data), "manifest_sha256": manifests[data], "good_parts": len(good),
               "more_defects": [{"data": str(d), "manifest_sha256": manifests[d]} for d in more_defects],
               "defective_parts": n_def, "holdout_type": holdout_type, "types": sorted(learned), "members": members,
-              "steps": steps, "seed": seed, "look": look, "lens_copies": None if lens is None else lens.to_record()}
+              "steps": steps, "seed": seed, "look": look, "lens_copies": lens_record}
     states.mkdir(parents=True, exist_ok=True)
     (states / "recipe.json").write_text(json.dumps(recipe, indent=1))
     try:

@@ -26,6 +26,7 @@ import torch
 from model.priors.lens import view_illumination
 
 from .errors import ModelError
+from .variation import VariationModel
 
 
 @dataclass(frozen=True)
@@ -52,7 +53,8 @@ class LensCopies:
 
 
 @torch.no_grad()
-def lensed_signed(variation, good: torch.Tensor, signed: torch.Tensor, lens: LensCopies) -> torch.Tensor:
+def lensed_signed(variation: VariationModel, good: torch.Tensor, signed: torch.Tensor, lens: LensCopies
+                  ) -> torch.Tensor:
     """(N, C, H, W) signed z maps of the ``good`` parts' lens copies: their left-out ``signed`` maps (N, C, H, W)
     plus what a lens drawn per part changes in the fitted ``variation`` model's (``VariationModel``) signed maps of
     ``good`` (N, C, H, W priors), where both frames are judged (elsewhere the left-out maps as they are). Finite
