@@ -16,7 +16,7 @@ from station.errors import USER_ERRORS
 
 COMMANDS = ["run", "view", "config", "export-log", "report", "bench", "render", "cameras", "serve-camera", "train",
             "ensemble", "variation", "residual", "shape", "blend", "threshold", "quantize", "eval", "normals", "import",
-            "export", "split", "capture", "adapt", "compare", "defect-pixels"]
+            "export", "split", "pick", "capture", "adapt", "compare", "defect-pixels"]
 """Modules under ``station.commands``, in the order ``station --help`` lists them."""
 MODULE_OF = {"import": "import_set"}
 """Commands whose module name differs from the command (``import`` is a Python keyword)."""

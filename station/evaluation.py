@@ -1,7 +1,8 @@
 """Evaluating a checkpoint on a dataset split as the station feeds it: the split at the model's roi, input size and
 normal prior, the network that runs it (torch fp32, or the int8 networks of ``station quantize``), the evaluation.
 Shared by ``station eval``, ``threshold``, ``ensemble``, ``quantize``, ``adapt`` and the pipeline benchmark;
-``set_threshold`` is ``station threshold``'s rule, ``split_camera_thresholds`` ``station split``'s."""
+``set_threshold`` is ``station threshold``'s rule, ``split_camera_thresholds`` ``station split``'s, ``pick_draw``
+``station pick``'s."""
 
 from __future__ import annotations
 
@@ -180,6 +181,51 @@ def set_threshold(model: str, data: str | Sequence[str], max_good_flagged: float
     return (f"{model}: threshold {choice.threshold:.4g} ({choice.rule}); on {len(labels)} {split} parts of "
             f"{name}{where} it flags {choice.flagged_good_fraction:.1%} of good parts "
             f"({new_good_rate(good_flagged, n_good)}){detected}{turn}{skipped}")
+
+
+def pick_draw(models: Sequence[str], data: str, out: str, split: str = "val",
+              presence_rule: str = PRESENCE_RULES[0]) -> str:
+    """Of ``models`` (trainings of one recipe, each with its stored threshold), copy to ``out`` the one
+    ``model.draem.draw_choice.RULE`` keeps on ``data``'s ``split`` as the station would judge it (e.g. the validation
+    parts seen through a lens); ``out``'s sidecar records every draw's counts (``train.draw_choice``). Returns one
+    line per draw and the choice."""
+    from model.draem.checkpoint import copy_checkpoint, load_checkpoint, paths, read_json_sidecar
+    from model.draem.draw_choice import RULE, choose_draw, draw_counts
+    from station.datasets import manifest_sha256
+
+    if len(models) < 2:
+        raise UserError(f"--models: a choice needs at least two files, got {len(models)}")
+    if len(set(models)) < len(models):
+        raise UserError("--models: a file is named twice")
+    if out in models:
+        raise UserError(f"--out {out}: one of the candidates; write the choice elsewhere")
+    cks = {m: load_checkpoint(m) for m in models}  # every file's errors before minutes of scoring
+    for m, ck in cks.items():
+        if ck.threshold is None:
+            raise UserError(f"{m}: no stored threshold (station threshold); each draw is judged at its own")
+    counts = []
+    for m, ck in cks.items():
+        (sp, _), = _judged_splits(ck, m, [data], split, presence_rule)
+        if not sp.index:
+            raise UserError(f"{data}: the station would judge none of split {split!r}'s frames for {m}")
+        _, ev = evaluate_tensors(inference_net(ck, m, "fp32"), sp)
+        counts.append(draw_counts(m, float(ck.threshold), sp.label.numpy(), ev.scores))
+    try:
+        choice = choose_draw(counts)
+    except ValueError as exc:
+        raise UserError(f"{data}: split {split!r}: {exc}") from None
+    copy_checkpoint(choice.kept_name, out)
+    js = paths(out)[1]
+    meta = read_json_sidecar(js)
+    meta.setdefault("train", {})["draw_choice"] = {
+        "data": data, "manifest_sha256": manifest_sha256(data), "split": split, "rule": RULE,
+        "presence_rule": str(presence_rule), "kept": choice.kept_name,
+        "draws": [vars(c) for c in choice.counts], "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
+    tmp = js.with_name(js.name + ".tmp")
+    tmp.write_text(json.dumps(meta, indent=1, allow_nan=True))
+    tmp.replace(js)
+    lines = [c.line() for c in choice.counts]
+    return "\n".join([*lines, f"kept: {choice.kept_name} ({RULE}) -> {out}"])
 
 
 def _judged_splits(ck, model: str, sets: Sequence[str], split: str,
