@@ -33,6 +33,11 @@
 #      docs/results/2026-12-05-moulding-kinds.md) and the outline check (a short step along its long edges: flash;
 #      docs/results/2026-12-05-outline.md) added to the shipped model and to each look without a type, their
 #      spread from the good train parts, their thresholds from CALIBRATION's good parts (station shape)
+#   6b-draws. LOOK_DRAWS=K (default 1): the look trained K times (seeds 0..K-1), each finished as below, and the one
+#      that rejects fewest good parts of the validation parts seen through a lens drawn per part (LENS_VAL: VAL's
+#      parts rendered again with sim/presets/lens-vary.toml) kept as band-look (station pick; a look's lens response
+#      is its training draw's: docs/results/2026-12-10-look-lens.md, docs/results/2026-12-11-look-draw.md). The
+#      held-out types' looks are one draw each: the choice's tie-break counts defects, the held-out type's among them
 #   6b''. blend: each look asked about every part and blended with the window (BLEND of the window's finding, the
 #      rest the network's, each over its own 1 % threshold on VAL's good parts, the checks' finding whole; in place;
 #      station blend, docs/results/2026-12-07-blend-rates.md); BLEND=0 keeps the cascade of 6b
@@ -94,6 +99,8 @@ SMOOTH_FIELD=${SMOOTH_FIELD:-0}  # 1: every variation fit takes a lens's smooth 
 SMOOTH=(); [ "$SMOOTH_FIELD" = 1 ] && SMOOTH=(--smooth-field)  # --smooth-field; docs/results/2026-12-09-smooth-field)
 LOOK_LENS=${LOOK_LENS:-}  # LO,HI: every look network also learns from a lens copy of each good part (station residual
 LOOK_LENS_ARGS=(${LOOK_LENS:+--lens-copies "$LOOK_LENS"})  # --lens-copies; docs/results/2026-12-10-look-lens); "": none
+LOOK_DRAWS=${LOOK_DRAWS:-1}  # trainings of the look, the one a lens moves least kept (6b-draws); 1: one, seed 0
+LENS_VAL=${LENS_VAL:-data/line-pv-val-lens}  # VAL's parts through a lens drawn per part: the draws' choice (6b-draws)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores
 # the priors every network and the variation model read: the shipped file's intensity alone (since 2026-12-04:
@@ -134,6 +141,10 @@ render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 
 render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" "${LENS_CONFIG[@]}" "${EDGES[@]}" --count "$VAL_COUNT" --seed 303 \
     --defects 0.4 --validation
 render "$VAL" "${VARY[@]}" "${LENS_CONFIG[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
+if [ "$LOOK_DRAWS" -gt 1 ]; then  # 6b-draws: the same parts and draws as VAL, each through its own lens
+    render "$LENS_VAL" "${VARY[@]}" "${LENS_CONFIG[@]}" --config sim/presets/lens-vary.toml --count "$VAL_COUNT" \
+        --seed 303 --defects 0.4 --validation
+fi
 if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
     render "$NEW_KINDS" --config sim/presets/new-kinds.toml --count "$NEW_KINDS_COUNT" --seed "$NEW_KINDS_SEED" \
         --defects 0.6 --heldout --visibility
@@ -177,8 +188,12 @@ at_once() {  # at_once FUNCTION NAME...: FUNCTION NAME for each NAME, JOBS at a 
     done
     for p in "${pids[@]}"; do wait "$p"; done
 }
-look_named() {  # look_named NAME: band-look, or holdout-T without type T (steps 6b and 7)
-    if [ "$1" = band-look ]; then look band-look; else look "$1" --holdout-type "${1#holdout-}"; fi
+look_named() {  # look_named NAME: band-look, band-look-draw-N (seed N), or holdout-T without type T (steps 6b and 7)
+    case $1 in
+        band-look) look band-look ;;
+        band-look-draw-*) look "$1" --seed "${1#band-look-draw-}" ;;
+        *) look "$1" --holdout-type "${1#holdout-}" ;;
+    esac
 }
 finish() {  # finish NAME: a look's checks (6b'), in place; its blend (6b''); its threshold on VAL (6c)
     shape "$1"
@@ -196,8 +211,15 @@ HELD=()
 if [ "$DECISION" = variation ]; then  # steps 6b-7: the look and the looks without each type, each finished
     SHIPPED=band-look
     for t in $HOLDOUT_TYPES; do HELD+=("holdout-$t"); done
-    at_once look_named band-look "${HELD[@]}"
-    at_once finish band-look "${HELD[@]}"  # thresholded as the shipped model
+    LOOKS=(band-look)
+    if [ "$LOOK_DRAWS" -gt 1 ]; then
+        LOOKS=(); for ((n = 0; n < LOOK_DRAWS; n++)); do LOOKS+=("band-look-draw-$n"); done
+    fi
+    at_once look_named "${LOOKS[@]}" "${HELD[@]}"
+    at_once finish "${LOOKS[@]}" "${HELD[@]}"  # thresholded as the shipped model
+    if [ "$LOOK_DRAWS" -gt 1 ] && [ ! -f "$RUNS/band-look.json" ]; then  # 6b-draws: the draw a lens moves least
+        station pick --models "${LOOKS[@]/#/$RUNS/}" --data "$LENS_VAL" --out "$RUNS/band-look"
+    fi
 else
     station threshold --model "$RUNS/$SHIPPED" --data "$VAL"  # step 6c: the operating point of the line as built
     for t in $HOLDOUT_TYPES; do  # from the base's last step: keep-best there saw every type in validation

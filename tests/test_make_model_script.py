@@ -410,3 +410,38 @@ def test_the_lens_preset_draws_a_blur_and_vignetting_per_part() -> None:
     """Its ranges are the plan's: a blur of 0-1 frame px and 0-30 % of the light lost at the frame's corners."""
     data = tomllib.loads((ROOT / "sim" / "presets" / "lens-vary.toml").read_text())
     assert data["variation"] == {"lens_blur_px": [0.0, 1.0], "vignetting": [0.0, 0.3]}
+
+
+def test_look_draws_train_the_look_k_times_and_keep_the_one_a_lens_moves_least(tmp_path: Path) -> None:
+    """``LOOK_DRAWS=3`` (docs/results/2026-12-11-look-draw/plan.md): the look trained with seeds 0, 1, 2, each
+    blended and thresholded as the shipped look, then ``station pick`` keeps one as band-look on the validation parts
+    rendered again through a lens drawn per part (the same seed and parts as VAL, lens-vary.toml layered last); the
+    held-out types' looks stay one draw each. Unset: one look, no lens set, no pick (the shipped recipe)."""
+    (tmp_path / "one").mkdir()
+    calls = dry_run(tmp_path / "one")
+    assert not [a for a in calls if a[0] == "pick"]
+    assert "data/line-pv-val-lens" not in [a[a.index("--out") + 1] for a in calls if a[0] == "render"]
+    calls = dry_run(tmp_path, LOOK_DRAWS="3")
+    looks = {out_name(a, tmp_path): a for a in calls if a[0] == "residual"}
+    draws = [f"band-look-draw-{n}" for n in range(3)]
+    assert sorted(looks) == sorted([*draws, *(f"holdout-{t}" for t in ("dent", "scratch", "stain", "chip",
+                                                                          "missing_stud"))])
+    for n, name in enumerate(draws):
+        assert looks[name][looks[name].index("--seed") + 1] == str(n)
+    assert all("--seed" not in a for name, a in looks.items() if name.startswith("holdout-"))
+    renders = {a[a.index("--out") + 1]: a for a in calls if a[0] == "render"}
+    lens, val = renders["data/line-pv-val-lens"], renders["data/line-pv-val"]
+    configs = [lens[i + 1] for i, x in enumerate(lens) if x == "--config"]
+    assert configs[-1] == "sim/presets/lens-vary.toml" and configs[:-1] == [
+        val[i + 1] for i, x in enumerate(val) if x == "--config"]
+    for flag in ("--seed", "--count", "--defects"):
+        assert lens[lens.index(flag) + 1] == val[val.index(flag) + 1]
+    assert "--validation" in lens
+    (pick,) = [a for a in calls if a[0] == "pick"]
+    models = pick[pick.index("--models") + 1:pick.index("--data")]
+    assert models == [str(tmp_path / "runs" / d) for d in draws]
+    assert pick[pick.index("--data") + 1] == "data/line-pv-val-lens" and out_name(pick, tmp_path) == "band-look"
+    finished = [out_name(a, tmp_path) for a in calls[:calls.index(pick)] if a[0] == "threshold"]
+    assert set(draws) <= set(finished)  # each draw at its own threshold before the choice
+    after = calls[calls.index(pick):]
+    assert any(a[0] == "eval" and a[a.index("--model") + 1] == str(tmp_path / "runs/band-look") for a in after)
