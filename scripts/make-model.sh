@@ -33,7 +33,7 @@
 #      docs/results/2026-12-05-moulding-kinds.md) and the outline check (a short step along its long edges: flash;
 #      docs/results/2026-12-05-outline.md) added to the shipped model and to each look without a type, their
 #      spread from the good train parts, their thresholds from CALIBRATION's good parts (station shape)
-#   6b-draws. LOOK_DRAWS=K (default 1): the look trained K times (seeds 0..K-1), each finished as below, and the one
+#   6b-draws. LOOK_DRAWS=K (default 3, since stop 128): the look trained K times (seeds 0..K-1), each finished as below, and the one
 #      that rejects fewest good parts of the validation parts seen through a lens drawn per part (LENS_VAL: VAL's
 #      parts rendered again with sim/presets/lens-vary.toml) kept as band-look (station pick; a look's lens response
 #      is its training draw's: docs/results/2026-12-10-look-lens.md, docs/results/2026-12-11-look-draw.md). The
@@ -99,7 +99,7 @@ SMOOTH_FIELD=${SMOOTH_FIELD:-0}  # 1: every variation fit takes a lens's smooth 
 SMOOTH=(); [ "$SMOOTH_FIELD" = 1 ] && SMOOTH=(--smooth-field)  # --smooth-field; docs/results/2026-12-09-smooth-field)
 LOOK_LENS=${LOOK_LENS:-}  # LO,HI: every look network also learns from a lens copy of each good part (station residual
 LOOK_LENS_ARGS=(${LOOK_LENS:+--lens-copies "$LOOK_LENS"})  # --lens-copies; docs/results/2026-12-10-look-lens); "": none
-LOOK_DRAWS=${LOOK_DRAWS:-1}  # trainings of the look, the one a lens moves least kept (6b-draws); 1: one, seed 0
+LOOK_DRAWS=${LOOK_DRAWS:-3}  # trainings of the look, the one a lens moves least kept (6b-draws); 1: one, seed 0
 LENS_VAL=${LENS_VAL:-data/line-pv-val-lens}  # VAL's parts through a lens drawn per part: the draws' choice (6b-draws)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}  # one thread per process: see docs/platform-facts.md
 TRAIN_THREADS=${TRAIN_THREADS:-$JOBS}  # the networks train alone, on every core: 1.6x one thread's speed on 2 cores

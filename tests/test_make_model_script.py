@@ -45,7 +45,9 @@ def out_name(args: list[str], tmp_path: Path) -> str:
 
 
 def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
-    calls = dry_run(tmp_path)
+    """The recipe with one training of the look (LOOK_DRAWS=1; the shipped three draws and their choice:
+    test_look_draws_train_the_look_k_times_and_keep_the_one_a_lens_moves_least)."""
+    calls = dry_run(tmp_path, LOOK_DRAWS="1")
     variation = [args for args in calls if args[0] == "variation"]
     assert [(out_name(a, tmp_path), a[a.index("--decision") + 1]) for a in variation] == [("band-variation",
                                                                                            "variation")]
@@ -82,8 +84,8 @@ def test_make_model_states_each_models_decision(tmp_path: Path) -> None:
 def test_make_model_blends_each_look_in_place_on_the_threshold_set_after_its_checks(tmp_path: Path) -> None:
     """The shipped decision since stop 123 (docs/results/2026-12-07-blend-rates.md): the look network asked about
     every part, blended with the window, its two thresholds from the set the threshold is set on; BLEND=0 keeps the
-    cascade."""
-    calls = dry_run(tmp_path)
+    cascade. One draw of the look (LOOK_DRAWS=1): each draw of three is finished alike."""
+    calls = dry_run(tmp_path, LOOK_DRAWS="1")
     types = ["dent", "scratch", "stain", "chip", "missing_stud"]
     blended = [(out_name(a, tmp_path), a[a.index("--model") + 1], a[a.index("--data") + 1], a[a.index("--weight") + 1])
                for a in calls if a[0] == "blend"]
@@ -181,10 +183,11 @@ def test_make_model_varies_the_panel_in_training_and_validation_only(tmp_path: P
     draw the plastic's finish wider (sim/presets/finish-vary.toml, last), and its threshold is set on the same
     validation parts with the finish as built; rule 67: those two sets also draw each part's edges (--edge-mm 0,0.4),
     the threshold's and the held-out set have the sharp edges as built. The held-out set is the line as built. The
-    defaults name the sets the shipped sidecar records."""
+    defaults name the sets the shipped sidecar records (with one draw of the look, LOOK_DRAWS=1: the shipped file is
+    the draw thresholded so)."""
     import json
 
-    calls = dry_run(tmp_path)
+    calls = dry_run(tmp_path, LOOK_DRAWS="1")
     renders = [args for args in calls if args[0] == "render"]
     configs = {args[args.index("--out") + 1]: [args[i + 1] for i, a in enumerate(args) if a == "--config"]
                for args in renders}
@@ -233,7 +236,7 @@ def test_make_model_judges_the_shipped_model_on_kinds_nobody_rendered(tmp_path: 
 def test_make_model_times_each_command_and_prints_the_sum(tmp_path: Path) -> None:
     """Every command's wall seconds go to RUNS/timings.tsv (seconds, command, its output, when it ended) and the
     last lines sum them per command: how long the recipe took on this machine, across resumed runs too."""
-    calls = dry_run(tmp_path, NEW_KINDS_COUNT="0")
+    calls = dry_run(tmp_path, NEW_KINDS_COUNT="0", LOOK_DRAWS="1")
     rows = [line.split("\t") for line in (tmp_path / "runs" / "timings.tsv").read_text().splitlines()]
     others = [c for c in calls if c[0] != "render"]  # a render is two shards (JOBS=2), timed as one step
     # one row per command (the looks, their finishing and the evaluations run two at a time: in any order)
@@ -256,7 +259,8 @@ def test_a_failing_step_stops_make_model_even_where_its_command_is_skipped_when_
 def timed_looks(tmp_path: Path, fail: str = "", **env_vars: str) -> tuple[int, list[str]]:
     """make-model.sh with a `station` whose look networks take half a second (and the one without type ``fail``
     fails): its return code and the lines "start T", "end T" (T the type left out, "-" for the shipped look) and
-    the other commands, in the order they happened."""
+    the other commands, in the order they happened. One draw of the shipped look (LOOK_DRAWS=1) unless ``env_vars``
+    say otherwise."""
     return stub_run(tmp_path, """t=$(echo "$*" | sed -n 's/.*--holdout-type \\([a-z_]*\\).*/\\1/p')
 if [ "$1" = residual ]; then
     t=${t:--}
@@ -264,7 +268,7 @@ if [ "$1" = residual ]; then
 else
     echo "$1" >> "$CALLS"
 fi
-""", FAIL=fail, NEW_KINDS_COUNT="0", **env_vars)
+""", FAIL=fail, NEW_KINDS_COUNT="0", **({"LOOK_DRAWS": "1"} | env_vars))
 
 
 def test_make_model_trains_the_look_networks_two_at_a_time(tmp_path: Path) -> None:
@@ -416,12 +420,13 @@ def test_look_draws_train_the_look_k_times_and_keep_the_one_a_lens_moves_least(t
     """``LOOK_DRAWS=3`` (docs/results/2026-12-11-look-draw/plan.md): the look trained with seeds 0, 1, 2, each
     blended and thresholded as the shipped look, then ``station pick`` keeps one as band-look on the validation parts
     rendered again through a lens drawn per part (the same seed and parts as VAL, lens-vary.toml layered last); the
-    held-out types' looks stay one draw each. Unset: one look, no lens set, no pick (the shipped recipe)."""
+    held-out types' looks stay one draw each. Three is the shipped recipe (unset); LOOK_DRAWS=1: one look, no lens
+    set, no pick."""
     (tmp_path / "one").mkdir()
-    calls = dry_run(tmp_path / "one")
+    calls = dry_run(tmp_path / "one", LOOK_DRAWS="1")
     assert not [a for a in calls if a[0] == "pick"]
     assert "data/line-pv-val-lens" not in [a[a.index("--out") + 1] for a in calls if a[0] == "render"]
-    calls = dry_run(tmp_path, LOOK_DRAWS="3")
+    calls = dry_run(tmp_path)
     looks = {out_name(a, tmp_path): a for a in calls if a[0] == "residual"}
     draws = [f"band-look-draw-{n}" for n in range(3)]
     assert sorted(looks) == sorted([*draws, *(f"holdout-{t}" for t in ("dent", "scratch", "stain", "chip",
