@@ -33,11 +33,12 @@
 #      docs/results/2026-12-05-moulding-kinds.md) and the outline check (a short step along its long edges: flash;
 #      docs/results/2026-12-05-outline.md) added to the shipped model and to each look without a type, their
 #      spread from the good train parts, their thresholds from CALIBRATION's good parts (station shape)
-#   6b-draws. LOOK_DRAWS=K (default 3, since stop 128): the look trained K times (seeds 0..K-1), each finished as below, and the one
-#      that rejects fewest good parts of the validation parts seen through a lens drawn per part (LENS_VAL: VAL's
-#      parts rendered again with sim/presets/lens-vary.toml) kept as band-look (station pick; a look's lens response
-#      is its training draw's: docs/results/2026-12-10-look-lens.md, docs/results/2026-12-11-look-draw.md). The
-#      held-out types' looks are one draw each: the choice's tie-break counts defects, the held-out type's among them
+#   6b-draws. LOOK_DRAWS=K (default 3, since stop 128): the look trained K times (seeds 0..K-1), each finished as
+#      below, and the one that rejects fewest good parts of the validation parts seen through a lens drawn per part
+#      (LENS_VAL: VAL's parts rendered again with sim/presets/lens-vary.toml) kept as band-look (station pick; a
+#      look's lens response is its training draw's: docs/results/2026-12-10-look-lens.md,
+#      docs/results/2026-12-11-look-draw.md). The held-out types' looks are one draw each: the choice's tie-break
+#      counts defects, the held-out type's among them
 #   6b''. blend: each look asked about every part and blended with the window (BLEND of the window's finding, the
 #      rest the network's, each over its own 1 % threshold on VAL's good parts, the checks' finding whole; in place;
 #      station blend, docs/results/2026-12-07-blend-rates.md); BLEND=0 keeps the cascade of 6b
