@@ -189,7 +189,7 @@ def pick_draw(models: Sequence[str], data: str, out: str, split: str = "val",
     ``model.draem.draw_choice.RULE`` keeps on ``data``'s ``split`` as the station would judge it (e.g. the validation
     parts seen through a lens); ``out``'s sidecar records every draw's counts (``train.draw_choice``). Returns one
     line per draw and the choice."""
-    from model.draem.checkpoint import copy_checkpoint, load_checkpoint, paths, read_json_sidecar
+    from model.draem.checkpoint import copy_checkpoint, load_checkpoint
     from model.draem.draw_choice import RULE, choose_draw, draw_counts
     from station.datasets import manifest_sha256
 
@@ -214,16 +214,10 @@ def pick_draw(models: Sequence[str], data: str, out: str, split: str = "val",
         choice = choose_draw(counts)
     except ValueError as exc:
         raise UserError(f"{data}: split {split!r}: {exc}") from None
-    copy_checkpoint(choice.kept_name, out)
-    js = paths(out)[1]
-    meta = read_json_sidecar(js)
-    meta.setdefault("train", {})["draw_choice"] = {
+    copy_checkpoint(choice.kept_name, out, train={"draw_choice": {
         "data": data, "manifest_sha256": manifest_sha256(data), "split": split, "rule": RULE,
         "presence_rule": str(presence_rule), "kept": choice.kept_name,
-        "draws": [vars(c) for c in choice.counts], "date": time.strftime("%Y-%m-%dT%H:%M:%S")}
-    tmp = js.with_name(js.name + ".tmp")
-    tmp.write_text(json.dumps(meta, indent=1, allow_nan=True))
-    tmp.replace(js)
+        "draws": [vars(c) for c in choice.counts], "date": time.strftime("%Y-%m-%dT%H:%M:%S")}})
     lines = [c.line() for c in choice.counts]
     return "\n".join([*lines, f"kept: {choice.kept_name} ({RULE}) -> {out}"])
 

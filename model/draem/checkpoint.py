@@ -92,10 +92,11 @@ def write_checkpoint_files(path: str | Path, module: torch.nn.Module, meta: dict
     return pt, js
 
 
-def copy_checkpoint(src: str | Path, dst: str | Path) -> tuple[Path, Path]:
+def copy_checkpoint(src: str | Path, dst: str | Path, train: dict[str, Any] | None = None) -> tuple[Path, Path]:
     """Copy checkpoint ``src`` (stem) to ``dst`` (stem): weights, sidecar (``weights_file`` renamed; the weights'
-    hash is unchanged) and its int8 networks (``<stem>.int8/``, which name the weights by hash) when present;
-    each file written under a temporary name then renamed. Returns ``dst``'s (weights, sidecar)."""
+    hash is unchanged; ``train``'s entries added to its ``train`` record, e.g. why this file was kept) and its int8
+    networks (``<stem>.int8/``, which name the weights by hash) when present; each file written under a temporary
+    name then renamed. Returns ``dst``'s (weights, sidecar)."""
     import shutil
 
     spt, sjs = paths(src)
@@ -108,6 +109,8 @@ def copy_checkpoint(src: str | Path, dst: str | Path) -> tuple[Path, Path]:
     shutil.copyfile(spt, tmp)
     tmp.replace(dpt)
     tmp = djs.with_name(djs.name + ".tmp")
+    if train:
+        meta = {**meta, "train": {**meta.get("train", {}), **train}}
     tmp.write_text(json.dumps({**meta, "weights_file": dpt.name}, indent=1, allow_nan=True))
     tmp.replace(djs)
     sint8, dint8 = spt.with_suffix(".int8"), dpt.with_suffix(".int8")
