@@ -141,10 +141,10 @@ render "$DATA" "${VARY[@]}" "${FINISH[@]}" "${LENS_CONFIG[@]}" "${EDGES[@]}" --c
 render "$HELDOUT" --count "$HELDOUT_COUNT" --seed "$HELDOUT_SEED" --defects 0.6 --heldout --visibility
 render "$CALIBRATION" "${VARY[@]}" "${FINISH[@]}" "${LENS_CONFIG[@]}" "${EDGES[@]}" --count "$VAL_COUNT" --seed 303 \
     --defects 0.4 --validation
-render "$VAL" "${VARY[@]}" "${LENS_CONFIG[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation
+VAL_ARGS=("${VARY[@]}" "${LENS_CONFIG[@]}" --count "$VAL_COUNT" --seed 303 --defects 0.4 --validation)
+render "$VAL" "${VAL_ARGS[@]}"
 if [ "$LOOK_DRAWS" -gt 1 ]; then  # 6b-draws: the same parts and draws as VAL, each through its own lens
-    render "$LENS_VAL" "${VARY[@]}" "${LENS_CONFIG[@]}" --config sim/presets/lens-vary.toml --count "$VAL_COUNT" \
-        --seed 303 --defects 0.4 --validation
+    render "$LENS_VAL" "${VAL_ARGS[@]}" --config sim/presets/lens-vary.toml
 fi
 if [ "$NEW_KINDS_COUNT" -gt 0 ]; then
     render "$NEW_KINDS" --config sim/presets/new-kinds.toml --count "$NEW_KINDS_COUNT" --seed "$NEW_KINDS_SEED" \
