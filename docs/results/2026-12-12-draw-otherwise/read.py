@@ -44,11 +44,15 @@ def main() -> None:
         print(f"| {what} | {g.sum()} | {mark(rs)} | {mark(rc)} | {(rs & ~rc).sum()} / {(rc & ~rs).sum()} "
               f"| {(s[d] > ts).mean():.1%} | {(c[d] > tc).mean():.1%} | {roc_auc_score(lab, s):.3f} "
               f"| {roc_auc_score(lab, c):.3f} |")
-    arms = [p.name.removeprefix("shift-") for p in sorted(HERE.glob("shift-*")) if (p / "shift.json").exists()]
-    if not arms:
+    res: dict[str, dict] = {}  # arm -> shift -> row; shift-ARM_MORE folders add rows to ARM
+    for p in sorted(HERE.glob("shift-*")):
+        if (p / "shift.json").exists():
+            arm = p.name.removeprefix("shift-").split("_")[0]
+            res.setdefault(arm, {}).update({r["shift"]: r for r in json.load(open(p / "shift.json"))["rows"]})
+    if not res:
         return
-    res = {a: {r["shift"]: r for r in json.load(open(HERE / f"shift-{a}" / "shift.json"))["rows"]} for a in arms}
-    shifts = list(res[arms[0]])
+    arms = list(res)
+    shifts = list(dict.fromkeys(s for a in arms for s in res[a]))
     print("\nstation bench shift, seed 1247 as built (read before: a screen), good parts rejected at the 1 % threshold"
           " / defective caught there (166 good, 234 defective):\n")
     print("| shift | " + " | ".join(arms) + " |")
